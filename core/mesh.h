@@ -4,14 +4,15 @@
 // (y up; the paper's "clockwise on screen"). O[c] is the corner facing c across the edge
 // opposite c, in the neighbouring triangle; kNone on the boundary.
 //
-//                 V[p(c)]
-//                  /  \
-//     l(c)=o(n(c))/    \   r(c)=o(p(c))      looking from V[c] into the triangle:
-//       (left)   /  t   \   (right)          n(c) is on the right, p(c) on the left,
-//               /        \                   so the left neighbour lies across the edge
-//          V[c] ---------- V[n(c)]           V[c]-V[p(c)], the one opposite n(c).
-//                  o(c) below, across the edge V[n(c)]-V[p(c)]... (opposite c)
+//          V[p(c)]
+//            |  `.
+//   l(c) --> |    `.   <-- o(c): across the edge opposite c
+//            |  t   `.
+//          V[c] ------ V[n(c)]
+//                 ^ r(c): across the edge V[c]-V[n(c)]
 //
+// Looking from V[c] into its triangle, n(c) is on the right and p(c) on the left; the left
+// neighbour lies across the edge V[c]-V[p(c)], the one opposite n(c).
 // Our convention (stated in the UI too): l(c) = o(n(c)), r(c) = o(p(c)).
 // Swing s(c) = n(l(c)) turns counter-clockwise around V[c]; unswing u(c) = p(r(c)) turns
 // clockwise. Both return kNone when they would cross the boundary.

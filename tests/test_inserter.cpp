@@ -1,0 +1,349 @@
+// Inserter, Journal and locators: validity and exact Delaunay on degenerate sets in every mode,
+// step-by-step equals batch, and exact undo.
+#include "core/generators.h"
+#include "core/inserter.h"
+#include "core/predicates.h"
+#include "core/trace.h"
+#include "tests/exact_check.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <set>
+#include <sstream>
+
+using namespace dlab;
+
+namespace {
+
+struct Snapshot {
+    std::vector<Vec2> G;
+    std::vector<std::int32_t> V, O;
+    bool operator==(const Snapshot& s) const {
+        return V == s.V && O == s.O && G.size() == s.G.size() &&
+               std::equal(G.begin(), G.end(), s.G.begin(), [](Vec2 a, Vec2 b) {
+                   return std::memcmp(&a, &b, sizeof a) == 0;
+               });
+    }
+};
+Snapshot snap(const Mesh& m) { return {m.G, m.V, m.O}; }
+
+std::vector<std::int32_t> distinctFirstOccurrences(const std::vector<Vec2>& pts) {
+    std::map<std::pair<double, double>, std::int32_t> seen;
+    std::vector<std::int32_t> out;
+    for (std::int32_t i = 0; i < static_cast<std::int32_t>(pts.size()); ++i) {
+        if (seen.emplace(std::make_pair(pts[i].x, pts[i].y), i).second) out.push_back(i);
+    }
+    return out;
+}
+
+// Triangulates in batch and checks everything the exact mode promises.
+void expectExactDelaunay(const std::vector<Vec2>& pts, const InsertOptions& opt, const std::string& label) {
+    SCOPED_TRACE(label);
+    Inserter ins(pts, opt);
+    ins.run();
+    ASSERT_TRUE(ins.done());
+    const Mesh& m = ins.mesh();
+    ASSERT_EQ(m.numVertices(), static_cast<std::int32_t>(pts.size()));
+    const auto violations = validate(m, {});
+    ASSERT_TRUE(violations.empty()) << violations[0].message;
+    const auto distinct = distinctFirstOccurrences(pts);
+    if (allCollinearExact(pts)) {
+        EXPECT_EQ(m.numTriangles(), 0);
+        return;
+    }
+    ASSERT_EQ(checkDelaunayExact(m, &distinct), "");
+    // Duplicates: the first occurrence is the vertex, every later copy is reported skipped.
+    EXPECT_EQ(ins.stats().duplicates, static_cast<std::int64_t>(pts.size() - distinct.size()));
+    std::set<std::int32_t> used(m.V.begin(), m.V.end());
+    for (std::int32_t v : distinct) EXPECT_TRUE(used.count(v)) << "vertex " << v << " missing";
+    for (std::int32_t s : ins.skipped()) EXPECT_FALSE(used.count(s)) << "skipped " << s << " used";
+}
+
+std::vector<std::pair<std::string, std::vector<Vec2>>> degenerateSets() {
+    std::vector<std::pair<std::string, std::vector<Vec2>>> sets;
+    for (Generator g : {Generator::Uniform, Generator::Clusters, Generator::Grid, Generator::RotatedGrid,
+                        Generator::Ngon, Generator::Circle, Generator::Collinear, Generator::NearDuplicates,
+                        Generator::HugeTinyBox, Generator::AllCollinear}) {
+        sets.emplace_back(toString(g), generatePoints(g, 300, 7));
+    }
+    sets.emplace_back("demo", demoPoints());
+    sets.emplace_back("empty", std::vector<Vec2>{});
+    sets.emplace_back("one", std::vector<Vec2>{{1, 2}});
+    sets.emplace_back("two", std::vector<Vec2>{{1, 2}, {3, 4}});
+    sets.emplace_back("same-point", std::vector<Vec2>(20, Vec2{5, 5}));
+    sets.emplace_back("triangle", std::vector<Vec2>{{0, 0}, {1, 0}, {0, 1}});
+    sets.emplace_back("collinear-then-off", std::vector<Vec2>{{0, 0}, {1, 1}, {2, 2}, {3, 3}, {0, 0}, {5, 0}});
+    // Rescaled fixtures: the same grid from 1e-9 to 1e9 and at the extremes of double.
+    for (double scale : {1e-300, 1e-200, 1e-9, 1.0, 1e9, 1e200, 1e300}) {
+        auto g = generatePoints(Generator::Grid, 100, 1);
+        for (Vec2& p : g) { p.x *= scale; p.y *= scale; }
+        std::ostringstream name;
+        name << "grid*" << scale;
+        sets.emplace_back(name.str(), g);
+    }
+    auto offset = generatePoints(Generator::Uniform, 200, 3);
+    for (Vec2& p : offset) { p.x = 1e9 + p.x * 1e-6; p.y = 1e9 + p.y * 1e-6; }
+    sets.emplace_back("offset-1e9", offset);
+    return sets;
+}
+
+}  // namespace
+
+TEST(Inserter, ExactModeIsDelaunayOnDegenerateSetsForEveryLocatorAndOrder) {
+    for (const auto& [name, pts] : degenerateSets()) {
+        for (LocatorKind loc : {LocatorKind::Naive, LocatorKind::Walk, LocatorKind::Grid, LocatorKind::IdBufferCpu}) {
+            for (OrderKind order : {OrderKind::Input, OrderKind::Random, OrderKind::Brio}) {
+                InsertOptions opt;
+                opt.locator = loc;
+                opt.order = order;
+                opt.locatorOptions.idBufferWidth = opt.locatorOptions.idBufferHeight = 128;
+                expectExactDelaunay(pts, opt, name + "/" + toString(loc) + "/" + toString(order));
+            }
+        }
+    }
+}
+
+TEST(Inserter, LargerRandomSetsAreDelaunay) {
+    for (std::uint64_t seed = 1; seed <= 3; ++seed) {
+        expectExactDelaunay(generatePoints(Generator::Uniform, 20000, seed), {}, "uniform-20k");
+        expectExactDelaunay(generatePoints(Generator::Grid, 10000, seed), {}, "grid-10k");
+    }
+}
+
+TEST(Inserter, TriangleCountMatchesEuler) {
+    // t = 2n - h - 2 for n distinct points with h of them on the hull (collinear ones included).
+    auto pts = generatePoints(Generator::Grid, 100, 1);  // 10 x 10 lattice: 36 hull points
+    Inserter ins(pts);
+    ins.run();
+    EXPECT_EQ(ins.mesh().numTriangles(), 2 * 100 - 36 - 2);
+}
+
+TEST(Inserter, SuperModeKeepsWhatItPromises) {
+    for (const auto& [name, pts] : degenerateSets()) {
+        SCOPED_TRACE(name);
+        InsertOptions opt;
+        opt.boundary = Boundary::Super;
+        Inserter ins(pts, opt);
+        ins.run();
+        // Valid, counter-clockwise, locally Delaunay between the triangles it kept.
+        const auto v = validate(ins.mesh(), {});
+        EXPECT_TRUE(v.empty()) << v[0].message;
+        EXPECT_EQ(ins.mesh().numVertices(), static_cast<std::int32_t>(pts.size()));
+    }
+}
+
+TEST(Inserter, SuperModeRefusesCoordinatesWithoutAFiniteSuperTriangle) {
+    InsertOptions opt;
+    opt.boundary = Boundary::Super;
+    std::vector<Vec2> pts{{-1e308, -1e308}, {1e308, -1e308}, {0, 1e308}};
+    EXPECT_THROW(Inserter(pts, opt), std::domain_error);
+}
+
+// The paper's finite super-triangle loses the thin hull triangle (0, 1, 2): its circumcircle is
+// so large that it holds a super vertex. Exact mode keeps it.
+TEST(Inserter, SuperModeFlawNearTheHullIsDocumented) {
+    const std::vector<Vec2> pts{{0, 0}, {50, -0.001}, {100, 0}, {50, 50}};
+    InsertOptions super;
+    super.boundary = Boundary::Super;
+    Inserter s(pts, super);
+    s.run();
+    Inserter e(pts);
+    e.run();
+    EXPECT_EQ(e.mesh().numTriangles(), 2);
+    EXPECT_EQ(checkDelaunayExact(e.mesh()), "");
+    EXPECT_LT(s.mesh().numTriangles(), 2);
+    EXPECT_NE(checkDelaunayExact(s.mesh()), "");  // the hull is not convex any more
+}
+
+TEST(Inserter, RejectsNonFinitePoints) {
+    EXPECT_THROW(Inserter({{0, 0}, {NAN, 1}, {1, 1}}), std::invalid_argument);
+    EXPECT_THROW(Inserter({{0, 0}, {INFINITY, 1}, {1, 1}}), std::invalid_argument);
+}
+
+TEST(Journal, StepByStepEqualsBatchInBothModes) {
+    for (const auto& [name, pts] : degenerateSets()) {
+        for (Boundary b : {Boundary::Exact, Boundary::Super}) {
+            SCOPED_TRACE(name + "/" + toString(b));
+            InsertOptions opt;
+            opt.boundary = b;
+            opt.order = OrderKind::Random;
+            Inserter batch(pts, opt);
+            batch.run();
+            Inserter stepped(pts, opt);
+            Journal journal(stepped);
+            std::size_t ops = 0;
+            while (journal.forward()) ++ops;
+            ASSERT_TRUE(stepped.done());
+            EXPECT_TRUE(snap(batch.mesh()) == snap(stepped.mesh()));
+            EXPECT_EQ(batch.stats().flips, stepped.stats().flips);
+            EXPECT_EQ(batch.stats().inCircleTests, stepped.stats().inCircleTests);
+            EXPECT_EQ(batch.stats().walkSteps, stepped.stats().walkSteps);
+            EXPECT_EQ(journal.recorded(), ops);
+        }
+    }
+}
+
+TEST(Journal, ForwardToEndAndBackRestoresTheEmptyStateBitForBit) {
+    for (Boundary b : {Boundary::Exact, Boundary::Super}) {
+        const auto pts = generatePoints(Generator::NearDuplicates, 200, 11);
+        InsertOptions opt;
+        opt.boundary = b;
+        opt.locator = LocatorKind::IdBufferCpu;
+        Inserter ins(pts, opt);
+        const Snapshot empty = snap(ins.mesh());
+        Journal journal(ins);
+        std::vector<Snapshot> states{empty};
+        std::vector<InsertStats> stats{ins.stats()};
+        while (journal.forward()) {
+            states.push_back(snap(ins.mesh()));
+            stats.push_back(ins.stats());
+        }
+        const std::size_t total = journal.position();
+        // Random seeks compare with the state recorded on the way forward.
+        SplitMix64 rng(5);
+        for (int k = 0; k < 300; ++k) {
+            const std::size_t target = rng.below(static_cast<std::uint32_t>(total + 1));
+            journal.seek(target);
+            ASSERT_EQ(journal.position(), target);
+            ASSERT_TRUE(states[target] == snap(ins.mesh())) << "after seeking to " << target;
+            ASSERT_EQ(stats[target].flips, ins.stats().flips);
+            ASSERT_EQ(stats[target].duplicates, ins.stats().duplicates);
+            // Every intermediate state is a valid corner table (ghost/super triangles included).
+            ValidateOptions vo;
+            vo.firstVirtual = static_cast<std::int32_t>(pts.size());
+            vo.delaunay = false;
+            const auto v = validate(ins.mesh(), vo);
+            ASSERT_TRUE(v.empty()) << v[0].message << " at op " << target;
+        }
+        journal.seek(0);
+        EXPECT_TRUE(empty == snap(ins.mesh()));
+        EXPECT_TRUE(ins.flipStack().empty());
+        // And forward again to the same end.
+        journal.seek(total);
+        EXPECT_TRUE(states.back() == snap(ins.mesh()));
+        EXPECT_TRUE(ins.done());
+    }
+}
+
+TEST(Journal, UndoThenNewStepsContinueCorrectly) {
+    // Step back into the middle of the recorded run, then go past the recorded end.
+    const auto pts = generatePoints(Generator::Uniform, 60, 2);
+    Inserter ref(pts);
+    ref.run();
+    Inserter ins(pts);
+    Journal journal(ins);
+    for (int i = 0; i < 200; ++i) journal.forward();
+    journal.seek(120);
+    while (journal.forward()) {}
+    EXPECT_TRUE(snap(ref.mesh()) == snap(ins.mesh()));
+}
+
+TEST(Journal, EveryOpRecordsTheCellsItChanged) {
+    const auto pts = generatePoints(Generator::Uniform, 80, 4);
+    Inserter ins(pts);
+    Journal journal(ins);
+    Snapshot before = snap(ins.mesh());
+    std::map<OpType, int> seen;
+    while (const Op* op = journal.forward()) {
+        ++seen[op->type];
+        const Snapshot after = snap(ins.mesh());
+        // Apply the recorded changes to the old state: must give the new state exactly.
+        Snapshot rebuilt = before;
+        const std::size_t n = 3 * static_cast<std::size_t>(std::max(op->trianglesBefore, op->trianglesAfter));
+        rebuilt.V.resize(n, kNone);
+        rebuilt.O.resize(n, kNone);
+        for (std::uint32_t i = 0; i < op->numChanges; ++i) {
+            const CellChange& c = journal.changes()[op->firstChange + i];
+            auto& table = c.isO() ? rebuilt.O : rebuilt.V;
+            if (c.corner() < op->trianglesBefore * 3) ASSERT_EQ(table[c.corner()], c.before);
+            table[c.corner()] = c.after;
+        }
+        rebuilt.V.resize(3 * op->trianglesAfter);
+        rebuilt.O.resize(3 * op->trianglesAfter);
+        rebuilt.G = after.G;
+        ASSERT_TRUE(rebuilt == after) << toString(op->type) << " at " << journal.position();
+        if (op->type == OpType::Flip) EXPECT_LE(op->numChanges, 8u);  // 6 corners + 2 back-pointers
+        if (op->type == OpType::Split) EXPECT_EQ(op->trianglesAfter, op->trianglesBefore + 2);
+        before = after;
+    }
+    EXPECT_GT(seen[OpType::Flip], 0);
+    EXPECT_GT(seen[OpType::InCircleTest], seen[OpType::Flip]);
+    EXPECT_EQ(seen[OpType::Finalize], 1);
+}
+
+TEST(Journal, PointOnEdgeSplitsTwoIntoFour) {
+    // (0.5, 0.5) lies on the diagonal of the square; (1, 0.5) on its hull edge.
+    const std::vector<Vec2> pts{{0, 0}, {1, 0}, {1, 1}, {0, 1}, {0.5, 0.5}, {1, 0.5}};
+    InsertOptions opt;
+    opt.order = OrderKind::Input;
+    Inserter ins(pts, opt);
+    Journal journal(ins);
+    int edgeSplits = 0;
+    while (const Op* op = journal.forward()) {
+        if (op->type == OpType::SplitEdge) {
+            ++edgeSplits;
+            EXPECT_EQ(op->trianglesAfter, op->trianglesBefore + 2);
+        }
+    }
+    EXPECT_GE(edgeSplits, 1);
+    EXPECT_EQ(checkDelaunayExact(ins.mesh()), "");
+    EXPECT_EQ(ins.mesh().numTriangles(), 5);  // 2n - h - 2 = 12 - 5 - 2
+}
+
+TEST(Trace, RoundTripsThroughJsonLines) {
+    const auto pts = generatePoints(Generator::NearDuplicates, 40, 9);
+    Inserter ins(pts);
+    Journal journal(ins);
+    std::vector<TraceRecord> records;
+    std::string text;
+    while (journal.forward()) {
+        records.push_back(traceRecord(journal, journal.position() - 1, ins.mesh()));
+        text += toJsonLine(records.back()) + "\n";
+    }
+    std::istringstream in(text);
+    const auto back = readTrace(in, "mem.jsonl");
+    ASSERT_EQ(back.size(), records.size());
+    for (std::size_t i = 0; i < back.size(); ++i) ASSERT_TRUE(back[i] == records[i]) << "record " << i;
+    std::istringstream bad("{\"i\":0,\"op\":\"Teleport\"}\n");
+    try {
+        readTrace(bad, "bad.jsonl");
+        FAIL() << "expected an error";
+    } catch (const std::runtime_error& e) {
+        EXPECT_NE(std::string(e.what()).find("bad.jsonl:1:"), std::string::npos) << e.what();
+    }
+}
+
+TEST(Locators, IdBufferCpuHintsAreUsuallyRight) {
+    InsertOptions opt;
+    opt.locator = LocatorKind::IdBufferCpu;
+    opt.order = OrderKind::Random;
+    opt.locatorOptions.idBufferWidth = opt.locatorOptions.idBufferHeight = 512;
+    Inserter ins(generatePoints(Generator::Uniform, 5000, 3), opt);
+    ins.run();
+    const auto& s = ins.locator()->stats();
+    EXPECT_EQ(s.queries, 5000u - 3u);
+    EXPECT_GT(static_cast<double>(s.hits) / s.queries, 0.8);
+}
+
+TEST(Locators, BrioWalkIsShort) {
+    Inserter ins(generatePoints(Generator::Uniform, 20000, 3));
+    ins.run();
+    EXPECT_LT(static_cast<double>(ins.stats().walkSteps) / 20000, 4.0);
+    EXPECT_LT(static_cast<double>(ins.stats().flips) / 20000, 4.0);
+}
+
+TEST(Order, BrioIsAPermutation) {
+    const auto pts = generatePoints(Generator::Clusters, 5000, 1);
+    for (OrderKind k : {OrderKind::Input, OrderKind::Random, OrderKind::Brio}) {
+        auto order = insertionOrder(pts, k, 3);
+        std::sort(order.begin(), order.end());
+        for (std::int32_t i = 0; i < 5000; ++i) ASSERT_EQ(order[i], i);
+    }
+    EXPECT_EQ(hilbertIndex(0, 0, 1), 0u);
+    EXPECT_EQ(hilbertIndex(0, 1, 1), 1u);
+    EXPECT_EQ(hilbertIndex(1, 1, 1), 2u);
+    EXPECT_EQ(hilbertIndex(1, 0, 1), 3u);
+}
