@@ -149,6 +149,9 @@ public:
 
     // Journal support: revert / re-apply one recorded op.
     void undo(const Op& op, const std::vector<CellChange>& changes);
+    // Bulk mode (long seeks): undo/redo stop notifying the locator; leaving it rebuilds the
+    // locator's index once from the current mesh.
+    void setBulk(bool on);
     void redo(const Op& op, const std::vector<CellChange>& changes, const Control& after);
 
 private:
@@ -172,7 +175,12 @@ private:
     int inCircleSign(std::int32_t c) const;  // is V[c] inside the circle across the edge?
     bool onOpenSegment(Vec2 a, Vec2 b, Vec2 p) const;
     void notifyChanged(const std::int32_t* tris, int count);
-    Vec2 currentPoint() const { return m_mesh.G[m_order[m_ctl.cursor]]; }
+    // While run() works on points stored in insertion order, vertex ids are insertion ranks.
+    std::int32_t vertexAt(std::int32_t cursor) const { return m_permuted ? cursor : m_order[cursor]; }
+    std::int32_t inputId(std::int32_t v) const { return m_permuted && v < m_numInput ? m_order[v] : v; }
+    Vec2 currentPoint() const { return m_mesh.G[vertexAt(m_ctl.cursor)]; }
+    void permuteForBatch();
+    void unpermute();
 
     InsertOptions m_options;
     Mesh m_mesh;
@@ -181,6 +189,8 @@ private:
     std::vector<Vec2> m_virtualPoints;  // super-triangle vertices or the ghost placeholder
     std::unique_ptr<Locator> m_locator;
     bool m_locatorWantsChanges = false;
+    bool m_permuted = false;
+    bool m_bulk = false;
     Bounds m_bounds{};
     Control m_ctl;
     std::vector<std::int32_t> m_stack;   // flip work-list: corners at the new vertex

@@ -141,6 +141,11 @@ std::int32_t IdBufferCpu::hint(Vec2 p, std::int32_t last) {
     return t != kNone && t < m_ctx.mesh->numTriangles() ? t : (last < 0 ? 0 : last);
 }
 
+void IdBufferCpu::resync() {
+    std::fill(m_pixels.begin(), m_pixels.end(), kNone);
+    for (std::int32_t t = 0; t < m_ctx.mesh->numTriangles(); ++t) paintTriangle(t);
+}
+
 void IdBufferCpu::trianglesChanged(const std::int32_t* tris, int count) {
     for (int k = 0; k < count; ++k) paintTriangle(tris[k]);
 }
@@ -166,10 +171,23 @@ void IdBufferCpu::paintTriangle(std::int32_t t) {
     if (i0 > i1 || j0 > j1) return;
     // Edge functions, positive inside a counter-clockwise triangle; a pixel centre on an edge
     // goes to whichever triangle paints last (the walk fixes any such pick).
+    // Each row only scans the span where all three edge functions can be non-negative (solved
+    // per edge, widened by a pixel against rounding); the exact per-pixel test decides inside it.
     for (int j = j0; j <= j1; ++j) {
         const double y = j + 0.5;
         std::int32_t* row = &m_pixels[static_cast<std::size_t>(j) * m_width];
-        for (int i = i0; i <= i1; ++i) {
+        double lo = i0, hi = i1;
+        for (int k = 0; k < 3; ++k) {
+            const int a = k, b = (k + 1) % 3;
+            // e(x) = (px[b]-px[a])(y-py[a]) - (py[b]-py[a])(x-px[a]) = A x + B
+            const double A = -(py[b] - py[a]);
+            const double B = (px[b] - px[a]) * (y - py[a]) + (py[b] - py[a]) * px[a];
+            if (A > 0) lo = std::max(lo, std::floor(-B / A - 0.5) - 1);
+            else if (A < 0) hi = std::min(hi, std::ceil(-B / A - 0.5) + 1);
+        }
+        const int ia = lo > i0 ? static_cast<int>(lo) : i0;
+        const int ib = hi < i1 ? static_cast<int>(hi) : i1;
+        for (int i = ia; i <= ib; ++i) {
             const double x = i + 0.5;
             bool inside = true;
             for (int k = 0; k < 3 && inside; ++k) {

@@ -56,6 +56,9 @@ public:
     virtual bool wantsChanges() const { return false; }
     // These triangles' corners changed (a split, a flip, an undo): repaint them.
     virtual void trianglesChanged(const std::int32_t* /*tris*/, int /*count*/) {}
+    // Rebuild the whole index from the current mesh (after a bulk seek that skipped
+    // trianglesChanged calls). Only called after reset().
+    virtual void resync() {}
     // A locate ended in triangle `found` after `steps` walk steps from the hint.
     virtual void located(Vec2 /*p*/, std::int32_t /*found*/, std::int32_t steps) {
         ++m_stats.queries;
@@ -85,6 +88,7 @@ public:
     std::int32_t hint(Vec2 p, std::int32_t lastTriangle) override;
     bool wantsChanges() const override { return true; }
     void trianglesChanged(const std::int32_t* tris, int count) override;
+    void resync() override;
 
     int width() const { return m_width; }
     int height() const { return m_height; }

@@ -4,6 +4,7 @@
 #include "core/order.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <numeric>
 
@@ -26,20 +27,17 @@ std::optional<OrderKind> parseOrderKind(std::string_view name) {
 }
 
 std::uint32_t hilbertIndex(std::uint32_t x, std::uint32_t y, int bits) {
-    // Walk the quadrants from the coarsest level down; in each, rotate/reflect the remaining
-    // coordinates so that the sub-curve has the standard orientation.
-    std::uint32_t d = 0;
-    for (std::uint32_t s = 1u << (bits - 1); s > 0; s >>= 1) {
-        const std::uint32_t rx = (x & s) ? 1u : 0u;
-        const std::uint32_t ry = (y & s) ? 1u : 0u;
-        d += s * s * ((3u * rx) ^ ry);
-        if (ry == 0) {
-            if (rx == 1) {
-                x = s - 1 - (x & (s - 1)) + (x & ~(s - 1));
-                y = s - 1 - (y & (s - 1)) + (y & ~(s - 1));
-            }
-            std::swap(x, y);
-        }
+    // From the coarsest level down: the sub-square's digit depends on the bits seen through
+    // the rotation/reflection accumulated so far (2 bits of state: swap, reflect). Written
+    // without branches: the branchy version mispredicts on almost every level.
+    std::uint32_t swap = 0, reflect = 0, d = 0;
+    for (int i = bits - 1; i >= 0; --i) {
+        const std::uint32_t bx = ((x >> i) & 1u) ^ reflect, by = ((y >> i) & 1u) ^ reflect;
+        const std::uint32_t rx = swap ? by : bx, ry = swap ? bx : by;
+        d = (d << 2) | ((3u * rx) ^ ry);
+        const std::uint32_t turn = ry ^ 1u;  // lower-left or lower-right quadrant
+        swap ^= turn;
+        reflect ^= turn & rx;
     }
     return d;
 }
@@ -68,47 +66,43 @@ void radixSortByKey(std::vector<std::uint64_t>& rec, std::vector<std::uint64_t>&
 
 std::vector<std::int32_t> brio(const std::vector<Vec2>& points, SplitMix64& rng) {
     const std::size_t n = points.size();
-    std::vector<std::int32_t> order(n);
-    std::iota(order.begin(), order.end(), 0);
-    shuffle(order, rng);
-    if (n < 64) return order;
-
+    if (n < 64) {
+        std::vector<std::int32_t> order(n);
+        std::iota(order.begin(), order.end(), 0);
+        shuffle(order, rng);
+        return order;
+    }
     double minX = points[0].x, maxX = minX, minY = points[0].y, maxY = minY;
     for (const Vec2& p : points) {
         minX = std::min(minX, p.x); maxX = std::max(maxX, p.x);
         minY = std::min(minY, p.y); maxY = std::max(maxY, p.y);
     }
-    constexpr int kBits = 16;
-    static constexpr double kCells = 65535.0;
-    // Scale each axis to [0, 65535]; the span is computed as a difference of halves so that
-    // it cannot overflow for coordinates near the largest doubles.
+    // Each point draws its round: the last round (15) with probability 1/2, the one before
+    // with 1/4, ..., round 0 takes the rest. The sort key is (round, Hilbert index on a
+    // 2^14 x 2^14 grid), so one radix sort over the points in input order (no random
+    // gathers, which cost more than everything else at a million points) gives the order.
+    constexpr int kBits = 14;
+    static constexpr double kCells = (1 << kBits) - 1;
+    // Scale each axis to [0, 2^14 - 1]; the span is computed as a difference of halves so
+    // that it cannot overflow for coordinates near the largest doubles.
     const double spanX = maxX / 2 - minX / 2, spanY = maxY / 2 - minY / 2;
     const double sx = spanX > 0 ? kCells / 2 / spanX : 0.0;
     const double sy = spanY > 0 ? kCells / 2 / spanY : 0.0;
-    auto cell = [](double v) {
-        return static_cast<std::uint32_t>(std::clamp(v, 0.0, kCells));
-    };
+    auto cell = [](double v) { return static_cast<std::uint32_t>(std::clamp(v, 0.0, kCells)); };
 
-    // Rounds: the last holds about half the points, the one before a quarter, ...; the
-    // first round (smallest) is at least 64 points.
-    std::vector<std::size_t> bounds{n};
-    while (bounds.back() > 128) bounds.push_back(bounds.back() / 2);
-    bounds.push_back(0);
-    std::reverse(bounds.begin(), bounds.end());
-
-    std::vector<std::uint64_t> rec, tmp;
-    for (std::size_t r = 0; r + 1 < bounds.size(); ++r) {
-        const std::size_t lo = bounds[r], hi = bounds[r + 1];
-        rec.resize(hi - lo);
-        for (std::size_t i = lo; i < hi; ++i) {
-            const Vec2& p = points[order[i]];
-            const std::uint32_t key =
-                hilbertIndex(cell((p.x / 2 - minX / 2) * sx), cell((p.y / 2 - minY / 2) * sy), kBits);
-            rec[i - lo] = (std::uint64_t{key} << 32) | static_cast<std::uint32_t>(order[i]);
-        }
-        radixSortByKey(rec, tmp);
-        for (std::size_t i = lo; i < hi; ++i) order[i] = static_cast<std::int32_t>(rec[i - lo] & 0xFFFFFFFFu);
+    std::vector<std::uint64_t> rec(n), tmp;
+    for (std::size_t i = 0; i < n; ++i) {
+        const Vec2& p = points[i];
+        const std::uint64_t r = rng.next();
+        const int zeros = r == 0 ? 64 : std::countr_zero(r);
+        const std::uint32_t round = 15u - static_cast<std::uint32_t>(std::min(zeros, 15));
+        const std::uint32_t key =
+            (round << 28) | hilbertIndex(cell((p.x / 2 - minX / 2) * sx), cell((p.y / 2 - minY / 2) * sy), kBits);
+        rec[i] = (std::uint64_t{key} << 32) | static_cast<std::uint32_t>(i);
     }
+    radixSortByKey(rec, tmp);
+    std::vector<std::int32_t> order(n);
+    for (std::size_t i = 0; i < n; ++i) order[i] = static_cast<std::int32_t>(rec[i] & 0xFFFFFFFFu);
     return order;
 }
 
