@@ -1,0 +1,73 @@
+# Delaunay Lab — the single entry point. `make run` and `make test` are all a user needs; both
+# install missing Debian 12 packages first (as root), then configure, build and run with CMake.
+#
+#   make run     deps, configure build/ (RelWithDebInfo), build, run the main job
+#   make test    deps, configure, build everything, ctest (non-zero exit when a test fails)
+#   make build   deps, configure, build
+#   make deps    install missing Debian packages (root), or print the apt-get command and fail
+#   make asan    deps, configure build-asan/ (Debug, ASan + UBSan), build, ctest
+#   make bench   build, then dtlab vs CGAL on 2^20 uniform points, and dtlab's peak memory
+#   make clean   remove build/, build-asan/, build-release/
+#
+# Variables: JOBS (build parallelism, default nproc), CTEST_JOBS (default 2), DLAB_SKIP_DEPS=1
+# (skip the Debian package check), CMAKE_ARGS (extra arguments for the configure step).
+
+SHELL := /bin/bash
+MAKEFLAGS += --no-print-directory
+.SHELLFLAGS := -euo pipefail -c
+.DEFAULT_GOAL := build
+
+JOBS ?= $(shell nproc 2>/dev/null || echo 2)
+CTEST_JOBS ?= 2
+CMAKE_ARGS ?=
+
+BUILD_DIR := build
+ASAN_DIR := build-asan
+
+# Debian 12 (bookworm) package names. libcgal-dev only serves the benchmark baseline; time and jq
+# serve `make bench`; xvfb and xauth (xvfb-run needs it) serve the real-window smoke test.
+DEB_PACKAGES := \
+	build-essential cmake pkg-config \
+	libimgui-dev libglfw3-dev libglm-dev libosmesa6-dev libstb-dev libgif-dev \
+	libcli11-dev libtomlplusplus-dev nlohmann-json3-dev libgmp-dev \
+	libgtest-dev libbenchmark-dev \
+	xvfb xauth \
+	libcgal-dev time jq
+
+.PHONY: all run test build configure deps asan bench clean help
+
+all: build
+
+help:
+	@sed -n '1,/^$$/p' $(firstword $(MAKEFILE_LIST))
+
+deps:
+	@bash .ci/deps.sh $(DEB_PACKAGES)
+
+# Configure every time: cheap once the cache exists, and it never builds from a stale or
+# half-written configuration.
+configure: deps
+	cmake -S . -B $(BUILD_DIR) -DCMAKE_BUILD_TYPE=RelWithDebInfo $(CMAKE_ARGS)
+
+build: configure
+	cmake --build $(BUILD_DIR) -j $(JOBS)
+
+# The main job. (A later issue makes it start the GUI.)
+run: build
+	$(BUILD_DIR)/app/dtlab demo -o $(BUILD_DIR)/demo
+
+test: build
+	ctest --test-dir $(BUILD_DIR) --output-on-failure --no-tests=error -j $(CTEST_JOBS)
+
+asan: deps
+	cmake -S . -B $(ASAN_DIR) -DCMAKE_BUILD_TYPE=Debug -DDLAB_SANITIZE=ON \
+		-DDLAB_BUILD_CGAL_BASELINE=OFF $(CMAKE_ARGS)
+	cmake --build $(ASAN_DIR) -j $(JOBS)
+	UBSAN_OPTIONS=print_stacktrace=1 \
+		ctest --test-dir $(ASAN_DIR) --output-on-failure --no-tests=error -j $(CTEST_JOBS)
+
+bench: build
+	bash .ci/bench_compare.sh $(BUILD_DIR)
+
+clean:
+	rm -rf $(BUILD_DIR) $(ASAN_DIR) build-release
