@@ -1,2 +1,25 @@
-// dtlab: the headless command line of Delaunay Lab.
-int main() { return 0; }
+// dtlab: the headless command line of Delaunay Lab (triangulate, trace, bench, gen, demo).
+#include "app/dtlab_common.h"
+
+#include <CLI/CLI.hpp>
+
+#include <cstdio>
+#include <exception>
+#include <iostream>
+
+int main(int argc, char** argv) {
+    CLI::App app{"dtlab: exact incremental Delaunay triangulation on a corner table (headless)"};
+    app.require_subcommand(1);
+    app.set_help_all_flag("--help-all", "Show the help of every subcommand");
+    dlab::cli::addDemo(app);
+    dlab::cli::addGen(app);
+    dlab::cli::addTriangulate(app);
+    dlab::cli::addTrace(app);
+    dlab::cli::addBench(app);
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+        return app.exit(e);
+    }
+    return dlab::cli::exitCode();
+}

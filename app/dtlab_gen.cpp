@@ -1,0 +1,68 @@
+// dtlab gen: writes one of the built-in point sets (uniform, clusters, grid, ...) to a file.
+#include "app/dtlab_common.h"
+
+#include "core/generators.h"
+#include "core/io_read.h"
+#include "core/io_write.h"
+
+#include <charconv>
+#include <filesystem>
+#include <iostream>
+
+namespace dlab::cli {
+
+namespace {
+
+struct GenArgs {
+    std::string kind;
+    std::size_t n = 0;
+    std::uint64_t seed = 1;
+    std::string output;
+};
+
+void appendNumber(std::string& s, double x) {
+    char buf[32];
+    const auto r = std::to_chars(buf, buf + sizeof buf, x);
+    s.append(buf, r.ptr);
+}
+
+void runGen(const GenArgs& args) {
+    const auto kind = parseGenerator(args.kind);
+    if (!kind) fail("unknown point set '" + args.kind + "' (one of: " + generatorNames() + ")");
+    if (args.n > kMaxPoints) fail("too many points: " + std::to_string(args.n));
+    const std::vector<Vec2> pts = generatePoints(*kind, args.n, args.seed);
+    std::string ext = std::filesystem::path(args.output).extension().string();
+    for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    writeTextFile(args.output, [&](std::ostream& os) {
+        if (ext == ".csv" || ext == ".xy" || ext == ".txt" || ext == ".pts") {
+            std::string s;
+            if (ext == ".pts") s = std::to_string(pts.size()) + "\n";
+            if (ext == ".csv") s = "x,y\n";
+            for (const Vec2& p : pts) {
+                appendNumber(s, p.x);
+                s += ext == ".xy" || ext == ".txt" ? ' ' : ',';
+                appendNumber(s, p.y);
+                s += '\n';
+            }
+            os << s;
+        } else {
+            writeNode(os, pts, 0);
+        }
+    });
+    std::cout << "wrote " << pts.size() << " points (" << toString(*kind) << ", seed " << args.seed << ") to "
+              << args.output << "\n";
+}
+
+}  // namespace
+
+void addGen(CLI::App& app) {
+    auto args = std::make_shared<GenArgs>();
+    CLI::App* cmd = app.add_subcommand("gen", "Write a built-in point set (.node; .csv/.xy/.pts by extension)");
+    cmd->add_option("kind", args->kind, "Point set: " + generatorNames())->required();
+    cmd->add_option("n", args->n, "Number of points")->required();
+    cmd->add_option("--seed", args->seed, "Random seed")->capture_default_str();
+    cmd->add_option("-o,--output", args->output, "Output file")->required();
+    cmd->callback([args] { guarded([&] { runGen(*args); }); });
+}
+
+}  // namespace dlab::cli

@@ -1,0 +1,49 @@
+// dtlab trace: one JSON object per operation (JSON Lines), as documented in core/trace.h.
+#include "app/dtlab_common.h"
+
+#include "core/trace.h"
+
+#include <fstream>
+#include <iostream>
+
+namespace dlab::cli {
+
+namespace {
+
+struct TraceArgs {
+    std::string input;
+    std::string output;
+    long long limit = -1;
+    EngineFlags engine;
+};
+
+void runTrace(const TraceArgs& args) {
+    LoadedPoints loaded = loadPoints(args.input);
+    Inserter ins(std::move(loaded.points), args.engine.options());
+    Journal journal(ins);
+    std::ofstream out(args.output, std::ios::binary);
+    if (!out) fail("cannot write " + args.output);
+    long long count = 0;
+    while ((args.limit < 0 || count < args.limit) && journal.forward()) {
+        out << toJsonLine(traceRecord(journal, journal.position() - 1, ins.mesh())) << '\n';
+        ++count;
+    }
+    out.flush();
+    if (!out) fail("cannot write " + args.output + " (disk full?)");
+    std::cout << "wrote " << count << " operations to " << args.output
+              << (ins.done() ? "" : " (stopped at --limit before the end)") << "\n";
+}
+
+}  // namespace
+
+void addTrace(CLI::App& app) {
+    auto args = std::make_shared<TraceArgs>();
+    CLI::App* cmd = app.add_subcommand("trace", "Write every operation of a run as JSON Lines");
+    cmd->add_option("input", args->input, "Point file (.node, .csv, .xy, .pts)")->required();
+    cmd->add_option("-o,--output", args->output, "Trace file (.jsonl)")->required();
+    cmd->add_option("--limit", args->limit, "Stop after this many operations");
+    args->engine.add(*cmd);
+    cmd->callback([args] { guarded([&] { runTrace(*args); }); });
+}
+
+}  // namespace dlab::cli

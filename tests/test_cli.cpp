@@ -1,0 +1,198 @@
+// dtlab end to end: outputs of triangulate/trace/bench/gen, and one-line errors with a non-zero
+// exit for bad input.
+#include "core/io_read.h"
+#include "core/mesh.h"
+#include "tests/exact_check.h"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <sys/wait.h>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct Result {
+    int status = -1;
+    std::string out;  // stdout and stderr together
+};
+
+Result dtlab(const std::string& args) {
+    const std::string cmd = std::string(DLAB_DTLAB_PATH) + " " + args + " 2>&1";
+    Result r;
+    FILE* pipe = popen(cmd.c_str(), "r");
+    if (!pipe) return r;
+    char buf[4096];
+    std::size_t n;
+    while ((n = fread(buf, 1, sizeof buf, pipe)) > 0) r.out.append(buf, n);
+    const int st = pclose(pipe);
+    r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+    return r;
+}
+
+fs::path tempDir() {
+    const fs::path dir = fs::temp_directory_path() / ("dlab_cli_" + std::to_string(::getpid()));
+    fs::create_directories(dir);
+    return dir;
+}
+
+std::string writeFile(const fs::path& path, const std::string& text) {
+    std::ofstream(path, std::ios::binary) << text;
+    return path.string();
+}
+
+std::string slurp(const fs::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::stringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
+// Reads BASE.node/.ele/.neigh back into a corner table (ids shifted to 0-based).
+dlab::Mesh readTriangleOutput(const std::string& base) {
+    dlab::Mesh m;
+    const auto pts = dlab::readPointsFile(base + ".node");
+    m.G = pts.points;
+    std::istringstream ele(slurp(base + ".ele")), neigh(slurp(base + ".neigh"));
+    int nt = 0, three = 0, attrs = 0;
+    ele >> nt >> three >> attrs;
+    int nt2 = 0, three2 = 0;
+    neigh >> nt2 >> three2;
+    EXPECT_EQ(nt, nt2);
+    m.V.resize(3 * nt);
+    std::vector<int> nb(3 * nt);
+    for (int t = 0; t < nt; ++t) {
+        int id = 0, id2 = 0;
+        ele >> id >> m.V[3 * t] >> m.V[3 * t + 1] >> m.V[3 * t + 2];
+        neigh >> id2 >> nb[3 * t] >> nb[3 * t + 1] >> nb[3 * t + 2];
+        EXPECT_EQ(id, t + pts.indexBase);
+        for (int k = 0; k < 3; ++k) {
+            m.V[3 * t + k] -= pts.indexBase;
+            if (nb[3 * t + k] != -1) nb[3 * t + k] -= pts.indexBase;
+        }
+    }
+    // .neigh gives the triangle opposite each corner; find the matching corner there.
+    m.O.assign(3 * nt, dlab::kNone);
+    for (int c = 0; c < 3 * nt; ++c) {
+        const int u = nb[c];
+        if (u < 0) continue;
+        for (int k = 0; k < 3; ++k) {
+            if (nb[3 * u + k] == c / 3) m.O[c] = 3 * u + k;
+        }
+    }
+    return m;
+}
+
+}  // namespace
+
+TEST(Cli, TriangulateWritesAValidDelaunayTriangulationForEveryLocator) {
+    const fs::path dir = tempDir();
+    const std::string in = (dir / "pts.node").string();
+    ASSERT_EQ(dtlab("gen clusters 3000 --seed 4 -o " + in).status, 0);
+    for (const char* loc : {"naive", "walk", "grid", "idbuffer-cpu"}) {
+        SCOPED_TRACE(loc);
+        const std::string base = (dir / (std::string("out_") + loc)).string();
+        const Result r = dtlab("triangulate " + in + " -o " + base + " --locate " + loc + " --order random");
+        ASSERT_EQ(r.status, 0) << r.out;
+        const dlab::Mesh m = readTriangleOutput(base);
+        EXPECT_GT(m.numTriangles(), 5000);
+        EXPECT_EQ(checkDelaunayExact(m), "");
+    }
+}
+
+TEST(Cli, OneBasedInputGivesOneBasedOutput) {
+    const fs::path dir = tempDir();
+    const std::string in = writeFile(dir / "one.node", "4 2 0 0\n1 0 0\n2 1 0\n3 1 1\n4 0 1\n");
+    const std::string base = (dir / "one_out").string();
+    ASSERT_EQ(dtlab("triangulate " + in + " -o " + base).status, 0);
+    const std::string ele = slurp(base + ".ele");
+    EXPECT_EQ(ele.find(" 0 "), std::string::npos) << ele;  // no 0-based vertex id
+    const dlab::Mesh m = readTriangleOutput(base);
+    EXPECT_EQ(m.numTriangles(), 2);
+    EXPECT_EQ(checkDelaunayExact(m), "");
+}
+
+TEST(Cli, TraceWritesOneJsonObjectPerOperation) {
+    const fs::path dir = tempDir();
+    const std::string in = writeFile(dir / "t.csv", "x,y\n0,0\n4,0\n0,4\n1,1\n3,3\n2,0\n");
+    const std::string out = (dir / "t.jsonl").string();
+    const Result r = dtlab("trace " + in + " -o " + out + " --order input");
+    ASSERT_EQ(r.status, 0) << r.out;
+    std::istringstream lines(slurp(out));
+    std::string line;
+    int count = 0, flips = 0, tests = 0;
+    std::string last;
+    while (std::getline(lines, line)) {
+        const auto j = nlohmann::json::parse(line);
+        EXPECT_EQ(j.at("i").get<int>(), count);
+        last = j.at("op").get<std::string>();
+        flips += last == "Flip";
+        tests += last == "InCircleTest";
+        ++count;
+    }
+    EXPECT_EQ(last, "Finalize");
+    EXPECT_GT(tests, 0);
+    const Result limited = dtlab("trace " + in + " -o " + out + " --limit 3");
+    ASSERT_EQ(limited.status, 0);
+    const std::string limitedText = slurp(out);
+    EXPECT_EQ(std::count(limitedText.begin(), limitedText.end(), '\n'), 3);
+}
+
+TEST(Cli, BenchJsonHasTheAdvertisedFields) {
+    const fs::path dir = tempDir();
+    const std::string in = (dir / "b.node").string();
+    ASSERT_EQ(dtlab("gen uniform 2000 -o " + in).status, 0);
+    const Result r = dtlab("bench --input " + in + " --repeat 2 --json");
+    ASSERT_EQ(r.status, 0) << r.out;
+    const auto j = nlohmann::json::parse(r.out);
+    for (const char* key : {"median_ms", "n", "ns_per_point", "flips_per_point", "walk_steps_per_point"}) {
+        EXPECT_TRUE(j.contains(key)) << key;
+    }
+    EXPECT_EQ(j.at("n").get<int>(), 2000);
+    EXPECT_GT(j.at("flips_per_point").get<double>(), 1.0);
+}
+
+TEST(Cli, BadInputGivesOneLineNamingTheFileAndLine) {
+    const fs::path dir = tempDir();
+    struct Case {
+        std::string name, text, expect;
+    };
+    const std::vector<Case> cases = {
+        {"nan.csv", "1,2\n3,nan\n", "nan.csv:2"},
+        {"inf.xy", "1 2\n3 4\ninf 5\n", "inf.xy:3"},
+        {"junk.csv", "1,2\n3,4x\n", "junk.csv:2"},
+        {"short.node", "3 2 0 0\n0 0 0\n1 1 0\n", "short.node"},
+        {"absurd.node", "999999999999 2 0 0\n0 0 0\n", "absurd.node:1"},
+        {"empty.csv", "", "empty.csv"},
+        {"binary.xy", std::string("\x7f" "ELF\0\0\x01\x02\x03", 9), "binary.xy"},
+    };
+    for (const Case& c : cases) {
+        SCOPED_TRACE(c.name);
+        const std::string in = writeFile(dir / c.name, c.text);
+        const Result r = dtlab("triangulate " + in + " -o " + (dir / "never").string());
+        EXPECT_NE(r.status, 0);
+        EXPECT_NE(r.out.find(c.expect), std::string::npos) << r.out;
+        EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '\n'), 1) << r.out;
+        EXPECT_NE(r.out.find("dtlab: error: "), std::string::npos) << r.out;
+    }
+    const Result missing = dtlab("triangulate " + (dir / "nope.node").string() + " -o " + (dir / "x").string());
+    EXPECT_NE(missing.status, 0);
+    EXPECT_NE(missing.out.find("nope.node"), std::string::npos) << missing.out;
+    EXPECT_FALSE(fs::exists(dir / "never.ele"));
+}
+
+TEST(Cli, DegenerateInputsAreNotErrors) {
+    const fs::path dir = tempDir();
+    const std::string in = writeFile(dir / "line.csv", "0,0\n1,1\n2,2\n2,2\n");
+    const std::string base = (dir / "line_out").string();
+    const Result r = dtlab("triangulate " + in + " -o " + base);
+    ASSERT_EQ(r.status, 0) << r.out;
+    EXPECT_NE(r.out.find("duplicate"), std::string::npos) << r.out;
+    EXPECT_EQ(slurp(base + ".ele").substr(0, 2), "0 ");
+}
