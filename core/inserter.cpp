@@ -524,7 +524,9 @@ void Inserter::doStart(Rec& rec, Op& op) {
     } else {
         const auto& G = m_mesh.G;
         if (n < 3 || orient2d(G[vertexAt(0)], G[vertexAt(1)], G[vertexAt(2)]) == 0) {
-            // Fewer than three points, or all collinear: there is no triangle to make.
+            // Fewer than three points, or all collinear: there is no triangle to make. Equal
+            // points are still reported, as the triangulating path would.
+            collectDuplicatesWithoutMesh();
             m_ctl.cursor = n;
             m_ctl.phase = Phase::Finalize;
             op.a = kNone;
@@ -549,6 +551,23 @@ void Inserter::doStart(Rec& rec, Op& op) {
     m_locatorWantsChanges = m_locator->wantsChanges();
     m_ctl.lastTri = 0;
     m_ctl.phase = m_ctl.cursor < n ? Phase::Locate : Phase::Finalize;
+}
+
+void Inserter::collectDuplicatesWithoutMesh() {
+    const auto& G = m_mesh.G;
+    std::vector<std::int32_t> ids(static_cast<std::size_t>(m_numInput));
+    for (std::int32_t v = 0; v < m_numInput; ++v) ids[v] = v;
+    std::sort(ids.begin(), ids.end(), [&](std::int32_t a, std::int32_t b) {
+        if (G[a].x != G[b].x) return G[a].x < G[b].x;
+        if (G[a].y != G[b].y) return G[a].y < G[b].y;
+        return inputId(a) < inputId(b);
+    });
+    m_skipped.clear();
+    for (std::size_t i = 1; i < ids.size(); ++i) {
+        if (G[ids[i]] == G[ids[i - 1]]) m_skipped.push_back(inputId(ids[i]));
+    }
+    std::sort(m_skipped.begin(), m_skipped.end());
+    m_stats.duplicates = static_cast<std::int64_t>(m_skipped.size());
 }
 
 template <class Rec>
@@ -852,7 +871,10 @@ void Inserter::undo(const Op& op, const std::vector<CellChange>& changes) {
     m_stack.resize(m_stack.size() - pushesOf(op));
     if (op.type == OpType::InCircleTest) m_stack.push_back(op.a);
     switch (op.type) {
-        case OpType::Start: m_stats = {}; break;
+        case OpType::Start:
+            m_stats = {};
+            m_skipped.clear();
+            break;
         case OpType::LocateStep: --m_stats.walkSteps; break;
         case OpType::SplitEdge: --m_stats.edgeSplits; break;
         case OpType::InCircleTest: --m_stats.inCircleTests; break;
@@ -912,6 +934,7 @@ void Inserter::redo(const Op& op, const std::vector<CellChange>& changes, const 
     switch (op.type) {
         case OpType::Start:
             if (m_options.boundary == Boundary::Exact && op.a != kNone) m_stats.inserted += 3;
+            if (op.a == kNone) collectDuplicatesWithoutMesh();
             break;
         case OpType::LocateStep: ++m_stats.walkSteps; break;
         case OpType::SplitEdge: ++m_stats.edgeSplits; break;

@@ -169,6 +169,7 @@ private:
     template <class Rec> void flip(Rec& rec, std::int32_t c);
     template <class Rec> void keepFirstOccurrence(Rec& rec, std::int32_t existing, std::int32_t v);
 
+    void collectDuplicatesWithoutMesh();  // all points collinear: report equal points anyway
     void beginLocate();
     bool walkStep();   // one step of the walk; true when the walk has found the triangle
     void classify();   // sets where / whereCorner for walkTri

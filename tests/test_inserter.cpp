@@ -265,15 +265,15 @@ TEST(Journal, EveryOpRecordsTheCellsItChanged) {
         for (std::uint32_t i = 0; i < op->numChanges; ++i) {
             const CellChange& c = journal.changes()[op->firstChange + i];
             auto& table = c.isO() ? rebuilt.O : rebuilt.V;
-            if (c.corner() < op->trianglesBefore * 3) ASSERT_EQ(table[c.corner()], c.before);
+            if (c.corner() < op->trianglesBefore * 3) { ASSERT_EQ(table[c.corner()], c.before); }
             table[c.corner()] = c.after;
         }
         rebuilt.V.resize(3 * op->trianglesAfter);
         rebuilt.O.resize(3 * op->trianglesAfter);
         rebuilt.G = after.G;
         ASSERT_TRUE(rebuilt == after) << toString(op->type) << " at " << journal.position();
-        if (op->type == OpType::Flip) EXPECT_LE(op->numChanges, 8u);  // 6 corners + 2 back-pointers
-        if (op->type == OpType::Split) EXPECT_EQ(op->trianglesAfter, op->trianglesBefore + 2);
+        if (op->type == OpType::Flip) { EXPECT_LE(op->numChanges, 8u); }  // 6 corners + 2 back-pointers
+        if (op->type == OpType::Split) { EXPECT_EQ(op->trianglesAfter, op->trianglesBefore + 2); }
         before = after;
     }
     EXPECT_GT(seen[OpType::Flip], 0);
