@@ -75,6 +75,25 @@ struct JournalRec {
 
 constexpr std::int32_t kMaxInputPoints = 1 << 26;  // corners and slots stay inside int32
 
+// Calls f for every corner at the vertex of corner `start` (start first). Interior vertices
+// have a closed ring; it is walked one way, then the other way if it is open.
+template <class F>
+void forEachCornerAround(const std::vector<std::int32_t>& O, std::int32_t start, F&& f) {
+    std::int32_t c = start;
+    do {
+        f(c);
+        const std::int32_t l = O[next(c)];
+        c = l == kNone ? kNone : next(l);
+    } while (c != kNone && c != start);
+    if (c == kNone) {
+        for (std::int32_t r = O[prev(start)]; r != kNone;) {
+            const std::int32_t u = prev(r);
+            f(u);
+            r = O[prev(u)];
+        }
+    }
+}
+
 // A million-point run touches ~50 MB of fresh V/O memory; with 4 KiB pages the page faults
 // alone cost tens of milliseconds. Transparent huge pages (where the kernel offers them on
 // request) cut that. Only a hint: nothing depends on it.
@@ -335,20 +354,29 @@ void Inserter::keepFirstOccurrence(Rec& rec, std::int32_t cornerAt, std::int32_t
         return;
     }
     m_skipped.push_back(inputId(existing));
-    // Interior vertices have a closed ring; walk it one way, then the other if it is open.
-    std::int32_t c = cornerAt;
-    do {
-        setV(rec, c, v);
-        const std::int32_t l = m_mesh.O[next(c)];
-        c = l == kNone ? kNone : next(l);
-    } while (c != kNone && c != cornerAt);
-    if (c == kNone) {
-        for (std::int32_t r = m_mesh.O[prev(cornerAt)]; r != kNone;) {
-            const std::int32_t u = prev(r);
-            setV(rec, u, v);
-            r = m_mesh.O[prev(u)];
+    forEachCornerAround(m_mesh.O, cornerAt, [&](std::int32_t c) { setV(rec, c, v); });
+}
+
+// The stars of the virtual vertices, sorted. A corner of each is found by scanning back from
+// the newest triangles: the hull changes until the end, so the scan stops early.
+std::vector<std::int32_t> Inserter::virtualTriangles() const {
+    const auto& V = m_mesh.V;
+    const std::int32_t numVirtual = m_mesh.numVertices() - m_numInput;
+    std::vector<std::int32_t> cornerOf(static_cast<std::size_t>(std::max(numVirtual, 0)), kNone);
+    std::int32_t missing = numVirtual;
+    for (std::int32_t c = m_mesh.numCorners() - 1; c >= 0 && missing > 0; --c) {
+        if (isVirtual(V[c]) && cornerOf[V[c] - m_numInput] == kNone) {
+            cornerOf[V[c] - m_numInput] = c;
+            --missing;
         }
     }
+    std::vector<std::int32_t> tris;
+    for (const std::int32_t start : cornerOf) {
+        if (start != kNone) forEachCornerAround(m_mesh.O, start, [&](std::int32_t c) { tris.push_back(tri(c)); });
+    }
+    std::sort(tris.begin(), tris.end());
+    tris.erase(std::unique(tris.begin(), tris.end()), tris.end());
+    return tris;
 }
 
 // ============================================================================================
@@ -605,23 +633,33 @@ void Inserter::doPlace(Rec& rec, Op& op) {
 
 template <class Rec>
 void Inserter::doFinalize(Rec& rec, Op& op) {
+    // Only the virtual triangles change: they are the stars of the virtual vertices (a few per
+    // hull edge), found by turning around each virtual vertex. The last triangles fill their
+    // slots (swap-remove), so the work is O(hull), not a pass over the whole mesh.
     auto& V = m_mesh.V;
     auto& O = m_mesh.O;
     const std::int32_t nt = m_mesh.numTriangles();
-    std::vector<std::int32_t> newIndex(nt, kNone);
-    std::int32_t kept = 0;
-    for (std::int32_t t = 0; t < nt; ++t) {
-        if (!isVirtualTriangle(t)) newIndex[t] = kept++;
-    }
+    const std::vector<std::int32_t> gone = virtualTriangles();
+    const std::int32_t kept = nt - static_cast<std::int32_t>(gone.size());
     op.a = nt - kept;  // triangles removed
-    for (std::int32_t t = 0; t < nt; ++t) {
-        const std::int32_t nt2 = newIndex[t];
-        if (nt2 == kNone) continue;
+    // Cut the links from kept triangles into virtual ones: those edges are the boundary now.
+    for (const std::int32_t t : gone) {
+        for (std::int32_t c = 3 * t; c < 3 * t + 3; ++c) {
+            const std::int32_t o = O[c];
+            if (o != kNone && !isVirtualTriangle(tri(o))) setO(rec, o, kNone);
+        }
+    }
+    // Kept triangles at or past the new end move, in increasing order, into the slots below it
+    // that virtual triangles leave, in increasing order; their neighbours follow them.
+    auto hole = gone.begin();
+    for (std::int32_t s = kept; s < nt; ++s) {
+        if (std::binary_search(gone.begin(), gone.end(), s)) continue;
+        const std::int32_t t = *hole++;
         for (int k = 0; k < 3; ++k) {
-            const std::int32_t o = O[3 * t + k];
-            const std::int32_t no = (o == kNone || newIndex[tri(o)] == kNone) ? kNone : 3 * newIndex[tri(o)] + o % 3;
-            if (nt2 != t) setV(rec, 3 * nt2 + k, V[3 * t + k]);
-            if (no != O[3 * nt2 + k] || nt2 != t) setO(rec, 3 * nt2 + k, no);
+            const std::int32_t o = O[3 * s + k];
+            setV(rec, 3 * t + k, V[3 * s + k]);
+            setO(rec, 3 * t + k, o);
+            if (o != kNone) setO(rec, o, 3 * t + k);
         }
     }
     if constexpr (Rec::kOn) {

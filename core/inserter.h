@@ -170,6 +170,7 @@ private:
     template <class Rec> void keepFirstOccurrence(Rec& rec, std::int32_t existing, std::int32_t v);
 
     void collectDuplicatesWithoutMesh();  // all points collinear: report equal points anyway
+    std::vector<std::int32_t> virtualTriangles() const;  // sorted ids of triangles to drop
     void beginLocate();
     bool walkStep();   // one step of the walk; true when the walk has found the triangle
     void classify();   // sets where / whereCorner for walkTri
