@@ -7,6 +7,7 @@
 #include <array>
 #include <bit>
 #include <cmath>
+#include <limits>
 #include <numeric>
 
 namespace dlab {
@@ -150,8 +151,11 @@ std::vector<std::int32_t> brio(const std::vector<Vec2>& points, SplitMix64& rng)
     // Scale each axis to [0, 2^14 - 1]; the span is computed as a difference of halves so
     // that it cannot overflow for coordinates near the largest doubles.
     const double spanX = maxX / 2 - minX / 2, spanY = maxY / 2 - minY / 2;
-    const double sx = spanX > 0 ? kCells / 2 / spanX : 0.0;
-    const double sy = spanY > 0 ? kCells / 2 / spanY : 0.0;
+    // Capped: a subnormal span (points near 1e-310) would make the scale inf, and 0 * inf a NaN
+    // cell whose conversion to an integer is undefined.
+    constexpr double kMaxScale = std::numeric_limits<double>::max();
+    const double sx = spanX > 0 ? std::min(kCells / 2 / spanX, kMaxScale) : 0.0;
+    const double sy = spanY > 0 ? std::min(kCells / 2 / spanY, kMaxScale) : 0.0;
     auto cell = [](double v) { return static_cast<std::uint32_t>(std::clamp(v, 0.0, kCells)); };
 
     // hilbertIndex(x, y, 14) is hilbertIndex16(4x, 4y) without its last two levels.
