@@ -3,8 +3,13 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/io_read.h"
+
 #include <algorithm>
+#include <cstdint>
+#include <functional>
 #include <istream>
+#include <limits>
 #include <stdexcept>
 
 namespace dlab {
@@ -81,9 +86,33 @@ std::string toJsonLine(const TraceRecord& r) {
     return j.dump();
 }
 
+namespace {
+
+// Integer fields are read exactly: a float ("1e300", "2.5") or a value outside the field's range
+// is an error. nlohmann's get<int>() would convert or truncate silently, and converting an
+// out-of-range float to an integer is undefined behaviour.
+std::int64_t integerField(const nlohmann::json& v, const std::string& what, std::int64_t lo, std::int64_t hi,
+                          const std::function<InputError(const std::string&)>& fail) {
+    if (!v.is_number_integer()) throw fail(what + " must be an integer, found " + v.dump());
+    if (v.is_number_unsigned()) {
+        const auto u = v.get<std::uint64_t>();
+        if (u > static_cast<std::uint64_t>(hi)) throw fail(what + " " + std::to_string(u) + " is out of range");
+        return static_cast<std::int64_t>(u);
+    }
+    const auto s = v.get<std::int64_t>();
+    if (s < lo || s > hi) throw fail(what + " " + std::to_string(s) + " is out of range");
+    return s;
+}
+
+}  // namespace
+
 TraceRecord parseTraceLine(const std::string& line, const std::string& name, int lineNumber) {
-    auto fail = [&](const std::string& what) {
-        return std::runtime_error(name + ":" + std::to_string(lineNumber) + ": " + what);
+    const std::function<InputError(const std::string&)> fail = [&](const std::string& what) {
+        return InputError(name, lineNumber, what);
+    };
+    constexpr std::int64_t kMaxI32 = std::numeric_limits<std::int32_t>::max();
+    const auto int32Field = [&](const nlohmann::json& j, const char* key, std::int64_t lo) {
+        return static_cast<std::int32_t>(j.contains(key) ? integerField(j[key], key, lo, kMaxI32, fail) : kNone);
     };
     nlohmann::json j;
     try {
@@ -94,32 +123,35 @@ TraceRecord parseTraceLine(const std::string& line, const std::string& name, int
     if (!j.is_object()) throw fail("a trace line must be a JSON object");
     try {
         TraceRecord r;
-        r.index = j.at("i").get<std::size_t>();
+        if (!j.contains("i")) throw fail("missing \"i\" (the op's index)");
+        r.index = static_cast<std::size_t>(integerField(j["i"], "i", 0, std::numeric_limits<std::int64_t>::max(), fail));
         const auto type = parseOpType(j.at("op").get<std::string>());
-        if (!type) throw fail("unknown op \"" + j.at("op").get<std::string>() + "\"");
+        if (!type) throw fail("unknown op " + j.at("op").dump());
         r.type = *type;
-        r.vertex = j.value("vertex", kNone);
-        r.a = j.value("a", kNone);
-        r.b = j.value("b", kNone);
+        r.vertex = int32Field(j, "vertex", kNone);
+        r.a = int32Field(j, "a", kNone);
+        r.b = int32Field(j, "b", kNone);
         r.where = j.value("where", std::string());
         if (j.contains("sign")) {
-            r.sign = j.at("sign").get<int>();
+            r.sign = static_cast<int>(integerField(j["sign"], "sign", -1, 1, fail));
             r.hasSign = true;
         }
-        r.trianglesBefore = j.value("triangles_before", 0);
-        r.trianglesAfter = j.value("triangles_after", 0);
+        r.trianglesBefore = j.contains("triangles_before") ? int32Field(j, "triangles_before", 0) : 0;
+        r.trianglesAfter = j.contains("triangles_after") ? int32Field(j, "triangles_after", 0) : 0;
         for (const auto& c : j.value("changes", nlohmann::json::array())) {
             if (!c.is_array() || c.size() != 4) throw fail("a change must be [\"V\"|\"O\", corner, before, after]");
             const std::string table = c[0].get<std::string>();
-            if (table != "V" && table != "O") throw fail("a change names table V or O, not \"" + table + "\"");
-            const std::int32_t corner = c[1].get<std::int32_t>();
-            if (corner < 0 || corner > (1 << 29)) throw fail("corner out of range");
-            r.changes.push_back({2 * corner + (table == "O" ? 1 : 0), c[2].get<std::int32_t>(), c[3].get<std::int32_t>()});
+            if (table != "V" && table != "O") throw fail("a change names table V or O, not " + c[0].dump());
+            const auto corner = static_cast<std::int32_t>(integerField(c[1], "corner", 0, 1 << 29, fail));
+            r.changes.push_back({2 * corner + (table == "O" ? 1 : 0),
+                                 static_cast<std::int32_t>(integerField(c[2], "before", kNone, kMaxI32, fail)),
+                                 static_cast<std::int32_t>(integerField(c[3], "after", kNone, kMaxI32, fail))});
         }
         for (const auto& t : j.value("triangles", nlohmann::json::array())) {
             if (!t.is_array() || t.size() != 4) throw fail("a triangle must be [t, v0, v1, v2]");
-            r.triangles.push_back({t[0].get<std::int32_t>(), t[1].get<std::int32_t>(), t[2].get<std::int32_t>(),
-                                   t[3].get<std::int32_t>()});
+            std::int32_t v[4];
+            for (int k = 0; k < 4; ++k) v[k] = static_cast<std::int32_t>(integerField(t[k], "triangle", 0, kMaxI32, fail));
+            r.triangles.push_back({v[0], v[1], v[2], v[3]});
         }
         return r;
     } catch (const nlohmann::json::exception& e) {

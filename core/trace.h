@@ -35,7 +35,8 @@ struct TraceRecord {
 // journal's current position (call with the journal at `to`... or use traceRecord per step).
 TraceRecord traceRecord(const Journal& journal, std::size_t opIndex, const Mesh& meshAfterOp);
 std::string toJsonLine(const TraceRecord& record);
-// Throws std::runtime_error("NAME:LINE: ...") on a malformed line.
+// Throws InputError ("NAME:LINE: ...", core/io_read.h) on a malformed line: bad JSON, a missing
+// or mistyped field, or an integer out of its range (never truncated).
 TraceRecord parseTraceLine(const std::string& line, const std::string& name, int lineNumber);
 std::vector<TraceRecord> readTrace(std::istream& in, const std::string& name);
 
