@@ -448,52 +448,77 @@ bool Inserter::walkStep() {
         ++m_ctl.walkSteps;
         return false;
     };
+    // The walk ends in t: keep the signs it already knows for classify().
+    auto found = [&](std::int32_t c1, int s1, std::int32_t c2, int s2, std::int32_t c3, int s3) {
+        m_known = {t, {kUnknownSide, kUnknownSide, kUnknownSide}};
+        if (c1 != kNone) m_known.side[c1 - c0] = static_cast<std::int8_t>(s1);
+        if (c2 != kNone) m_known.side[c2 - c0] = static_cast<std::int8_t>(s2);
+        if (c3 != kNone) m_known.side[c3 - c0] = static_cast<std::int8_t>(s3);
+        return true;
+    };
+    m_known.tri = kNone;
 
     if (m_options.boundary == Boundary::Exact && isVirtualTriangle(t)) {
         std::int32_t g = c0;
         while (!isVirtual(V[g])) ++g;
         const Vec2 x = G[V[next(g)]], y = G[V[prev(g)]];
         const int s = orient2d(x, y, p);
-        if (s > 0) return true;
-        if (s == 0 && (onOpenSegment(x, y, p) || p == x || p == y)) return true;
+        if (s > 0 || (s == 0 && (onOpenSegment(x, y, p) || p == x || p == y))) {
+            return found(g, s, kNone, 0, kNone, 0);
+        }
         // Not beyond this hull edge: restart the walk inside the mesh, across the edge.
         return moveTo(g, false);
     }
 
-    if (m_ctl.straight && m_ctl.walkEntry != kNone) {
-        const std::int32_t e = m_ctl.walkEntry;
-        const bool left = orient2d(m_ctl.walkOrigin, p, G[V[e]]) >= 0;
+    // We entered t across the edge opposite walkEntry because p is strictly beyond it: seen
+    // from t, p is strictly inside that edge (orient2d is exact, hence antisymmetric).
+    const std::int32_t entry = m_ctl.walkEntry;
+    if (m_ctl.straight && entry != kNone) {
+        const bool left = orient2d(m_ctl.walkOrigin, p, G[V[entry]]) >= 0;
         // Left: L leaves through the edge p(e)->e (opposite n(e)); right: e->n(e) (opposite p(e)).
-        const std::int32_t exitCorner = left ? next(e) : prev(e);
+        const std::int32_t exitCorner = left ? next(entry) : prev(entry);
         const Vec2 from = G[V[next(exitCorner)]], to = G[V[prev(exitCorner)]];
-        if (orient2d(from, to, p) < 0) return moveTo(exitCorner, true);
-        return true;
+        const int s = orient2d(from, to, p);
+        if (s < 0) return moveTo(exitCorner, true);
+        return found(entry, 1, exitCorner, s, kNone, 0);
     }
 
-    // Start triangle (or the visibility walk): the side of p for each edge.
-    int side[3];
-    for (int k = 0; k < 3; ++k) {
-        const std::int32_t c = c0 + k;
-        if (c == m_ctl.walkEntry) { side[k] = 1; continue; }  // we came from there
-        side[k] = orient2d(G[V[next(c)]], G[V[prev(c)]], p);
-    }
-    if (side[0] >= 0 && side[1] >= 0 && side[2] >= 0) return true;
+    // Start triangle of the line walk: L runs from q, strictly inside t, to p. L leaves t
+    // through one edge; p on L not beyond that edge lies in the closed triangle, so one test
+    // of p decides (plus three for q and three for the sides of L).
+    Vec2 q{};
+    bool qInside = false;
     if (m_ctl.straight) {
         const Vec2 a = G[V[c0]], b = G[V[c0 + 1]], c = G[V[c0 + 2]];
-        const Vec2 q{a.x / 3 + b.x / 3 + c.x / 3, a.y / 3 + b.y / 3 + c.y / 3};
-        if (orient2d(a, b, q) > 0 && orient2d(b, c, q) > 0 && orient2d(c, a, q) > 0) {
-            m_ctl.walkOrigin = q;
+        q = {a.x / 3 + b.x / 3 + c.x / 3, a.y / 3 + b.y / 3 + c.y / 3};
+        qInside = orient2d(a, b, q) > 0 && orient2d(b, c, q) > 0 && orient2d(c, a, q) > 0;
+        if (qInside) {
             bool left[3];
             for (int k = 0; k < 3; ++k) left[k] = orient2d(q, p, G[V[c0 + k]]) >= 0;
             for (int k = 0; k < 3; ++k) {
-                const std::int32_t c = c0 + k;
                 // Exit edge n(c)->p(c): its start right of L, its end left of L.
                 if (!left[(k + 1) % 3] && left[(k + 2) % 3]) {
-                    if (side[k] < 0) return moveTo(c, true);
-                    break;  // inconsistent (p on an edge line): fall back below
+                    const std::int32_t c = c0 + k;
+                    const int s = orient2d(G[V[next(c)]], G[V[prev(c)]], p);
+                    if (s >= 0) return found(c, s, kNone, 0, kNone, 0);
+                    m_ctl.walkOrigin = q;
+                    return moveTo(c, true);
                 }
             }
+            // No exit edge: p == q, inside t; the side tests below say so.
         }
+    }
+
+    // The visibility walk (or a start triangle whose centroid test failed): every side.
+    int side[3];
+    for (int k = 0; k < 3; ++k) {
+        const std::int32_t c = c0 + k;
+        if (c == entry) { side[k] = 1; continue; }  // we came from there
+        side[k] = orient2d(G[V[next(c)]], G[V[prev(c)]], p);
+    }
+    if (side[0] >= 0 && side[1] >= 0 && side[2] >= 0) return found(c0, side[0], c0 + 1, side[1], c0 + 2, side[2]);
+    if (m_ctl.straight) {
+        if (qInside) m_ctl.walkOrigin = q;
         m_ctl.straight = false;  // needle triangle or a degenerate case: walk by visibility
     }
     for (int k = 0; k < 3; ++k) {
@@ -507,12 +532,18 @@ void Inserter::classify() {
     const auto& V = m_mesh.V;
     const Vec2 p = currentPoint();
     const std::int32_t t = m_ctl.walkTri, c0 = 3 * t;
+    // The side of p for the edge opposite c0 + k: from the walk when it knows it.
+    const bool known = m_known.tri == t;
+    m_known.tri = kNone;
+    auto sideOf = [&](int k, Vec2 a, Vec2 b) {
+        return known && m_known.side[k] != kUnknownSide ? int{m_known.side[k]} : orient2d(a, b, p);
+    };
     m_ctl.where = Where::None;
     if (m_options.boundary == Boundary::Exact && isVirtualTriangle(t)) {
         std::int32_t g = c0;
         while (!isVirtual(V[g])) ++g;
         const Vec2 x = G[V[next(g)]], y = G[V[prev(g)]];
-        const int s = orient2d(x, y, p);
+        const int s = sideOf(g - c0, x, y);
         if (s > 0) { m_ctl.where = Where::Outside; m_ctl.whereCorner = g; }
         else if (s == 0 && p == x) { m_ctl.where = Where::OnVertex; m_ctl.whereCorner = next(g); }
         else if (s == 0 && p == y) { m_ctl.where = Where::OnVertex; m_ctl.whereCorner = prev(g); }
@@ -522,7 +553,7 @@ void Inserter::classify() {
     int side[3], zeros = 0;
     for (int k = 0; k < 3; ++k) {
         const std::int32_t c = c0 + k;
-        side[k] = orient2d(G[V[next(c)]], G[V[prev(c)]], p);
+        side[k] = sideOf(k, G[V[next(c)]], G[V[prev(c)]]);
         if (side[k] < 0) return;
         zeros += side[k] == 0;
     }

@@ -21,6 +21,7 @@
 #include "core/mesh.h"
 #include "core/order.h"
 
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -195,6 +196,15 @@ private:
     bool m_bulk = false;
     Bounds m_bounds{};
     Control m_ctl;
+    // Signs of orient2d(edge opposite corner 3*tri+k, p) that the walk computed (or derived
+    // exactly) when it stopped in tri, so that classify() does not evaluate them again. Valid
+    // only between a walkStep() that returns true and the classify() right after it.
+    static constexpr std::int8_t kUnknownSide = 2;
+    struct KnownSides {
+        std::int32_t tri = kNone;
+        std::array<std::int8_t, 3> side{};
+    };
+    KnownSides m_known;
     std::vector<std::int32_t> m_stack;   // flip work-list: corners at the new vertex
     std::vector<std::int32_t> m_skipped;
     InsertStats m_stats;
