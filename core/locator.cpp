@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace dlab {
 
@@ -38,14 +39,21 @@ Bounds Bounds::of(const std::vector<Vec2>& points) {
 
 namespace {
 
+// cells / (2 * halfWidth), kept finite: a subnormal extent (points near 1e-310) overflows the
+// quotient to inf, and inf * 0 gives NaN cell coordinates, whose conversion to int is undefined
+// (found by fuzz_engine). Capped, offsets within the box (<= halfWidth) still map below cells.
+double cellScale(double cells, double halfWidth) {
+    return halfWidth > 0 ? std::min(cells / 2 / halfWidth, std::numeric_limits<double>::max()) : 0.0;
+}
+
 // Maps world coordinates into [0, cells) per axis without overflowing for extreme inputs.
 struct CellMap {
     Vec2 lo{}, scale{0, 0};
     void init(const Bounds& b, double cellsX, double cellsY) {
         lo = b.lo;
         const double wx = b.hi.x / 2 - b.lo.x / 2, wy = b.hi.y / 2 - b.lo.y / 2;
-        scale.x = wx > 0 ? cellsX / 2 / wx : 0.0;
-        scale.y = wy > 0 ? cellsY / 2 / wy : 0.0;
+        scale.x = cellScale(cellsX, wx);
+        scale.y = cellScale(cellsY, wy);
     }
     double fx(double x) const { return (x / 2 - lo.x / 2) * scale.x; }
     double fy(double y) const { return (y / 2 - lo.y / 2) * scale.y; }
@@ -113,8 +121,8 @@ void IdBufferCpu::reset(const LocatorContext& ctx, const Bounds& bounds) {
     m_lo = bounds.lo;
     // One pixel column per 1/width of the box; half-differences avoid overflow at 1e308.
     const double wx = bounds.hi.x / 2 - bounds.lo.x / 2, wy = bounds.hi.y / 2 - bounds.lo.y / 2;
-    m_scale.x = wx > 0 ? m_width / 2.0 / wx : 0.0;
-    m_scale.y = wy > 0 ? m_height / 2.0 / wy : 0.0;
+    m_scale.x = cellScale(m_width, wx);
+    m_scale.y = cellScale(m_height, wy);
     m_pixels.assign(static_cast<std::size_t>(m_width) * m_height, kNone);
     m_painted = 0;
     for (std::int32_t t = 0; t < ctx.mesh->numTriangles(); ++t) paintTriangle(t);
@@ -185,8 +193,10 @@ void IdBufferCpu::paintTriangle(std::int32_t t) {
             if (A > 0) lo = std::max(lo, std::floor(-B / A - 0.5) - 1);
             else if (A < 0) hi = std::min(hi, std::ceil(-B / A - 0.5) + 1);
         }
-        const int ia = lo > i0 ? static_cast<int>(lo) : i0;
-        const int ib = hi < i1 ? static_cast<int>(hi) : i1;
+        // A nearly flat edge puts its root far outside the box (or at +-inf): clamp before the
+        // conversion to int, which is undefined out of range (found by fuzz_engine).
+        const int ia = lo > i0 ? static_cast<int>(std::min(lo, i1 + 1.0)) : i0;
+        const int ib = hi < i1 ? static_cast<int>(std::max(hi, i0 - 1.0)) : i1;
         for (int i = ia; i <= ib; ++i) {
             const double x = i + 0.5;
             bool inside = true;

@@ -2,6 +2,7 @@
 // flipping on cocircular points, huge and tiny coordinates, piles of duplicates.
 #include "core/generators.h"
 #include "core/inserter.h"
+#include "core/locator.h"
 #include "tests/exact_check.h"
 
 #include <gtest/gtest.h>
@@ -123,4 +124,55 @@ TEST(Regression, CollinearRunThenOneOffPointMakesAFan) {
     fan.run();
     EXPECT_EQ(fan.mesh().numTriangles(), 49);
     EXPECT_EQ(checkDelaunayExact(fan.mesh()), "");
+}
+
+// Found by fuzz_engine: points a few subnormals apart made the ID buffer's and the grid's scale
+// (cells / extent) overflow to inf; 0 * inf gave NaN pixel coordinates and inf ones became
+// INT_MIN when converted to int (undefined behaviour): a pixel read far out of bounds.
+TEST(Regression, IdBufferScaleStaysFiniteForASubnormalExtent) {
+    std::vector<Vec2> pts;
+    for (int i = 0; i < 4; ++i) {
+        for (int j = 0; j < 4; ++j) pts.push_back({std::ldexp(i, -1074), std::ldexp(j, -1074)});
+    }
+    for (LocatorKind locator : {LocatorKind::IdBufferCpu, LocatorKind::Grid}) {
+        SCOPED_TRACE(toString(locator));
+        InsertOptions opt;
+        opt.locator = locator;
+        opt.locatorOptions.idBufferWidth = opt.locatorOptions.idBufferHeight = 16;
+        Inserter ins(pts, opt);
+        ins.run();
+        EXPECT_EQ(checkDelaunayExact(ins.mesh()), "");
+        if (auto* ids = dynamic_cast<IdBufferCpu*>(ins.locator())) {
+            for (const Vec2& p : pts) {
+                const std::int32_t t = ids->pixelAt(p);
+                EXPECT_TRUE(t == kNone || (t >= 0 && t < ins.mesh().numTriangles())) << t;
+            }
+        }
+    }
+}
+
+// Found by fuzz_engine: in super mode the super-triangle's nearly flat edges put the row span's
+// end at -3e12 pixels; converting that to int was undefined (on x86 INT_MIN: a loop over
+// billions of pixels, writing outside the row wherever the huge triangle covers them).
+TEST(Regression, IdBufferSpanOfANearlyFlatEdgeIsClampedBeforeConversion) {
+    const std::vector<Vec2> pts{
+        {-0x1p+1, -0x1.0000000002p+40}, {-0x1p+1, -0x1p+40},  {-0x1p+1, -0x1.fffffffffcp+39},
+        {-0x1p+0, -0x1.0000000002p+40}, {-0x1p+0, -0x1p+40},  {-0x1p+0, -0x1.fffffffffcp+39},
+        {0x0p+0, -0x1.0000000002p+40},  {0x0p+0, -0x1p+40},   {0x0p+0, -0x1.fffffffffcp+39},
+        {0x1p+0, -0x1.0000000002p+40},  {0x1p+0, -0x1.fffffffffcp+39}, {-0x1.8p+0, -0x1.0000000001p+40},
+        {-0x1p+0, -0x1.0000000001p+40}, {0x0p+0, -0x1.0000000008p+40}, {0x1p+1, -0x1.0000000008p+40},
+        {0x1p+1, -0x1.0000000008p+40},  {0x0.0000000080ap-1022, 0x0.00a0a000fp-1022}};
+    for (Boundary boundary : {Boundary::Super, Boundary::Exact}) {
+        SCOPED_TRACE(toString(boundary));
+        InsertOptions opt;
+        opt.boundary = boundary;
+        opt.locator = LocatorKind::IdBufferCpu;
+        opt.locatorOptions.idBufferWidth = opt.locatorOptions.idBufferHeight = 16;
+        Inserter ins(pts, opt);
+        Journal journal(ins);
+        while (journal.forward()) {}
+        const auto v = validate(ins.mesh());
+        EXPECT_TRUE(v.empty()) << v[0].message;
+        if (boundary == Boundary::Exact) EXPECT_EQ(checkDelaunayExact(ins.mesh()), "");
+    }
 }
