@@ -25,13 +25,14 @@ BUILD_DIR := build
 ASAN_DIR := build-asan
 
 # Debian 12 (bookworm) package names. libcgal-dev only serves the benchmark baseline; time and jq
-# serve `make bench`; xvfb and xauth (xvfb-run needs it) serve the real-window smoke test.
+# serve `make bench`; xvfb and xauth (xvfb-run needs it) serve the real-window smoke test;
+# fonts-dejavu-core gives the GUI a readable font (it falls back to ImGui's own without it).
 DEB_PACKAGES := \
 	build-essential cmake pkg-config \
 	libimgui-dev libglfw3-dev libglm-dev libosmesa6-dev libstb-dev libgif-dev \
 	libcli11-dev libtomlplusplus-dev nlohmann-json3-dev libgmp-dev \
 	libgtest-dev libbenchmark-dev \
-	xvfb xauth \
+	xvfb xauth fonts-dejavu-core \
 	libcgal-dev time jq
 
 .PHONY: all run test build configure deps asan bench clean help
@@ -52,9 +53,10 @@ configure: deps
 build: configure
 	cmake --build $(BUILD_DIR) -j $(JOBS)
 
-# The main job. (A later issue makes it start the GUI.)
+# The main job: the GUI on the built-in demo. With no display, delaunay-lab says so and
+# renders the demo headlessly (OSMesa) to $(BUILD_DIR)/demo.png instead.
 run: build
-	$(BUILD_DIR)/app/dtlab demo -o $(BUILD_DIR)/demo
+	$(BUILD_DIR)/app/delaunay-lab --headless-png $(BUILD_DIR)/demo.png
 
 test: build
 	ctest --test-dir $(BUILD_DIR) --output-on-failure --no-tests=error -j $(CTEST_JOBS)

@@ -45,5 +45,6 @@ void addGen(CLI::App& app);
 void addTriangulate(CLI::App& app);
 void addTrace(CLI::App& app);
 void addBench(CLI::App& app);
+void addRender(CLI::App& app);
 
 }  // namespace dlab::cli

@@ -1,0 +1,93 @@
+// delaunay-lab: the step-through GUI in a real window (GLFW + libGL). With no display it says
+// so and renders the same view headlessly to a PNG (through `dtlab render`, which uses OSMesa:
+// one GL provider per executable).
+#include "core/generators.h"
+#include "ui/gui.h"
+#include "ui/panels.h"
+#include "ui/settings.h"
+
+#include <CLI/CLI.hpp>
+
+#include <unistd.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <string>
+#include <vector>
+
+namespace {
+
+// Runs `dtlab render` (beside this executable) on the same input; returns its exit status.
+int renderHeadless(const std::string& input, const std::string& png, const std::string& reason) {
+    std::error_code ec;
+    const std::filesystem::path self = std::filesystem::read_symlink("/proc/self/exe", ec);
+    const std::string dtlab = (ec ? std::filesystem::path(".") : self.parent_path()) / "dtlab";
+    std::cerr << "delaunay-lab: " << reason << "\n"
+              << "delaunay-lab: rendering " << (input.empty() ? "the built-in demo" : input) << " headlessly to " << png
+              << " instead (" << dtlab << " render)\n";
+    std::vector<std::string> args = {dtlab, "render"};
+    if (!input.empty()) args.push_back(input);
+    args.insert(args.end(), {"--steps", "40", "-o", png});
+    std::vector<char*> argv;
+    for (std::string& a : args) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    execv(dtlab.c_str(), argv.data());
+    std::cerr << "delaunay-lab: cannot run " << dtlab << "\n";
+    return 1;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    CLI::App cli{"Delaunay Lab: step through incremental Delaunay triangulation on a corner table"};
+    std::string input, screenshot, fallbackPng = "delaunay-lab.png";
+    int frames = 0;
+    bool noSettings = false;
+    cli.add_option("input", input, "Point file (.node, .csv, .xy, .pts); the built-in demo when absent");
+    cli.add_option("--screenshot", screenshot, "Save a PNG of the window after --frames frames, then quit");
+    cli.add_option("--frames", frames, "Quit after this many frames (0: run until closed)")->check(CLI::NonNegativeNumber);
+    cli.add_option("--headless-png", fallbackPng, "Where to render when there is no display")->capture_default_str();
+    cli.add_flag("--no-settings", noSettings, "Neither read nor write the remembered settings");
+    CLI11_PARSE(cli, argc, argv);
+
+    dlab::ui::AppState state;
+    dlab::ui::WindowOptions window;
+    const std::string settingsPath = noSettings ? std::string() : dlab::ui::defaultSettingsPath();
+    std::string warning;
+    dlab::ui::loadSettings(settingsPath, state, window, warning);
+    if (!warning.empty()) state.log(dlab::ui::Message::Level::Warning, warning);
+
+    std::string error;
+    auto platform = dlab::ui::makeGlfwPlatform(window, error);
+    if (!platform) return renderHeadless(input, fallbackPng, error);
+
+    dlab::ui::Gui gui(*platform, state);
+    if (input.empty()) {
+        state.setOptions(dlab::ui::demoOptions());
+        state.loadPoints(dlab::demoPoints(), "built-in demo");
+    } else if (!dlab::ui::LoadPointFile(state, input)) {
+        std::cerr << "delaunay-lab: " << state.messages.back().text << "\n";
+        state.loadPoints(dlab::demoPoints(), "built-in demo");
+    }
+    gui.captureFrames(!screenshot.empty());
+    for (int frame = 1;; ++frame) {
+        for (const std::string& dropped : platform->takeDroppedFiles()) dlab::ui::LoadPointFile(state, dropped);
+        platform->setTitle("Delaunay Lab - " + state.source);
+        if (!gui.frame()) break;
+        if (frames > 0 && frame >= frames) break;
+        if (!state.run.running) platform->waitForEvents(0.25);
+    }
+    int status = 0;
+    if (!screenshot.empty()) {
+        if (!gui.saveScreenshot(screenshot, error)) {
+            std::cerr << "delaunay-lab: " << error << "\n";
+            status = 1;
+        } else {
+            std::cout << "wrote " << screenshot << "\n";
+        }
+    }
+    dlab::ui::windowPlacement(*platform, window);
+    if (!dlab::ui::saveSettings(settingsPath, state, window, error)) std::cerr << "delaunay-lab: " << error << "\n";
+    return status;
+}

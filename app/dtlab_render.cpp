@@ -1,0 +1,136 @@
+// dtlab render: a screenshot of the whole GUI after K operations, rendered headlessly (OSMesa).
+#include "app/dtlab_common.h"
+
+#include "core/generators.h"
+#include "ui/gui.h"
+#include "ui/panels.h"
+
+#include <imgui.h>
+
+#include <chrono>
+#include <cstdio>
+#include <iostream>
+
+namespace dlab::cli {
+
+namespace {
+
+struct RenderArgs {
+    std::string input;
+    std::string output;
+    std::string size = "1600x1000";
+    long long steps = -1;
+    bool toEnd = false;
+    long long select = -1;
+    bool presentation = false;
+    std::vector<std::string> overlays;
+    bool engineGiven = false;
+    int benchFrames = 0;
+    EngineFlags engine;
+};
+
+// Frame times: idle (nothing changes), then running at full speed (the mesh changes every
+// frame), then scrolling the corner table. Wall-clock ms per frame, mean over the frames.
+void benchFrames(ui::Gui& gui, ui::AppState& state, int frames) {
+    using Clock = std::chrono::steady_clock;
+    double buildMs = 0;
+    auto timeFrames = [&](int n, auto&& before) {
+        double total = 0, worst = 0;
+        buildMs = 0;
+        for (int i = 0; i < n; ++i) {
+            before(i);
+            const auto t0 = Clock::now();
+            gui.frame();
+            const double ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+            total += ms;
+            worst = std::max(worst, ms);
+            buildMs += state.frameStats.meshBuildMs;
+        }
+        return std::pair{total / std::max(1, n), worst};
+    };
+    const auto idle = timeFrames(frames, [](int) {});
+    std::printf("frame ms, idle:       mean %.1f, worst %.1f (%zu points, %d triangles)\n", idle.first, idle.second,
+                state.engine.points().size(), state.engine.mesh().numTriangles());
+    if (!state.engine.batch() && !state.engine.atEnd()) {
+        state.run.running = true;
+        state.run.opsPerSecond = ui::RunControl::kFullSpeed;
+        const std::size_t p0 = state.engine.position();
+        const auto running = timeFrames(frames, [](int) {});
+        std::printf("frame ms, full speed: mean %.1f, worst %.1f (%.0f operations and %.1f ms of mesh rebuild per frame)\n",
+                    running.first, running.second, static_cast<double>(state.engine.position() - p0) / frames, buildMs / frames);
+        state.run.running = false;
+    }
+    ImGuiIO& io = ImGui::GetIO();
+    const auto r = state.itemRects["corner-table"];
+    io.MousePos = ImVec2((r[0] + r[2]) / 2, (r[1] + r[3]) / 2);
+    const auto scrolling = timeFrames(frames, [&](int) { io.MouseWheel = -3; });
+    io.MouseWheel = 0;
+    std::printf("frame ms, scrolling the corner table (%d rows): mean %.1f, worst %.1f\n", state.engine.mesh().numCorners(),
+                scrolling.first, scrolling.second);
+}
+
+void runRender(const RenderArgs& args) {
+    int width = 0, height = 0;
+    if (std::sscanf(args.size.c_str(), "%dx%d", &width, &height) != 2 || width < 320 || height < 240 || width > 8192 ||
+        height > 8192) {
+        fail("--size must be WIDTHxHEIGHT between 320x240 and 8192x8192, not \"" + args.size + "\"", 2);
+    }
+    ui::AppState state;
+    std::string error;
+    auto platform = ui::makeOsmesaPlatform(width, height, error);
+    if (!platform) fail(error);
+    ui::Gui gui(*platform, state);
+    state.presentation = args.presentation;
+    if (args.engineGiven) state.setOptions(args.engine.options());
+    else state.setOptions(ui::demoOptions());
+    if (args.input.empty()) {
+        state.loadPoints(demoPoints(), "built-in demo");
+    } else {
+        LoadedPoints loaded = loadPoints(args.input);
+        if (!state.loadPoints(std::move(loaded.points), args.input)) fail(state.messages.back().text);
+    }
+    for (const std::string& o : args.overlays) {
+        ui::Overlays& ov = state.overlays;
+        if (o == "voronoi") ov.voronoi = true;
+        else if (o == "circumcircles") ov.circumcircles = true;
+        else if (o == "triangle-ids") ov.triangleIds = true;
+        else if (o == "no-corner-ids") ov.cornerIds = false;
+        else if (o == "no-fill") ov.fill = false;
+        else fail("unknown --overlay \"" + o + "\" (voronoi, circumcircles, triangle-ids, no-corner-ids, no-fill)", 2);
+    }
+    if (args.toEnd) {
+        while (!state.engine.toEnd(1 << 20)) {}
+    } else if (args.steps >= 0) {
+        state.engine.seek(static_cast<std::size_t>(args.steps));
+    }
+    if (args.select >= 0) state.select(static_cast<std::int32_t>(args.select));
+    // ImGui lays out in the first frames (tables measure their columns): render a few.
+    for (int i = 0; i < 3; ++i) gui.frame();
+    if (args.benchFrames > 0) benchFrames(gui, state, args.benchFrames);
+    if (!gui.saveScreenshot(args.output, error)) fail(error);
+    std::cout << "wrote " << args.output << " (" << width << "x" << height << ", operation " << state.engine.position()
+              << " of " << state.engine.recorded() << ", " << state.engine.mesh().numTriangles() << " triangles)\n";
+}
+
+}  // namespace
+
+void addRender(CLI::App& app) {
+    auto args = std::make_shared<RenderArgs>();
+    CLI::App* cmd = app.add_subcommand("render", "Screenshot of the whole GUI after K operations (headless, OSMesa)");
+    cmd->add_option("input", args->input, "Point file (.node, .csv, .xy, .pts); the built-in demo when absent");
+    cmd->add_option("-o,--output", args->output, "PNG file to write")->required();
+    auto* steps = cmd->add_option("--steps,--step", args->steps, "Operations to perform before the screenshot");
+    cmd->add_flag("--to-end", args->toEnd, "Run to the end before the screenshot")->excludes(steps);
+    cmd->add_option("--size", args->size, "Window size WIDTHxHEIGHT")->capture_default_str();
+    cmd->add_option("--select", args->select, "Select this corner (inspector, highlights)");
+    cmd->add_flag("--presentation", args->presentation, "Presentation mode (large fonts, high contrast)");
+    cmd->add_option("--bench-frames", args->benchFrames, "Also time this many frames idle, running and scrolling");
+    cmd->add_option("--overlay", args->overlays, "voronoi, circumcircles, triangle-ids, no-corner-ids, no-fill (repeatable)");
+    args->engine.add(*cmd);
+    cmd->callback([args, cmd] {
+        args->engineGiven = cmd->count("--locate") + cmd->count("--order") + cmd->count("--boundary") + cmd->count("--seed") > 0;
+        guarded([&] { runRender(*args); });
+    });
+}
+
+}  // namespace dlab::cli

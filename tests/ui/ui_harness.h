@@ -1,0 +1,43 @@
+// A headless instance of the whole GUI (OSMesa) driven with synthetic input, as a user would:
+// ImGui 1.86 has no input-event API, so the harness sets io.MousePos, io.MouseDown[],
+// io.MouseWheel and io.KeysDown[] (GLFW key codes, as in the real window) between frames.
+#pragma once
+
+#include "ui/gui.h"
+
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <string>
+
+namespace dlab::test {
+
+class UiHarness {
+public:
+    explicit UiHarness(int width = 1400, int height = 900);
+    ~UiHarness();
+
+    ui::AppState& state() { return m_state; }
+    ui::Gui& gui() { return *m_gui; }
+    void frames(int n = 1);
+    // Input, each followed by the frames ImGui needs to see it.
+    void moveTo(float x, float y);
+    void click(float x, float y, int button = 0);
+    void drag(float x0, float y0, float x1, float y1, int button = 0);
+    void scroll(float x, float y, float wheel);
+    void press(int key, bool shift = false, bool ctrl = false);
+    // Clicks the centre of a widget the UI recorded under `name` (state().itemRects).
+    void clickItem(const std::string& name);
+    std::array<float, 4> rect(const std::string& name);
+    // The pixel (r, g, b) at screen position (x, y) of the last frame.
+    std::array<int, 3> pixel(int x, int y);
+    // How many pixels of exactly this colour lie inside the rectangle.
+    int countColour(const std::array<float, 4>& r, std::array<int, 3> rgb);
+
+private:
+    ui::AppState m_state;
+    std::unique_ptr<ui::Platform> m_platform;
+    std::unique_ptr<ui::Gui> m_gui;
+};
+
+}  // namespace dlab::test

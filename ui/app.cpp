@@ -1,0 +1,172 @@
+// The application's layout (Debian's ImGui 1.86 has no docking): one host window filling the
+// display, with a menu bar, the toolbar and caption, the canvas in the middle, the tables and
+// inspector in a side column, messages below; splitters between them, remembered in Layout.
+#include "ui/gui.h"
+#include "ui/keys.h"
+#include "ui/panels.h"
+
+#include <imgui.h>
+
+#include <algorithm>
+
+namespace dlab::ui {
+
+namespace {
+
+const SideTab kSideTabs[] = {
+    {"Corner table", ShowCornerTable},
+    {"G (vertices)", ShowVertexTable},
+};
+
+// A draggable bar; returns the drag delta in pixels along its axis.
+float Splitter(const char* id, bool vertical, float thickness, float length) {
+    ImGui::InvisibleButton(id, vertical ? ImVec2(thickness, length) : ImVec2(length, thickness));
+    const bool active = ImGui::IsItemActive();
+    if (ImGui::IsItemHovered() || active) {
+        ImGui::SetMouseCursor(vertical ? ImGuiMouseCursor_ResizeEW : ImGuiMouseCursor_ResizeNS);
+        const ImVec2 a = ImGui::GetItemRectMin(), b = ImGui::GetItemRectMax();
+        ImGui::GetWindowDrawList()->AddRectFilled(a, b, ImGui::GetColorU32(active ? ImGuiCol_SeparatorActive : ImGuiCol_SeparatorHovered));
+    }
+    if (!active) return 0.0f;
+    return vertical ? ImGui::GetIO().MouseDelta.x : ImGui::GetIO().MouseDelta.y;
+}
+
+}  // namespace
+
+void ShowApplication(AppState& state) {
+    ImGuiIO& io = ImGui::GetIO();
+    HandleShortcuts(state);
+    AdvanceRun(state, io.DeltaTime);
+
+    const ImGuiViewport* vp = ImGui::GetMainViewport();
+    ImGui::SetNextWindowPos(vp->WorkPos);
+    ImGui::SetNextWindowSize(vp->WorkSize);
+    const ImGuiWindowFlags hostFlags = ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_NoMove |
+                                       ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_MenuBar |
+                                       ImGuiWindowFlags_NoBringToFrontOnFocus | ImGuiWindowFlags_NoScrollWithMouse;
+    ImGui::PushStyleVar(ImGuiStyleVar_WindowPadding, ImVec2(6, 4));
+    ImGui::Begin("Delaunay Lab", nullptr, hostFlags);
+    ImGui::PopStyleVar();
+    ShowMenuBar(state);
+    ShowToolbar(state);
+    ShowCaption(state);
+
+    const float kBar = 6.0f;
+    Layout& L = state.layout;
+    const ImVec2 avail = ImGui::GetContentRegionAvail();
+    const float bottomH = std::clamp(L.bottomHeight * avail.y, 40.0f, avail.y * 0.6f);
+    const float mainH = std::max(100.0f, avail.y - bottomH - kBar);
+    const float sideW = state.presentation ? std::clamp(L.rightWidth * avail.x, 0.0f, avail.x * 0.7f)
+                                           : std::clamp(L.rightWidth * avail.x, 220.0f, avail.x * 0.7f);
+    const float canvasW = std::max(100.0f, avail.x - sideW - kBar);
+
+    // ---- Left: canvas and timeline -------------------------------------------------------------
+    ImGui::BeginChild("##left", ImVec2(canvasW, mainH), false, ImGuiWindowFlags_NoScrollbar | ImGuiWindowFlags_NoScrollWithMouse);
+    ShowCanvas(state);
+    ShowTimeline(state);
+    ImGui::EndChild();
+    ImGui::SameLine(0, 0);
+    if (const float d = Splitter("##vsplit", true, kBar, mainH); d != 0) {
+        L.rightWidth = std::clamp(L.rightWidth - d / std::max(1.0f, avail.x), 0.15f, 0.7f);
+    }
+    ImGui::SameLine(0, 0);
+
+    // ---- Right: tables (tabs) above, inspector below -------------------------------------------
+    ImGui::BeginChild("##side", ImVec2(sideW, mainH), false, ImGuiWindowFlags_NoScrollbar);
+    const float inspH = std::clamp(L.inspectorHeight * mainH, 80.0f, mainH - 80.0f);
+    ImGui::BeginChild("##tabs", ImVec2(0, mainH - inspH - kBar), false, ImGuiWindowFlags_NoScrollbar);
+    if (ImGui::BeginTabBar("##sidetabs")) {
+        for (const SideTab& tab : kSideTabs) {
+            const bool open = ImGui::BeginTabItem(tab.name);
+            RecordItem(state, tab.name);
+            if (open) {
+                tab.show(state);
+                ImGui::EndTabItem();
+            }
+        }
+        ImGui::EndTabBar();
+    }
+    ImGui::EndChild();
+    if (const float d = Splitter("##isplit", false, kBar, sideW); d != 0) {
+        L.inspectorHeight = std::clamp(L.inspectorHeight - d / std::max(1.0f, mainH), 0.1f, 0.9f);
+    }
+    ImGui::BeginChild("##inspector", ImVec2(0, 0), false);
+    ShowInspector(state);
+    ImGui::EndChild();
+    ImGui::EndChild();
+
+    // ---- Bottom: messages ---------------------------------------------------------------------
+    if (const float d = Splitter("##hsplit", false, kBar, avail.x); d != 0) {
+        L.bottomHeight = std::clamp(L.bottomHeight - d / std::max(1.0f, avail.y), 0.05f, 0.6f);
+    }
+    ImGui::BeginChild("##bottom", ImVec2(0, 0), false);
+    ShowMessages(state);
+    ImGui::EndChild();
+    ImGui::End();
+
+    if (state.showHelp) ShowHelp(state);
+}
+
+void RecordItem(AppState& state, const char* name) {
+    const ImVec2 a = ImGui::GetItemRectMin(), b = ImGui::GetItemRectMax();
+    state.itemRects[name] = {a.x, a.y, b.x, b.y};
+}
+
+void HandleShortcuts(AppState& state) {
+    const ImGuiIO& io = ImGui::GetIO();
+    if (io.WantTextInput || ImGui::IsAnyItemActive()) return;
+    auto pressed = [](int k) { return ImGui::IsKeyPressed(k, true); };
+    auto once = [](int k) { return ImGui::IsKeyPressed(k, false); };
+    Engine& e = state.engine;
+    const bool ctrl = io.KeyCtrl, shift = io.KeyShift;
+
+    if (once(key::kF1)) state.showHelp = !state.showHelp;
+    if (once(key::kEscape)) {
+        if (state.showHelp) state.showHelp = false;
+        else state.select(kNone);
+    }
+    if (ctrl) {
+        if (once(key::letter('Z'))) shift ? state.redoEdit() : state.undoEdit();
+        if (once(key::letter('Y'))) state.redoEdit();
+        if (once(key::letter('Q'))) state.quitRequested = true;
+        // Ctrl + arrows pan the canvas by a tenth of its size.
+        View& v = state.view;
+        const double step = 0.1 * std::min(v.size.x, v.size.y) / v.scale;
+        if (pressed(key::kLeft)) v.center.x -= step;
+        if (pressed(key::kRight)) v.center.x += step;
+        if (pressed(key::kUp)) v.center.y += step;
+        if (pressed(key::kDown)) v.center.y -= step;
+        return;
+    }
+    // Stepping: arrows and presentation clickers (Page Up / Page Down).
+    if (pressed(key::kRight) || pressed(key::kPageDown)) {
+        state.run.running = false;
+        shift ? e.forwardInsertion() : e.forward();
+    }
+    if (pressed(key::kLeft) || pressed(key::kPageUp)) {
+        state.run.running = false;
+        shift ? e.backInsertion() : e.back();
+    }
+    if (once(key::kHome)) {
+        state.run.running = false;
+        e.toStart();
+    }
+    if (once(key::kEnd)) {
+        state.run.running = true;
+        state.run.opsPerSecond = RunControl::kFullSpeed;
+    }
+    if (once(key::kSpace)) state.run.running = !state.run.running;
+    // Corner operators on the selection.
+    for (char op : {'n', 'p', 'o', 'l', 'r', 's', 'u'}) {
+        if (pressed(key::letter(op))) state.moveSelection(op);
+    }
+    // View and overlays.
+    if (once(key::letter('F'))) state.fitPending = true;
+    if (once(key::letter('V'))) state.overlays.voronoi = !state.overlays.voronoi;
+    if (once(key::letter('C'))) state.overlays.circumcircles = !state.overlays.circumcircles;
+    if (once(key::letter('G'))) state.snapToGrid = !state.snapToGrid;
+    if (pressed(key::kEqual) || pressed(key::kKpAdd)) state.view.zoomAt(state.view.origin + state.view.size * 0.5, 1.25);
+    if (pressed(key::kMinus) || pressed(key::kKpSubtract)) state.view.zoomAt(state.view.origin + state.view.size * 0.5, 0.8);
+}
+
+}  // namespace dlab::ui

@@ -1,0 +1,148 @@
+// AppState's actions: loading and editing points, options, selection moves, the message log.
+#include "ui/app_state.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace dlab::ui {
+
+void View::fit(Vec2 lo, Vec2 hi) {
+    const double w = hi.x - lo.x, h = hi.y - lo.y;
+    center = {lo.x / 2 + hi.x / 2, lo.y / 2 + hi.y / 2};
+    const double extent = std::max(w, h);
+    if (!(extent > 0) || !std::isfinite(extent)) {
+        // One point (or none): a unit box around it, or around the paper's box centre.
+        scale = std::min(size.x, size.y) / std::max(2.0, std::abs(center.x) * 1e-12 + 2.0);
+        return;
+    }
+    const double sx = size.x / (w > 0 ? w : extent), sy = size.y / (h > 0 ? h : extent);
+    scale = 0.9 * std::min(sx, sy);
+}
+
+void View::zoomAt(glm::dvec2 screen, double factor) {
+    const Vec2 before = toWorld(screen);
+    scale = std::clamp(scale * factor, 1e-300, 1e300);
+    const Vec2 after = toWorld(screen);
+    center.x += before.x - after.x;
+    center.y += before.y - after.y;
+}
+
+InsertOptions demoOptions() {
+    InsertOptions o;
+    o.order = OrderKind::Input;  // vertex k is the k-th point: easier to follow in class
+    return o;
+}
+
+void AppState::log(Message::Level level, std::string text) {
+    messages.push_back({level, std::move(text)});
+    if (messages.size() > 5000) messages.erase(messages.begin(), messages.begin() + 1000);
+}
+
+bool AppState::loadPoints(std::vector<Vec2> points, std::string sourceName) {
+    std::string error;
+    const std::size_t n = points.size();
+    std::vector<Vec2> previous = engine.points();
+    if (!engine.reset(std::move(points), engine.options(), error)) {
+        log(Message::Level::Error, sourceName + ": " + error + " (nothing was changed)");
+        return false;
+    }
+    if (!previous.empty()) {
+        undoPoints.push_back(std::move(previous));
+        redoPoints.clear();
+    }
+    source = std::move(sourceName);
+    selection = {};
+    run.running = false;
+    fitPending = true;
+    log(Message::Level::Info, source + ": " + std::to_string(n) + " points");
+    if (engine.batch()) {
+        log(Message::Level::Warning, "more than " + std::to_string(Engine::kHistoryLimit) +
+                                         " points: triangulated in one batch, stepping is off");
+    }
+    return true;
+}
+
+bool AppState::editPoints(std::vector<Vec2> points) {
+    std::string error;
+    std::vector<Vec2> previous = engine.points();
+    if (!engine.resetAt(std::move(points), engine.options(), engine.position(), error)) {
+        log(Message::Level::Error, "edit refused: " + error);
+        return false;
+    }
+    undoPoints.push_back(std::move(previous));
+    redoPoints.clear();
+    if (selection.corner >= engine.mesh().numCorners()) selection = {};
+    return true;
+}
+
+bool AppState::undoEdit() {
+    if (undoPoints.empty()) return false;
+    std::string error;
+    std::vector<Vec2> now = engine.points();
+    if (!engine.resetAt(undoPoints.back(), engine.options(), engine.position(), error)) return false;
+    undoPoints.pop_back();
+    redoPoints.push_back(std::move(now));
+    selection = {};
+    return true;
+}
+
+bool AppState::redoEdit() {
+    if (redoPoints.empty()) return false;
+    std::string error;
+    std::vector<Vec2> now = engine.points();
+    if (!engine.resetAt(redoPoints.back(), engine.options(), engine.position(), error)) return false;
+    redoPoints.pop_back();
+    undoPoints.push_back(std::move(now));
+    selection = {};
+    return true;
+}
+
+bool AppState::setOptions(const InsertOptions& options) {
+    std::string error;
+    if (!engine.reset(engine.points(), options, error)) {
+        log(Message::Level::Error, std::string("options refused: ") + error);
+        return false;
+    }
+    selection = {};
+    run.running = false;
+    log(Message::Level::Info, std::string("restarted: boundary ") + toString(options.boundary) + ", locate " +
+                                  toString(options.locator) + ", order " + toString(options.order));
+    return true;
+}
+
+void AppState::select(std::int32_t corner) {
+    const Mesh& m = engine.mesh();
+    selection.corner = corner >= 0 && corner < m.numCorners() ? corner : kNone;
+    selection.lastMove = {};
+}
+
+bool AppState::moveSelection(char op) {
+    const Mesh& m = engine.mesh();
+    const std::int32_t c = selection.corner;
+    if (c < 0 || c >= m.numCorners()) {
+        log(Message::Level::Info, "select a corner first (click near one, or a row of the corner table)");
+        return false;
+    }
+    std::int32_t to = kNone;
+    switch (op) {
+        case 'n': to = m.n(c); break;
+        case 'p': to = m.p(c); break;
+        case 'o': to = m.o(c); break;
+        case 'l': to = m.l(c); break;
+        case 'r': to = m.r(c); break;
+        case 's': to = m.s(c); break;
+        case 'u': to = m.u(c); break;
+        default: return false;
+    }
+    if (to == kNone) {
+        log(Message::Level::Info, std::string("c.") + op + " of corner " + std::to_string(c) +
+                                      " crosses the boundary (no neighbour there): the selection stays");
+        return false;
+    }
+    selection.corner = to;
+    selection.lastMove = {c, op, to};
+    selection.jumpToCorner = to;
+    return true;
+}
+
+}  // namespace dlab::ui

@@ -1,0 +1,178 @@
+// The GUI's run: restart on new points or options, step, and derive what the canvas highlights.
+#include "ui/engine.h"
+
+#include <algorithm>
+#include <exception>
+
+namespace dlab::ui {
+
+bool endsInsertion(OpType t) {
+    return t == OpType::Inserted || t == OpType::SkipDuplicate || t == OpType::Start || t == OpType::Finalize;
+}
+
+Engine::Engine() {
+    std::string error;
+    reset({}, InsertOptions{}, error);
+}
+
+Engine::~Engine() = default;
+
+bool Engine::reset(std::vector<Vec2> points, const InsertOptions& options, std::string& error) {
+    return resetAt(std::move(points), options, 0, error);
+}
+
+bool Engine::resetAt(std::vector<Vec2> points, const InsertOptions& options, std::size_t position,
+                     std::string& error) {
+    std::unique_ptr<Inserter> ins;
+    try {
+        ins = std::make_unique<Inserter>(points, options);
+    } catch (const std::exception& e) {
+        error = e.what();
+        return false;
+    }
+    m_journal.reset();
+    m_ins = std::move(ins);
+    m_points = std::move(points);
+    m_options = options;
+    if (m_points.size() > kHistoryLimit) {
+        m_ins->run();
+    } else {
+        m_journal = std::make_unique<Journal>(*m_ins);
+        if (m_points.size() <= kPrerecordLimit) m_journal->seek(static_cast<std::size_t>(-1));
+        m_journal->seek(position);
+    }
+    m_rank.assign(m_points.size(), 0);
+    const auto& order = m_ins->order();
+    for (std::size_t k = 0; k < order.size(); ++k) m_rank[order[k]] = static_cast<std::int32_t>(k);
+    bump();
+    return true;
+}
+
+bool Engine::forward() {
+    if (!m_journal || !m_journal->forward()) return false;
+    bump();
+    return true;
+}
+
+bool Engine::back() {
+    if (!m_journal || !m_journal->back()) return false;
+    bump();
+    return true;
+}
+
+bool Engine::forwardInsertion() {
+    bool moved = false;
+    while (forward()) {
+        moved = true;
+        if (endsInsertion(current()->type)) break;
+    }
+    return moved;
+}
+
+bool Engine::backInsertion() {
+    if (!back()) return false;
+    while (current() && !endsInsertion(current()->type)) back();
+    return true;
+}
+
+void Engine::toStart() { seek(0); }
+
+bool Engine::toEnd(std::size_t maxOps) {
+    for (std::size_t i = 0; i < maxOps; ++i) {
+        if (!forward()) return true;
+    }
+    return atEnd();
+}
+
+void Engine::seek(std::size_t position) {
+    if (!m_journal || position == m_journal->position()) return;
+    m_journal->seek(position);
+    bump();
+}
+
+std::size_t Engine::position() const { return m_journal ? m_journal->position() : 0; }
+std::size_t Engine::recorded() const { return m_journal ? m_journal->recorded() : 0; }
+bool Engine::atEnd() const { return m_journal ? m_journal->atEnd() : true; }
+const Op* Engine::current() const { return m_journal ? m_journal->current() : nullptr; }
+
+std::size_t Engine::insertionsDone() const {
+    return static_cast<std::size_t>(m_ins->stats().inserted + m_ins->stats().duplicates);
+}
+
+std::span<const Op> Engine::currentInsertion() const {
+    if (!m_journal) return {};
+    const auto& ops = m_journal->ops();
+    const std::size_t end = m_journal->position();
+    std::size_t begin = end;
+    while (begin > 0 && !endsInsertion(ops[begin - 1].type)) --begin;
+    return {ops.data() + begin, end - begin};
+}
+
+std::vector<std::int32_t> Engine::walkPath() const {
+    std::vector<std::int32_t> path;
+    for (const Op& op : currentInsertion()) {
+        if (op.type == OpType::LocateStep) {
+            if (path.empty()) path.push_back(op.a);
+            path.push_back(op.b);
+        } else if (op.type == OpType::Located) {
+            if (path.empty()) path.push_back(op.a);
+        } else {
+            return {};  // the split has changed the triangles: the path is history
+        }
+    }
+    return path;
+}
+
+std::vector<VertexEdge> Engine::flippedEdges() const {
+    std::vector<VertexEdge> edges;
+    if (!m_journal) return edges;
+    const auto& changes = m_journal->changes();
+    for (const Op& op : currentInsertion()) {
+        if (op.type != OpType::Flip) continue;
+        // The flip writes V[p(a)] = D first (see Inserter::flip): the new edge is P-D.
+        for (std::uint32_t i = 0; i < op.numChanges; ++i) {
+            const CellChange& ch = changes[op.firstChange + i];
+            if (!ch.isO()) {
+                edges.push_back({op.vertex, ch.after});
+                break;
+            }
+        }
+    }
+    return edges;
+}
+
+std::vector<VertexEdge> Engine::pendingTests() const {
+    std::vector<VertexEdge> edges;
+    const Mesh& m = mesh();
+    for (std::int32_t c : m_ins->flipStack()) {
+        if (c >= 0 && c < m.numCorners()) edges.push_back({m.V[next(c)], m.V[prev(c)]});
+    }
+    return edges;
+}
+
+const std::vector<Engine::PointState>& Engine::pointStates() const {
+    if (m_statesVersion == m_version) return m_states;
+    m_statesVersion = m_version;
+    const std::int32_t n = static_cast<std::int32_t>(m_points.size());
+    m_states.assign(static_cast<std::size_t>(n), PointState::Pending);
+    const Control& ctl = m_ins->control();
+    const bool hasMesh = m_ins->mesh().numTriangles() > 0;
+    for (std::int32_t i = 0; i < n; ++i) {
+        PointState& s = m_states[i];
+        if (m_ins->done()) {
+            s = hasMesh ? PointState::Inserted : PointState::Pending;
+        } else if (ctl.phase == Phase::Start) {
+            s = PointState::Pending;
+        } else if (m_rank[i] < ctl.cursor) {
+            s = hasMesh ? PointState::Inserted : PointState::Pending;
+        } else if (m_rank[i] == ctl.cursor && ctl.phase != Phase::Finalize) {
+            s = PointState::Current;
+        }
+    }
+    for (std::int32_t i : m_ins->skipped()) {
+        if (i >= 0 && i < n) m_states[i] = PointState::Skipped;
+    }
+    return m_states;
+}
+
+}  // namespace dlab::ui

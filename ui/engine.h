@@ -1,0 +1,96 @@
+// The run the GUI shows: the user's points and options, the Inserter and its Journal, and what
+// the canvas derives from the recorded ops (the walk of the current locate, the flips so far).
+// The Inserter/Journal are the only things that change the mesh; this class only drives them.
+#pragma once
+
+#include "core/inserter.h"
+
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <string>
+#include <vector>
+
+namespace dlab::ui {
+
+// An edge as two vertex ids (the canvas draws it from G).
+struct VertexEdge {
+    std::int32_t a = kNone, b = kNone;
+};
+
+class Engine {
+public:
+    // Above this many points the run has no history: it is made in one batch (Inserter::run)
+    // and only the final mesh is shown. A history costs about 2 KB per point.
+    static constexpr std::size_t kHistoryLimit = 200000;
+    // Up to this many points the whole run is recorded at once, so the timeline spans it all.
+    static constexpr std::size_t kPrerecordLimit = 20000;
+
+    Engine();
+    ~Engine();
+
+    // Replaces the points and options and restarts at operation 0. On bad input (non-finite
+    // coordinates, too many points, no finite super-triangle) returns false with a one-line
+    // reason and leaves the engine as it was.
+    bool reset(std::vector<Vec2> points, const InsertOptions& options, std::string& error);
+    // As reset, then replays to `position` (clamped to the end): the same step after an edit.
+    bool resetAt(std::vector<Vec2> points, const InsertOptions& options, std::size_t position, std::string& error);
+
+    const std::vector<Vec2>& points() const { return m_points; }
+    const InsertOptions& options() const { return m_options; }
+    const Inserter& inserter() const { return *m_ins; }
+    const Mesh& mesh() const { return m_ins->mesh(); }
+    const Journal* journal() const { return m_journal.get(); }
+    bool batch() const { return m_journal == nullptr; }
+    // Bumps whenever the mesh or the position changes: renderers cache on it.
+    std::uint64_t version() const { return m_version; }
+
+    // ---- Stepping. Each returns whether anything moved. -------------------------------------
+    bool forward();
+    bool back();
+    bool forwardInsertion();   // to just after the next Inserted / SkipDuplicate (or the end)
+    bool backInsertion();      // to just after the previous one (or the start)
+    void toStart();
+    // Steps forward until the end or until `maxOps` ops were done. True at the end.
+    bool toEnd(std::size_t maxOps);
+    void seek(std::size_t position);
+    std::size_t position() const;
+    std::size_t recorded() const;
+    bool atEnd() const;
+    const Op* current() const;  // the op just performed, nullptr at the start or in batch mode
+    std::size_t insertionsDone() const;
+
+    // ---- Derived from the ops of the insertion in progress ------------------------------------
+    // Ops from the first op of the current insertion up to the current position (empty between
+    // insertions and in batch mode).
+    std::span<const Op> currentInsertion() const;
+    // Triangles the current locate visited, in order (only while the locate is in progress or
+    // just ended, before the split changes the triangles).
+    std::vector<std::int32_t> walkPath() const;
+    // Edges made by the flips of the current insertion so far (vertex pairs).
+    std::vector<VertexEdge> flippedEdges() const;
+    // Edges still to test: the edge opposite each corner on the flip stack.
+    std::vector<VertexEdge> pendingTests() const;
+    // The input point being inserted, kNone between insertions.
+    std::int32_t currentVertex() const { return m_ins->currentVertex(); }
+    // What each input point is now: waiting, being inserted, a vertex, or a skipped duplicate.
+    enum class PointState : std::uint8_t { Pending, Current, Inserted, Skipped };
+    const std::vector<PointState>& pointStates() const;  // cached per version()
+
+private:
+    void bump() { ++m_version; }
+
+    std::vector<Vec2> m_points;
+    InsertOptions m_options;
+    std::unique_ptr<Inserter> m_ins;
+    std::unique_ptr<Journal> m_journal;
+    std::vector<std::int32_t> m_rank;  // position of each input point in the insertion order
+    std::uint64_t m_version = 0;
+    mutable std::vector<PointState> m_states;
+    mutable std::uint64_t m_statesVersion = ~std::uint64_t{0};
+};
+
+// True for the ops that end an insertion (the next op starts the next point).
+bool endsInsertion(OpType t);
+
+}  // namespace dlab::ui

@@ -1,0 +1,189 @@
+// Gui: ImGui context, fonts (DejaVu when installed), light theme, frames and PNG screenshots.
+#include "ui/gui.h"
+
+#include <GL/gl.h>
+#include <backends/imgui_impl_opengl2.h>
+#include <imgui.h>
+#include <stb_image_write.h>
+
+#include <chrono>
+#include <filesystem>
+
+namespace dlab::ui {
+
+namespace {
+
+Fonts g_fonts;  // the fonts of the Gui that is drawing (one ImGui context per process)
+
+double nowMs() {
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+const char* firstExisting(std::initializer_list<const char*> paths) {
+    std::error_code ec;
+    for (const char* p : paths) {
+        if (std::filesystem::is_regular_file(p, ec)) return p;
+    }
+    return nullptr;
+}
+
+}  // namespace
+
+const Fonts& fonts() { return g_fonts; }
+
+Gui::Gui(Platform& platform, AppState& state) : m_platform(platform), m_state(state) {
+    IMGUI_CHECKVERSION();
+    ImGui::CreateContext();
+    ImGuiIO& io = ImGui::GetIO();
+    io.IniFilename = nullptr;  // the layout is ours (settings.json), not ImGui's window list
+    io.ConfigWindowsMoveFromTitleBarOnly = true;
+    m_platform.initImGui();
+    ImGui_ImplOpenGL2_Init();
+    loadFonts();
+    applyTheme();
+    m_lastTime = nowMs();
+}
+
+Gui::~Gui() {
+    ImGui_ImplOpenGL2_Shutdown();
+    m_platform.shutdownImGui();
+    ImGui::DestroyContext();
+    g_fonts = {};
+}
+
+void Gui::loadFonts() {
+    ImGuiIO& io = ImGui::GetIO();
+    const char* sans = firstExisting({"/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf"});
+    const char* mono = firstExisting({"/usr/share/fonts/truetype/dejavu/DejaVuSansMono.ttf"});
+    const float base = m_state.presentation ? 26.0f : 16.0f;
+    io.Fonts->Clear();
+    ImFontConfig cfg;
+    cfg.OversampleH = 2;
+    if (sans) {
+        // Latin-1 plus the few symbols the captions use (arrows, en dash, ≤, ≥).
+        static const ImWchar ranges[] = {0x0020, 0x00FF, 0x2013, 0x2014, 0x2190, 0x21FF, 0x2264, 0x2265, 0};
+        m_fonts.ui = io.Fonts->AddFontFromFileTTF(sans, base, &cfg, ranges);
+        m_fonts.caption = io.Fonts->AddFontFromFileTTF(sans, base * 1.3f, &cfg, ranges);
+    }
+    if (mono) m_fonts.mono = io.Fonts->AddFontFromFileTTF(mono, base, &cfg);
+    if (!m_fonts.ui) {
+        ImFontConfig def;
+        def.SizePixels = base;
+        m_fonts.ui = io.Fonts->AddFontDefault(&def);
+        m_fonts.caption = m_fonts.ui;
+        m_state.log(Message::Level::Warning, "DejaVu fonts not found (apt-get install fonts-dejavu-core): using ImGui's built-in font");
+    }
+    if (!m_fonts.mono) m_fonts.mono = m_fonts.ui;
+    io.FontDefault = m_fonts.ui;
+    ImGui_ImplOpenGL2_DestroyFontsTexture();
+    ImGui_ImplOpenGL2_CreateFontsTexture();
+    m_presentationApplied = m_state.presentation;
+}
+
+void Gui::applyTheme() {
+    ImGuiStyle& style = ImGui::GetStyle();
+    style = ImGuiStyle();
+    ImGui::StyleColorsLight(&style);
+    style.WindowRounding = 0;
+    style.FrameRounding = 3;
+    style.GrabRounding = 3;
+    style.ItemSpacing = ImVec2(8, 5);
+    style.FramePadding = ImVec2(6, 4);
+    style.Colors[ImGuiCol_WindowBg] = ImVec4(0.95f, 0.95f, 0.96f, 1);
+    style.Colors[ImGuiCol_ChildBg] = ImVec4(0, 0, 0, 0);
+    if (m_state.presentation) {
+        // High contrast for projectors: black text, stronger borders and highlights.
+        style.Colors[ImGuiCol_Text] = ImVec4(0, 0, 0, 1);
+        style.Colors[ImGuiCol_Border] = ImVec4(0.2f, 0.2f, 0.2f, 0.8f);
+        style.FrameBorderSize = 1;
+        style.ScaleAllSizes(1.4f);
+    }
+}
+
+bool Gui::frame() {
+    const double t0 = nowMs();
+    if (m_presentationApplied != m_state.presentation) {
+        loadFonts();
+        applyTheme();
+    }
+    ImGuiIO& io = ImGui::GetIO();
+    if (!m_platform.headless()) {
+        io.DeltaTime = static_cast<float>(std::max(1e-4, (t0 - m_lastTime) / 1000.0));
+    }
+    m_lastTime = t0;
+    const bool open = m_platform.newFrame();
+    g_fonts = m_fonts;
+    ImGui_ImplOpenGL2_NewFrame();
+    ImGui::NewFrame();
+    ShowApplication(m_state);
+    ImGui::Render();
+    const double t1 = nowMs();
+    int w = 0, h = 0;
+    m_platform.framebufferSize(w, h);
+    glViewport(0, 0, w, h);
+    glClearColor(0.95f, 0.95f, 0.96f, 1.0f);
+    glClear(GL_COLOR_BUFFER_BIT);
+    ImGui_ImplOpenGL2_RenderDrawData(ImGui::GetDrawData());
+    if (m_capture) readFramebuffer();
+    m_pixelsStale = !m_capture;
+    m_platform.present();
+    m_uiMs = t1 - t0;
+    m_frameMs = nowMs() - t0;
+    return open && !m_state.quitRequested;
+}
+
+void Gui::readFramebuffer() {
+    int w = 0, h = 0;
+    m_platform.framebufferSize(w, h);
+    glFinish();
+    m_pixels.resize(static_cast<std::size_t>(w) * h * 4);
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glReadBuffer(m_platform.headless() ? GL_FRONT : GL_BACK);
+    glReadPixels(0, 0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, m_pixels.data());
+    // GL rows start at the bottom: flip to top-first.
+    const std::size_t row = static_cast<std::size_t>(w) * 4;
+    for (int y = 0; y < h / 2; ++y) {
+        std::swap_ranges(m_pixels.begin() + y * row, m_pixels.begin() + (y + 1) * row, m_pixels.begin() + (h - 1 - y) * row);
+    }
+    m_pixelsW = w;
+    m_pixelsH = h;
+    m_pixelsStale = false;
+}
+
+const std::vector<std::uint8_t>& Gui::lastFrame(int& width, int& height) {
+    // Headless, the last frame stays in the buffer: read it when asked.
+    if (m_pixelsStale && m_platform.headless()) readFramebuffer();
+    width = m_pixelsW;
+    height = m_pixelsH;
+    return m_pixels;
+}
+
+bool Gui::saveScreenshot(const std::string& path, std::string& error) {
+    if (m_pixelsStale && m_platform.headless()) {
+        readFramebuffer();
+    } else if (m_pixels.empty() || m_pixelsStale) {
+        const bool was = m_capture;
+        m_capture = true;
+        frame();
+        m_capture = was;
+    }
+    return writePng(path, m_pixels, m_pixelsW, m_pixelsH, error);
+}
+
+bool writePng(const std::string& path, const std::vector<std::uint8_t>& rgba, int width, int height,
+              std::string& error) {
+    if (width <= 0 || height <= 0 || rgba.size() < static_cast<std::size_t>(width) * height * 4) {
+        error = "no image to write";
+        return false;
+    }
+    // Opaque output: the framebuffer's alpha is whatever blending left there.
+    std::vector<std::uint8_t> opaque(rgba.begin(), rgba.begin() + static_cast<std::ptrdiff_t>(width) * height * 4);
+    for (std::size_t i = 3; i < opaque.size(); i += 4) opaque[i] = 255;
+    if (!stbi_write_png(path.c_str(), width, height, 4, opaque.data(), width * 4)) {
+        error = "cannot write " + path;
+        return false;
+    }
+    return true;
+}
+
+}  // namespace dlab::ui

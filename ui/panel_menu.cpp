@@ -1,0 +1,157 @@
+// The menu bar: File (open a point file, the demo, quit), View (overlays, presentation mode),
+// Generate (the inputs that broke other triangulators), Help.
+#include "core/generators.h"
+#include "core/io_read.h"
+#include "ui/panels.h"
+
+#include <imgui.h>
+#include <imgui_stdlib.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <string>
+
+namespace dlab::ui {
+
+namespace {
+
+struct GeneratorChoice {
+    Generator kind;
+    const char* label;
+    int defaultCount;
+};
+
+constexpr GeneratorChoice kGenerators[] = {
+    {Generator::Uniform, "Uniform (the paper's 1600 box)", 200},
+    {Generator::Clusters, "Clusters", 300},
+    {Generator::Grid, "Grid (cocircular quadruples)", 100},
+    {Generator::RotatedGrid, "Rotated grid", 100},
+    {Generator::Ngon, "Regular N-gon (all cocircular)", 24},
+    {Generator::Circle, "Points on a circle", 40},
+    {Generator::Collinear, "Collinear runs", 60},
+    {Generator::NearDuplicates, "Near-duplicates (1-4 ulps apart)", 60},
+    {Generator::HugeTinyBox, "Tiny box at huge coordinates", 60},
+    {Generator::AllCollinear, "All on one line", 20},
+};
+
+}  // namespace
+
+bool LoadPointFile(AppState& st, const std::string& path) {
+    try {
+        PointSet set = readPointsFile(path);
+        for (const std::string& w : set.warnings) st.log(Message::Level::Warning, w);
+        return st.loadPoints(std::move(set.points), path);
+    } catch (const InputError& e) {
+        st.log(Message::Level::Error, std::string(e.what()) + " (nothing was changed)");
+    } catch (const std::exception& e) {
+        st.log(Message::Level::Error, path + ": " + e.what() + " (nothing was changed)");
+    }
+    return false;
+}
+
+void ShowMenuBar(AppState& st) {
+    DialogState& dialog = st.dialogs;
+    bool openDialog = false;
+    if (!ImGui::BeginMenuBar()) return;
+    if (ImGui::BeginMenu("File")) {
+        if (ImGui::MenuItem("Open points...", "")) openDialog = true;
+        if (ImGui::MenuItem("Built-in demo")) {
+            st.loadPoints(demoPoints(), "built-in demo");
+        }
+        ImGui::Separator();
+        if (ImGui::MenuItem("Undo point edit", "Ctrl+Z", false, !st.undoPoints.empty())) st.undoEdit();
+        if (ImGui::MenuItem("Redo point edit", "Ctrl+Y", false, !st.redoPoints.empty())) st.redoEdit();
+        ImGui::Separator();
+        if (ImGui::MenuItem("Quit", "Ctrl+Q")) st.quitRequested = true;
+        ImGui::EndMenu();
+    }
+    if (ImGui::BeginMenu("View")) {
+        Overlays& o = st.overlays;
+        ImGui::MenuItem("Fill triangles", nullptr, &o.fill);
+        ImGui::MenuItem("Vertex ids", nullptr, &o.vertexIds);
+        ImGui::MenuItem("Corner ids", nullptr, &o.cornerIds);
+        ImGui::MenuItem("Triangle ids", nullptr, &o.triangleIds);
+        ImGui::MenuItem("Walk path and line L", nullptr, &o.walk);
+        ImGui::MenuItem("Edges still to test", nullptr, &o.flipQueue);
+        ImGui::MenuItem("Flipped edges", nullptr, &o.flipped);
+        ImGui::MenuItem("Circumcircles", "C", &o.circumcircles);
+        ImGui::MenuItem("Voronoi diagram", "V", &o.voronoi);
+        ImGui::MenuItem("Queued points", nullptr, &o.pendingPoints);
+        ImGui::MenuItem("Super-triangle (super mode)", nullptr, &o.virtualTriangles);
+        ImGui::Separator();
+        ImGui::MenuItem("Snap new points to grid", "G", &st.snapToGrid);
+        ImGui::SetNextItemWidth(100);
+        ImGui::InputDouble("Grid step", &st.gridStep, 0, 0, "%g");
+        st.gridStep = std::max(st.gridStep, 1e-9);
+        if (ImGui::MenuItem("Fit to data", "F")) st.fitPending = true;
+        ImGui::Separator();
+        ImGui::MenuItem("Presentation mode (large, high contrast)", nullptr, &st.presentation);
+        ImGui::EndMenu();
+    }
+    if (ImGui::BeginMenu("Generate")) {
+        std::vector<int>& counts = dialog.generatorCounts;
+        counts.resize(std::size(kGenerators), 0);
+        int& seed = dialog.generatorSeed;
+        ImGui::SetNextItemWidth(120);
+        ImGui::InputInt("Seed", &seed);
+        ImGui::Separator();
+        for (std::size_t i = 0; i < std::size(kGenerators); ++i) {
+            const GeneratorChoice& g = kGenerators[i];
+            if (counts[i] == 0) counts[i] = g.defaultCount;
+            ImGui::PushID(static_cast<int>(i));
+            ImGui::SetNextItemWidth(120);
+            ImGui::InputInt("##n", &counts[i], 10, 100);
+            counts[i] = std::clamp(counts[i], 1, 5000000);
+            ImGui::SameLine();
+            if (ImGui::MenuItem(g.label)) {
+                st.loadPoints(generatePoints(g.kind, static_cast<std::size_t>(counts[i]), static_cast<std::uint64_t>(std::max(0, seed))),
+                              std::string(toString(g.kind)) + " (" + std::to_string(counts[i]) + " points, seed " + std::to_string(seed) + ")");
+            }
+            ImGui::PopID();
+        }
+        ImGui::EndMenu();
+    }
+    if (ImGui::BeginMenu("Help")) {
+        if (ImGui::MenuItem("Shortcuts and conventions", "F1")) st.showHelp = true;
+        ImGui::EndMenu();
+    }
+    ImGui::EndMenuBar();
+
+    if (openDialog) {
+        ImGui::OpenPopup("Open points");
+        if (dialog.openFolder.empty()) dialog.openFolder = std::filesystem::current_path().string();
+    }
+    if (ImGui::BeginPopupModal("Open points", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
+        ImGui::TextUnformatted("A point file: Triangle .node, CSV / XY (x,y per line) or .pts");
+        ImGui::SetNextItemWidth(520);
+        const bool enter = ImGui::InputText("Path", &dialog.openPath, ImGuiInputTextFlags_EnterReturnsTrue);
+        ImGui::TextDisabled("%s", dialog.openFolder.c_str());
+        ImGui::BeginChild("##files", ImVec2(520, 220), true);
+        std::error_code ec;
+        if (ImGui::Selectable("..")) dialog.openFolder = std::filesystem::path(dialog.openFolder).parent_path().string();
+        std::vector<std::filesystem::directory_entry> entries;
+        for (const auto& entry : std::filesystem::directory_iterator(dialog.openFolder, ec)) entries.push_back(entry);
+        std::sort(entries.begin(), entries.end(), [](const auto& a, const auto& b) { return a.path() < b.path(); });
+        for (const auto& entry : entries) {
+            const std::string name = entry.path().filename().string();
+            if (entry.is_directory(ec)) {
+                if (ImGui::Selectable((name + "/").c_str())) dialog.openFolder = entry.path().string();
+                continue;
+            }
+            const std::string ext = entry.path().extension().string();
+            if (ext != ".node" && ext != ".csv" && ext != ".xy" && ext != ".txt" && ext != ".pts") continue;
+            if (ImGui::Selectable(name.c_str())) {
+                dialog.openPath = entry.path().string();
+            }
+        }
+        ImGui::EndChild();
+        if (ImGui::Button("Open") || enter) {
+            if (LoadPointFile(st, dialog.openPath)) ImGui::CloseCurrentPopup();
+        }
+        ImGui::SameLine();
+        if (ImGui::Button("Cancel")) ImGui::CloseCurrentPopup();
+        ImGui::EndPopup();
+    }
+}
+
+}  // namespace dlab::ui

@@ -1,0 +1,56 @@
+// What the UI needs from a window system: a current GL context, frames, and input for ImGui.
+//
+// Two implementations, one file each, each in its own library because each brings its own GL
+// provider: platform_glfw.cpp (a real window, libGL) and platform_osmesa.cpp (headless, OSMesa;
+// the only file that includes OSMesa, so that EGL can replace it when Mesa drops OSMesa).
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace dlab::ui {
+
+using GlProc = void (*)();
+
+class Platform {
+public:
+    virtual ~Platform() = default;
+    virtual const char* name() const = 0;
+    virtual bool headless() const = 0;
+    // A GL entry point of the current context (for functions beyond GL 1.1), or nullptr.
+    virtual GlProc procAddress(const char* name) = 0;
+    virtual void framebufferSize(int& width, int& height) const = 0;
+    // Called after ImGui::CreateContext: install the ImGui platform backend (keyboard, mouse).
+    virtual void initImGui() = 0;
+    virtual void shutdownImGui() = 0;
+    // Polls events and fills ImGui's io for the next frame. False when the window was closed.
+    virtual bool newFrame() = 0;
+    // Shows the rendered frame (swap buffers; headless: nothing).
+    virtual void present() = 0;
+    // Nothing animates: sleep until an input event arrives or `seconds` pass (headless: no-op).
+    virtual void waitForEvents(double /*seconds*/) {}
+    // Files dropped on the window since the last call.
+    virtual std::vector<std::string> takeDroppedFiles() { return {}; }
+    virtual void setTitle(const std::string& /*title*/) {}
+    // Headless only: a new framebuffer size.
+    virtual bool resize(int /*width*/, int /*height*/) { return false; }
+};
+
+// Headless, OSMesa. Returns nullptr and sets `error` when no context can be made.
+std::unique_ptr<Platform> makeOsmesaPlatform(int width, int height, std::string& error);
+
+struct WindowOptions {
+    int width = 1600, height = 1000;
+    int x = -1, y = -1;  // -1: let the window manager place it
+    bool maximized = false;
+    std::string title = "Delaunay Lab";
+};
+// A GLFW window with a GL compatibility context. Returns nullptr and sets `error` when there
+// is no display or no context.
+std::unique_ptr<Platform> makeGlfwPlatform(const WindowOptions& options, std::string& error);
+
+// Where the GLFW window is now (to remember it between runs); false on other platforms.
+bool windowPlacement(const Platform& platform, WindowOptions& out);
+
+}  // namespace dlab::ui
