@@ -1,0 +1,330 @@
+// Fuzz target: the engine. Bytes -> a degenerate point set and options -> recorded insertion,
+// checked exactly, compared with the batch path, undone to the bit-for-bit start state.
+//
+// Byte layout (every byte past the end reads as 0, so any input decodes):
+//   [0] options: bit 0 boundary (exact/super), bits 1-2 locator, bits 3-4 order (mod 3),
+//       bit 5 round-trip ops through the trace format
+//   [1] seed   [2] [3] ID-buffer width and height (1..64)   [4] position of a mid-run probe
+//   [5] scale exponent e (coordinates are k * 2^e, e from about -1074 to 980)
+//   [6] [7] offset (ox, oy) = small integers * 2^(e+40): far from the origin, tiny spacing
+//   then commands, one byte each plus operands, until the bytes or kMaxFuzzPoints run out:
+//     grid point, duplicate of an earlier point, collinear run, lattice points of a circle
+//     (cocircular sets), midpoint of two points (points on edges), raw doubles (any finite
+//     bits), a change of scale (huge and tiny together), a finer cloud point.
+// Integer lattices scaled by powers of two keep collinear and cocircular sets exactly so.
+#include "tests/fuzz/fuzz_common.h"
+
+#include "core/inserter.h"
+#include "core/trace.h"
+#include "tests/exact_check.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <map>
+#include <set>
+#include <stdexcept>
+
+namespace {
+
+using namespace dlab;
+using dlab::fuzz::fail;
+using dlab::fuzz::require;
+
+// Enough for long flip cascades and every degenerate shape; small enough for thousands of
+// runs a second (each run is checked in GMP rationals).
+constexpr std::size_t kMaxFuzzPoints = 160;
+
+class Bytes {
+public:
+    Bytes(const std::uint8_t* data, std::size_t size) : m_data(data), m_size(size) {}
+    bool empty() const { return m_pos >= m_size; }
+    std::uint8_t u8() { return m_pos < m_size ? m_data[m_pos++] : 0; }
+    int range(int lo, int hi) { return lo + u8() % (hi - lo + 1); }  // in [lo, hi], hi - lo < 256
+    std::uint64_t u64() {
+        std::uint64_t v = 0;
+        for (int i = 0; i < 8; ++i) v |= static_cast<std::uint64_t>(u8()) << (8 * i);
+        return v;
+    }
+    double f64() {
+        const std::uint64_t bits = u64();
+        double d;
+        std::memcpy(&d, &bits, sizeof d);
+        return d;
+    }
+
+private:
+    const std::uint8_t* m_data;
+    std::size_t m_size;
+    std::size_t m_pos = 0;
+};
+
+// Lattice points on the circle x^2 + y^2 = r^2: 4 for r = 1, 12 for 5, 20 for 25, 36 for 65.
+std::vector<std::pair<int, int>> latticeCircle(int r) {
+    std::vector<std::pair<int, int>> out;
+    for (int x = -r; x <= r; ++x) {
+        for (int y = -r; y <= r; ++y) {
+            if (x * x + y * y == r * r) out.emplace_back(x, y);
+        }
+    }
+    return out;
+}
+
+struct Case {
+    std::vector<Vec2> points;
+    InsertOptions options;
+    bool traceRoundTrip = false;
+    std::uint8_t probe = 0;
+};
+
+class Decoder {
+public:
+    explicit Decoder(Bytes& in) : m_in(in) {}
+
+    Case decode() {
+        Case c;
+        const std::uint8_t flags = m_in.u8();
+        c.options.boundary = (flags & 1) ? Boundary::Super : Boundary::Exact;
+        c.options.locator = static_cast<LocatorKind>((flags >> 1) & 3);
+        c.options.order = static_cast<OrderKind>(((flags >> 3) & 3) % 3);
+        c.traceRoundTrip = (flags >> 5) & 1;
+        c.options.seed = m_in.u8();
+        c.options.locatorOptions.idBufferWidth = 1 + m_in.u8() % 64;
+        c.options.locatorOptions.idBufferHeight = 1 + m_in.u8() % 64;
+        c.probe = m_in.u8();
+        setExponent(static_cast<int>(static_cast<std::int8_t>(m_in.u8())) * 8);
+        m_offX = m_in.range(-4, 4);
+        m_offY = m_in.range(-4, 4);
+        while (!m_in.empty() && m_pts.size() < kMaxFuzzPoints) command();
+        c.points = std::move(m_pts);
+        return c;
+    }
+
+private:
+    // Coordinates k * 2^e stay finite for |k| < 2^16 + offsets; below the normal range they
+    // become (exact) subnormals or round, which is still a valid input.
+    void setExponent(int e) { m_exp = std::clamp(e, -1100, 980); }
+
+    double coord(double k, int offset) const {
+        const double off = m_exp + 40 <= 1000 ? std::ldexp(static_cast<double>(offset), m_exp + 40) : 0.0;
+        return off + std::ldexp(k, m_exp);
+    }
+    void add(double kx, double ky) { push({coord(kx, m_offX), coord(ky, m_offY)}); }
+    void push(Vec2 p) {
+        if (std::isfinite(p.x) && std::isfinite(p.y) && m_pts.size() < kMaxFuzzPoints) m_pts.push_back(p);
+    }
+
+    void command() {
+        switch (m_in.u8() % 10) {
+            case 0:
+            case 1: {  // grid point: tiny integer lattice, dense in cocircular quadruples
+                const int x = m_in.range(-8, 8);
+                add(x, m_in.range(-8, 8));
+                break;
+            }
+            case 2:  // duplicate of an earlier point
+                if (!m_pts.empty()) push(m_pts[m_in.u8() % m_pts.size()]);
+                break;
+            case 3: {  // collinear run
+                const int x = m_in.range(-8, 8), y = m_in.range(-8, 8);
+                int dx = m_in.range(-3, 3);
+                const int dy = m_in.range(-3, 3);
+                if (dx == 0 && dy == 0) dx = 1;
+                const int count = m_in.range(3, 12);
+                for (int i = 0; i < count; ++i) add(x + i * dx, y + i * dy);
+                break;
+            }
+            case 4: {  // a subset of the lattice points of a circle: exactly cocircular
+                static const std::vector<std::pair<int, int>> circles[] = {latticeCircle(1), latticeCircle(5),
+                                                                           latticeCircle(25), latticeCircle(65)};
+                const auto& circle = circles[m_in.u8() % 4];
+                const int cx = m_in.range(-8, 8), cy = m_in.range(-8, 8);
+                const std::uint64_t mask = m_in.u64();
+                for (std::size_t i = 0; i < circle.size(); ++i) {
+                    if (mask >> (i % 64) & 1) add(cx + circle[i].first, cy + circle[i].second);
+                }
+                break;
+            }
+            case 5:  // midpoint of two points: a point on their segment (exactly, at lattice scale)
+                if (m_pts.size() >= 2) {
+                    const Vec2 a = m_pts[m_in.u8() % m_pts.size()], b = m_pts[m_in.u8() % m_pts.size()];
+                    push({a.x + (b.x - a.x) / 2, a.y + (b.y - a.y) / 2});
+                }
+                break;
+            case 6: {  // any finite doubles: subnormals, DBL_MAX, wild exponent spans
+                const double x = m_in.f64();
+                push({x, m_in.f64()});
+                break;
+            }
+            case 7:  // change the scale: later points are much larger or smaller
+                setExponent(m_exp + m_in.range(-64, 64) * 4);
+                break;
+            case 8: {  // a finer cloud point
+                const int x = m_in.range(0, 255) - 128;
+                add(std::ldexp(x, -6), std::ldexp(m_in.range(0, 255) - 128, -6));
+                break;
+            }
+            case 9: {  // the same grid point, repeated: a pile of duplicates
+                const int x = m_in.range(-8, 8), y = m_in.range(-8, 8);
+                const int count = m_in.range(2, 6);
+                for (int i = 0; i < count; ++i) add(x, y);
+                break;
+            }
+        }
+    }
+
+    Bytes& m_in;
+    std::vector<Vec2> m_pts;
+    int m_exp = 0;
+    int m_offX = 0, m_offY = 0;
+};
+
+struct Snapshot {
+    std::vector<Vec2> G;
+    std::vector<std::int32_t> V, O;
+    bool operator==(const Snapshot& s) const {
+        return V == s.V && O == s.O && G.size() == s.G.size() &&
+               (G.empty() || std::memcmp(G.data(), s.G.data(), G.size() * sizeof(Vec2)) == 0);
+    }
+};
+Snapshot snap(const Mesh& m) { return {m.G, m.V, m.O}; }
+
+bool sameStats(const InsertStats& a, const InsertStats& b) {
+    return a.inserted == b.inserted && a.duplicates == b.duplicates && a.flips == b.flips &&
+           a.inCircleTests == b.inCircleTests && a.walkSteps == b.walkSteps && a.edgeSplits == b.edgeSplits;
+}
+
+std::string describe(const Case& c) {
+    std::string s = std::string("boundary ") + toString(c.options.boundary) + ", locator " +
+                    toString(c.options.locator) + ", order " + toString(c.options.order) + ", " +
+                    std::to_string(c.points.size()) + " points";
+    return s;
+}
+
+// The first occurrence of every distinct point (== on doubles: -0 equals 0, as in the inserter).
+std::vector<std::int32_t> firstOccurrences(const std::vector<Vec2>& pts) {
+    std::map<std::pair<double, double>, std::int32_t> seen;
+    std::vector<std::int32_t> out;
+    for (std::int32_t i = 0; i < static_cast<std::int32_t>(pts.size()); ++i) {
+        if (seen.emplace(std::make_pair(pts[i].x, pts[i].y), i).second) out.push_back(i);
+    }
+    return out;
+}
+
+void checkResult(const Case& c, const Inserter& ins) {
+    const std::string what = describe(c);
+    const Mesh& m = ins.mesh();
+    const auto n = static_cast<std::int32_t>(c.points.size());
+    require(m.numVertices() == n, "after the run G holds exactly the input points", what);
+    const auto violations = validate(m);
+    if (!violations.empty()) fail("validate() accepts the result", what + ": " + violations[0].message);
+
+    const auto distinct = firstOccurrences(c.points);
+    require(ins.stats().duplicates == n - static_cast<std::int64_t>(distinct.size()),
+            "every later copy of a point is reported as a duplicate", what);
+    std::vector<std::int32_t> expectSkipped;
+    std::set<std::int32_t> firsts(distinct.begin(), distinct.end());
+    for (std::int32_t i = 0; i < n; ++i) {
+        if (!firsts.count(i)) expectSkipped.push_back(i);
+    }
+    std::vector<std::int32_t> skipped = ins.skipped();
+    std::sort(skipped.begin(), skipped.end());
+    require(skipped == expectSkipped, "skipped() lists exactly the later copies", what);
+    const std::set<std::int32_t> used(m.V.begin(), m.V.end());
+    for (std::int32_t v : used) require(firsts.count(v) == 1, "only first occurrences are vertices", what);
+
+    if (c.options.boundary == Boundary::Super) return;  // the paper's mode promises no more
+    if (allCollinearExact(c.points)) {
+        require(m.numTriangles() == 0, "collinear input gives no triangle", what);
+        return;
+    }
+    const std::string exact = checkDelaunayExact(m, &distinct);
+    require(exact.empty(), "the exact GMP check accepts the triangulation", what + ": " + exact);
+}
+
+void traceRoundTrip(const Journal& journal, const Mesh& mesh) {
+    const TraceRecord r = traceRecord(journal, journal.position() - 1, mesh);
+    const std::string line = toJsonLine(r);
+    require(parseTraceLine(line, "fuzz", 1) == r, "an op's trace line reads back as the same record", line);
+}
+
+void runCase(const Case& c) {
+    const std::string what = describe(c);
+    const auto n = static_cast<std::int32_t>(c.points.size());
+    std::unique_ptr<Inserter> owner;
+    try {
+        owner = std::make_unique<Inserter>(c.points, c.options);
+    } catch (const std::domain_error&) {
+        // Super mode refuses coordinates without a finite super-triangle (documented).
+        require(c.options.boundary == Boundary::Super, "only super mode refuses finite input", what);
+        return;
+    }
+    Inserter& ins = *owner;
+    const Snapshot start = snap(ins.mesh());
+
+    // Recorded, one op at a time. The bound is far above any correct run (O(n^2) flips and
+    // walk steps at most): past it the engine is looping.
+    Journal journal(ins);
+    const std::size_t limit = 64 * static_cast<std::size_t>(n + 4) * static_cast<std::size_t>(n + 4) + 1024;
+    std::size_t ops = 0;
+    while (journal.forward()) {
+        require(++ops <= limit, "insertion terminates", what);
+        // A JSON round trip costs more than the op itself: the first ops (Start and the first
+        // insertions hold every op type) and then one op in eight.
+        if (c.traceRoundTrip && (ops <= 64 || ops % 8 == 0)) traceRoundTrip(journal, ins.mesh());
+    }
+    require(ins.done(), "the journal stops only when the inserter is done", what);
+    require(ins.flipStack().empty(), "the flip work-list is empty at the end", what);
+    checkResult(c, ins);
+    const Snapshot end = snap(ins.mesh());
+    const InsertStats endStats = ins.stats();
+
+    // The batch path runs the same primitives without recording: the same result, bit for bit.
+    Inserter batch(c.points, c.options);
+    batch.run();
+    require(batch.done(), "run() finishes", what);
+    require(snap(batch.mesh()) == end, "run() gives the same G, V and O as stepping", what);
+    require(sameStats(batch.stats(), endStats), "run() counts the same operations as stepping", what);
+    require(batch.skipped() == ins.skipped(), "run() skips the same duplicates as stepping", what);
+
+    // A mid-run state is a valid corner table (virtual triangles included).
+    journal.seek(c.probe * ops / 255);
+    ValidateOptions vo;
+    vo.firstVirtual = n;
+    vo.delaunay = false;
+    const auto mid = validate(ins.mesh(), vo);
+    if (!mid.empty()) fail("every intermediate state is a valid corner table", what + ": " + mid[0].message);
+
+    // Undo everything: the start state, bit for bit; then redo to the same end.
+    journal.seek(0);
+    require(journal.position() == 0, "the journal rewinds to the start", what);
+    require(snap(ins.mesh()) == start, "undoing every op restores the start state bit for bit", what);
+    require(ins.flipStack().empty() && ins.skipped().empty(), "undo clears the work-list and the skips", what);
+    require(sameStats(ins.stats(), InsertStats{}), "undo resets the statistics", what);
+    journal.seek(ops);
+    require(journal.position() == ops && ins.done(), "the journal replays to the end", what);
+    require(snap(ins.mesh()) == end, "replaying every op gives the same end state", what);
+    require(sameStats(ins.stats(), endStats), "replaying restores the statistics", what);
+}
+
+// DLAB_FUZZ_PRINT=1: print the decoded case (hex floats, exact) before running it, to turn a
+// crash into a unit test.
+void printCase(const Case& c) {
+    std::fprintf(stderr, "%s, seed %llu, ID buffer %dx%d, trace %d, probe %d\n", describe(c).c_str(),
+                 static_cast<unsigned long long>(c.options.seed), c.options.locatorOptions.idBufferWidth,
+                 c.options.locatorOptions.idBufferHeight, c.traceRoundTrip ? 1 : 0, c.probe);
+    for (const Vec2& p : c.points) std::fprintf(stderr, "  {%a, %a},\n", p.x, p.y);
+}
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+    Bytes in(data, size);
+    const Case c = Decoder(in).decode();
+    static const bool print = std::getenv("DLAB_FUZZ_PRINT") != nullptr;
+    if (print) printCase(c);
+    runCase(c);
+    return 0;
+}

@@ -1,0 +1,88 @@
+// Fuzz target: readPointsFile, i.e. file loading, dispatch on the extension and format sniffing.
+//
+// The first byte picks the extension (known ones, upper case, none, unknown), the rest is the
+// file's content. Either outcome is checked: an InputError follows the one-line rules; a
+// successful read of a sniffed file equals what the guessed format's parser reads directly.
+#include "tests/fuzz/fuzz_common.h"
+
+#include <cstdio>
+#include <filesystem>
+#include <string>
+#include <unistd.h>
+
+namespace {
+
+constexpr const char* kExtensions[] = {".node", ".pts", ".csv", ".xy", ".txt", ".dat",
+                                       ".NODE", ".Csv", "",     ".in",  ".node.bak"};
+
+std::string scratchPath(const char* extension) {
+    static const std::string dir = [] {
+        auto d = std::filesystem::temp_directory_path() / ("dlab_fuzz_read_file_" + std::to_string(getpid()));
+        std::filesystem::create_directories(d);
+        return d.string();
+    }();
+    return dir + "/input" + extension;
+}
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+    using namespace dlab;
+    using namespace dlab::fuzz;
+    if (size == 0) return 0;
+    constexpr std::size_t kCount = sizeof kExtensions / sizeof kExtensions[0];
+    const char* extension = kExtensions[data[0] % kCount];
+    const std::string_view text = asText(data + 1, size - 1);
+    const std::string path = scratchPath(extension);
+    {
+        std::FILE* f = std::fopen(path.c_str(), "wb");
+        require(f != nullptr, "can create the scratch file", path);
+        require(std::fwrite(text.data(), 1, text.size(), f) == text.size(), "can write the scratch file", path);
+        std::fclose(f);
+    }
+    PointSet ps;
+    try {
+        ps = readPointsFile(path);
+    } catch (const InputError& e) {
+        checkInputError(e, text, path);
+        std::remove(path.c_str());
+        return 0;
+    }
+    std::remove(path.c_str());
+    require(ps.path == path, "PointSet::path is the file's path", ps.path);
+
+    // A sniffed file says what it was read as; reading it with that parser gives the same.
+    const std::string guessPrefix = ": read as ";
+    const bool sniffed = !ps.warnings.empty() && ps.warnings.front().find(guessPrefix) != std::string::npos;
+    const std::string ext = std::filesystem::path(path).extension().string();
+    const bool known = ext == ".node" || ext == ".pts" || ext == ".csv" || ext == ".xy" || ext == ".NODE" ||
+                       ext == ".Csv" || ext == ".txt" || ext == ".dat";
+    require(sniffed != known, "exactly the files with an unknown extension are sniffed", path);
+    Reparse parser = &parseXY;
+    std::string_view format = "xy";
+    if (sniffed) {
+        const std::string& w = ps.warnings.front();
+        if (w.find("Triangle .node") != std::string::npos) {
+            parser = &parseNode;
+            format = "node";
+        } else if (w.find("Rossignac .pts") != std::string::npos) {
+            parser = &parsePts;
+            format = "pts";
+        }
+        PointSet direct;
+        try {
+            direct = parser(text, path);
+        } catch (const InputError& e) {
+            fail("the sniffed format's parser reads what readPointsFile read", e.what());
+        }
+        require(direct.points.size() == ps.points.size(), "sniffed read equals the direct read");
+    } else if (ext == ".node" || ext == ".NODE") {
+        parser = &parseNode;
+        format = "node";
+    } else if (ext == ".pts") {
+        parser = &parsePts;
+        format = "pts";
+    }
+    checkPointSet(ps, path, parser, format);
+    return 0;
+}
