@@ -2,15 +2,20 @@
 # install missing Debian 12 packages first (as root), then configure, build and run with CMake.
 #
 #   make run     deps, configure build/ (RelWithDebInfo), build, run the main job
-#   make test    deps, configure, build everything, ctest (non-zero exit when a test fails)
+#   make test    deps, configure, build everything, ctest (non-zero exit when a test fails),
+#                then a short fuzz run of every fuzz target (TEST_FUZZ_SECONDS each; skipped with
+#                a message when clang/libFuzzer is missing and cannot be installed)
 #   make build   deps, configure, build
 #   make deps    install missing Debian packages (root), or print the apt-get command and fail
 #   make asan    deps, configure build-asan/ (Debug, ASan + UBSan), build, ctest
+#   make fuzz    deps, build the libFuzzer targets (clang, build-fuzz/), fuzz each FUZZ_SECONDS
 #   make bench   build, then dtlab vs CGAL on 2^20 uniform points, and dtlab's peak memory
-#   make clean   remove build/, build-asan/, build-release/
+#   make clean   remove build/, build-asan/, build-release/, build-fuzz/
 #
 # Variables: JOBS (build parallelism, default nproc), CTEST_JOBS (default 2), DLAB_SKIP_DEPS=1
-# (skip the Debian package check), CMAKE_ARGS (extra arguments for the configure step).
+# (skip the Debian package check), CMAKE_ARGS (extra arguments for the configure step),
+# FUZZ_SECONDS (per target for `make fuzz`, default 120), TEST_FUZZ_SECONDS (per target in
+# `make test`, default 20; 0 skips fuzzing), FUZZ_JOBS (targets fuzzed at once, default nproc).
 
 SHELL := /bin/bash
 MAKEFLAGS += --no-print-directory
@@ -23,6 +28,9 @@ CMAKE_ARGS ?=
 
 BUILD_DIR := build
 ASAN_DIR := build-asan
+FUZZ_DIR := build-fuzz
+FUZZ_SECONDS ?= 120
+TEST_FUZZ_SECONDS ?= 20
 
 # Debian 12 (bookworm) package names. libcgal-dev only serves the benchmark baseline; time and jq
 # serve `make bench`; xvfb and xauth (xvfb-run needs it) serve the real-window smoke test;
@@ -35,7 +43,12 @@ DEB_PACKAGES := \
 	xvfb xauth fonts-dejavu-core \
 	libcgal-dev time jq
 
-.PHONY: all run test build configure deps asan bench clean help
+# Fuzzing (libFuzzer needs clang; its runtime is in libclang-rt-14-dev, which clang-14 only
+# recommends). Installed by `make deps` as root like the rest; elsewhere they are optional:
+# without them `make test` says that fuzzing was skipped and why, and passes.
+FUZZ_DEB_PACKAGES := clang-14 libclang-rt-14-dev
+
+.PHONY: all run test build configure deps asan fuzz bench clean help
 
 all: build
 
@@ -44,6 +57,11 @@ help:
 
 deps:
 	@bash .ci/deps.sh $(DEB_PACKAGES)
+	@if [[ $$(id -u) -eq 0 ]]; then \
+		bash .ci/deps.sh $(FUZZ_DEB_PACKAGES); \
+	elif ! bash .ci/deps.sh $(FUZZ_DEB_PACKAGES) >/dev/null 2>&1; then \
+		echo "deps: optional fuzzing packages missing ($(FUZZ_DEB_PACKAGES)): fuzzing will be skipped"; \
+	fi
 
 # Configure every time: cheap once the cache exists, and it never builds from a stale or
 # half-written configuration.
@@ -60,6 +78,8 @@ run: build
 
 test: build
 	ctest --test-dir $(BUILD_DIR) --output-on-failure --no-tests=error -j $(CTEST_JOBS)
+	@if [[ "$(TEST_FUZZ_SECONDS)" == 0 ]]; then echo "fuzz: SKIPPED: TEST_FUZZ_SECONDS=0"; \
+	else FUZZ_SECONDS=$(TEST_FUZZ_SECONDS) bash tests/fuzz/run_fuzz.sh; fi
 
 asan: deps
 	cmake -S . -B $(ASAN_DIR) -DCMAKE_BUILD_TYPE=Debug -DDLAB_SANITIZE=ON \
@@ -68,8 +88,13 @@ asan: deps
 	UBSAN_OPTIONS=print_stacktrace=1 \
 		ctest --test-dir $(ASAN_DIR) --output-on-failure --no-tests=error -j $(CTEST_JOBS)
 
+# Longer fuzzing: `make fuzz FUZZ_SECONDS=600` (per target). New inputs go to
+# build-fuzz/fuzz-corpus/, crashes to build-fuzz/fuzz-artifacts/ (see tests/fuzz/run_fuzz.sh).
+fuzz: deps
+	FUZZ_SECONDS=$(FUZZ_SECONDS) FUZZ_REQUIRED=$${FUZZ_REQUIRED:-1} bash tests/fuzz/run_fuzz.sh
+
 bench: build
 	bash .ci/bench_compare.sh $(BUILD_DIR)
 
 clean:
-	rm -rf $(BUILD_DIR) $(ASAN_DIR) build-release
+	rm -rf $(BUILD_DIR) $(ASAN_DIR) build-release $(FUZZ_DIR)

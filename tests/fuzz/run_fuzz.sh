@@ -74,7 +74,11 @@ cc=${cxx/clang++/clang}
 echo "fuzz: $cxx, ${#targets[@]} targets (${targets[*]}), ${seconds} s each, $jobs at a time"
 cmake --preset fuzz -B "$build_dir" -DCMAKE_CXX_COMPILER="$cxx" -DCMAKE_C_COMPILER="$cc" >"$probe_dir/configure.log" 2>&1 ||
     { cat "$probe_dir/configure.log"; exit 1; }
-cmake --build "$build_dir" --target fuzz_targets -j "$jobs"
+if ! cmake --build "$build_dir" --target fuzz_targets -j "$jobs"; then
+    echo "fuzz: FAILED: the clang build of the fuzz targets failed (see above); every file in" \
+        "core/ must also compile with $cxx (C++20 as clang 14 implements it)" >&2
+    exit 1
+fi
 
 # Per-target input size limits: text formats need room for several lines, the engine's decoder
 # stops at 160 points anyway.
