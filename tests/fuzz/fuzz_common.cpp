@@ -80,16 +80,23 @@ void checkPointSet(const PointSet& ps, const std::string& name, Reparse reparse,
 
     // Round trip: what we read, written in the same format, reads back bit for bit.
     const std::string again = writePoints(ps.points, format, ps.indexBase);
-    PointSet back;
+    requireSamePoints(mustRead(reparse, again, name, "points that were read can be written and read back"), ps,
+                      "the write/read round trip");
+}
+
+PointSet mustRead(Reparse parse, std::string_view text, const std::string& name, const char* what) {
     try {
-        back = reparse(again, name);
+        return parse(text, name);
     } catch (const InputError& e) {
-        fail("points that were read can be written and read back", e.what());
+        fail(what, e.what());
     }
-    require(back.points.size() == ps.points.size(), "round trip keeps the point count");
-    require(back.indexBase == ps.indexBase, "round trip keeps the index base");
-    require(std::memcmp(back.points.data(), ps.points.data(), ps.points.size() * sizeof(Vec2)) == 0,
-            "round trip keeps every coordinate bit for bit");
+}
+
+void requireSamePoints(const PointSet& a, const PointSet& b, const std::string& what) {
+    require(a.points.size() == b.points.size(), "same point count", what);
+    require(a.indexBase == b.indexBase, "same index base", what);
+    require(a.points.empty() || std::memcmp(a.points.data(), b.points.data(), a.points.size() * sizeof(Vec2)) == 0,
+            "same coordinates, bit for bit", what);
 }
 
 void checkReader(const std::uint8_t* data, std::size_t size, Reparse parse, std::string_view format) {

@@ -43,6 +43,12 @@ void checkInputError(const InputError& e, std::string_view text, const std::stri
 using Reparse = PointSet (*)(std::string_view text, const std::string& name);
 void checkPointSet(const PointSet& ps, const std::string& name, Reparse reparse, std::string_view format);
 
+// Reads `text` with `parse`; an InputError fails the property `what`.
+PointSet mustRead(Reparse parse, std::string_view text, const std::string& name, const char* what);
+
+// Same points bit for bit and the same index base; else fails naming `what`.
+void requireSamePoints(const PointSet& a, const PointSet& b, const std::string& what);
+
 // The points written in `format` ("node", "xy", "pts"), shortest round-trip decimal form.
 std::string writePoints(const std::vector<Vec2>& points, std::string_view format, int indexBase);
 

@@ -69,13 +69,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
             parser = &parsePts;
             format = "pts";
         }
-        PointSet direct;
-        try {
-            direct = parser(text, path);
-        } catch (const InputError& e) {
-            fail("the sniffed format's parser reads what readPointsFile read", e.what());
-        }
-        require(direct.points.size() == ps.points.size(), "sniffed read equals the direct read");
+        const PointSet direct = mustRead(parser, text, path, "the sniffed format's parser reads the file");
+        requireSamePoints(direct, ps, "a sniffed read equals the guessed parser's read");
     } else if (ext == ".node" || ext == ".NODE") {
         parser = &parseNode;
         format = "node";
