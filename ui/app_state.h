@@ -70,13 +70,20 @@ struct Selection {
     bool followOp = true;                // the table scrolls to the cells each op changes
 };
 
+struct BreakpointEntry {
+    Breakpoint bp;
+    bool enabled = true;
+};
+
 struct RunControl {
     bool running = false;
+    std::vector<BreakpointEntry> breakpoints;  // a running animation stops where one hits
     float opsPerSecond = 6.0f;  // the slider; kFullSpeed runs as many as a frame allows
     static constexpr float kFullSpeed = 1000.0f;
     double carry = 0.0;         // fractional ops owed from earlier frames
     double frameBudgetMs = 25;  // stepping time per frame at full speed
     std::string stopReason;     // why the last run stopped ("end", "breakpoint: next flip", ...)
+    std::size_t stopPosition = 0;  // where it stopped (the caption shows the reason only there)
 };
 
 // What the last frame cost (the statistics panel and `dtlab render --bench-frames` show it).
@@ -105,6 +112,9 @@ struct DialogState {
     std::string openFolder;
     std::vector<int> generatorCounts;
     int generatorSeed = 1;
+    int breakVertex = 0;
+    int breakCorner = -1;
+    std::string breakText;
 };
 
 struct AppState {

@@ -61,19 +61,20 @@ bool Engine::back() {
 }
 
 bool Engine::forwardInsertion() {
-    bool moved = false;
-    while (forward()) {
-        moved = true;
-        if (endsInsertion(current()->type)) break;
-    }
-    return moved;
+    if (!m_journal) return false;
+    const std::size_t steps = dlab::forwardInsertion(*m_journal, *m_ins, static_cast<std::size_t>(-1)).steps;
+    if (steps) bump();
+    return steps > 0;
 }
 
 bool Engine::backInsertion() {
-    if (!back()) return false;
-    while (current() && !endsInsertion(current()->type)) back();
-    return true;
+    if (!m_journal) return false;
+    const std::size_t steps = dlab::backInsertion(*m_journal, *m_ins, static_cast<std::size_t>(-1)).steps;
+    if (steps) bump();
+    return steps > 0;
 }
+
+bool Engine::hits(const Breakpoint& bp) const { return m_journal && dlab::hits(bp, *m_journal, *m_ins); }
 
 void Engine::toStart() { seek(0); }
 

@@ -3,6 +3,7 @@
 // The Inserter/Journal are the only things that change the mesh; this class only drives them.
 #pragma once
 
+#include "core/breakpoint.h"
 #include "core/inserter.h"
 
 #include <cstdint>
@@ -58,6 +59,8 @@ public:
     std::size_t recorded() const;
     bool atEnd() const;
     const Op* current() const;  // the op just performed, nullptr at the start or in batch mode
+    // Whether the breakpoint holds at the current position (false in batch mode).
+    bool hits(const Breakpoint& bp) const;
     std::size_t insertionsDone() const;
 
     // ---- Derived from the ops of the insertion in progress ------------------------------------

@@ -1,10 +1,12 @@
 // The step controls (op / insertion / start / end / run with a speed slider), the engine's
 // modes, the caption of the current operation and the timeline scrubber.
+#include "core/breakpoint.h"
 #include "core/describe.h"
 #include "ui/gui.h"
 #include "ui/panels.h"
 
 #include <imgui.h>
+#include <imgui_stdlib.h>
 
 #include <chrono>
 #include <cmath>
@@ -55,6 +57,81 @@ ImVec4 opColour(OpType t) {
     }
 }
 
+// The breakpoints popup: quick toggles for the common ones, any kind by its text form, and the
+// list of active breakpoints. A running animation stops where one hits.
+void ShowBreakpointsButton(AppState& state) {
+    RunControl& run = state.run;
+    int active = 0;
+    for (const BreakpointEntry& b : run.breakpoints) active += b.enabled;
+    char label[48];
+    std::snprintf(label, sizeof label, "Breakpoints (%d)###breakpoints", active);
+    if (ImGui::Button(label)) ImGui::OpenPopup("##breakpoints");
+    RecordItem(state, "breakpoints");
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("Where Run stops: the next flip, a degenerate case, vertex k, a corner changing...");
+    if (!ImGui::BeginPopup("##breakpoints")) return;
+    auto find = [&](const Breakpoint& bp) {
+        for (std::size_t i = 0; i < run.breakpoints.size(); ++i) {
+            if (run.breakpoints[i].bp == bp) return static_cast<int>(i);
+        }
+        return -1;
+    };
+    auto toggle = [&](const char* text, const Breakpoint& bp) {
+        const int i = find(bp);
+        bool on = i >= 0 && run.breakpoints[i].enabled;
+        if (ImGui::Checkbox(text, &on)) {
+            if (i >= 0) run.breakpoints[i].enabled = on;
+            else run.breakpoints.push_back({bp, true});
+        }
+    };
+    ImGui::TextUnformatted("Stop the run...");
+    toggle("at the next flip", {BreakKind::Flip, std::nullopt});
+    toggle("at a degenerate case (point on an edge or a vertex, cocircular test)", {BreakKind::Degenerate, std::nullopt});
+    toggle("at a duplicate point", {BreakKind::Duplicate, std::nullopt});
+    toggle("after each whole insertion", {BreakKind::Insertion, std::nullopt});
+    ImGui::SetNextItemWidth(90);
+    ImGui::InputInt("##vertex", &state.dialogs.breakVertex);
+    ImGui::SameLine();
+    if (ImGui::Button("before vertex k is inserted")) {
+        run.breakpoints.push_back({{BreakKind::Insert, state.dialogs.breakVertex}, true});
+    }
+    ImGui::SetNextItemWidth(90);
+    if (state.selection.corner != kNone && state.dialogs.breakCorner < 0) state.dialogs.breakCorner = state.selection.corner;
+    ImGui::InputInt("##corner", &state.dialogs.breakCorner);
+    ImGui::SameLine();
+    if (ImGui::Button("when corner c changes (V[c] or O[c])")) {
+        run.breakpoints.push_back({{BreakKind::Corner, state.dialogs.breakCorner}, true});
+    }
+    ImGui::SetNextItemWidth(200);
+    const bool enter = ImGui::InputTextWithHint("##text", "flip, insert:5, corner:17, op:120, incircle:0...",
+                                                &state.dialogs.breakText, ImGuiInputTextFlags_EnterReturnsTrue);
+    ImGui::SameLine();
+    if (ImGui::Button("Add") || enter) {
+        std::string error;
+        if (const auto bp = parseBreakpoint(state.dialogs.breakText, &error)) {
+            run.breakpoints.push_back({*bp, true});
+            state.dialogs.breakText.clear();
+        } else {
+            state.log(Message::Level::Error, error);
+        }
+    }
+    ImGui::Separator();
+    if (run.breakpoints.empty()) ImGui::TextDisabled("no breakpoints: Run goes to the end");
+    for (std::size_t i = 0; i < run.breakpoints.size(); ++i) {
+        ImGui::PushID(static_cast<int>(i));
+        ImGui::Checkbox("##on", &run.breakpoints[i].enabled);
+        ImGui::SameLine();
+        ImGui::Text("%s  (%s)", toString(run.breakpoints[i].bp).c_str(), explain(run.breakpoints[i].bp).c_str());
+        ImGui::SameLine();
+        const bool remove = ImGui::SmallButton("x");
+        ImGui::PopID();
+        if (remove) {
+            run.breakpoints.erase(run.breakpoints.begin() + static_cast<std::ptrdiff_t>(i));
+            break;
+        }
+    }
+    ImGui::EndPopup();
+}
+
 }  // namespace
 
 void ShowToolbar(AppState& state) {
@@ -102,13 +179,20 @@ void ShowToolbar(AppState& state) {
     ImGui::SliderFloat("##speed", &run.opsPerSecond, 0.5f, RunControl::kFullSpeed, full ? "full speed" : "%.1f ops/s",
                        ImGuiSliderFlags_Logarithmic);
     if (ImGui::IsItemHovered()) ImGui::SetTooltip("Animation speed in operations per second (right end: as fast as possible)");
+    ImGui::SameLine();
+    ShowBreakpointsButton(state);
 
     ImGui::SameLine(0, 24);
     InsertOptions o = e.options();
     bool changed = EnumCombo("Boundary", o.boundary, {Boundary::Exact, Boundary::Super}, 80);
     if (ImGui::IsItemHovered()) ImGui::SetTooltip("exact: a ghost vertex, the true Delaunay triangulation with its convex hull\nsuper: the paper's finite super-triangle (can lose hull triangles)");
     ImGui::SameLine();
-    changed |= EnumCombo("Locate", o.locator, {LocatorKind::Walk, LocatorKind::Naive, LocatorKind::Grid, LocatorKind::IdBufferCpu}, 120);
+    if (e.hasGl()) {  // the GL ID buffer draws on this window's context
+        changed |= EnumCombo("Locate", o.locator, {LocatorKind::Walk, LocatorKind::Naive, LocatorKind::Grid, LocatorKind::IdBufferCpu,
+                                                   LocatorKind::IdBufferGl, LocatorKind::IdBufferGlBatched}, 150);
+    } else {
+        changed |= EnumCombo("Locate", o.locator, {LocatorKind::Walk, LocatorKind::Naive, LocatorKind::Grid, LocatorKind::IdBufferCpu}, 120);
+    }
     ImGui::SameLine();
     changed |= EnumCombo("Order", o.order, {OrderKind::Input, OrderKind::Random, OrderKind::Brio}, 80);
     if (o.order != OrderKind::Input) {
@@ -142,7 +226,7 @@ void ShowCaption(AppState& state) {
                             e.points().size());
     }
     ImGui::PopFont();
-    if (!state.run.stopReason.empty() && !state.run.running) {
+    if (!state.run.stopReason.empty() && !state.run.running && state.run.stopPosition == e.position()) {
         ImGui::SameLine();
         ImGui::TextDisabled("(stopped: %s)", state.run.stopReason.c_str());
     }
@@ -185,7 +269,16 @@ void AdvanceRun(AppState& state, double dt) {
         if (!e.forward()) {
             run.running = false;
             run.stopReason = "end of the run";
+            run.stopPosition = e.position();
             return false;
+        }
+        for (const BreakpointEntry& b : run.breakpoints) {
+            if (b.enabled && e.hits(b.bp)) {
+                run.running = false;
+                run.stopReason = "breakpoint: " + explain(b.bp);
+                run.stopPosition = e.position();
+                return false;
+            }
         }
         return true;
     };

@@ -310,3 +310,27 @@ TEST(Gui, HelpOverlayAndPresentationMode) {
     h.frames(2);
     EXPECT_GT(ImGui::GetFontSize(), normal * 1.4f);
 }
+
+TEST(Gui, RunStopsAtBreakpoints) {
+    UiHarness h;
+    auto& st = h.state();
+    st.run.breakpoints.push_back({{dlab::BreakKind::Flip, std::nullopt}, true});
+    st.run.opsPerSecond = dlab::ui::RunControl::kFullSpeed;
+    h.press(key::kSpace);
+    for (int i = 0; i < 50 && st.run.running; ++i) h.frames(1);
+    ASSERT_FALSE(st.run.running);
+    ASSERT_NE(st.engine.current(), nullptr);
+    EXPECT_EQ(st.engine.current()->type, OpType::Flip);
+    EXPECT_NE(st.run.stopReason.find("breakpoint"), std::string::npos) << st.run.stopReason;
+    // Disabled, the flip breakpoint no longer stops; vertex 9 about to be inserted does.
+    st.run.breakpoints[0].enabled = false;
+    st.run.breakpoints.push_back({{dlab::BreakKind::Insert, 9}, true});
+    h.press(key::kSpace);
+    for (int i = 0; i < 50 && st.run.running; ++i) h.frames(1);
+    ASSERT_FALSE(st.run.running);
+    EXPECT_EQ(st.engine.current()->type, OpType::Inserted);
+    EXPECT_EQ(st.engine.inserter().currentVertex(), 9);
+    // The popup opens from the toolbar.
+    h.clickItem("breakpoints");
+    EXPECT_TRUE(ImGui::IsPopupOpen("", ImGuiPopupFlags_AnyPopupId | ImGuiPopupFlags_AnyPopupLevel));
+}
