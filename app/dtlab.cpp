@@ -16,6 +16,7 @@ int main(int argc, char** argv) {
     dlab::cli::addTriangulate(app);
     dlab::cli::addTrace(app);
     dlab::cli::addBench(app);
+    dlab::cli::addLesson(app);
     dlab::cli::addRender(app);
     try {
         app.parse(argc, argv);

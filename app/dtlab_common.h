@@ -45,6 +45,7 @@ void addGen(CLI::App& app);
 void addTriangulate(CLI::App& app);
 void addTrace(CLI::App& app);
 void addBench(CLI::App& app);
+void addLesson(CLI::App& app);     // dtlab_lesson.cpp
 void addRender(CLI::App& app);
 
 }  // namespace dlab::cli

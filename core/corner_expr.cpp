@@ -288,6 +288,14 @@ bool CornerExpr::uses(std::string_view name) const {
                        [&](const Node& n) { return n.kind == Node::Kind::Var && n.name == name; });
 }
 
+std::vector<std::string> CornerExpr::variables() const {
+    std::vector<std::string> out;
+    for (const Node& n : m_nodes) {
+        if (n.kind == Node::Kind::Var && std::find(out.begin(), out.end(), n.name) == out.end()) out.push_back(n.name);
+    }
+    return out;
+}
+
 // ============================================================================================
 // [SECTION] Evaluator
 // ============================================================================================

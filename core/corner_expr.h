@@ -104,6 +104,8 @@ public:
     bool isComparison() const;
     // Whether the expression mentions the variable (e.g. whether a watch depends on c).
     bool uses(std::string_view name) const;
+    // The variables it mentions, each once, in order of appearance.
+    std::vector<std::string> variables() const;
 
     struct Node {
         enum class Kind : std::uint8_t { Number, Var, Apply, Compare };

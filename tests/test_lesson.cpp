@@ -1,0 +1,545 @@
+// Lessons: every lesson in lessons/ runs to its end; bad lesson files fail with file, line and
+// stop; points files cannot escape the lesson's folder; answers are computed from the live
+// state and checked tolerantly; Markdown-light text.
+#include "core/lesson.h"
+
+#include "core/generators.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sys/wait.h>
+#include <unistd.h>
+
+using namespace dlab;
+namespace fs = std::filesystem;
+
+namespace {
+
+std::vector<std::string> lessonFiles() {
+    std::vector<std::string> out;
+    const fs::path dir = fs::path(DLAB_SOURCE_DIR) / "lessons";
+    std::error_code ec;
+    for (const auto& e : fs::directory_iterator(dir, ec)) {
+        if (e.path().extension() == ".toml") out.push_back(e.path().string());
+    }
+    std::sort(out.begin(), out.end());
+    return out;
+}
+
+fs::path scratchDir() {
+    const fs::path d = fs::temp_directory_path() / ("dlab_lesson_" + std::to_string(::getpid()));
+    fs::create_directories(d / "lessons");
+    return d;
+}
+
+std::string write(const fs::path& p, const std::string& text) {
+    fs::create_directories(p.parent_path());
+    std::ofstream(p, std::ios::binary) << text;
+    return p.string();
+}
+
+const std::string kHead = "title = \"t\"\npoints = [[0, 0], [6, 0], [5, 4], [1, 3], [3, 1]]\n";
+
+// The error a lesson text raises when loaded and planned (as `dtlab lesson check` does).
+LessonError errorOf(const std::string& text, const std::string& name = "x.toml") {
+    const fs::path p = scratchDir() / "lessons" / name;
+    write(p, text);
+    try {
+        planLesson(loadLesson(p.string()));
+    } catch (const LessonError& e) {
+        EXPECT_EQ(e.file(), p.string());
+        EXPECT_EQ(std::string(e.what()).rfind(p.string() + ":", 0), 0u) << e.what();
+        return e;
+    }
+    ADD_FAILURE() << "no error for:\n" << text;
+    return LessonError("", 0, 0, "");
+}
+
+struct LiveRun {
+    std::unique_ptr<Inserter> ins;
+    std::unique_ptr<Journal> journal;
+};
+LiveRun start(const std::vector<Vec2>& pts, InsertOptions opt = {}) {
+    LiveRun r;
+    r.ins = std::make_unique<Inserter>(pts, opt);
+    r.journal = std::make_unique<Journal>(*r.ins);
+    return r;
+}
+
+Answer answer(LiveRun& r, const std::string& spec, std::int32_t selected = kNone) {
+    std::string why;
+    const std::size_t before = r.journal->position();
+    auto a = computeAnswer(spec, *r.ins, *r.journal, selected, &why);
+    EXPECT_EQ(r.journal->position(), before) << spec << " moved the journal";
+    EXPECT_TRUE(a) << spec << ": " << why;
+    return a.value_or(Answer{});
+}
+
+std::string unavailable(LiveRun& r, const std::string& spec, std::int32_t selected = kNone) {
+    std::string why;
+    EXPECT_FALSE(computeAnswer(spec, *r.ins, *r.journal, selected, &why)) << spec;
+    return why;
+}
+
+struct Result {
+    int status = -1;
+    std::string out;
+};
+Result dtlab(const std::string& args) {
+    Result r;
+    FILE* pipe = popen((std::string(DLAB_DTLAB_PATH) + " " + args + " 2>&1").c_str(), "r");
+    if (!pipe) return r;
+    char buf[4096];
+    std::size_t n;
+    while ((n = fread(buf, 1, sizeof buf, pipe)) > 0) r.out.append(buf, n);
+    const int st = pclose(pipe);
+    r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+    return r;
+}
+
+}  // namespace
+
+// ---- Every lesson in lessons/ runs to its end (one test each) -----------------------------------
+
+class EveryLesson : public testing::TestWithParam<std::string> {};
+
+TEST_P(EveryLesson, RunsToItsEndWithEveryAnswerComputed) {
+    const Lesson lesson = loadLesson(GetParam());
+    const LessonPlan plan = planLesson(lesson);
+    ASSERT_EQ(plan.stops.size(), lesson.stops.size());
+    EXPECT_FALSE(lesson.summary.empty()) << "every lesson says what it is about";
+    std::size_t previous = 0;
+    for (std::size_t k = 0; k < plan.stops.size(); ++k) {
+        EXPECT_GE(plan.stops[k].position, previous) << "stop " << k + 1;
+        previous = plan.stops[k].position;
+        EXPECT_EQ(plan.stops[k].answer.has_value(), !lesson.stops[k].question.empty()) << "stop " << k + 1;
+        if (plan.stops[k].answer) {
+            // The student who types the engine's answer is right.
+            EXPECT_TRUE(acceptsAnswer(*plan.stops[k].answer, plan.stops[k].answer->display())) << "stop " << k + 1;
+        }
+    }
+    EXPECT_LE(previous, plan.totalOps);
+}
+
+INSTANTIATE_TEST_SUITE_P(Lessons, EveryLesson, testing::ValuesIn(lessonFiles()),
+                         [](const testing::TestParamInfo<std::string>& info) {
+                             std::string name = fs::path(info.param).stem().string();
+                             for (char& ch : name) {
+                                 if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
+                             }
+                             return name;
+                         });
+
+TEST(Lessons, TheNineLessonsOfIssue6AreThere) {
+    const auto files = lessonFiles();
+    EXPECT_GE(files.size(), 9u);
+    std::size_t withQuestions = 0;
+    for (const std::string& f : files) {
+        const Lesson l = loadLesson(f);
+        withQuestions += std::any_of(l.stops.begin(), l.stops.end(), [](const LessonStop& s) { return !s.question.empty(); });
+    }
+    EXPECT_GE(withQuestions, 9u);
+}
+
+TEST(Lessons, DtlabLessonCheckPassesOnTheLessonsAndFailsOnABrokenOne) {
+    std::string all;
+    for (const std::string& f : lessonFiles()) all += " " + f;
+    const Result ok = dtlab("lesson check" + all);
+    EXPECT_EQ(ok.status, 0) << ok.out;
+    EXPECT_EQ(static_cast<std::size_t>(std::count(ok.out.begin(), ok.out.end(), '\n')), lessonFiles().size()) << ok.out;
+    const std::string bad = write(scratchDir() / "lessons" / "bad.toml",
+                                  kHead + "[[stop]]\nrun_to = \"flip\"\ntext = \"a\"\n\n[[stop]]\nrun_to = \"inserted:99\"\ntext = \"b\"\n");
+    const Result r = dtlab("lesson check " + lessonFiles().front() + " " + bad);
+    EXPECT_EQ(r.status, 1);
+    EXPECT_NE(r.out.find(bad + ":7: stop 2: run_to \"inserted:99\""), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find(lessonFiles().front() + ": ok"), std::string::npos) << r.out;
+    const Result show = dtlab("lesson show --tables " + lessonFiles().front());
+    EXPECT_EQ(show.status, 0) << show.out;
+    EXPECT_NE(show.out.find("## stop 1"), std::string::npos);
+}
+
+// ---- Loading errors name file, line and stop ------------------------------------------------------
+
+TEST(LessonErrors, BadTomlNamesTheLine) {
+    const LessonError e = errorOf("title = \"t\"\n\npoints = [[0, 0]\n");
+    EXPECT_EQ(e.line(), 3);
+    EXPECT_NE(e.message().find("not valid TOML"), std::string::npos) << e.what();
+}
+
+TEST(LessonErrors, StructureAndNames) {
+    struct Case {
+        std::string text;
+        int line, stop;
+        const char* says;
+    };
+    const std::string stop = "[[stop]]\ntext = \"x\"\n";
+    const Case cases[] = {
+        {"points = [[0,0]]\n" + stop, 1, 0, "needs a \"title\""},
+        {"title = \"t\"\n" + stop, 1, 0, "needs \"points\""},
+        {kHead, 1, 0, "at least one [[stop]]"},
+        {kHead + "colour = 3\n" + stop, 3, 0, "unknown key \"colour\" at the top level"},
+        {kHead + "[options]\nboundary = \"round\"\n" + stop, 4, 0, "boundary must be"},
+        {kHead + "[options]\nseed = -1\n" + stop, 4, 0, "\"seed\" must be between"},
+        {kHead + "[options]\nlocator = \"gpu\"\n" + stop, 4, 0, "locator must be"},
+        {"title = \"t\"\npoints = [[0, 0], [1, 2, 3]]\n" + stop, 2, 0, "point 1 must be [x, y]"},
+        {"title = \"t\"\npoints = [[0, 0], [\"a\", 2]]\n" + stop, 2, 0, "coordinates must be numbers"},
+        {"title = \"t\"\npoints = [[0, 0], [nan, 2]]\n" + stop, 2, 0, "must be finite"},
+        {kHead + "points_file = \"p.csv\"\n" + stop, 2, 0, "either \"points\" or \"points_file\""},
+        {kHead + stop + "[[stop]]\ntext = \"y\"\npanels = [\"canvas\", \"tables\"]\n", 7, 2, "unknown panel \"tables\""},
+        {kHead + stop + "[[stop]]\ntext = \"y\"\noverlays = [\"sparkles\"]\n", 7, 2, "unknown overlay \"sparkles\""},
+        {kHead + "[[stop]]\nrun_to = \"flop\"\ntext = \"y\"\n", 4, 1, "unknown breakpoint \"flop\""},
+        {kHead + "[[stop]]\nrun_to = \"op:3\"\ncount = 2\ntext = \"y\"\n", 5, 1, "\"count\" makes no sense"},
+        {kHead + "[[stop]]\ncount = 2\ntext = \"y\"\n", 4, 1, "\"count\" needs a \"run_to\""},
+        {kHead + "[[stop]]\nrun_to = \"flip\"\n", 3, 1, "needs a \"text\" or a \"question\""},
+        {kHead + "[[stop]]\nquestion = \"How many?\"\n", 3, 1, "has no \"answer\""},
+        {kHead + "[[stop]]\ntext = \"y\"\nanswer = \"triangles\"\n", 5, 1, "needs a \"question\""},
+        {kHead + "[[stop]]\nquestion = \"q\"\nanswer = \"V[[c]\"\n", 5, 1, "neither a quantity"},
+        {kHead + "[[stop]]\nquestion = \"q\"\nanswer = \"triangels\"\n", 5, 1, "neither a quantity (triangles,"},
+        {kHead + "[[stop]]\nquestion = \"q\"\nanswer = \"x.n\"\n", 5, 1, "unknown name 'x'"},
+        {kHead + "[[stop]]\ntext = \"y\"\nselect = \"d.o\"\n", 5, 1, "unknown name 'd'"},
+        {kHead + "[[stop]]\ntext = \"y\"\nselect = \"c.q\"\n", 5, 1, "unknown operator 'q'"},
+        {kHead + "[[stop]]\ntext = \"\"\"\nfine\n**not closed\n\"\"\"\n", 4, 1, "line 2 of the text: unclosed **"},
+        {kHead + "[[stop]]\ntext = \"a `b\"\n", 4, 1, "unclosed `"},
+        {kHead + "kind = \"quiz\"\n" + stop, 3, 0, "kind must be"},
+        {kHead + "stop = 3\n", 3, 0, "[[stop]] tables"},
+    };
+    for (const Case& c : cases) {
+        const LessonError e = errorOf(c.text);
+        EXPECT_EQ(e.line(), c.line) << e.what();
+        EXPECT_EQ(e.stop(), c.stop) << e.what();
+        EXPECT_NE(e.message().find(c.says), std::string::npos) << e.what() << "\n  wanted: " << c.says;
+    }
+}
+
+TEST(LessonErrors, StopsThatCannotBeReachedOrAnswered) {
+    struct Case {
+        std::string text;
+        int line, stop;
+        const char* says;
+    };
+    const Case cases[] = {
+        {kHead + "[[stop]]\nrun_to = \"inserted:99\"\ntext = \"y\"\n", 3, 1, "\"inserted:99\" (vertex 99 is in) is not reached"},
+        {kHead + "[[stop]]\nrun_to = \"flip\"\ncount = 50\ntext = \"y\"\n", 3, 1, "not reached 50 times (only"},
+        {kHead + "[[stop]]\nrun_to = \"op:9\"\ntext = \"y\"\n[[stop]]\nrun_to = \"op:4\"\ntext = \"z\"\n", 6, 2,
+         "op:4 is before the previous stop (op 9)"},
+        {kHead + "[[stop]]\nrun_to = \"op:100000\"\ntext = \"y\"\n", 3, 1, "past the end of the run"},
+        {kHead + "[[stop]]\nrun_to = \"end\"\nselect = \"99\"\ntext = \"y\"\n", 3, 1, "not a corner of the mesh (0..11)"},
+        {kHead + "[[stop]]\nrun_to = \"end\"\nselect = \"V[0]\"\ntext = \"y\"\n", 3, 1, "not a corner"},
+        {kHead + "[[stop]]\nrun_to = \"end\"\nquestion = \"q\"\nanswer = \"O[c]\"\n", 6, 1, "no corner is selected"},
+        {kHead + "[[stop]]\nrun_to = \"op:1\"\nquestion = \"q\"\nanswer = \"flipped_edge\"\n", 6, 1,
+         "flipped_edge is not available here: no flip yet"},
+        {kHead + "[[stop]]\nrun_to = \"end\"\nquestion = \"q\"\nanswer = \"next_op\"\n", 6, 1, "the run is finished"},
+        {kHead + "[[stop]]\nrun_to = \"end\"\nquestion = \"q\"\nanswer = \"pixel\"\n", 6, 1, "needs locator = \"idbuffer-cpu\""},
+    };
+    for (const Case& c : cases) {
+        const LessonError e = errorOf(c.text);
+        EXPECT_EQ(e.line(), c.line) << e.what();
+        EXPECT_EQ(e.stop(), c.stop) << e.what();
+        EXPECT_NE(e.message().find(c.says), std::string::npos) << e.what() << "\n  wanted: " << c.says;
+    }
+    // An unbuildable run (super mode cannot enclose these coordinates) is an error, not a crash.
+    const LessonError huge = errorOf(
+        "title = \"t\"\npoints = [[-1.7e308, 0], [1.7e308, 0], [0, 1.7e308]]\n[options]\nboundary = \"super\"\n"
+        "[[stop]]\ntext = \"y\"\n");
+    EXPECT_NE(huge.message().find("cannot start the run"), std::string::npos) << huge.what();
+}
+
+// ---- Points files stay inside the lesson's folder --------------------------------------------------
+
+TEST(LessonPointsFile, ReadsAFileBesideTheLessonAndRefusesEscapes) {
+    const fs::path root = scratchDir() / "pf";
+    fs::create_directories(root / "lessons" / "sets");
+    write(root / "lessons" / "sets" / "four.csv", "x,y\n0,0\n6,0\n5,4\n1,3\n");
+    write(root / "secret.csv", "0,0\n1,0\n0,1\n");
+    const std::string stop = "[[stop]]\nrun_to = \"end\"\nquestion = \"q\"\nanswer = \"triangles\"\n";
+    const fs::path lessonPath = root / "lessons" / "l.toml";
+    auto load = [&](const std::string& file) {
+        write(lessonPath, "title = \"t\"\npoints_file = \"" + file + "\"\n" + stop);
+        return loadLesson(lessonPath.string());
+    };
+    const Lesson ok = load("sets/four.csv");
+    EXPECT_EQ(ok.points.size(), 4u);
+    EXPECT_EQ(planLesson(ok).stops[0].answer->a, 2);
+
+    auto refused = [&](const std::string& file, const char* says) {
+        try {
+            load(file);
+            ADD_FAILURE() << file << " was accepted";
+        } catch (const LessonError& e) {
+            EXPECT_EQ(e.line(), 2) << e.what();
+            EXPECT_NE(e.message().find(says), std::string::npos) << file << ": " << e.what();
+        }
+    };
+    refused("../secret.csv", "no \"..\"");
+    refused("sets/../../secret.csv", "no \"..\"");
+    refused("./sets/../sets/four.csv", "no \"..\"");  // even when it would come back inside
+    refused((root / "secret.csv").string(), "not absolute");
+    refused("/etc/passwd", "not absolute");
+    refused("missing.csv", "not found");
+    refused("sets", "not a regular file");
+    refused("", "empty");
+    fs::create_symlink(root / "secret.csv", root / "lessons" / "link.csv");
+    refused("link.csv", "leads outside the lesson's folder");
+    fs::create_directory_symlink(root, root / "lessons" / "up");
+    refused("up/secret.csv", "leads outside the lesson's folder");
+    // A sibling folder whose name starts like the lesson folder's is still outside.
+    fs::create_directories(root / "lessons-evil");
+    write(root / "lessons-evil" / "p.csv", "0,0\n1,0\n0,1\n");
+    fs::create_symlink(root / "lessons-evil" / "p.csv", root / "lessons" / "sneaky.csv");
+    refused("sneaky.csv", "leads outside");
+    // A symlink that stays inside is fine.
+    fs::create_symlink(root / "lessons" / "sets" / "four.csv", root / "lessons" / "alias.csv");
+    EXPECT_EQ(load("alias.csv").points.size(), 4u);
+    // A bad points file reports its own file and line inside the lesson's error.
+    write(root / "lessons" / "sets" / "bad.csv", "0,0\n1,zero\n");
+    try {
+        load("sets/bad.csv");
+        ADD_FAILURE();
+    } catch (const LessonError& e) {
+        EXPECT_NE(std::string(e.what()).find("bad.csv:2:"), std::string::npos) << e.what();
+    }
+}
+
+// ---- Answers ---------------------------------------------------------------------------------------
+
+TEST(LessonAnswers, QuantitiesFollowTheRecordedOps) {
+    InsertOptions opt;
+    opt.order = OrderKind::Input;
+    LiveRun r = start(demoPoints(), opt);
+    Journal& j = *r.journal;
+    EXPECT_NE(unavailable(r, "op").find("nothing has happened"), std::string::npos);
+    // Stop just before the first flip: next_flip is the edge that flip removes.
+    std::size_t firstFlip = 0;
+    {
+        LiveRun probe = start(demoPoints(), opt);
+        while (const Op* op = probe.journal->forward()) {
+            if (op->type == OpType::Flip) {
+                firstFlip = probe.journal->position();
+                break;
+            }
+        }
+    }
+    ASSERT_GT(firstFlip, 1u);
+    j.seek(firstFlip - 1);
+    EXPECT_EQ(answer(r, "op").text, "InCircleTest");
+    EXPECT_EQ(answer(r, "test_result").a, 1);
+    EXPECT_EQ(answer(r, "next_op").text, "Flip");
+    const Answer next = answer(r, "next_flip");
+    ASSERT_EQ(next.kind, Answer::Kind::Edge);
+    const Answer tested = answer(r, "test_edge");
+    EXPECT_EQ(tested.a, next.a);  // the positive test names the edge that flips
+    EXPECT_EQ(tested.b, next.b);
+    j.forward();
+    EXPECT_EQ(answer(r, "flipped_edge").display(), next.display());
+    const Answer made = answer(r, "new_edge");
+    const Op& flip = *j.current();
+    const std::int32_t P = r.ins->mesh().V[flip.a], D = r.ins->mesh().V[flip.b];
+    EXPECT_EQ(made.display(), std::to_string(std::min(P, D)) + "-" + std::to_string(std::max(P, D)));
+    EXPECT_EQ(answer(r, "flips").a, 1);
+    EXPECT_EQ(answer(r, "insertion_flips").a, 1);
+    EXPECT_EQ(answer(r, "vertex").a, flip.vertex);
+    EXPECT_EQ(answer(r, "position").a, static_cast<std::int64_t>(firstFlip));
+    // At the end: counts agree with the mesh and the stats.
+    j.seek(1u << 30);
+    EXPECT_EQ(answer(r, "triangles").a, r.ins->mesh().numTriangles());
+    EXPECT_EQ(answer(r, "all_triangles").a, r.ins->mesh().numTriangles());
+    EXPECT_EQ(answer(r, "vertices").a, 11);  // 12 points, one duplicate
+    EXPECT_EQ(answer(r, "duplicates").a, 1);
+    EXPECT_EQ(answer(r, "edge_splits").a, r.ins->stats().edgeSplits);
+    EXPECT_TRUE(answer(r, "convex").truth);
+    EXPECT_EQ(answer(r, "delaunay_violations").a, 0);
+    EXPECT_EQ(answer(r, "op").text, "Finalize");
+    EXPECT_NE(unavailable(r, "next_flip").find("the run is finished"), std::string::npos);
+}
+
+TEST(LessonAnswers, LocateHintStepsAndWhere) {
+    InsertOptions opt;
+    opt.order = OrderKind::Input;
+    LiveRun r = start(demoPoints(), opt);
+    Journal& j = *r.journal;
+    // The first locate that takes steps.
+    std::size_t located = 0, first = 0;
+    std::int64_t steps = 0;
+    while (const Op* op = j.forward()) {
+        if (op->type == OpType::LocateStep && !first) first = j.position() - 1;
+        if (op->type == OpType::LocateStep) ++steps;
+        if (op->type == OpType::Located && first) {
+            located = j.position() - 1;
+            break;
+        }
+        if (op->type == OpType::Located) steps = 0;
+    }
+    ASSERT_GT(located, first);
+    EXPECT_EQ(answer(r, "hint").a, j.ops()[first].a);
+    EXPECT_EQ(answer(r, "locate_steps").a, steps);
+    EXPECT_EQ(answer(r, "located").a, j.ops()[located].a);
+    EXPECT_EQ(answer(r, "where").text, toString(j.ops()[located].where));
+    EXPECT_EQ(answer(r, "next_vertex").a, j.ops()[located].vertex);
+}
+
+TEST(LessonAnswers, DegreePixelAndConvexity) {
+    // Degree: the fan around the centre of a hexagon has 6 triangles.
+    std::vector<Vec2> hex{{0, 0}};
+    for (int k = 0; k < 6; ++k) hex.push_back({10 * std::cos(k * 1.0471975511965976), 10 * std::sin(k * 1.0471975511965976)});
+    LiveRun h = start(hex);
+    h.journal->seek(1u << 30);
+    std::int32_t atCentre = kNone;
+    for (std::int32_t c = 0; c < h.ins->mesh().numCorners(); ++c) {
+        if (h.ins->mesh().V[c] == 0) atCentre = c;
+    }
+    ASSERT_NE(atCentre, kNone);
+    EXPECT_EQ(answer(h, "degree", atCentre).a, 6);
+    EXPECT_NE(unavailable(h, "degree").find("needs a selected corner"), std::string::npos);
+    // A hull vertex has an open fan: counted both ways.
+    std::int32_t atHull = kNone;
+    for (std::int32_t c = 0; c < h.ins->mesh().numCorners(); ++c) {
+        if (h.ins->mesh().V[c] == 1) atHull = c;
+    }
+    EXPECT_EQ(answer(h, "degree", atHull).a, 2);
+
+    // Pixel: with the CPU ID buffer, the id under the next point.
+    InsertOptions idb;
+    idb.locator = LocatorKind::IdBufferCpu;
+    idb.order = OrderKind::Input;
+    idb.locatorOptions.idBufferWidth = idb.locatorOptions.idBufferHeight = 32;
+    LiveRun p = start(generatePoints(Generator::Uniform, 40, 3), idb);
+    p.journal->seek(40);
+    while (p.journal->current()->type != OpType::Inserted) p.journal->forward();
+    const Answer px = answer(p, "pixel");
+    const auto* buffer = dynamic_cast<IdBufferCpu*>(p.ins->locator());
+    ASSERT_NE(buffer, nullptr);
+    EXPECT_EQ(px.a, buffer->pixelAt(p.ins->mesh().G[p.ins->currentVertex()]));
+
+    // The paper's super-triangle flaw (tests/test_inserter.cpp): not convex in super mode.
+    const std::vector<Vec2> flaw{{0, 0}, {50, 0.001}, {100, 0}, {50, 50}};
+    InsertOptions super;
+    super.boundary = Boundary::Super;
+    LiveRun s = start(flaw, super), e = start(flaw);
+    s.journal->seek(1u << 30);
+    e.journal->seek(1u << 30);
+    EXPECT_FALSE(answer(s, "convex").truth);
+    EXPECT_EQ(answer(s, "triangles").a, 2);
+    EXPECT_TRUE(answer(e, "convex").truth);
+    EXPECT_EQ(answer(e, "triangles").a, 3);
+    EXPECT_EQ(answer(e, "hull_edges").a, 3);
+}
+
+TEST(LessonAnswers, CornerExpressionsUseTheSelection) {
+    LiveRun r = start({{0, 0}, {6, 0}, {5, 4}, {1, 3}});
+    r.journal->seek(1u << 30);
+    const Mesh& m = r.ins->mesh();
+    for (std::int32_t c = 0; c < m.numCorners(); ++c) {
+        const Answer o = answer(r, "O[c]", c);
+        EXPECT_EQ(o.a, m.O[c]);
+        EXPECT_TRUE(o.corner);
+        EXPECT_EQ(answer(r, "c.n.v", c).a, m.V[next(c)]);
+        EXPECT_TRUE(answer(r, "n(n(n(c))) == c", c).truth);
+    }
+    const Answer g = answer(r, "G[V[0]]");
+    EXPECT_EQ(g.kind, Answer::Kind::Point);
+    std::int32_t hull = 0;
+    while (m.O[hull] != kNone) ++hull;
+    EXPECT_NE(unavailable(r, "o(c).n", hull).find("cannot apply n"), std::string::npos);
+}
+
+TEST(LessonAnswers, StudentsTypeAnswersTheirWay) {
+    Answer n;
+    n.kind = Answer::Kind::Integer;
+    n.a = 17;
+    EXPECT_TRUE(acceptsAnswer(n, "17"));
+    EXPECT_TRUE(acceptsAnswer(n, " +17 "));
+    EXPECT_FALSE(acceptsAnswer(n, "18"));
+    EXPECT_FALSE(acceptsAnswer(n, "17x"));
+    EXPECT_FALSE(acceptsAnswer(n, ""));
+    Answer none = n;
+    none.a = -1;
+    none.corner = true;
+    EXPECT_TRUE(acceptsAnswer(none, "-1"));
+    EXPECT_TRUE(acceptsAnswer(none, "None"));
+    EXPECT_TRUE(acceptsAnswer(none, "boundary"));
+    n.a = -1;
+    EXPECT_FALSE(acceptsAnswer(n, "none")) << "none only stands for a missing corner";
+    Answer e;
+    e.kind = Answer::Kind::Edge;
+    e.a = 4;
+    e.b = 9;
+    for (const char* s : {"4-9", "9-4", "4 9", "(9, 4)", "edge 4-9", "4–9"}) EXPECT_TRUE(acceptsAnswer(e, s)) << s;
+    for (const char* s : {"4", "4-9-1", "4-8", "49"}) EXPECT_FALSE(acceptsAnswer(e, s)) << s;
+    Answer t;
+    t.kind = Answer::Kind::Text;
+    t.text = "SplitEdge";
+    for (const char* s : {"SplitEdge", "split edge", "split-edge", " SPLIT_EDGE "}) EXPECT_TRUE(acceptsAnswer(t, s)) << s;
+    EXPECT_FALSE(acceptsAnswer(t, "split"));
+    Answer y;
+    y.kind = Answer::Kind::Truth;
+    y.truth = false;
+    EXPECT_TRUE(acceptsAnswer(y, "No"));
+    EXPECT_TRUE(acceptsAnswer(y, "false"));
+    EXPECT_FALSE(acceptsAnswer(y, "yes"));
+    Answer p;
+    p.kind = Answer::Kind::Point;
+    p.point = {1.5, -2};
+    EXPECT_TRUE(acceptsAnswer(p, "(1.5, -2)"));
+    EXPECT_TRUE(acceptsAnswer(p, "1.5 -2.0"));
+    EXPECT_FALSE(acceptsAnswer(p, "(1.5, 2)"));
+    EXPECT_EQ(p.display(), "(1.5, -2)");
+    EXPECT_EQ(e.display(), "4-9");
+    EXPECT_EQ(y.display(), "no");
+}
+
+// ---- Markdown-light --------------------------------------------------------------------------------
+
+TEST(LessonText, ParagraphsListsBoldAndCode) {
+    std::string why;
+    const auto blocks = parseLessonText(
+        "A **corner** is `3t + i`.\nSecond line joins.\n\n- first item\n- second **bold** item\n  continues\n\n"
+        "1. one\n2. two `n(c)`\n",
+        &why);
+    ASSERT_TRUE(blocks) << why;
+    ASSERT_EQ(blocks->size(), 5u);
+    const TextBlock& p = (*blocks)[0];
+    EXPECT_EQ(p.kind, TextBlock::Kind::Paragraph);
+    ASSERT_EQ(p.spans.size(), 5u);
+    EXPECT_EQ(p.spans[1].style, TextSpan::Style::Bold);
+    EXPECT_EQ(p.spans[1].text, "corner");
+    EXPECT_EQ(p.spans[3].style, TextSpan::Style::Code);
+    EXPECT_EQ(p.spans[3].text, "3t + i");
+    EXPECT_EQ(p.spans[4].text, ". Second line joins.");
+    EXPECT_EQ((*blocks)[1].kind, TextBlock::Kind::Bullet);
+    EXPECT_EQ((*blocks)[2].spans.back().text, " item continues");
+    EXPECT_EQ((*blocks)[3].kind, TextBlock::Kind::Numbered);
+    EXPECT_EQ((*blocks)[4].number, 2);
+    EXPECT_EQ((*blocks)[4].spans.back().style, TextSpan::Style::Code);
+    EXPECT_FALSE(parseLessonText("ok\n\nthen **open", &why));
+    EXPECT_EQ(why, "line 3 of the text: unclosed ** (bold)");
+    EXPECT_TRUE(parseLessonText("", &why)->empty());
+}
+
+// ---- Facts the lessons state in their text (kept true by these checks) ----------------------------
+
+TEST(LessonFacts, LocatingLessonWalkLocatorTakesElevenSteps) {
+    Lesson lesson = loadLesson(std::string(DLAB_SOURCE_DIR) + "/lessons/03_locating.toml");
+    ASSERT_EQ(lesson.options.locator, LocatorKind::Naive);
+    Inserter naive(lesson.points, lesson.options);
+    naive.run();
+    EXPECT_EQ(naive.stats().walkSteps, 153);
+    lesson.options.locator = LocatorKind::Walk;
+    Inserter walk(lesson.points, lesson.options);
+    walk.run();
+    EXPECT_EQ(walk.stats().walkSteps, 11);
+}
+
+TEST(LessonFacts, SuperTriangleLessonExactModeGivesThreeTrianglesAndAConvexHull) {
+    Lesson lesson = loadLesson(std::string(DLAB_SOURCE_DIR) + "/lessons/07_super_triangle.toml");
+    ASSERT_EQ(lesson.options.boundary, Boundary::Super);
+    lesson.options.boundary = Boundary::Exact;
+    LiveRun e = start(lesson.points, lesson.options);
+    e.journal->seek(1u << 30);
+    EXPECT_EQ(answer(e, "triangles").a, 3);
+    EXPECT_TRUE(answer(e, "convex").truth);
+}
