@@ -86,6 +86,7 @@ asan: deps
 		-DDLAB_BUILD_CGAL_BASELINE=OFF $(CMAKE_ARGS)
 	cmake --build $(ASAN_DIR) -j $(JOBS)
 	UBSAN_OPTIONS=print_stacktrace=1 \
+		LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan.supp:print_suppressions=0 \
 		ctest --test-dir $(ASAN_DIR) --output-on-failure --no-tests=error -j $(CTEST_JOBS)
 
 # Longer fuzzing: `make fuzz FUZZ_SECONDS=600` (per target). New inputs go to
