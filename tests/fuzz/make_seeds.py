@@ -118,6 +118,20 @@ CORNER_EXPR = {
 }
 
 
+# lesson: the committed lessons are copied too (see main); these are wrong in one way each.
+LESSON_BAD = {
+    "not_toml.toml": "title = \"unclosed\n",
+    "unknown_key.toml": "title = \"t\"\npoints = [[0, 0], [1, 0], [0, 1]]\ncolour = \"red\"\n",
+    "bad_points.toml": "title = \"t\"\npoints = [[0, 0], [1], [0, \"x\"]]\n",
+    "nan_point.toml": "title = \"t\"\npoints = [[0, 0], [nan, 0], [0, 1]]\n",
+    "escape_file.toml": "title = \"t\"\npoints_file = \"../../etc/passwd\"\n",
+    "bad_stop.toml": "title = \"t\"\npoints = [[0, 0], [1, 0], [0, 1]]\n[[stop]]\nrun_to = \"nowhere:7\"\n",
+    "bad_answer.toml": "title = \"t\"\npoints = [[0, 0], [1, 0], [0, 1]]\n[[stop]]\nquestion = \"q\"\nanswer = \"o(o(\"\n",
+    "unreachable.toml": "title = \"t\"\npoints = [[0, 0], [1, 0], [0, 1]]\n[[stop]]\nrun_to = \"inserted:99\"\n",
+    "unclosed_bold.toml": "title = \"t\"\npoints = [[0, 0], [1, 0], [0, 1]]\n[[stop]]\ntext = \"**bold\"\n",
+}
+
+
 def lattice_circle(r):
     return [(x, y) for x in range(-r, r + 1) for y in range(-r, r + 1) if x * x + y * y == r * r]
 
@@ -204,6 +218,13 @@ def main():
         write("trace", name, text)
     for name, (mesh, text) in CORNER_EXPR.items():
         write("corner_expr", name, bytes([mesh]) + text.encode())
+    for name, text in LESSON_BAD.items():
+        write("lesson", name, text)
+    lessons = os.path.join(HERE, "..", "..", "lessons")
+    for name in sorted(os.listdir(lessons)) if os.path.isdir(lessons) else []:
+        if name.endswith(".toml"):
+            with open(os.path.join(lessons, name), "rb") as f:
+                write("lesson", name, f.read())
     for name, data in engine_seeds().items():
         write("engine", name, data)
     if args.dtlab:
