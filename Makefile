@@ -87,7 +87,13 @@ asan: deps
 	cmake --build $(ASAN_DIR) -j $(JOBS)
 	UBSAN_OPTIONS=print_stacktrace=1 \
 		LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan.supp:print_suppressions=0 \
-		ctest --test-dir $(ASAN_DIR) --output-on-failure --no-tests=error -j $(CTEST_JOBS)
+		ctest --test-dir $(ASAN_DIR) --output-on-failure --no-tests=error -j $(CTEST_JOBS) \
+		-E '^Gui\.RealWindowUnderXvfb$$'
+	@# The real-window test with ASan and UBSan but no leak check: glfwTerminate unloads Mesa's
+	@# DRI driver (swrast_dri.so), and the caches its globals pointed to then look leaked from an
+	@# <unknown module>; a minimal GLFW program under Xvfb shows the same 128 bytes.
+	ASAN_OPTIONS=detect_leaks=0 UBSAN_OPTIONS=print_stacktrace=1 \
+		ctest --test-dir $(ASAN_DIR) --output-on-failure --no-tests=ignore -R '^Gui\.RealWindowUnderXvfb$$'
 
 # Longer fuzzing: `make fuzz FUZZ_SECONDS=600` (per target). New inputs go to
 # build-fuzz/fuzz-corpus/, crashes to build-fuzz/fuzz-artifacts/ (see tests/fuzz/run_fuzz.sh).
