@@ -17,6 +17,7 @@ int main(int argc, char** argv) {
     dlab::cli::addTrace(app);
     dlab::cli::addBench(app);
     dlab::cli::addLesson(app);
+    dlab::cli::addDiffTrace(app);
     dlab::cli::addRender(app);
     try {
         app.parse(argc, argv);

@@ -46,6 +46,7 @@ void addTriangulate(CLI::App& app);
 void addTrace(CLI::App& app);
 void addBench(CLI::App& app);
 void addLesson(CLI::App& app);     // dtlab_lesson.cpp
+void addDiffTrace(CLI::App& app);  // dtlab_diff_trace.cpp
 void addRender(CLI::App& app);
 
 }  // namespace dlab::cli

@@ -1,0 +1,71 @@
+// dtlab diff-trace REF STUDENT: the first operation where a student's run differs from ours.
+// Exit status: 0 the runs agree, 1 they differ, 2 bad input.
+#include "app/dtlab_common.h"
+
+#include "core/io_read.h"
+#include "core/lesson.h"
+#include "core/trace_diff.h"
+
+#include <filesystem>
+#include <iostream>
+
+namespace dlab::cli {
+
+namespace {
+
+struct DiffArgs {
+    std::string reference;
+    std::string student;
+    DiffOptions options;
+};
+
+// The reference: a trace file, or a lesson / assignment (.toml) whose run is traced here.
+TraceFile loadReference(const std::string& path) {
+    if (std::filesystem::path(path).extension() == ".toml") {
+        try {
+            const Lesson lesson = loadLesson(path);
+            auto ins = makeInserter(lesson);
+            return traceOfRun(*ins, path + " (our run)");
+        } catch (const LessonError& e) {
+            fail(e.what(), 2);
+        }
+    }
+    return readTraceFile(path);
+}
+
+void runDiff(const DiffArgs& args) {
+    TraceFile ref, student;
+    try {
+        ref = loadReference(args.reference);
+        student = readTraceFile(args.student);
+    } catch (const InputError& e) {
+        fail(e.what(), 2);
+    }
+    const TraceDiff diff = diffTraces(ref, student, args.options);
+    std::cout << formatDiff(diff, ref, student, args.options);
+    std::cout.flush();
+    if (!diff.equal) throw Exit{1};
+}
+
+}  // namespace
+
+void addDiffTrace(CLI::App& app) {
+    auto args = std::make_shared<DiffArgs>();
+    CLI::App* cmd = app.add_subcommand(
+        "diff-trace",
+        "Compare a student's trace with ours: the first operation where the runs differ (exit 0 same, 1 differ, 2 bad input)");
+    cmd->add_option("reference", args->reference,
+                    "Our trace (.jsonl from dtlab trace), or a lesson/assignment (.toml) to run and trace")
+        ->required();
+    cmd->add_option("student", args->student, "The student's trace (.jsonl)")->required();
+    cmd->add_flag("--all-ops", args->options.allOps,
+                  "Compare every operation one to one (walk steps and tests too), not only those that change the mesh");
+    cmd->add_flag("--corners", args->options.corners,
+                  "The student follows the paper's corner-reuse convention: compare V (and O) corner by corner");
+    cmd->add_option("--context", args->options.context, "Operations of context shown before the difference")
+        ->check(CLI::Range(0, 100))
+        ->capture_default_str();
+    cmd->callback([args] { guarded([&] { runDiff(*args); }); });
+}
+
+}  // namespace dlab::cli
