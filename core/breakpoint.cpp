@@ -1,6 +1,8 @@
 // Breakpoints: parsing, the hit predicate on journal positions, budgeted runs both ways.
 #include "core/breakpoint.h"
 
+#include "core/text_util.h"
+
 #include <algorithm>
 #include <cctype>
 #include <charconv>
@@ -28,23 +30,6 @@ constexpr BreakKindInfo kKinds[] = {
     {BreakKind::Finalize, "finalize", BreakParam::None, "the virtual triangles were removed"},
     {BreakKind::End, "end", BreakParam::None, "the run is finished"},
 };
-
-std::string trim(std::string_view s) {
-    while (!s.empty() && std::isspace(static_cast<unsigned char>(s.front()))) s.remove_prefix(1);
-    while (!s.empty() && std::isspace(static_cast<unsigned char>(s.back()))) s.remove_suffix(1);
-    return std::string(s);
-}
-
-std::string lower(std::string s) {
-    for (char& ch : s) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
-    return s;
-}
-
-// Ends the insertion of the point it belongs to (or, for Start, of the start triangle).
-bool endsInsertion(OpType t) {
-    return t == OpType::Start || t == OpType::Inserted || t == OpType::SkipDuplicate ||
-           t == OpType::Finalize;
-}
 
 // Vertex whose insertion starts right after position p, which ends an insertion. kNone when
 // none does (the run is past its last point).
@@ -80,6 +65,10 @@ bool startInserts(const Journal& journal, const Inserter& ins, const Op& start, 
 
 }  // namespace
 
+bool endsInsertion(OpType t) {
+    return t == OpType::Start || t == OpType::Inserted || t == OpType::SkipDuplicate || t == OpType::Finalize;
+}
+
 std::span<const BreakKindInfo> breakKinds() { return kKinds; }
 
 const BreakKindInfo& info(BreakKind kind) { return kKinds[static_cast<int>(kind)]; }
@@ -89,9 +78,9 @@ std::optional<Breakpoint> parseBreakpoint(std::string_view text, std::string* er
         if (error) *error = why;
         return std::nullopt;
     };
-    const std::string whole = trim(text);
+    const std::string whole = trimmed(text);
     const std::size_t colon = whole.find(':');
-    const std::string name = lower(trim(std::string_view(whole).substr(0, colon)));
+    const std::string name = lowered(trimmed(std::string_view(whole).substr(0, colon)));
     const BreakKindInfo* kind = nullptr;
     for (const BreakKindInfo& k : kKinds) {
         if (name == k.name) kind = &k;
@@ -109,12 +98,12 @@ std::optional<Breakpoint> parseBreakpoint(std::string_view text, std::string* er
         return bp;
     }
     if (kind->param == BreakParam::None) return bad(std::string("breakpoint \"") + kind->name + "\" takes no number");
-    std::string num = trim(std::string_view(whole).substr(colon + 1));
+    std::string num = trimmed(std::string_view(whole).substr(colon + 1));
     if (!num.empty() && num[0] == '+') num.erase(0, 1);
     std::int64_t value = 0;
     const auto [end, ec] = std::from_chars(num.data(), num.data() + num.size(), value);
     if (num.empty() || ec != std::errc() || end != num.data() + num.size()) {
-        return bad("\"" + trim(std::string_view(whole).substr(colon + 1)) + "\" is not a whole number");
+        return bad("\"" + trimmed(std::string_view(whole).substr(colon + 1)) + "\" is not a whole number");
     }
     if (bp.kind == BreakKind::InCircle) {
         if (value < -1 || value > 1) return bad("an in-circle result is 1, 0 or -1");

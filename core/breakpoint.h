@@ -90,6 +90,10 @@ bool hitsAt(const Breakpoint& bp, const Journal& journal, const Inserter& ins, s
 inline bool hits(const Breakpoint& bp, const Journal& journal, const Inserter& ins) {
     return hitsAt(bp, journal, ins, journal.position());
 }
+// Whether an op of this type ends an insertion (Inserted, SkipDuplicate), the start triangle's
+// (Start) or the run (Finalize): the boundaries that whole-insertion steps stop at.
+bool endsInsertion(OpType type);
+
 // Index of the first breakpoint of `bps` that hits at the current position, or -1.
 int firstHit(std::span<const Breakpoint> bps, const Journal& journal, const Inserter& ins);
 

@@ -6,6 +6,7 @@
 #include "core/describe.h"
 #include "core/io_read.h"
 #include "core/predicates.h"
+#include "core/text_util.h"
 #include "core/voronoi.h"
 
 #include <toml++/toml.h>
@@ -37,17 +38,6 @@ std::string composeMessage(const std::string& file, int line, int stop, const st
     s += ": ";
     if (stop > 0) s += "stop " + std::to_string(stop) + ": ";
     return s + message;
-}
-
-std::string trim(std::string_view s) {
-    while (!s.empty() && std::isspace(static_cast<unsigned char>(s.front()))) s.remove_prefix(1);
-    while (!s.empty() && std::isspace(static_cast<unsigned char>(s.back()))) s.remove_suffix(1);
-    return std::string(s);
-}
-
-std::string lower(std::string s) {
-    for (char& ch : s) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
-    return s;
 }
 
 template <class Names>
@@ -130,7 +120,7 @@ std::optional<std::vector<TextBlock>> parseLessonText(std::string_view text, std
         pos = nl == std::string_view::npos ? text.size() + 1 : nl + 1;
         ++lineNo;
         if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
-        const std::string t = trim(line);
+        const std::string t = trimmed(line);
         if (t.empty()) {
             open = false;
             continue;
@@ -138,11 +128,11 @@ std::optional<std::vector<TextBlock>> parseLessonText(std::string_view text, std
         std::size_t digits = 0;
         while (digits < t.size() && std::isdigit(static_cast<unsigned char>(t[digits]))) ++digits;
         if ((t[0] == '-' || t[0] == '*') && t.size() > 1 && t[1] == ' ') {
-            raws.push_back({TextBlock::Kind::Bullet, 0, trim(std::string_view(t).substr(2)), {{0, lineNo}}});
+            raws.push_back({TextBlock::Kind::Bullet, 0, trimmed(std::string_view(t).substr(2)), {{0, lineNo}}});
             open = true;
         } else if (digits > 0 && digits < 6 && digits + 1 < t.size() && t[digits] == '.' && t[digits + 1] == ' ') {
             raws.push_back({TextBlock::Kind::Numbered, std::atoi(t.substr(0, digits).c_str()),
-                            trim(std::string_view(t).substr(digits + 2)), {{0, lineNo}}});
+                            trimmed(std::string_view(t).substr(digits + 2)), {{0, lineNo}}});
             open = true;
         } else if (open) {
             raws.back().raw += " ";
@@ -217,15 +207,6 @@ std::vector<double> realRuns(std::string_view s) {
     return out;
 }
 
-std::string squash(std::string_view s) {
-    std::string out;
-    for (char ch : s) {
-        if (ch == ' ' || ch == '-' || ch == '_' || ch == '\t') continue;
-        out += static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
-    }
-    return out;
-}
-
 }  // namespace
 
 std::string Answer::display() const {
@@ -240,7 +221,7 @@ std::string Answer::display() const {
 }
 
 bool acceptsAnswer(const Answer& expected, std::string_view typedIn) {
-    const std::string typed = lower(trim(typedIn));
+    const std::string typed = lowered(trimmed(typedIn));
     if (typed.empty()) return false;
     switch (expected.kind) {
         case Answer::Kind::Integer: {
@@ -258,7 +239,7 @@ bool acceptsAnswer(const Answer& expected, std::string_view typedIn) {
             const auto v = digitRuns(typed);
             return v.size() == 2 && ((v[0] == expected.a && v[1] == expected.b) || (v[0] == expected.b && v[1] == expected.a));
         }
-        case Answer::Kind::Text: return squash(typed) == squash(expected.text);
+        case Answer::Kind::Text: return looseName(typed) == looseName(expected.text);
         case Answer::Kind::Truth: {
             const bool yes = typed == "yes" || typed == "y" || typed == "true" || typed == "1";
             const bool no = typed == "no" || typed == "n" || typed == "false" || typed == "0";
@@ -317,10 +298,6 @@ constexpr QuantityInfo kQuantities[] = {
 struct Unavailable {
     std::string why;
 };
-
-bool endsInsertion(OpType t) {
-    return t == OpType::Start || t == OpType::Inserted || t == OpType::SkipDuplicate || t == OpType::Finalize;
-}
 
 // Puts the journal back where it was, whatever happens in between.
 class PositionGuard {
@@ -592,7 +569,7 @@ std::span<const QuantityInfo> lessonQuantities() { return kQuantities; }
 
 std::optional<Answer> computeAnswer(std::string_view specIn, Inserter& ins, Journal& journal,
                                     std::int32_t selected, std::string* error) {
-    const std::string spec = trim(specIn);
+    const std::string spec = trimmed(specIn);
     auto fail = [&](const std::string& why) -> std::optional<Answer> {
         if (error) *error = why;
         return std::nullopt;
@@ -812,7 +789,7 @@ public:
         s.question = string(t, "question").value_or("");
         s.hint = string(t, "hint").value_or("");
         if (auto a = string(t, "answer")) {
-            s.answer = trim(*a);
+            s.answer = trimmed(*a);
             s.answerLine = lineOf(*t.get("answer"));
         }
         if (!s.question.empty() && s.answer.empty()) fail(s.line, "the question has no \"answer\" (a quantity or a corner expression)");
@@ -842,7 +819,7 @@ public:
         }
         checkKeys(root, {"title", "summary", "kind", "text", "points", "points_file", "options", "stop"}, "at the top level");
         L.title = string(root, "title").value_or("");
-        if (trim(L.title).empty()) fail(1, "the lesson needs a \"title\"");
+        if (trimmed(L.title).empty()) fail(1, "the lesson needs a \"title\"");
         L.summary = string(root, "summary").value_or("");
         if (auto k = string(root, "kind")) {
             if (*k != "lesson" && *k != "assignment") fail(lineOf(*root.get("kind")), "kind must be \"lesson\" or \"assignment\"");

@@ -4,6 +4,7 @@
 #include "core/trace_diff.h"
 
 #include "core/io_read.h"
+#include "core/text_util.h"
 #include "core/trace.h"
 
 #include <nlohmann/json.hpp>
@@ -23,21 +24,12 @@ namespace {
 constexpr std::int64_t kMaxCorners = std::int64_t{1} << 25;
 constexpr std::int64_t kMaxId = std::int64_t{1} << 30;
 
-std::string squash(std::string_view s) {
-    std::string out;
-    for (char ch : s) {
-        if (ch == '_' || ch == '-' || ch == ' ') continue;
-        out += static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
-    }
-    return out;
-}
-
 std::optional<OpType> opTypeLenient(const std::string& name) {
     if (auto t = parseOpType(name)) return t;
-    const std::string s = squash(name);
+    const std::string s = looseName(name);
     for (int k = 0; k <= static_cast<int>(OpType::Finalize); ++k) {
         const auto t = static_cast<OpType>(k);
-        if (s == squash(toString(t))) return t;
+        if (s == looseName(toString(t))) return t;
     }
     if (s == "incircle") return OpType::InCircleTest;
     if (s == "duplicate" || s == "skip") return OpType::SkipDuplicate;

@@ -5,6 +5,8 @@
 
 #include "core/generators.h"
 
+#include "tests/run_dtlab.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -12,7 +14,6 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <sys/wait.h>
 #include <unistd.h>
 
 using namespace dlab;
@@ -86,21 +87,8 @@ std::string unavailable(LiveRun& r, const std::string& spec, std::int32_t select
     return why;
 }
 
-struct Result {
-    int status = -1;
-    std::string out;
-};
-Result dtlab(const std::string& args) {
-    Result r;
-    FILE* pipe = popen((std::string(DLAB_DTLAB_PATH) + " " + args + " 2>&1").c_str(), "r");
-    if (!pipe) return r;
-    char buf[4096];
-    std::size_t n;
-    while ((n = fread(buf, 1, sizeof buf, pipe)) > 0) r.out.append(buf, n);
-    const int st = pclose(pipe);
-    r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
-    return r;
-}
+using Result = dlab::testutil::DtlabResult;
+Result dtlab(const std::string& args) { return dlab::testutil::runDtlab(args); }
 
 }  // namespace
 

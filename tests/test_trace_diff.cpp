@@ -8,6 +8,8 @@
 #include "core/io_read.h"
 #include "core/lesson.h"
 
+#include "tests/run_dtlab.h"
+
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -15,7 +17,6 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
-#include <sys/wait.h>
 #include <unistd.h>
 
 using namespace dlab;
@@ -95,21 +96,8 @@ std::string inputError(const std::string& text) {
     return "";
 }
 
-struct Result {
-    int status = -1;
-    std::string out;
-};
-Result dtlab(const std::string& args) {
-    Result r;
-    FILE* pipe = popen((std::string(DLAB_DTLAB_PATH) + " " + args + " 2>&1").c_str(), "r");
-    if (!pipe) return r;
-    char buf[4096];
-    std::size_t n;
-    while ((n = fread(buf, 1, sizeof buf, pipe)) > 0) r.out.append(buf, n);
-    const int st = pclose(pipe);
-    r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
-    return r;
-}
+using Result = dlab::testutil::DtlabResult;
+Result dtlab(const std::string& args) { return dlab::testutil::runDtlab(args); }
 
 fs::path scratch() {
     const fs::path d = fs::temp_directory_path() / ("dlab_diff_" + std::to_string(::getpid()));
