@@ -5,11 +5,11 @@
 
 #include <gtest/gtest.h>
 
+#include <unistd.h>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
-#include <unistd.h>
 
 using namespace dlab;
 
@@ -42,7 +42,8 @@ TEST(Limits, NodeHeaderClaiming2To31PointsInATinyFileFailsOnItsHeaderLine) {
     } catch (const InputError& e) {
         EXPECT_EQ(e.line(), 1);
         EXPECT_EQ(std::string(e.what()),
-                  "claims.node:1: vertex count 2147483648 exceeds the maximum of 33554432 points (kMaxPoints)");
+                  "claims.node:1: vertex count 2147483648 exceeds the maximum of 33554432 points "
+                  "(kMaxPoints)");
     }
 }
 
@@ -56,7 +57,8 @@ TEST(Limits, CountsUpToKMaxPointsMustStillFitTheBytesThatFollow) {
             ADD_FAILURE() << "read " << text;
         } catch (const InputError& e) {
             EXPECT_EQ(e.line(), 1) << e.what();
-            EXPECT_NE(std::string(e.what()).find("header declares 33554432"), std::string::npos) << e.what();
+            EXPECT_NE(std::string(e.what()).find("header declares 33554432"), std::string::npos)
+                << e.what();
             EXPECT_NE(std::string(e.what()).find("bytes follow"), std::string::npos) << e.what();
         }
     }
@@ -66,7 +68,8 @@ TEST(Limits, CountsUpToKMaxPointsMustStillFitTheBytesThatFollow) {
 
 TEST(Limits, AFileLargerThanKMaxFileBytesIsRefusedBeforeItIsRead) {
     // A sparse file: 2 GiB + 1 of holes costs no disk and, refused by its size, no memory.
-    const auto path = std::filesystem::temp_directory_path() / ("dlab_limits_" + std::to_string(getpid()) + ".csv");
+    const auto path = std::filesystem::temp_directory_path() /
+                      ("dlab_limits_" + std::to_string(getpid()) + ".csv");
     { std::ofstream(path) << "0,0\n"; }
     std::error_code ec;
     std::filesystem::resize_file(path, kMaxFileBytes + 1, ec);
@@ -79,7 +82,8 @@ TEST(Limits, AFileLargerThanKMaxFileBytesIsRefusedBeforeItIsRead) {
         ADD_FAILURE() << "read a file over kMaxFileBytes";
     } catch (const InputError& e) {
         EXPECT_EQ(e.line(), 0);
-        EXPECT_EQ(e.message(), "file is 2147483649 bytes; the maximum is 2147483648 (kMaxFileBytes)");
+        EXPECT_EQ(e.message(),
+                  "file is 2147483649 bytes; the maximum is 2147483648 (kMaxFileBytes)");
     }
     std::filesystem::remove(path);
 }
@@ -113,21 +117,31 @@ TEST(Regression, TraceFloatWhereAnIntegerBelongsIsRefusedNotConverted) {
         EXPECT_EQ(e.line(), 7);
         EXPECT_NE(e.message().find("must be an integer"), std::string::npos) << e.what();
     }
-    EXPECT_NE(traceError("{\"i\":0,\"op\":\"InCircleTest\",\"sign\":2}").message().find("sign 2 is out of range"),
+    EXPECT_NE(traceError("{\"i\":0,\"op\":\"InCircleTest\",\"sign\":2}")
+                  .message()
+                  .find("sign 2 is out of range"),
               std::string::npos);
 }
 
 TEST(Regression, TraceIntegersBeyondInt32AreRefusedNotTruncated) {
     // Before: corner 4294967297 was read as corner 1 and vertex 5000000000 as 705032704.
-    EXPECT_NE(traceError("{\"i\":0,\"op\":\"Flip\",\"changes\":[[\"O\",4294967297,0,1]]}").message().find("corner"),
+    EXPECT_NE(traceError("{\"i\":0,\"op\":\"Flip\",\"changes\":[[\"O\",4294967297,0,1]]}")
+                  .message()
+                  .find("corner"),
               std::string::npos);
-    EXPECT_NE(traceError("{\"i\":0,\"op\":\"Flip\",\"vertex\":5000000000}").message().find("vertex 5000000000"),
+    EXPECT_NE(traceError("{\"i\":0,\"op\":\"Flip\",\"vertex\":5000000000}")
+                  .message()
+                  .find("vertex 5000000000"),
               std::string::npos);
-    EXPECT_NE(traceError("{\"i\":0,\"op\":\"Flip\",\"triangles\":[[0,1,2,-3]]}").message().find("out of range"),
+    EXPECT_NE(traceError("{\"i\":0,\"op\":\"Flip\",\"triangles\":[[0,1,2,-3]]}")
+                  .message()
+                  .find("out of range"),
               std::string::npos);
     // The limits themselves still read.
     const TraceRecord r = parseTraceLine(
-        "{\"i\":0,\"op\":\"Flip\",\"vertex\":2147483647,\"changes\":[[\"V\",536870912,-1,2147483647]]}", "t", 1);
+        "{\"i\":0,\"op\":\"Flip\",\"vertex\":2147483647,\"changes\":[[\"V\",536870912,-1,"
+        "2147483647]]}",
+        "t", 1);
     EXPECT_EQ(r.vertex, 2147483647);
     ASSERT_EQ(r.changes.size(), 1u);
     EXPECT_EQ(r.changes[0].corner(), 536870912);

@@ -21,8 +21,10 @@ void fail(const std::string& what, const std::string& detail) {
 std::int64_t countLines(std::string_view text) {
     std::int64_t lines = 0;
     for (std::size_t i = 0; i < text.size(); ++i) {
-        if (text[i] == '\n') ++lines;
-        else if (text[i] == '\r' && !(i + 1 < text.size() && text[i + 1] == '\n')) ++lines;
+        if (text[i] == '\n')
+            ++lines;
+        else if (text[i] == '\r' && !(i + 1 < text.size() && text[i + 1] == '\n'))
+            ++lines;
     }
     // A last line without its end still counts.
     if (!text.empty() && text.back() != '\n' && text.back() != '\r') ++lines;
@@ -47,7 +49,8 @@ void checkInputError(const InputError& e, std::string_view text, const std::stri
     require(what.rfind(name + ":", 0) == 0, "an input error starts with the file name", what);
     require(e.file() == name, "InputError::file() is the name given", e.file());
     require(!e.message().empty(), "an input error says what is wrong", what);
-    require(e.line() >= 0 && e.line() <= countLines(text), "an input error blames a line of the input",
+    require(e.line() >= 0 && e.line() <= countLines(text),
+            "an input error blames a line of the input",
             what + " (the input has " + std::to_string(countLines(text)) + " lines)");
 }
 
@@ -68,10 +71,12 @@ std::string writePoints(const std::vector<Vec2>& points, std::string_view format
     return out;
 }
 
-void checkPointSet(const PointSet& ps, const std::string& name, Reparse reparse, std::string_view format) {
+void checkPointSet(const PointSet& ps, const std::string& name, Reparse reparse,
+                   std::string_view format) {
     require(ps.path == name, "PointSet::path is the name given", ps.path);
     require(ps.points.size() <= kMaxPoints, "at most kMaxPoints points");
-    require(ps.indexBase == 0 || ps.indexBase == 1, "the index base is 0 or 1", std::to_string(ps.indexBase));
+    require(ps.indexBase == 0 || ps.indexBase == 1, "the index base is 0 or 1",
+            std::to_string(ps.indexBase));
     for (const Vec2& p : ps.points) {
         require(std::isfinite(p.x) && std::isfinite(p.y), "every coordinate read is finite");
     }
@@ -80,8 +85,9 @@ void checkPointSet(const PointSet& ps, const std::string& name, Reparse reparse,
 
     // Round trip: what we read, written in the same format, reads back bit for bit.
     const std::string again = writePoints(ps.points, format, ps.indexBase);
-    requireSamePoints(mustRead(reparse, again, name, "points that were read can be written and read back"), ps,
-                      "the write/read round trip");
+    requireSamePoints(
+        mustRead(reparse, again, name, "points that were read can be written and read back"), ps,
+        "the write/read round trip");
 }
 
 PointSet mustRead(Reparse parse, std::string_view text, const std::string& name, const char* what) {
@@ -95,11 +101,13 @@ PointSet mustRead(Reparse parse, std::string_view text, const std::string& name,
 void requireSamePoints(const PointSet& a, const PointSet& b, const std::string& what) {
     require(a.points.size() == b.points.size(), "same point count", what);
     require(a.indexBase == b.indexBase, "same index base", what);
-    require(a.points.empty() || std::memcmp(a.points.data(), b.points.data(), a.points.size() * sizeof(Vec2)) == 0,
+    require(a.points.empty() ||
+                std::memcmp(a.points.data(), b.points.data(), a.points.size() * sizeof(Vec2)) == 0,
             "same coordinates, bit for bit", what);
 }
 
-void checkReader(const std::uint8_t* data, std::size_t size, Reparse parse, std::string_view format) {
+void checkReader(const std::uint8_t* data, std::size_t size, Reparse parse,
+                 std::string_view format) {
     const std::string name = std::string("fuzz.") + std::string(format);
     const std::string_view text = asText(data, size);
     PointSet ps;

@@ -41,7 +41,8 @@ void checkInputError(const InputError& e, std::string_view text, const std::stri
 // Checks a successful read: every coordinate finite, at most kMaxPoints points, warnings one
 // line each, and the points survive a write/read round trip through `reparse` bit for bit.
 using Reparse = PointSet (*)(std::string_view text, const std::string& name);
-void checkPointSet(const PointSet& ps, const std::string& name, Reparse reparse, std::string_view format);
+void checkPointSet(const PointSet& ps, const std::string& name, Reparse reparse,
+                   std::string_view format);
 
 // Reads `text` with `parse`; an InputError fails the property `what`.
 PointSet mustRead(Reparse parse, std::string_view text, const std::string& name, const char* what);
@@ -53,6 +54,7 @@ void requireSamePoints(const PointSet& a, const PointSet& b, const std::string& 
 std::string writePoints(const std::vector<Vec2>& points, std::string_view format, int indexBase);
 
 // Runs one reader on the bytes and checks either outcome.
-void checkReader(const std::uint8_t* data, std::size_t size, Reparse parse, std::string_view format);
+void checkReader(const std::uint8_t* data, std::size_t size, Reparse parse,
+                 std::string_view format);
 
 }  // namespace dlab::fuzz

@@ -24,7 +24,8 @@ struct Fixture {
     bool corrupt = false;
 };
 
-const std::vector<Vec2> kPoints{{0, 0}, {4, 0}, {4, 4}, {0, 4}, {2, 2}, {1, 3}, {3, 1}, {2, 0}, {2, 2}};
+const std::vector<Vec2> kPoints{{0, 0}, {4, 0}, {4, 4}, {0, 4}, {2, 2},
+                                {1, 3}, {3, 1}, {2, 0}, {2, 2}};
 
 std::vector<Fixture> makeFixtures() {
     std::vector<Fixture> out;
@@ -52,8 +53,10 @@ std::vector<Fixture> makeFixtures() {
         Fixture f = out[k];
         f.corrupt = true;
         std::int32_t x = 0;
-        for (std::int32_t& o : f.mesh.O) o = (++x % 3 == 0) ? INT_MIN : (x % 3 == 1 ? INT_MAX : -7 * x);
-        for (std::size_t i = 0; i < f.mesh.V.size(); i += 4) f.mesh.V[i] = -100 + static_cast<std::int32_t>(i);
+        for (std::int32_t& o : f.mesh.O)
+            o = (++x % 3 == 0) ? INT_MIN : (x % 3 == 1 ? INT_MAX : -7 * x);
+        for (std::size_t i = 0; i < f.mesh.V.size(); i += 4)
+            f.mesh.V[i] = -100 + static_cast<std::int32_t>(i);
         if (f.mesh.O.size() >= 2) f.mesh.O.resize(f.mesh.O.size() - 2);
         out.push_back(std::move(f));
     }
@@ -66,20 +69,26 @@ bool oneLine(const std::string& s) { return s.find_first_of("\r\n") == std::stri
 void checkResult(const ExprResult& r, const Fixture& f, std::size_t textSize, bool boundInside) {
     const std::int64_t corners = f.mesh.numCorners(), vertices = f.mesh.numVertices();
     if (!r.ok()) {
-        require(!r.error.message.empty() && oneLine(r.error.message), "an evaluation error is one line",
+        require(!r.error.message.empty() && oneLine(r.error.message),
+                "an evaluation error is one line", r.error.message);
+        require(r.error.column <= textSize, "an evaluation error points into the text",
                 r.error.message);
-        require(r.error.column <= textSize, "an evaluation error points into the text", r.error.message);
     } else if (!f.corrupt && boundInside) {
         const ExprValue& v = *r.value;
-        if (v.kind == ValueKind::Corner) require(v.i >= -1 && v.i < corners, "a corner value is -1 or a corner");
-        if (v.kind == ValueKind::Vertex) require(v.i >= 0 && v.i < vertices, "a vertex value is a vertex");
-        if (v.kind == ValueKind::Triangle) require(v.i >= 0 && v.i < corners / 3, "a triangle value is a triangle");
+        if (v.kind == ValueKind::Corner)
+            require(v.i >= -1 && v.i < corners, "a corner value is -1 or a corner");
+        if (v.kind == ValueKind::Vertex)
+            require(v.i >= 0 && v.i < vertices, "a vertex value is a vertex");
+        if (v.kind == ValueKind::Triangle)
+            require(v.i >= 0 && v.i < corners / 3, "a triangle value is a triangle");
         require(oneLine(formatValue(v)), "a value formats on one line", formatValue(v));
     }
     if (f.corrupt || !boundInside) return;
     for (const PathStep& s : r.path) {
-        require(s.from >= kNone && s.from < std::max(corners, vertices), "a path step starts inside the mesh");
-        require(s.to >= kNone && s.to < std::max(corners, vertices), "a path step ends inside the mesh");
+        require(s.from >= kNone && s.from < std::max(corners, vertices),
+                "a path step starts inside the mesh");
+        require(s.to >= kNone && s.to < std::max(corners, vertices),
+                "a path step ends inside the mesh");
     }
 }
 
@@ -94,7 +103,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     ExprError error;
     const auto expr = CornerExpr::parse(text, &error);
     if (!expr) {
-        require(!error.message.empty() && oneLine(error.message), "a syntax error is one line", error.message);
+        require(!error.message.empty() && oneLine(error.message), "a syntax error is one line",
+                error.message);
         require(error.column <= text.size(), "a syntax error points into the text", error.message);
         return 0;
     }
@@ -102,12 +112,14 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     // c bound to corners inside, at the ends of, and outside the mesh.
     const std::int32_t corners = f.mesh.numCorners();
     for (const std::int32_t c : {0, corners - 1, data[0] / 16 % 7, corners, kNone, INT_MAX}) {
-        checkResult(expr->evaluateAt(f.mesh, c, f.context), f, text.size(), c >= kNone && c < corners);
+        checkResult(expr->evaluateAt(f.mesh, c, f.context), f, text.size(),
+                    c >= kNone && c < corners);
     }
     if (expr->isComparison() && expr->uses("c")) {
         const WatchReport w = checkWatch(*expr, f.mesh, f.context);
         require(oneLine(w.message), "a watch report is one line", w.message);
-        require(w.ok || (w.corner >= 0 && w.corner < corners), "a failing watch names a corner of the mesh");
+        require(w.ok || (w.corner >= 0 && w.corner < corners),
+                "a failing watch names a corner of the mesh");
     }
     return 0;
 }

@@ -108,12 +108,14 @@ private:
     void setExponent(int e) { m_exp = std::clamp(e, -1100, 980); }
 
     double coord(double k, int offset) const {
-        const double off = m_exp + 40 <= 1000 ? std::ldexp(static_cast<double>(offset), m_exp + 40) : 0.0;
+        const double off =
+            m_exp + 40 <= 1000 ? std::ldexp(static_cast<double>(offset), m_exp + 40) : 0.0;
         return off + std::ldexp(k, m_exp);
     }
     void add(double kx, double ky) { push({coord(kx, m_offX), coord(ky, m_offY)}); }
     void push(Vec2 p) {
-        if (std::isfinite(p.x) && std::isfinite(p.y) && m_pts.size() < kMaxFuzzPoints) m_pts.push_back(p);
+        if (std::isfinite(p.x) && std::isfinite(p.y) && m_pts.size() < kMaxFuzzPoints)
+            m_pts.push_back(p);
     }
 
     void command() {
@@ -137,8 +139,8 @@ private:
                 break;
             }
             case 4: {  // a subset of the lattice points of a circle: exactly cocircular
-                static const std::vector<std::pair<int, int>> circles[] = {latticeCircle(1), latticeCircle(5),
-                                                                           latticeCircle(25), latticeCircle(65)};
+                static const std::vector<std::pair<int, int>> circles[] = {
+                    latticeCircle(1), latticeCircle(5), latticeCircle(25), latticeCircle(65)};
                 const auto& circle = circles[m_in.u8() % 4];
                 const int cx = m_in.range(-8, 8), cy = m_in.range(-8, 8);
                 const std::uint64_t mask = m_in.u64();
@@ -149,7 +151,8 @@ private:
             }
             case 5:  // midpoint of two points: a point on their segment (exactly, at lattice scale)
                 if (m_pts.size() >= 2) {
-                    const Vec2 a = m_pts[m_in.u8() % m_pts.size()], b = m_pts[m_in.u8() % m_pts.size()];
+                    const Vec2 a = m_pts[m_in.u8() % m_pts.size()],
+                               b = m_pts[m_in.u8() % m_pts.size()];
                     push({a.x + (b.x - a.x) / 2, a.y + (b.y - a.y) / 2});
                 }
                 break;
@@ -193,7 +196,8 @@ Snapshot snap(const Mesh& m) { return {m.G, m.V, m.O}; }
 
 bool sameStats(const InsertStats& a, const InsertStats& b) {
     return a.inserted == b.inserted && a.duplicates == b.duplicates && a.flips == b.flips &&
-           a.inCircleTests == b.inCircleTests && a.walkSteps == b.walkSteps && a.edgeSplits == b.edgeSplits;
+           a.inCircleTests == b.inCircleTests && a.walkSteps == b.walkSteps &&
+           a.edgeSplits == b.edgeSplits;
 }
 
 std::string describe(const Case& c) {
@@ -219,7 +223,8 @@ void checkResult(const Case& c, const Inserter& ins) {
     const auto n = static_cast<std::int32_t>(c.points.size());
     require(m.numVertices() == n, "after the run G holds exactly the input points", what);
     const auto violations = validate(m);
-    if (!violations.empty()) fail("validate() accepts the result", what + ": " + violations[0].message);
+    if (!violations.empty())
+        fail("validate() accepts the result", what + ": " + violations[0].message);
 
     const auto distinct = firstOccurrences(c.points);
     require(ins.stats().duplicates == n - static_cast<std::int64_t>(distinct.size()),
@@ -233,7 +238,8 @@ void checkResult(const Case& c, const Inserter& ins) {
     std::sort(skipped.begin(), skipped.end());
     require(skipped == expectSkipped, "skipped() lists exactly the later copies", what);
     const std::set<std::int32_t> used(m.V.begin(), m.V.end());
-    for (std::int32_t v : used) require(firsts.count(v) == 1, "only first occurrences are vertices", what);
+    for (std::int32_t v : used)
+        require(firsts.count(v) == 1, "only first occurrences are vertices", what);
 
     if (c.options.boundary == Boundary::Super) return;  // the paper's mode promises no more
     if (allCollinearExact(c.points)) {
@@ -247,7 +253,8 @@ void checkResult(const Case& c, const Inserter& ins) {
 void traceRoundTrip(const Journal& journal, const Mesh& mesh) {
     const TraceRecord r = traceRecord(journal, journal.position() - 1, mesh);
     const std::string line = toJsonLine(r);
-    require(parseTraceLine(line, "fuzz", 1) == r, "an op's trace line reads back as the same record", line);
+    require(parseTraceLine(line, "fuzz", 1) == r,
+            "an op's trace line reads back as the same record", line);
 }
 
 void runCase(const Case& c) {
@@ -258,7 +265,8 @@ void runCase(const Case& c) {
         owner = std::make_unique<Inserter>(c.points, c.options);
     } catch (const std::domain_error&) {
         // Super mode refuses coordinates without a finite super-triangle (documented).
-        require(c.options.boundary == Boundary::Super, "only super mode refuses finite input", what);
+        require(c.options.boundary == Boundary::Super, "only super mode refuses finite input",
+                what);
         return;
     }
     Inserter& ins = *owner;
@@ -267,7 +275,8 @@ void runCase(const Case& c) {
     // Recorded, one op at a time. The bound is far above any correct run (O(n^2) flips and
     // walk steps at most): past it the engine is looping.
     Journal journal(ins);
-    const std::size_t limit = 64 * static_cast<std::size_t>(n + 4) * static_cast<std::size_t>(n + 4) + 1024;
+    const std::size_t limit =
+        64 * static_cast<std::size_t>(n + 4) * static_cast<std::size_t>(n + 4) + 1024;
     std::size_t ops = 0;
     while (journal.forward()) {
         require(++ops <= limit, "insertion terminates", what);
@@ -286,7 +295,8 @@ void runCase(const Case& c) {
     batch.run();
     require(batch.done(), "run() finishes", what);
     require(snap(batch.mesh()) == end, "run() gives the same G, V and O as stepping", what);
-    require(sameStats(batch.stats(), endStats), "run() counts the same operations as stepping", what);
+    require(sameStats(batch.stats(), endStats), "run() counts the same operations as stepping",
+            what);
     require(batch.skipped() == ins.skipped(), "run() skips the same duplicates as stepping", what);
 
     // A mid-run state is a valid corner table (virtual triangles included).
@@ -295,13 +305,16 @@ void runCase(const Case& c) {
     vo.firstVirtual = n;
     vo.delaunay = false;
     const auto mid = validate(ins.mesh(), vo);
-    if (!mid.empty()) fail("every intermediate state is a valid corner table", what + ": " + mid[0].message);
+    if (!mid.empty())
+        fail("every intermediate state is a valid corner table", what + ": " + mid[0].message);
 
     // Undo everything: the start state, bit for bit; then redo to the same end.
     journal.seek(0);
     require(journal.position() == 0, "the journal rewinds to the start", what);
-    require(snap(ins.mesh()) == start, "undoing every op restores the start state bit for bit", what);
-    require(ins.flipStack().empty() && ins.skipped().empty(), "undo clears the work-list and the skips", what);
+    require(snap(ins.mesh()) == start, "undoing every op restores the start state bit for bit",
+            what);
+    require(ins.flipStack().empty() && ins.skipped().empty(),
+            "undo clears the work-list and the skips", what);
     require(sameStats(ins.stats(), InsertStats{}), "undo resets the statistics", what);
     journal.seek(ops);
     require(journal.position() == ops && ins.done(), "the journal replays to the end", what);
@@ -312,9 +325,10 @@ void runCase(const Case& c) {
 // DLAB_FUZZ_PRINT=1: print the decoded case (hex floats, exact) before running it, to turn a
 // crash into a unit test.
 void printCase(const Case& c) {
-    std::fprintf(stderr, "%s, seed %llu, ID buffer %dx%d, trace %d, probe %d\n", describe(c).c_str(),
-                 static_cast<unsigned long long>(c.options.seed), c.options.locatorOptions.idBufferWidth,
-                 c.options.locatorOptions.idBufferHeight, c.traceRoundTrip ? 1 : 0, c.probe);
+    std::fprintf(stderr, "%s, seed %llu, ID buffer %dx%d, trace %d, probe %d\n",
+                 describe(c).c_str(), static_cast<unsigned long long>(c.options.seed),
+                 c.options.locatorOptions.idBufferWidth, c.options.locatorOptions.idBufferHeight,
+                 c.traceRoundTrip ? 1 : 0, c.probe);
     for (const Vec2& p : c.points) std::fprintf(stderr, "  {%a, %a},\n", p.x, p.y);
 }
 

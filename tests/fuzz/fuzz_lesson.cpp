@@ -9,10 +9,10 @@
 
 #include "core/lesson.h"
 
+#include <unistd.h>
 #include <algorithm>
 #include <filesystem>
 #include <string>
-#include <unistd.h>
 
 namespace {
 
@@ -26,7 +26,8 @@ constexpr std::size_t kMaxPlannedPoints = 200;
 
 const std::string& lessonPath() {
     static const std::string path = [] {
-        const auto dir = std::filesystem::temp_directory_path() / ("dlab_fuzz_lesson_" + std::to_string(getpid()));
+        const auto dir = std::filesystem::temp_directory_path() /
+                         ("dlab_fuzz_lesson_" + std::to_string(getpid()));
         std::filesystem::create_directories(dir);
         return (dir / "fuzz.toml").string();
     }();
@@ -57,12 +58,13 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         checkError(e, text, path);
         return 0;
     }
-    require(lesson.points.size() <= kMaxLessonPoints, "a lesson holds at most kMaxLessonPoints points");
+    require(lesson.points.size() <= kMaxLessonPoints,
+            "a lesson holds at most kMaxLessonPoints points");
     require(lesson.stops.size() <= kMaxLessonStops, "a lesson holds at most kMaxLessonStops stops");
     for (const LessonStop& stop : lesson.stops) {
         std::string why;
-        require(stop.text.empty() || parseLessonText(stop.text, &why).has_value(), "a loaded stop's text parses",
-                why);
+        require(stop.text.empty() || parseLessonText(stop.text, &why).has_value(),
+                "a loaded stop's text parses", why);
     }
     if (lesson.points.size() > kMaxPlannedPoints) return 0;
     LessonPlan plan;
@@ -79,11 +81,12 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     require(plan.stops.size() == lesson.stops.size(), "the plan has one state per stop");
     std::size_t previous = 0;
     for (const StopState& s : plan.stops) {
-        require(s.position >= previous && s.position <= plan.totalOps, "stops are reached in order within the run");
+        require(s.position >= previous && s.position <= plan.totalOps,
+                "stops are reached in order within the run");
         previous = s.position;
         if (s.answer) {
-            require(acceptsAnswer(*s.answer, s.answer->display()), "an answer typed as displayed is accepted",
-                    s.answer->display());
+            require(acceptsAnswer(*s.answer, s.answer->display()),
+                    "an answer typed as displayed is accepted", s.answer->display());
         }
     }
     return 0;

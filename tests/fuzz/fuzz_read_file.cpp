@@ -5,19 +5,20 @@
 // successful read of a sniffed file equals what the guessed format's parser reads directly.
 #include "tests/fuzz/fuzz_common.h"
 
+#include <unistd.h>
 #include <cstdio>
 #include <filesystem>
 #include <string>
-#include <unistd.h>
 
 namespace {
 
-constexpr const char* kExtensions[] = {".node", ".pts", ".csv", ".xy", ".txt", ".dat",
-                                       ".NODE", ".Csv", "",     ".in",  ".node.bak"};
+constexpr const char* kExtensions[] = {".node", ".pts", ".csv", ".xy", ".txt",     ".dat",
+                                       ".NODE", ".Csv", "",     ".in", ".node.bak"};
 
 std::string scratchPath(const char* extension) {
     static const std::string dir = [] {
-        auto d = std::filesystem::temp_directory_path() / ("dlab_fuzz_read_file_" + std::to_string(getpid()));
+        auto d = std::filesystem::temp_directory_path() /
+                 ("dlab_fuzz_read_file_" + std::to_string(getpid()));
         std::filesystem::create_directories(d);
         return d.string();
     }();
@@ -37,7 +38,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     {
         std::FILE* f = std::fopen(path.c_str(), "wb");
         require(f != nullptr, "can create the scratch file", path);
-        require(std::fwrite(text.data(), 1, text.size(), f) == text.size(), "can write the scratch file", path);
+        require(std::fwrite(text.data(), 1, text.size(), f) == text.size(),
+                "can write the scratch file", path);
         std::fclose(f);
     }
     PointSet ps;
@@ -53,10 +55,11 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
 
     // A sniffed file says what it was read as; reading it with that parser gives the same.
     const std::string guessPrefix = ": read as ";
-    const bool sniffed = !ps.warnings.empty() && ps.warnings.front().find(guessPrefix) != std::string::npos;
+    const bool sniffed =
+        !ps.warnings.empty() && ps.warnings.front().find(guessPrefix) != std::string::npos;
     const std::string ext = std::filesystem::path(path).extension().string();
-    const bool known = ext == ".node" || ext == ".pts" || ext == ".csv" || ext == ".xy" || ext == ".NODE" ||
-                       ext == ".Csv" || ext == ".txt" || ext == ".dat";
+    const bool known = ext == ".node" || ext == ".pts" || ext == ".csv" || ext == ".xy" ||
+                       ext == ".NODE" || ext == ".Csv" || ext == ".txt" || ext == ".dat";
     require(sniffed != known, "exactly the files with an unknown extension are sniffed", path);
     Reparse parser = &parseXY;
     std::string_view format = "xy";
@@ -69,7 +72,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
             parser = &parsePts;
             format = "pts";
         }
-        const PointSet direct = mustRead(parser, text, path, "the sniffed format's parser reads the file");
+        const PointSet direct =
+            mustRead(parser, text, path, "the sniffed format's parser reads the file");
         requireSamePoints(direct, ps, "a sniffed read equals the guessed parser's read");
     } else if (ext == ".node" || ext == ".NODE") {
         parser = &parseNode;

@@ -23,7 +23,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         std::int64_t lines = 0;
         for (const char c : text) lines += c == '\n';
         if (!text.empty() && text.back() != '\n') ++lines;
-        require(e.line() >= 1 && e.line() <= lines, "a trace error blames a line of the input", e.what());
+        require(e.line() >= 1 && e.line() <= lines, "a trace error blames a line of the input",
+                e.what());
         std::string asLines(text);
         for (char& c : asLines) c = c == '\r' ? ' ' : c;  // keep countLines in step with getline
         checkInputError(e, asLines, name);
@@ -33,7 +34,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     }
     for (const TraceRecord& r : records) {
         const std::string line = toJsonLine(r);
-        require(line.find('\n') == std::string::npos, "a trace record is written on one line", line);
+        require(line.find('\n') == std::string::npos, "a trace record is written on one line",
+                line);
         TraceRecord back;
         try {
             back = parseTraceLine(line, name, 1);

@@ -84,7 +84,8 @@ int main(int argc, char** argv) {
     std::size_t largest = 0;
     for (const fs::path& path : inputs) {
         std::ifstream in(path, std::ios::binary);
-        const std::vector<char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+        const std::vector<char> bytes((std::istreambuf_iterator<char>(in)),
+                                      std::istreambuf_iterator<char>());
         if (!in.eof() && in.fail()) {
             std::fprintf(stderr, "%s: cannot read\n", path.c_str());
             return 2;
@@ -96,13 +97,14 @@ int main(int argc, char** argv) {
         const std::size_t peak = g_largestAllocation;
         largest = std::max(largest, peak);
         if (DLAB_REPLAY_COUNTS_ALLOCATIONS && peak > kMaxAllocation) {
-            std::fprintf(stderr, "%s: one allocation of %zu bytes (the limit is %zu)\n", path.c_str(), peak,
-                         kMaxAllocation);
+            std::fprintf(stderr, "%s: one allocation of %zu bytes (the limit is %zu)\n",
+                         path.c_str(), peak, kMaxAllocation);
             return 1;
         }
     }
     std::printf("replayed %zu inputs", inputs.size());
-    if (DLAB_REPLAY_COUNTS_ALLOCATIONS) std::printf(", largest single allocation %zu bytes", largest);
+    if (DLAB_REPLAY_COUNTS_ALLOCATIONS)
+        std::printf(", largest single allocation %zu bytes", largest);
     std::printf("\n");
     return 0;
 }
