@@ -391,7 +391,8 @@ bool Inserter::onOpenSegment(Vec2 a, Vec2 b, Vec2 p) const {
 
 // Sign of "the new vertex V[c] lies inside the circle of the triangle across the edge opposite
 // c": +1 flip, 0 cocircular (no flip), -1 Delaunay (also for a boundary edge).
-int Inserter::inCircleSign(std::int32_t c) const {
+// Inlined: the flip loop runs it nine times per point.
+[[gnu::always_inline]] inline int Inserter::inCircleSign(std::int32_t c) const {
     const std::int32_t d = m_mesh.O[c];
     if (d == kNone) return -1;
     const auto& G = m_mesh.G;
@@ -434,18 +435,19 @@ void Inserter::beginLocate() {
 // the edge opposite corner e, its third vertex w = V[e] is left or right of L: L leaves through
 // the edge on the far side of w (c.l or c.r in the paper). A vertex exactly on L counts as left,
 // the same as moving L an infinitesimal amount to the right, so every decision stays consistent.
-bool Inserter::walkStep() {
+// One step of the walk on a copy of its state (the batch path keeps it in registers while it
+// walks many steps; walkStep() does one and stores it back).
+[[gnu::always_inline]] inline bool Inserter::walkOnce(WalkState& w, Vec2 p) {
     const auto& G = m_mesh.G;
     const auto& V = m_mesh.V;
     const auto& O = m_mesh.O;
-    const Vec2 p = currentPoint();
-    const std::int32_t t = m_ctl.walkTri;
+    const std::int32_t t = w.tri;
     const std::int32_t c0 = 3 * t;
     auto moveTo = [&](std::int32_t corner, bool keepEntry) {
         const std::int32_t o = O[corner];
-        m_ctl.walkTri = tri(o);
-        m_ctl.walkEntry = keepEntry ? o : kNone;
-        ++m_ctl.walkSteps;
+        w.tri = tri(o);
+        w.entry = keepEntry ? o : kNone;
+        ++w.steps;
         return false;
     };
     // The walk ends in t: keep the signs it already knows for classify().
@@ -472,9 +474,9 @@ bool Inserter::walkStep() {
 
     // We entered t across the edge opposite walkEntry because p is strictly beyond it: seen
     // from t, p is strictly inside that edge (orient2d is exact, hence antisymmetric).
-    const std::int32_t entry = m_ctl.walkEntry;
-    if (m_ctl.straight && entry != kNone) {
-        const bool left = orient2d(m_ctl.walkOrigin, p, G[V[entry]]) >= 0;
+    const std::int32_t entry = w.entry;
+    if (w.straight && entry != kNone) {
+        const bool left = orient2d(w.origin, p, G[V[entry]]) >= 0;
         // Left: L leaves through the edge p(e)->e (opposite n(e)); right: e->n(e) (opposite p(e)).
         const std::int32_t exitCorner = left ? next(entry) : prev(entry);
         const Vec2 from = G[V[next(exitCorner)]], to = G[V[prev(exitCorner)]];
@@ -488,7 +490,7 @@ bool Inserter::walkStep() {
     // of p decides (plus three for q and three for the sides of L).
     Vec2 q{};
     bool qInside = false;
-    if (m_ctl.straight) {
+    if (w.straight) {
         const Vec2 a = G[V[c0]], b = G[V[c0 + 1]], c = G[V[c0 + 2]];
         q = {a.x / 3 + b.x / 3 + c.x / 3, a.y / 3 + b.y / 3 + c.y / 3};
         qInside = orient2d(a, b, q) > 0 && orient2d(b, c, q) > 0 && orient2d(c, a, q) > 0;
@@ -501,7 +503,7 @@ bool Inserter::walkStep() {
                     const std::int32_t c = c0 + k;
                     const int s = orient2d(G[V[next(c)]], G[V[prev(c)]], p);
                     if (s >= 0) return found(c, s, kNone, 0, kNone, 0);
-                    m_ctl.walkOrigin = q;
+                    w.origin = q;
                     return moveTo(c, true);
                 }
             }
@@ -517,14 +519,40 @@ bool Inserter::walkStep() {
         side[k] = orient2d(G[V[next(c)]], G[V[prev(c)]], p);
     }
     if (side[0] >= 0 && side[1] >= 0 && side[2] >= 0) return found(c0, side[0], c0 + 1, side[1], c0 + 2, side[2]);
-    if (m_ctl.straight) {
-        if (qInside) m_ctl.walkOrigin = q;
-        m_ctl.straight = false;  // needle triangle or a degenerate case: walk by visibility
+    if (w.straight) {
+        if (qInside) w.origin = q;
+        w.straight = false;  // needle triangle or a degenerate case: walk by visibility
     }
     for (int k = 0; k < 3; ++k) {
         if (side[k] < 0) return moveTo(c0 + k, true);
     }
     return true;
+}
+
+Inserter::WalkState Inserter::walkState() const {
+    return {m_ctl.walkTri, m_ctl.walkEntry, m_ctl.walkSteps, m_ctl.straight, m_ctl.walkOrigin};
+}
+
+void Inserter::setWalkState(const WalkState& w) {
+    m_ctl.walkTri = w.tri;
+    m_ctl.walkEntry = w.entry;
+    m_ctl.walkSteps = w.steps;
+    m_ctl.straight = w.straight;
+    m_ctl.walkOrigin = w.origin;
+}
+
+bool Inserter::walkStep() {
+    WalkState w = walkState();
+    const bool found = walkOnce(w, currentPoint());
+    setWalkState(w);
+    return found;
+}
+
+void Inserter::walkToTarget() {
+    WalkState w = walkState();
+    const Vec2 p = currentPoint();
+    while (!walkOnce(w, p)) {}
+    setWalkState(w);
 }
 
 void Inserter::classify() {
@@ -864,7 +892,7 @@ void Inserter::run() {
         for (; m_ctl.cursor < n; ++m_ctl.cursor) {
             beginLocate();
             while (true) {
-                while (!walkStep()) {}
+                walkToTarget();
                 classify();
                 if (m_ctl.where != Where::None) break;
                 m_ctl.straight = false;

@@ -173,7 +173,19 @@ private:
     void collectDuplicatesWithoutMesh();  // all points collinear: report equal points anyway
     std::vector<std::int32_t> virtualTriangles() const;  // sorted ids of triangles to drop
     void beginLocate();
-    bool walkStep();   // one step of the walk; true when the walk has found the triangle
+    // The walk's part of Control, as locals while it runs.
+    struct WalkState {
+        std::int32_t tri;
+        std::int32_t entry;
+        std::int32_t steps;
+        bool straight;
+        Vec2 origin;
+    };
+    WalkState walkState() const;
+    void setWalkState(const WalkState& w);
+    bool walkOnce(WalkState& w, Vec2 p);  // one step; true when w.tri contains p
+    bool walkStep();      // one step of the walk; true when the walk has found the triangle
+    void walkToTarget();  // walkStep() until it returns true, with the state in registers
     void classify();   // sets where / whereCorner for walkTri
     int inCircleSign(std::int32_t c) const;  // is V[c] inside the circle across the edge?
     bool onOpenSegment(Vec2 a, Vec2 b, Vec2 p) const;
