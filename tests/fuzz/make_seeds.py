@@ -132,6 +132,19 @@ LESSON_BAD = {
 }
 
 
+# trace_diff: the first byte holds the diff options (bit 0 all ops, bit 1 corners); the rest is
+# a student's trace. Our own trace seeds (from dtlab trace) are added in main.
+TRACE_DIFF = {
+    "minimal": (0, '{"op":"Start","triangles":[[0,0,1,2]]}\n{"op":"Split","triangles":[[0,0,1,4],[1,1,2,4],[2,2,0,4]]}\n'),
+    "huge_triangle": (0, '{"op":"Start","triangles":[[2147483647,0,1,2]]}\n'),
+    "huge_corner": (2, '{"op":"Start","changes":[["V",536870912,-1,0]]}\n'),
+    "negative_vertex": (0, '{"op":"Split","triangles":[[0,-5,1,2]]}\n'),
+    "finalize_empty": (1, '{"op":"Start","triangles":[[0,0,1,2]]}\n{"op":"Finalize"}\n'),
+    "no_op": (0, '{"triangles":[]}\n'),
+    "not_json": (0, "Split 0 1 2\n"),
+}
+
+
 def lattice_circle(r):
     return [(x, y) for x in range(-r, r + 1) for y in range(-r, r + 1) if x * x + y * y == r * r]
 
@@ -225,6 +238,13 @@ def main():
         if name.endswith(".toml"):
             with open(os.path.join(lessons, name), "rb") as f:
                 write("lesson", name, f.read())
+    for name, (flags, text) in TRACE_DIFF.items():
+        write("trace_diff", name, bytes([flags]) + text.encode())
+    for name in ("exact_walk.jsonl", "super_naive.jsonl"):
+        ours = os.path.join(CORPUS, "trace", name)
+        if os.path.exists(ours):
+            with open(ours, "rb") as f:
+                write("trace_diff", "ours_" + name, bytes([2]) + f.read())
     for name, data in engine_seeds().items():
         write("engine", name, data)
     if args.dtlab:
