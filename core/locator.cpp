@@ -39,11 +39,15 @@ Bounds Bounds::of(const std::vector<Vec2>& points) {
 
 namespace {
 
-// cells / (2 * halfWidth), kept finite: a subnormal extent (points near 1e-310) overflows the
-// quotient to inf, and inf * 0 gives NaN cell coordinates, whose conversion to int is undefined
-// (found by fuzz_engine). Capped, offsets within the box (<= halfWidth) still map below cells.
+// Cells per unit of half-coordinates: the maps take (x/2 - lo/2), at most halfWidth inside the
+// box, to [0, cells]; so the scale is cells / halfWidth. (It was cells / (2 * halfWidth), which
+// mapped the box onto the lower-left quarter of the cells: the ID buffers used a quarter of
+// their pixels and the grid a quarter of its cells.) Kept finite: a subnormal extent (points
+// near 1e-310) overflows the quotient to inf, and inf * 0 gives NaN cell coordinates, whose
+// conversion to int is undefined (found by fuzz_engine). Capped, offsets within the box
+// (<= halfWidth) still map below cells.
 double cellScale(double cells, double halfWidth) {
-    return halfWidth > 0 ? std::min(cells / 2 / halfWidth, std::numeric_limits<double>::max()) : 0.0;
+    return halfWidth > 0 ? std::min(cells / halfWidth, std::numeric_limits<double>::max()) : 0.0;
 }
 
 // Maps world coordinates into [0, cells) per axis without overflowing for extreme inputs.
