@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 
 namespace dlab {
 
@@ -14,6 +15,8 @@ const char* toString(LocatorKind kind) {
         case LocatorKind::Walk: return "walk";
         case LocatorKind::Grid: return "grid";
         case LocatorKind::IdBufferCpu: return "idbuffer-cpu";
+        case LocatorKind::IdBufferGl: return "idbuffer-gl";
+        case LocatorKind::IdBufferGlBatched: return "idbuffer-gl-batched";
     }
     return "?";
 }
@@ -23,7 +26,13 @@ std::optional<LocatorKind> parseLocatorKind(std::string_view name) {
     if (name == "walk") return LocatorKind::Walk;
     if (name == "grid") return LocatorKind::Grid;
     if (name == "idbuffer-cpu") return LocatorKind::IdBufferCpu;
+    if (name == "idbuffer-gl") return LocatorKind::IdBufferGl;
+    if (name == "idbuffer-gl-batched") return LocatorKind::IdBufferGlBatched;
     return std::nullopt;
+}
+
+bool needsGl(LocatorKind kind) {
+    return kind == LocatorKind::IdBufferGl || kind == LocatorKind::IdBufferGlBatched;
 }
 
 Bounds Bounds::of(const std::vector<Vec2>& points) {
@@ -50,18 +59,31 @@ double cellScale(double cells, double halfWidth) {
     return halfWidth > 0 ? std::min(cells / halfWidth, std::numeric_limits<double>::max()) : 0.0;
 }
 
-// Maps world coordinates into [0, cells) per axis without overflowing for extreme inputs.
-struct CellMap {
-    Vec2 lo{}, scale{0, 0};
-    void init(const Bounds& b, double cellsX, double cellsY) {
-        lo = b.lo;
-        const double wx = b.hi.x / 2 - b.lo.x / 2, wy = b.hi.y / 2 - b.lo.y / 2;
-        scale.x = cellScale(cellsX, wx);
-        scale.y = cellScale(cellsY, wy);
-    }
-    double fx(double x) const { return (x / 2 - lo.x / 2) * scale.x; }
-    double fy(double y) const { return (y / 2 - lo.y / 2) * scale.y; }
-};
+}  // namespace
+
+void PixelMap::init(const Bounds& b, double cellsX, double cellsY) {
+    lo = b.lo;
+    const double wx = b.hi.x / 2 - b.lo.x / 2, wy = b.hi.y / 2 - b.lo.y / 2;
+    scale.x = cellScale(cellsX, wx);
+    scale.y = cellScale(cellsY, wy);
+}
+
+Vec2 PixelMap::centre(int i, int j) const {
+    // Inverse of fx = (x/2 - lo/2) * scale, kept in halves like the forward map.
+    const double x = scale.x > 0 ? 2.0 * ((i + 0.5) / scale.x + lo.x / 2) : lo.x;
+    const double y = scale.y > 0 ? 2.0 * ((j + 0.5) / scale.y + lo.y / 2) : lo.y;
+    return {x, y};
+}
+
+bool PixelMap::pixel(Vec2 p, int w, int h, int& i, int& j) const {
+    const double x = fx(p.x), y = fy(p.y);
+    if (!(x >= 0 && y >= 0)) return false;
+    i = x < w - 1 ? static_cast<int>(x) : w - 1;  // compared first: no out-of-range conversion
+    j = y < h - 1 ? static_cast<int>(y) : h - 1;
+    return true;
+}
+
+namespace {
 
 // The paper's naive walk: always start from the same triangle.
 class NaiveLocator final : public Locator {
@@ -110,7 +132,7 @@ private:
         return static_cast<std::size_t>(j) * m_side + i;
     }
     Bounds m_bounds{};
-    CellMap m_map;
+    PixelMap m_map;
     int m_side = 0;
     std::vector<std::int32_t> m_cells;
 };
@@ -122,29 +144,18 @@ IdBufferCpu::IdBufferCpu(int width, int height)
 
 void IdBufferCpu::reset(const LocatorContext& ctx, const Bounds& bounds) {
     m_ctx = ctx;
-    m_lo = bounds.lo;
     // One pixel column per 1/width of the box; half-differences avoid overflow at 1e308.
-    const double wx = bounds.hi.x / 2 - bounds.lo.x / 2, wy = bounds.hi.y / 2 - bounds.lo.y / 2;
-    m_scale.x = cellScale(m_width, wx);
-    m_scale.y = cellScale(m_height, wy);
+    m_map.init(bounds, m_width, m_height);
     m_pixels.assign(static_cast<std::size_t>(m_width) * m_height, kNone);
     m_painted = 0;
     for (std::int32_t t = 0; t < ctx.mesh->numTriangles(); ++t) paintTriangle(t);
 }
 
-Vec2 IdBufferCpu::pixelCentre(int i, int j) const {
-    // Inverse of fx = (x/2 - lo/2) * scale, kept in halves like the forward map.
-    const double x = m_scale.x > 0 ? 2.0 * ((i + 0.5) / m_scale.x + m_lo.x / 2) : m_lo.x;
-    const double y = m_scale.y > 0 ? 2.0 * ((j + 0.5) / m_scale.y + m_lo.y / 2) : m_lo.y;
-    return {x, y};
-}
+Vec2 IdBufferCpu::pixelCentre(int i, int j) const { return m_map.centre(i, j); }
 
 std::int32_t IdBufferCpu::pixelAt(Vec2 p) const {
-    const double fx = (p.x / 2 - m_lo.x / 2) * m_scale.x;
-    const double fy = (p.y / 2 - m_lo.y / 2) * m_scale.y;
-    if (!(fx >= 0 && fy >= 0)) return kNone;
-    const int i = std::min(static_cast<int>(fx), m_width - 1);
-    const int j = std::min(static_cast<int>(fy), m_height - 1);
+    int i = 0, j = 0;
+    if (!m_map.pixel(p, m_width, m_height, i, j)) return kNone;
     return m_pixels[static_cast<std::size_t>(j) * m_width + i];
 }
 
@@ -171,8 +182,8 @@ void IdBufferCpu::paintTriangle(std::int32_t t) {
     double px[3], py[3];
     for (int k = 0; k < 3; ++k) {
         const Vec2 g = m.G[m.V[3 * t + k]];
-        px[k] = (g.x / 2 - m_lo.x / 2) * m_scale.x;
-        py[k] = (g.y / 2 - m_lo.y / 2) * m_scale.y;
+        px[k] = m_map.fx(g.x);
+        py[k] = m_map.fy(g.y);
     }
     const double minx = std::min({px[0], px[1], px[2]}), maxx = std::max({px[0], px[1], px[2]});
     const double miny = std::min({py[0], py[1], py[2]}), maxy = std::max({py[0], py[1], py[2]});
@@ -220,6 +231,11 @@ std::unique_ptr<Locator> makeLocator(LocatorKind kind, const LocatorOptions& opt
         case LocatorKind::Grid: return std::make_unique<GridLocator>();
         case LocatorKind::IdBufferCpu:
             return std::make_unique<IdBufferCpu>(options.idBufferWidth, options.idBufferHeight);
+        case LocatorKind::IdBufferGl:
+        case LocatorKind::IdBufferGlBatched:
+            throw std::invalid_argument(std::string("locator ") + toString(kind) +
+                                        " needs a GL context: build it with ui/idbuffer_gl.h on one "
+                                        "(dtlab and the GUI do; core alone cannot)");
     }
     return nullptr;
 }

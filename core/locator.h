@@ -14,7 +14,9 @@
 
 namespace dlab {
 
-enum class LocatorKind : std::uint8_t { Naive, Walk, Grid, IdBufferCpu };
+// IdBufferGl / IdBufferGlBatched live in ui/ (ui/idbuffer_gl.h): they need a GL context, so
+// makeLocator() refuses them and the caller (GUI, dtlab) builds them on its context.
+enum class LocatorKind : std::uint8_t { Naive, Walk, Grid, IdBufferCpu, IdBufferGl, IdBufferGlBatched };
 
 const char* toString(LocatorKind kind);
 std::optional<LocatorKind> parseLocatorKind(std::string_view name);
@@ -73,9 +75,28 @@ protected:
 struct LocatorOptions {
     int idBufferWidth = 1600;   // the paper's box
     int idBufferHeight = 1600;
+    int idBufferBatch = 256;    // idbuffer-gl-batched: points whose pixels one readback fetches
 };
 
+bool needsGl(LocatorKind kind);
+
+// Throws std::invalid_argument for the GL kinds (core has no GL context to draw on).
 std::unique_ptr<Locator> makeLocator(LocatorKind kind, const LocatorOptions& options = {});
+
+// World -> pixel coordinates of an ID buffer of cells.x by cells.y pixels over a box: pixel
+// (i, j) covers [i, i+1) x [j, j+1) in pixel coordinates, row 0 at the lowest y. Half-differences
+// keep the map finite for boxes near the double range; shared by the CPU and GL ID buffers so
+// that both paint the same picture.
+struct PixelMap {
+    Vec2 lo{}, scale{0, 0};
+    void init(const Bounds& bounds, double cellsX, double cellsY);
+    double fx(double x) const { return (x / 2 - lo.x / 2) * scale.x; }
+    double fy(double y) const { return (y / 2 - lo.y / 2) * scale.y; }
+    // World position of the centre of pixel (i, j).
+    Vec2 centre(int i, int j) const;
+    // The pixel of p, clamped to [0, w) x [0, h); false when p lies left of or below the box.
+    bool pixel(Vec2 p, int w, int h, int& i, int& j) const;
+};
 
 // The CPU colour-ID buffer: the paper's idea without GL, and the reference the GL version is
 // tested against. Pixel (i, j) covers world [lo + i*dx, lo + (i+1)*dx) x [...]; a pixel holds
@@ -102,7 +123,7 @@ public:
 private:
     int m_width, m_height;
     LocatorContext m_ctx;
-    Vec2 m_lo{}, m_scale{1, 1};
+    PixelMap m_map;
     std::vector<std::int32_t> m_pixels;
     std::uint64_t m_painted = 0;
 };

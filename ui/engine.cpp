@@ -1,6 +1,8 @@
 // The GUI's run: restart on new points or options, step, and derive what the canvas highlights.
 #include "ui/engine.h"
 
+#include "ui/idbuffer_gl.h"
+
 #include <algorithm>
 #include <exception>
 
@@ -17,6 +19,15 @@ Engine::Engine() {
 
 Engine::~Engine() = default;
 
+void Engine::attachGl(std::shared_ptr<GlContext> gl) { m_gl = std::move(gl); }
+
+void Engine::detachGl() {
+    if (m_gl) m_gl->lose();
+    m_gl.reset();
+}
+
+bool Engine::hasGl() const { return m_gl && m_gl->alive(); }
+
 bool Engine::reset(std::vector<Vec2> points, const InsertOptions& options, std::string& error) {
     return resetAt(std::move(points), options, 0, error);
 }
@@ -24,14 +35,27 @@ bool Engine::reset(std::vector<Vec2> points, const InsertOptions& options, std::
 bool Engine::resetAt(std::vector<Vec2> points, const InsertOptions& options, std::size_t position,
                      std::string& error) {
     std::unique_ptr<Inserter> ins;
+    IdBufferGl* gl = nullptr;
     try {
-        ins = std::make_unique<Inserter>(points, options);
+        std::unique_ptr<Locator> locator;
+        if (needsGl(options.locator)) {
+            if (!hasGl()) {
+                error = std::string(toString(options.locator)) + " needs a GL context, and this view has none";
+                return false;
+            }
+            auto made = std::make_unique<IdBufferGl>(m_gl, IdBufferGlOptions::from(options.locator, options.locatorOptions));
+            gl = made.get();
+            locator = std::move(made);
+        }
+        ins = std::make_unique<Inserter>(points, options, std::move(locator));
+        if (gl) gl->followOrder(*ins);  // before any step: the batched readback reads ahead
     } catch (const std::exception& e) {
         error = e.what();
         return false;
     }
     m_journal.reset();
     m_ins = std::move(ins);
+    m_idBufferGl = gl;
     m_points = std::move(points);
     m_options = options;
     if (m_points.size() > kHistoryLimit) {

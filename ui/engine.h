@@ -14,6 +14,9 @@
 
 namespace dlab::ui {
 
+class GlContext;
+class IdBufferGl;
+
 // An edge as two vertex ids (the canvas draws it from G).
 struct VertexEdge {
     std::int32_t a = kNone, b = kNone;
@@ -36,6 +39,15 @@ public:
     bool reset(std::vector<Vec2> points, const InsertOptions& options, std::string& error);
     // As reset, then replays to `position` (clamped to the end): the same step after an edit.
     bool resetAt(std::vector<Vec2> points, const InsertOptions& options, std::size_t position, std::string& error);
+
+    // The GL context that the GL ID-buffer locators draw on (the window's, or OSMesa headless).
+    // Without one, idbuffer-gl is refused with a message. The owner of the context detaches it
+    // before destroying the context; a GL locator still running then stops drawing.
+    void attachGl(std::shared_ptr<GlContext> gl);
+    void detachGl();
+    bool hasGl() const;
+    // The run's GL ID buffer when the locator is one, else nullptr (the ID-buffer view panel).
+    IdBufferGl* idBufferGl() const { return m_idBufferGl; }
 
     const std::vector<Vec2>& points() const { return m_points; }
     const InsertOptions& options() const { return m_options; }
@@ -85,6 +97,8 @@ private:
 
     std::vector<Vec2> m_points;
     InsertOptions m_options;
+    std::shared_ptr<GlContext> m_gl;
+    IdBufferGl* m_idBufferGl = nullptr;  // owned by m_ins
     std::unique_ptr<Inserter> m_ins;
     std::unique_ptr<Journal> m_journal;
     std::vector<std::int32_t> m_rank;  // position of each input point in the insertion order

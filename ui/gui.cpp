@@ -1,6 +1,8 @@
 // Gui: ImGui context, fonts (DejaVu when installed), light theme, frames and PNG screenshots.
 #include "ui/gui.h"
 
+#include "ui/gl_api.h"
+
 #include <GL/gl.h>
 #include <backends/imgui_impl_opengl2.h>
 #include <imgui.h>
@@ -39,12 +41,16 @@ Gui::Gui(Platform& platform, AppState& state) : m_platform(platform), m_state(st
     io.ConfigWindowsMoveFromTitleBarOnly = true;
     m_platform.initImGui();
     ImGui_ImplOpenGL2_Init();
+    // The GL ID-buffer locators draw on this context (an old driver without FBOs: they are refused).
+    std::string glError;
+    if (auto gl = GlContext::load(m_platform, glError)) m_state.engine.attachGl(std::move(gl));
     loadFonts();
     applyTheme();
     m_lastTime = nowMs();
 }
 
 Gui::~Gui() {
+    m_state.engine.detachGl();  // the context may go away with us
     ImGui_ImplOpenGL2_Shutdown();
     m_platform.shutdownImGui();
     ImGui::DestroyContext();
