@@ -3,10 +3,12 @@
 #pragma once
 
 #include "core/inserter.h"
+#include "ui/idbuffer_gl.h"
 
 #include <CLI/CLI.hpp>
 
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -19,9 +21,19 @@ struct EngineFlags {
     std::string boundary = "exact";
     std::uint64_t seed = 1;
     int idBufferSize = 1600;
+    std::string readback;  // GL ID buffer: one | batched | pipelined ("": as --locate says)
+    int batch = 256;       // GL ID buffer, batched: points per readback
     void add(CLI::App& cmd);
     InsertOptions options() const;
+    ui::IdBufferGlOptions glOptions() const;
+    // An Inserter for these flags. The GL locators (--locate idbuffer-gl[-batched]) need a GL
+    // context, which core cannot make: they are built here on the headless OSMesa context.
+    std::unique_ptr<Inserter> makeInserter(std::vector<Vec2> points) const;
 };
+
+// The process' headless GL context (OSMesa, made current on first use); fail()s when there is
+// none. GL locators on it must be destroyed before main returns.
+std::shared_ptr<ui::GlContext> headlessGl();
 
 // Loads a point file; on bad input prints "dtlab: error: FILE:LINE: what" and throws Exit.
 struct LoadedPoints {
@@ -48,5 +60,6 @@ void addBench(CLI::App& app);
 void addLesson(CLI::App& app);     // dtlab_lesson.cpp
 void addDiffTrace(CLI::App& app);  // dtlab_diff_trace.cpp
 void addRender(CLI::App& app);
+void addTable1(CLI::App& app);     // dtlab_table1.cpp
 
 }  // namespace dlab::cli

@@ -21,8 +21,8 @@ struct DemoArgs {
 };
 
 void runDemo(const DemoArgs& args) {
-    InsertOptions options = args.engine.options();
-    Inserter ins(demoPoints(), options);
+    const auto made = args.engine.makeInserter(demoPoints());  // GL locators need a context
+    Inserter& ins = *made;
     const Mesh empty = ins.mesh();
     Journal journal(ins);
     std::error_code ec;

@@ -34,7 +34,8 @@ void runTriangulate(const TriangulateArgs& args) {
     const int base = loaded.indexBase;
     const std::size_t n = loaded.points.size();
     const auto t0 = std::chrono::steady_clock::now();
-    Inserter ins(std::move(loaded.points), args.engine.options());
+    const auto made = args.engine.makeInserter(std::move(loaded.points));  // GL locators need a context
+    Inserter& ins = *made;
     ins.run();
     const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     const Mesh& m = ins.mesh();
