@@ -19,6 +19,7 @@ int main(int argc, char** argv) {
     dlab::cli::addLesson(app);
     dlab::cli::addDiffTrace(app);
     dlab::cli::addRender(app);
+    dlab::cli::addTable1(app);
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {

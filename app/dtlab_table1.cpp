@@ -1,0 +1,534 @@
+// dtlab table1: the paper's experiment (Table 1, Figure 8) reproduced on OSMesa: uniform random
+// points in the 1600 x 1600 box, the naive walk against the colour-ID buffer, with our other
+// locators side by side; a log-log plot drawn by our own renderer (ImGui draw lists on OSMesa).
+#include "app/dtlab_common.h"
+
+#include "core/generators.h"
+#include "ui/gui.h"
+#include "ui/idbuffer_gl.h"
+
+#include <backends/imgui_impl_opengl2.h>
+#include <imgui.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <sstream>
+
+namespace dlab::cli {
+
+namespace {
+
+// ============================================================================================
+// [SECTION] The methods and the paper's numbers
+// ============================================================================================
+
+struct Method {
+    const char* name;  // the CSV column: exactly these names
+    LocatorKind locator;
+    OrderKind order;
+};
+
+// Input order is the paper's (uniform random points: input order is a random order).
+constexpr Method kMethods[] = {
+    {"naive", LocatorKind::Naive, OrderKind::Input},
+    {"idbuffer-gl", LocatorKind::IdBufferGl, OrderKind::Input},
+    {"idbuffer-gl-batched", LocatorKind::IdBufferGlBatched, OrderKind::Input},
+    {"idbuffer-cpu", LocatorKind::IdBufferCpu, OrderKind::Input},
+    {"walk", LocatorKind::Walk, OrderKind::Input},
+    {"best", LocatorKind::Walk, OrderKind::Brio},
+};
+constexpr int kNumMethods = static_cast<int>(std::size(kMethods));
+
+// Table 1 of the paper (Core 2 Duo 1.6 GHz, GeForce 8400M), ms; see shared/docs/PAPER-NOTES.md.
+const std::map<std::size_t, std::pair<double, double>> kPaper = {
+    {1024, {18, 67}},       {2048, {47, 125}},     {4096, {65, 219}},       {8192, {516, 453}},
+    {16384, {1515, 953}},   {32768, {4531, 1959}}, {65536, {13063, 3422}},  {131072, {36766, 7469}},
+};
+
+struct Table1Args {
+    std::string sizes = "1024,2048,4096,8192,16384,32768,65536,131072";
+    int repeat = 3;
+    std::string csv, png;
+    int batch = 256;
+    std::string readback = "batched";
+    std::string sweep;  // batch sizes to try at the largest n
+    int idBufferSize = 1600;
+    std::uint64_t seed = 1;
+};
+
+// ============================================================================================
+// [SECTION] Timing runs
+// ============================================================================================
+
+struct Run {
+    double ms = 0;
+    LocatorStats loc;
+    ui::IdBufferGlStats gl;
+};
+
+ui::IdBufferGlOptions glOptionsFor(const Method& m, const Table1Args& a, int batch) {
+    ui::IdBufferGlOptions g;
+    g.width = g.height = a.idBufferSize;
+    g.batch = batch;
+    g.readback = m.locator == LocatorKind::IdBufferGl ? ui::GlReadback::OnePixel
+                 : a.readback == "pipelined"          ? ui::GlReadback::Pipelined
+                                                      : ui::GlReadback::Batched;
+    return g;
+}
+
+// One triangulation, timed from the locator's creation (the GL buffer's allocation and clear,
+// like the CPU buffer's in its reset) to the end of the run; the points are copied before.
+Run runOnce(const std::vector<Vec2>& points, const Method& m, const Table1Args& a, int batch) {
+    std::vector<Vec2> copy = points;
+    InsertOptions o;
+    o.locator = m.locator;
+    o.order = m.order;
+    o.seed = a.seed;
+    o.locatorOptions.idBufferWidth = o.locatorOptions.idBufferHeight = a.idBufferSize;
+    o.locatorOptions.idBufferBatch = batch;
+    Run r;
+    const auto t0 = std::chrono::steady_clock::now();
+    std::unique_ptr<Locator> locator;
+    ui::IdBufferGl* gl = nullptr;
+    if (needsGl(m.locator)) {
+        auto made = std::make_unique<ui::IdBufferGl>(headlessGl(), glOptionsFor(m, a, batch));
+        gl = made.get();
+        locator = std::move(made);
+    }
+    Inserter ins(std::move(copy), o, std::move(locator));
+    if (gl) gl->followOrder(ins);
+    ins.run();
+    r.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    if (ins.stats().inserted + ins.stats().duplicates != static_cast<std::int64_t>(points.size())) {
+        fail(std::string(m.name) + ": the run lost points");
+    }
+    r.loc = ins.locator()->stats();
+    if (gl) r.gl = gl->glStats();
+    return r;
+}
+
+double median(std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    const std::size_t k = v.size();
+    return k == 0 ? 0.0 : k % 2 ? v[k / 2] : (v[k / 2 - 1] + v[k / 2]) / 2;
+}
+
+// The run whose time is the median (its statistics go into the second table).
+const Run& medianRun(const std::vector<Run>& runs) {
+    std::vector<std::size_t> idx(runs.size());
+    for (std::size_t i = 0; i < idx.size(); ++i) idx[i] = i;
+    std::sort(idx.begin(), idx.end(), [&](std::size_t x, std::size_t y) { return runs[x].ms < runs[y].ms; });
+    return runs[idx[(idx.size() - 1) / 2]];
+}
+
+std::vector<std::size_t> parseSizes(const std::string& text) {
+    std::vector<std::size_t> sizes;
+    std::stringstream ss(text);
+    std::string item;
+    while (std::getline(ss, item, ',')) {
+        std::size_t used = 0;
+        unsigned long long v = 0;
+        try {
+            v = std::stoull(item, &used);
+        } catch (const std::exception&) {
+            used = 0;
+        }
+        if (used != item.size() || item.empty() || v < 3 || v > (1u << 20)) {
+            fail("--sizes: \"" + item + "\" is not a point count between 3 and 1048576", 2);
+        }
+        sizes.push_back(static_cast<std::size_t>(v));
+    }
+    if (sizes.empty()) fail("--sizes: give at least one point count", 2);
+    return sizes;
+}
+
+std::string fmtMs(double ms) {
+    char b[32];
+    std::snprintf(b, sizeof b, ms >= 100 ? "%.0f" : ms >= 10 ? "%.1f" : "%.2f", ms);
+    return b;
+}
+
+// ============================================================================================
+// [SECTION] The plot (Figure 8): ImGui draw lists rendered into a framebuffer object
+// ============================================================================================
+
+struct Series {
+    std::string name;
+    ImU32 colour;
+    bool paper;  // dashed, hollow markers
+    std::vector<std::pair<double, double>> points;  // (n, ms)
+};
+
+void dashedLine(ImDrawList* dl, ImVec2 a, ImVec2 b, ImU32 c, float width) {
+    const float len = std::hypot(b.x - a.x, b.y - a.y);
+    const float dash = 9, gap = 6;
+    for (float s = 0; s < len; s += dash + gap) {
+        const float e = std::min(len, s + dash);
+        dl->AddLine(ImVec2(a.x + (b.x - a.x) * s / len, a.y + (b.y - a.y) * s / len),
+                    ImVec2(a.x + (b.x - a.x) * e / len, a.y + (b.y - a.y) * e / len), c, width);
+    }
+}
+
+void drawPlot(ImDrawList* dl, ImFont* font, ImFont* small, float W, float H, const std::vector<Series>& series,
+              const std::string& title, const std::string& subtitle) {
+    dl->AddRectFilled(ImVec2(0, 0), ImVec2(W, H), IM_COL32(255, 255, 255, 255));
+    const float left = 110, right = W - 40, top = 90, bottom = H - 90;
+    double xmin = 1e300, xmax = 0, ymin = 1e300, ymax = 0;
+    for (const Series& s : series) {
+        for (auto [x, y] : s.points) {
+            xmin = std::min(xmin, x);
+            xmax = std::max(xmax, x);
+            ymin = std::min(ymin, y);
+            ymax = std::max(ymax, y);
+        }
+    }
+    const double lx0 = std::floor(std::log2(xmin)) - 0.25, lx1 = std::ceil(std::log2(xmax)) + 0.25;
+    const double ly0 = std::floor(std::log10(ymin)), ly1 = std::ceil(std::log10(ymax));
+    auto X = [&](double n) { return static_cast<float>(left + (std::log2(n) - lx0) / (lx1 - lx0) * (right - left)); };
+    auto Y = [&](double ms) { return static_cast<float>(bottom - (std::log10(ms) - ly0) / (ly1 - ly0) * (bottom - top)); };
+    const ImU32 ink = IM_COL32(30, 30, 30, 255), grid = IM_COL32(225, 225, 225, 255), fine = IM_COL32(242, 242, 242, 255);
+    // Title.
+    dl->AddText(font, 26, ImVec2(left, 18), ink, title.c_str());
+    dl->AddText(small, 17, ImVec2(left, 52), IM_COL32(90, 90, 90, 255), subtitle.c_str());
+    // Grid and ticks: decades (and 2..9 in between) on y, powers of two on x.
+    char label[32];
+    for (int d = static_cast<int>(ly0); d <= static_cast<int>(ly1); ++d) {
+        for (int k = 2; k <= 9 && d < ly1; ++k) {
+            const float y = Y(k * std::pow(10.0, d));
+            dl->AddLine(ImVec2(left, y), ImVec2(right, y), fine);
+        }
+        const float y = Y(std::pow(10.0, d));
+        dl->AddLine(ImVec2(left, y), ImVec2(right, y), grid);
+        dl->AddLine(ImVec2(left - 6, y), ImVec2(left, y), ink);
+        if (d >= 0) std::snprintf(label, sizeof label, "%.0f", std::pow(10.0, d));
+        else std::snprintf(label, sizeof label, "%g", std::pow(10.0, d));
+        const ImVec2 ts = small->CalcTextSizeA(17, 1e9f, 0, label);
+        dl->AddText(small, 17, ImVec2(left - 10 - ts.x, y - ts.y / 2), ink, label);
+    }
+    for (int e = static_cast<int>(std::ceil(lx0)); e <= static_cast<int>(std::floor(lx1)); ++e) {
+        const double n = std::ldexp(1.0, e);
+        const float x = X(n);
+        dl->AddLine(ImVec2(x, top), ImVec2(x, bottom), grid);
+        dl->AddLine(ImVec2(x, bottom), ImVec2(x, bottom + 6), ink);
+        if (n >= 1024 * 1024) std::snprintf(label, sizeof label, "%gM", n / 1048576);
+        else if (n >= 1024) std::snprintf(label, sizeof label, "%gK", n / 1024);
+        else std::snprintf(label, sizeof label, "%g", n);
+        const ImVec2 ts = small->CalcTextSizeA(17, 1e9f, 0, label);
+        dl->AddText(small, 17, ImVec2(x - ts.x / 2, bottom + 10), ink, label);
+    }
+    dl->AddRect(ImVec2(left, top), ImVec2(right, bottom), ink, 0, 0, 1.5f);
+    // Axis labels.
+    const char* xlabel = "number of points n (log scale; K = 1024)";
+    const ImVec2 xs = font->CalcTextSizeA(20, 1e9f, 0, xlabel);
+    dl->AddText(font, 20, ImVec2((left + right) / 2 - xs.x / 2, bottom + 40), ink, xlabel);
+    // The y label, one glyph under the other would be hard to read: write it rotated by hand.
+    const char* ylabel = "time (ms, log scale)";
+    {
+        const int vtxStart = dl->VtxBuffer.Size;
+        const ImVec2 ys = font->CalcTextSizeA(20, 1e9f, 0, ylabel);
+        const ImVec2 at(28, (top + bottom) / 2 + ys.x / 2);
+        dl->AddText(font, 20, at, ink, ylabel);
+        // Rotate the glyphs just added by -90 degrees around `at`.
+        for (int i = vtxStart; i < dl->VtxBuffer.Size; ++i) {
+            ImDrawVert& v = dl->VtxBuffer[i];
+            const float dx = v.pos.x - at.x, dy = v.pos.y - at.y;
+            v.pos = ImVec2(at.x + dy, at.y - dx);
+        }
+    }
+    // Series.
+    dl->PushClipRect(ImVec2(left, top), ImVec2(right, bottom), true);
+    for (const Series& s : series) {
+        for (std::size_t i = 0; i + 1 < s.points.size(); ++i) {
+            const ImVec2 a(X(s.points[i].first), Y(s.points[i].second));
+            const ImVec2 b(X(s.points[i + 1].first), Y(s.points[i + 1].second));
+            if (s.paper) dashedLine(dl, a, b, s.colour, 2.5f);
+            else dl->AddLine(a, b, s.colour, 2.5f);
+        }
+        for (auto [n, ms] : s.points) {
+            const ImVec2 c(X(n), Y(ms));
+            if (s.paper) dl->AddRect(ImVec2(c.x - 5, c.y - 5), ImVec2(c.x + 5, c.y + 5), s.colour, 0, 0, 2.0f);
+            else dl->AddCircleFilled(c, 5, s.colour);
+        }
+    }
+    dl->PopClipRect();
+    // Legend, top left inside the plot (the curves start low on the left).
+    float w = 0;
+    for (const Series& s : series) w = std::max(w, small->CalcTextSizeA(17, 1e9f, 0, s.name.c_str()).x);
+    const float lx = left + 16, ly = top + 14, row = 25;
+    dl->AddRectFilled(ImVec2(lx, ly), ImVec2(lx + w + 74, ly + row * series.size() + 12), IM_COL32(255, 255, 255, 235));
+    dl->AddRect(ImVec2(lx, ly), ImVec2(lx + w + 74, ly + row * series.size() + 12), IM_COL32(160, 160, 160, 255));
+    for (std::size_t i = 0; i < series.size(); ++i) {
+        const Series& s = series[i];
+        const float y = ly + 8 + row * i + row / 2;
+        if (s.paper) {
+            dashedLine(dl, ImVec2(lx + 10, y), ImVec2(lx + 50, y), s.colour, 2.5f);
+            dl->AddRect(ImVec2(lx + 25, y - 5), ImVec2(lx + 35, y + 5), s.colour, 0, 0, 2.0f);
+        } else {
+            dl->AddLine(ImVec2(lx + 10, y), ImVec2(lx + 50, y), s.colour, 2.5f);
+            dl->AddCircleFilled(ImVec2(lx + 30, y), 5, s.colour);
+        }
+        dl->AddText(small, 17, ImVec2(lx + 60, y - 10), ink, s.name.c_str());
+    }
+}
+
+// Renders the plot headlessly into a framebuffer object on the process' OSMesa context (ImGui's
+// OpenGL2 backend draws into whatever framebuffer is bound) and writes it as a PNG.
+void writePlot(const std::string& path, const std::vector<Series>& series, const std::string& title,
+               const std::string& subtitle) {
+    const int W = 1400, H = 900;
+    const auto gl = headlessGl();
+    const ui::GlApi& a = gl->api();
+    ImGuiContext* previous = ImGui::GetCurrentContext();
+    ImGuiContext* ctx = ImGui::CreateContext();
+    ImGui::SetCurrentContext(ctx);
+    ImGuiIO& io = ImGui::GetIO();
+    io.IniFilename = nullptr;
+    io.DisplaySize = ImVec2(W, H);
+    io.DeltaTime = 1.0f / 60;
+    ImFont* font = nullptr;
+    ImFont* small = nullptr;
+    const char* sans = "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf";
+    std::error_code ec;
+    if (std::filesystem::is_regular_file(sans, ec)) {
+        ImFontConfig cfg;
+        cfg.OversampleH = 3;
+        font = io.Fonts->AddFontFromFileTTF(sans, 26, &cfg);
+        small = io.Fonts->AddFontFromFileTTF(sans, 17, &cfg);
+    }
+    if (!font) {
+        font = io.Fonts->AddFontDefault();
+        small = font;
+    }
+    ImGui_ImplOpenGL2_Init();
+    ImGui_ImplOpenGL2_NewFrame();
+    ImGui::NewFrame();
+    drawPlot(ImGui::GetBackgroundDrawList(), font, small, W, H, series, title, subtitle);
+    ImGui::Render();
+
+    GLuint tex = 0, fbo = 0;
+    glGenTextures(1, &tex);
+    glBindTexture(GL_TEXTURE_2D, tex);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, W, H, 0, GL_RGBA, GL_UNSIGNED_BYTE, nullptr);
+    glBindTexture(GL_TEXTURE_2D, 0);
+    a.genFramebuffers(1, &fbo);
+    a.bindFramebuffer(GL_FRAMEBUFFER, fbo);
+    a.framebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, tex, 0);
+    glViewport(0, 0, W, H);
+    glClearColor(1, 1, 1, 1);
+    glClear(GL_COLOR_BUFFER_BIT);
+    ImGui_ImplOpenGL2_RenderDrawData(ImGui::GetDrawData());
+    std::vector<std::uint8_t> rgba(static_cast<std::size_t>(W) * H * 4);
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glReadPixels(0, 0, W, H, GL_RGBA, GL_UNSIGNED_BYTE, rgba.data());
+    a.bindFramebuffer(GL_FRAMEBUFFER, 0);
+    a.deleteFramebuffers(1, &fbo);
+    glDeleteTextures(1, &tex);
+    ImGui_ImplOpenGL2_Shutdown();
+    ImGui::DestroyContext(ctx);
+    ImGui::SetCurrentContext(previous);
+
+    const std::size_t row = static_cast<std::size_t>(W) * 4;  // GL rows start at the bottom
+    for (int y = 0; y < H / 2; ++y) {
+        std::swap_ranges(rgba.begin() + y * row, rgba.begin() + (y + 1) * row, rgba.begin() + (H - 1 - y) * row);
+    }
+    std::string error;
+    if (!ui::writePng(path, rgba, W, H, error)) fail(error);
+}
+
+// ============================================================================================
+// [SECTION] The command
+// ============================================================================================
+
+void runTable1(const Table1Args& args) {
+    const std::vector<std::size_t> sizes = parseSizes(args.sizes);
+    std::vector<int> sweep;
+    if (!args.sweep.empty()) {
+        for (std::size_t k : parseSizes(args.sweep)) sweep.push_back(static_cast<int>(std::min<std::size_t>(k, ui::IdBufferGlOptions::kMaxBatch)));
+    }
+    headlessGl();  // fail early, before minutes of timing, if there is no GL
+    // Warm-up: each method once on a small set (llvmpipe compiles its shaders on first use).
+    const std::vector<Vec2> warm = generatePoints(Generator::Uniform, 2000, args.seed + 1000);
+    for (const Method& m : kMethods) runOnce(warm, m, args, args.batch);
+
+    std::printf("Table 1: uniform random points in the 1600 x 1600 box (seed %llu), exact boundary, %dx%d ID buffer,\n"
+                "batched readback \"%s\" with K = %d; median of %d runs, ms. The paper: Core 2 Duo 1.6 GHz, GeForce "
+                "8400M;\nhere: llvmpipe (OSMesa), 2 cores.\n\n",
+                static_cast<unsigned long long>(args.seed), args.idBufferSize, args.idBufferSize, args.readback.c_str(),
+                args.batch, args.repeat);
+    std::printf("%8s | %11s %11s | %9s %12s %20s %13s %9s %9s\n", "n", "paper naive", "paper IDbuf", "naive",
+                "idbuffer-gl", "idbuffer-gl-batched", "idbuffer-cpu", "walk", "best");
+    std::vector<std::array<double, kNumMethods>> table;
+    std::vector<std::array<Run, kNumMethods>> detail;
+    for (const std::size_t n : sizes) {
+        const std::vector<Vec2> points = generatePoints(Generator::Uniform, n, args.seed);
+        std::array<std::vector<Run>, kNumMethods> runs;
+        for (int r = 0; r < args.repeat; ++r) {  // interleaved: load changes hit every method alike
+            for (int m = 0; m < kNumMethods; ++m) runs[m].push_back(runOnce(points, kMethods[m], args, args.batch));
+        }
+        std::array<double, kNumMethods> row{};
+        std::array<Run, kNumMethods> med{};
+        for (int m = 0; m < kNumMethods; ++m) {
+            std::vector<double> ms;
+            for (const Run& run : runs[m]) ms.push_back(run.ms);
+            row[m] = median(ms);
+            med[m] = medianRun(runs[m]);
+        }
+        table.push_back(row);
+        detail.push_back(med);
+        const auto paper = kPaper.find(n);
+        const std::string pn = paper != kPaper.end() ? fmtMs(paper->second.first) : "-";
+        const std::string pi = paper != kPaper.end() ? fmtMs(paper->second.second) : "-";
+        std::printf("%8zu | %11s %11s | %9s %12s %20s %13s %9s %9s\n", n, pn.c_str(), pi.c_str(), fmtMs(row[0]).c_str(),
+                    fmtMs(row[1]).c_str(), fmtMs(row[2]).c_str(), fmtMs(row[3]).c_str(), fmtMs(row[4]).c_str(),
+                    fmtMs(row[5]).c_str());
+        std::fflush(stdout);
+    }
+
+    // Where the time goes, and how good the pixels are.
+    std::printf("\nLocator statistics (the median run of each size). hits: the pixel's triangle contained the point;\n"
+                "walk: mean walk steps after a miss; readback: time in glReadPixels / gather / map, including the\n"
+                "wait for the drawing that the read forces; draw: GL state, vertex arrays, draw calls; other: the\n"
+                "rest of the run (walking, splitting, flipping).\n\n");
+    std::printf("%8s | %-40s | %-62s | %s\n", "", "idbuffer-gl (one pixel per insertion)", "idbuffer-gl-batched",
+                "idbuffer-cpu");
+    std::printf("%8s | %6s %6s %8s %6s %6s | %6s %6s %6s %9s %6s %8s %6s %6s | %6s %6s\n", "n", "hits", "walk",
+                "readback", "draw", "other", "hits", "walk", "stale", "stale hit", "steps", "readback", "draw",
+                "other", "hits", "walk");
+    auto pct = [](double part, double whole) { return whole > 0 ? 100.0 * part / whole : 0.0; };
+    auto hitRate = [](const LocatorStats& s) { return s.queries ? static_cast<double>(s.hits) / s.queries : 0.0; };
+    auto walkAfterMiss = [](const LocatorStats& s) {
+        return s.queries > s.hits ? static_cast<double>(s.missSteps) / (s.queries - s.hits) : 0.0;
+    };
+    for (std::size_t k = 0; k < sizes.size(); ++k) {
+        const Run& one = detail[k][1];
+        const Run& bat = detail[k][2];
+        const Run& cpu = detail[k][3];
+        const ui::IdBufferGlStats& b = bat.gl;
+        const double staleShare = bat.loc.queries ? static_cast<double>(b.staleQueries) / bat.loc.queries : 0.0;
+        const double staleHit = b.staleQueries ? static_cast<double>(b.staleHits) / b.staleQueries : 0.0;
+        const double staleSteps = b.staleQueries ? static_cast<double>(b.staleSteps) / b.staleQueries : 0.0;
+        std::printf("%8zu | %5.1f%% %6.2f %7.1f%% %5.1f%% %5.1f%% | %5.1f%% %6.2f %5.1f%% %8.1f%% %6.2f %7.1f%% %5.1f%% "
+                    "%5.1f%% | %5.1f%% %6.2f\n",
+                    sizes[k], 100 * hitRate(one.loc), walkAfterMiss(one.loc), pct(one.gl.readbackMs, one.ms),
+                    pct(one.gl.paintMs, one.ms), pct(one.ms - one.gl.readbackMs - one.gl.paintMs, one.ms),
+                    100 * hitRate(bat.loc), walkAfterMiss(bat.loc), 100 * staleShare, 100 * staleHit, staleSteps,
+                    pct(b.readbackMs, bat.ms), pct(b.paintMs, bat.ms), pct(bat.ms - b.readbackMs - b.paintMs, bat.ms),
+                    100 * hitRate(cpu.loc), walkAfterMiss(cpu.loc));
+    }
+    std::printf("(batched: stale = share of points whose id was read before earlier points of the batch were "
+                "inserted;\n stale hit = how often such an id was still right; steps = mean walk steps from a stale "
+                "id.)\n");
+
+    const std::size_t last = sizes.size() - 1;
+    const std::array<double, kNumMethods>& big = table[last];
+    std::printf("\nAt n = %zu: idbuffer-gl-batched is %.1fx faster than naive and %.1fx faster than idbuffer-gl "
+                "(one pixel per insertion);\nidbuffer-gl spends %.0f%% of its time in readback (the paper: > 90%%).\n",
+                sizes[last], big[0] / big[2], big[1] / big[2], pct(detail[last][1].gl.readbackMs, detail[last][1].ms));
+
+    if (!sweep.empty()) {
+        const std::size_t n = sizes[last];
+        const std::vector<Vec2> points = generatePoints(Generator::Uniform, n, args.seed);
+        std::printf("\nBatch size K for idbuffer-gl-batched (\"%s\") at n = %zu, median of %d runs:\n", args.readback.c_str(),
+                    n, args.repeat);
+        std::printf("%8s %10s %8s %9s %10s %8s\n", "K", "ms", "reads", "readback", "stale hit", "steps");
+        double bestMs = 1e300;
+        int bestK = 0;
+        for (const int K : sweep) {
+            std::vector<Run> runs;
+            for (int r = 0; r < args.repeat; ++r) runs.push_back(runOnce(points, kMethods[2], args, K));
+            const Run& med = medianRun(runs);
+            const ui::IdBufferGlStats& b = med.gl;
+            std::printf("%8d %10.1f %8llu %8.1f%% %9.1f%% %8.2f\n", K, med.ms, static_cast<unsigned long long>(b.reads),
+                        pct(b.readbackMs, med.ms), b.staleQueries ? 100.0 * b.staleHits / b.staleQueries : 0.0,
+                        b.staleQueries ? static_cast<double>(b.staleSteps) / b.staleQueries : 0.0);
+            if (med.ms < bestMs) {
+                bestMs = med.ms;
+                bestK = K;
+            }
+        }
+        std::printf("best K = %d (%.1f ms)\n", bestK, bestMs);
+    }
+
+    if (!args.csv.empty()) {
+        std::ofstream out(args.csv);
+        if (!out) fail("cannot write " + args.csv);
+        out << "n";
+        for (const Method& m : kMethods) out << "," << m.name;
+        out << "\n";
+        char v[32];
+        for (std::size_t k = 0; k < sizes.size(); ++k) {
+            out << sizes[k];
+            for (double ms : table[k]) {
+                std::snprintf(v, sizeof v, "%.3f", ms);
+                out << "," << v;
+            }
+            out << "\n";
+        }
+        out.flush();
+        if (!out) fail("cannot write " + args.csv + " (disk full?)");
+        std::printf("\nwrote %s\n", args.csv.c_str());
+    }
+    if (!args.png.empty()) {
+        const ImU32 colours[kNumMethods] = {IM_COL32(200, 40, 40, 255), IM_COL32(230, 140, 20, 255),
+                                            IM_COL32(30, 110, 200, 255), IM_COL32(120, 70, 170, 255),
+                                            IM_COL32(40, 150, 70, 255),  IM_COL32(20, 20, 20, 255)};
+        std::vector<Series> series;
+        for (int m = 0; m < kNumMethods; ++m) {
+            Series s{kMethods[m].name, colours[m], false, {}};
+            if (std::string(kMethods[m].name) == "best") s.name = "best (brio + walk)";
+            if (std::string(kMethods[m].name) == "naive") s.name = "naive (walk from triangle 0)";
+            if (std::string(kMethods[m].name) == "idbuffer-gl") s.name = "idbuffer-gl (one pixel per insertion)";
+            if (std::string(kMethods[m].name) == "idbuffer-gl-batched") {
+                s.name = "idbuffer-gl-batched (K = " + std::to_string(args.batch) + ")";
+            }
+            for (std::size_t k = 0; k < sizes.size(); ++k) s.points.push_back({static_cast<double>(sizes[k]), table[k][m]});
+            series.push_back(std::move(s));
+        }
+        Series pn{"paper: naive walk (2008)", IM_COL32(200, 40, 40, 255), true, {}};
+        Series pi{"paper: colour-ID buffer (2008)", IM_COL32(230, 140, 20, 255), true, {}};
+        for (const auto& [n, v] : kPaper) {
+            pn.points.push_back({static_cast<double>(n), v.first});
+            pi.points.push_back({static_cast<double>(n), v.second});
+        }
+        series.push_back(std::move(pn));
+        series.push_back(std::move(pi));
+        writePlot(args.png, series, "Incremental Delaunay: point location (the paper's Table 1 / Figure 8)",
+                  "uniform random points in the 1600 x 1600 box; median of " + std::to_string(args.repeat) +
+                      " runs; ours on llvmpipe (OSMesa, 2 cores); dashed: the paper's numbers");
+        std::printf("wrote %s\n", args.png.c_str());
+    }
+}
+
+}  // namespace
+
+void addTable1(CLI::App& app) {
+    auto args = std::make_shared<Table1Args>();
+    CLI::App* cmd = app.add_subcommand(
+        "table1", "The paper's Table 1 (naive walk vs colour-ID buffer) with our locators, on OSMesa");
+    cmd->add_option("--sizes", args->sizes, "Point counts, comma-separated (3 .. 1048576)")->capture_default_str();
+    cmd->add_option("--repeat", args->repeat, "Timed runs per size and method (the median is reported)")
+        ->check(CLI::Range(1, 100))
+        ->capture_default_str();
+    cmd->add_option("--csv", args->csv, "Write n and one column per method (ms) to this CSV file");
+    cmd->add_option("--png", args->png, "Write a log-log plot (the paper's Figure 8) to this PNG file");
+    cmd->add_option("--batch", args->batch, "idbuffer-gl-batched: points per readback (K)")
+        ->check(CLI::Range(1, ui::IdBufferGlOptions::kMaxBatch))
+        ->capture_default_str();
+    cmd->add_option("--readback", args->readback, "idbuffer-gl-batched: batched | pipelined (read one batch ahead)")
+        ->check(CLI::IsMember({"batched", "pipelined"}))
+        ->capture_default_str();
+    cmd->add_option("--sweep", args->sweep, "Also time idbuffer-gl-batched at the largest size for these K (comma-separated)");
+    cmd->add_option("--idbuffer-size", args->idBufferSize, "Width and height of the ID buffers in pixels")
+        ->check(CLI::Range(1, 16384))
+        ->capture_default_str();
+    cmd->add_option("--seed", args->seed, "Seed of the random points")->capture_default_str();
+    cmd->callback([args] { guarded([&] { runTable1(*args); }); });
+}
+
+}  // namespace dlab::cli
