@@ -844,7 +844,8 @@ Op Inserter::step(Journal* journal) {
 
 // The batch path stores the points in insertion order while it runs (vertex id = rank), so
 // that consecutive insertions touch neighbouring memory: with BRIO/Hilbert order this halves
-// the cache misses of a million-point run. The ids are mapped back at the end, so the result
+// the cache misses of a million-point run. The points in input order are kept aside (G never
+// changes during a run) and put back at the end, where the ids are mapped back, so the result
 // is bit for bit the one the recorded path makes.
 void Inserter::permuteForBatch() {
     const std::int32_t n = m_numInput;
@@ -853,16 +854,17 @@ void Inserter::permuteForBatch() {
     adviseHugePages(byRank.data(), m_mesh.G.size() * sizeof(Vec2));
     for (std::int32_t k = 0; k < n; ++k) byRank.push_back(m_mesh.G[m_order[k]]);
     byRank.insert(byRank.end(), m_mesh.G.begin() + n, m_mesh.G.end());
-    m_mesh.G.swap(byRank);
+    m_byInput = std::move(m_mesh.G);
+    m_mesh.G = std::move(byRank);
     m_permuted = true;
 }
 
 void Inserter::unpermute() {
     const std::int32_t n = m_numInput;
-    std::vector<Vec2> byInput(m_mesh.G.size());
-    for (std::int32_t k = 0; k < n; ++k) byInput[m_order[k]] = m_mesh.G[k];
-    std::copy(m_mesh.G.begin() + n, m_mesh.G.end(), byInput.begin() + n);
-    m_mesh.G.swap(byInput);
+    const std::size_t size = m_mesh.G.size();  // Finalize may have dropped the virtual points
+    m_mesh.G = std::move(m_byInput);
+    m_byInput = {};
+    m_mesh.G.resize(size);
     for (std::int32_t& v : m_mesh.V) {
         if (v < n) v = m_order[v];
     }

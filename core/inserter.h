@@ -205,6 +205,7 @@ private:
     std::unique_ptr<Locator> m_locator;
     bool m_locatorWantsChanges = false;
     bool m_permuted = false;
+    std::vector<Vec2> m_byInput;  // while run() works by rank: the points in input order
     bool m_bulk = false;
     Bounds m_bounds{};
     Control m_ctl;
