@@ -3,12 +3,12 @@
 # paper's 1600x1600 box, then dtlab's peak memory (GNU time). Needs jq and /usr/bin/time.
 #
 # usage: bash .ci/bench_compare.sh [BUILD_DIR]      (default: build)
-# Environment: BENCH_N (points, default 1048576), BENCH_REPEAT (default 5), BENCH_SEED (default 1).
+# Environment: BENCH_N (points, default 1048576), BENCH_REPEAT (default 7), BENCH_SEED (default 1).
 set -euo pipefail
 
 build=${1:-build}
 n=${BENCH_N:-1048576}
-repeat=${BENCH_REPEAT:-5}
+repeat=${BENCH_REPEAT:-7}
 seed=${BENCH_SEED:-1}
 dtlab=$build/app/dtlab
 cgal=$build/app/cgal_baseline
@@ -51,16 +51,18 @@ fi
 
 echo
 echo "== summary (n = $(field "$dt_json" n), median of $repeat runs)"
-printf '%-8s %12s %14s %16s %20s\n' tool median_ms ns_per_point flips_per_point walk_steps_per_point
-printf '%-8s %12s %14s %16s %20s\n' dtlab "$(field "$dt_json" median_ms)" \
+printf '%-8s %12s %10s %14s %16s %20s\n' tool median_ms min_ms ns_per_point flips_per_point walk_steps_per_point
+printf '%-8s %12s %10s %14s %16s %20s\n' dtlab "$(field "$dt_json" median_ms)" "$(field "$dt_json" min_ms)" \
     "$(field "$dt_json" ns_per_point)" "$(field "$dt_json" flips_per_point)" \
     "$(field "$dt_json" walk_steps_per_point)"
 if [[ -n $cg_json ]]; then
-    printf '%-8s %12s %14s %16s %20s\n' cgal "$(field "$cg_json" median_ms)" \
+    printf '%-8s %12s %10s %14s %16s %20s\n' cgal "$(field "$cg_json" median_ms)" "$(field "$cg_json" min_ms)" \
         "$(field "$cg_json" ns_per_point)" "-" "-"
-    awk -v a="$(field "$dt_json" median_ms)" -v b="$(field "$cg_json" median_ms)" 'BEGIN {
+    awk -v a="$(field "$dt_json" median_ms)" -v b="$(field "$cg_json" median_ms)" \
+        -v am="$(field "$dt_json" min_ms)" -v bm="$(field "$cg_json" min_ms)" 'BEGIN {
         if (b + 0 > 0) printf "ratio dtlab/cgal (median): %.2f\n", a / b;
         else print "ratio dtlab/cgal: n/a";
+        if (bm + 0 > 0) printf "ratio dtlab/cgal (min):    %.2f\n", am / bm;
     }'
 fi
 

@@ -1,4 +1,4 @@
-// dtlab bench: times the triangulation only (not I/O), after a warm-up; median of repeats.
+// dtlab bench: times the triangulation only (not I/O), after warm-up runs; median of repeats.
 #include "app/dtlab_common.h"
 
 #include <nlohmann/json.hpp>
@@ -14,6 +14,7 @@ namespace {
 struct BenchArgs {
     std::string input;
     int repeat = 5;
+    int warmup = 1;
     bool json = false;
     EngineFlags engine;
 };
@@ -26,13 +27,13 @@ void runBench(const BenchArgs& args) {
     InsertStats stats;
     std::int32_t triangles = 0;
     LocatorStats locStats;
-    for (int r = 0; r <= args.repeat; ++r) {  // run 0 is the warm-up
+    for (int r = 0; r < args.warmup + args.repeat; ++r) {  // the first `warmup` runs are not timed
         std::vector<Vec2> pts = loaded.points;  // copied outside the timed region
         const auto t0 = std::chrono::steady_clock::now();
         Inserter ins(std::move(pts), options);
         ins.run();
         const auto t1 = std::chrono::steady_clock::now();
-        if (r > 0) ms.push_back(std::chrono::duration<double, std::milli>(t1 - t0).count());
+        if (r >= args.warmup) ms.push_back(std::chrono::duration<double, std::milli>(t1 - t0).count());
         stats = ins.stats();
         triangles = ins.mesh().numTriangles();
         locStats = ins.locator()->stats();
@@ -50,6 +51,7 @@ void runBench(const BenchArgs& args) {
         j["order"] = args.engine.order;
         j["boundary"] = args.engine.boundary;
         j["repeat"] = args.repeat;
+        j["warmup"] = args.warmup;
         j["median_ms"] = median;
         j["min_ms"] = ms.front();
         j["max_ms"] = ms.back();
@@ -64,8 +66,8 @@ void runBench(const BenchArgs& args) {
     } else {
         std::printf("%s: n=%zu locate=%s order=%s boundary=%s\n", args.input.c_str(), n, args.engine.locate.c_str(),
                     args.engine.order.c_str(), args.engine.boundary.c_str());
-        std::printf("  median %.2f ms (min %.2f, max %.2f, %d runs after a warm-up)\n", median, ms.front(), ms.back(),
-                    args.repeat);
+        std::printf("  median %.2f ms (min %.2f, max %.2f, %d runs after %d warm-up run(s))\n", median, ms.front(),
+                    ms.back(), args.repeat, args.warmup);
         std::printf("  %.1f ns/point, %.3f flips/point, %.3f in-circle tests/point, %.3f walk steps/point\n",
                     median * 1e6 / pn, stats.flips / pn, stats.inCircleTests / pn, stats.walkSteps / pn);
         std::printf("  locator hint hit rate %.3f, %lld duplicates skipped, %d triangles\n", hitRate,
@@ -79,7 +81,8 @@ void addBench(CLI::App& app) {
     auto args = std::make_shared<BenchArgs>();
     CLI::App* cmd = app.add_subcommand("bench", "Time the triangulation of a point file (median of repeats)");
     cmd->add_option("--input,input", args->input, "Point file (.node, .csv, .xy, .pts)")->required();
-    cmd->add_option("--repeat", args->repeat, "Timed runs after one warm-up")->check(CLI::Range(1, 1000))->capture_default_str();
+    cmd->add_option("--repeat", args->repeat, "Timed runs after the warm-up")->check(CLI::Range(1, 1000))->capture_default_str();
+    cmd->add_option("--warmup", args->warmup, "Untimed runs first (0 for slow settings)")->check(CLI::Range(0, 100))->capture_default_str();
     cmd->add_flag("--json", args->json, "Print one JSON object");
     args->engine.add(*cmd);
     cmd->callback([args] { guarded([&] { runBench(*args); }); });
