@@ -2,6 +2,7 @@
 // so and renders the same view headlessly to a PNG (through `dtlab render`, which uses OSMesa:
 // one GL provider per executable).
 #include "core/generators.h"
+#include "ui/files.h"
 #include "ui/gui.h"
 #include "ui/panels.h"
 #include "ui/settings.h"
@@ -43,12 +44,13 @@ int main(int argc, char** argv) {
     CLI::App cli{"Delaunay Lab: step through incremental Delaunay triangulation on a corner table"};
     std::string input, screenshot, fallbackPng = "delaunay-lab.png";
     int frames = 0;
-    bool noSettings = false;
-    cli.add_option("input", input, "Point file (.node, .csv, .xy, .pts); the built-in demo when absent");
+    bool noSettings = false, noAutosave = false;
+    cli.add_option("input", input, "Point file (.node, .csv, .xy, .pts) or session (.json); the built-in demo when absent");
     cli.add_option("--screenshot", screenshot, "Save a PNG of the window after --frames frames, then quit");
     cli.add_option("--frames", frames, "Quit after this many frames (0: run until closed)")->check(CLI::NonNegativeNumber);
     cli.add_option("--headless-png", fallbackPng, "Where to render when there is no display")->capture_default_str();
     cli.add_flag("--no-settings", noSettings, "Neither read nor write the remembered settings");
+    cli.add_flag("--no-autosave", noAutosave, "Neither autosave the points nor offer to recover a crashed session's");
     CLI11_PARSE(cli, argc, argv);
 
     dlab::ui::AppState state;
@@ -66,15 +68,21 @@ int main(int argc, char** argv) {
     if (input.empty()) {
         state.setOptions(dlab::ui::demoOptions());
         state.loadPoints(dlab::demoPoints(), "built-in demo");
-    } else if (!dlab::ui::LoadPointFile(state, input)) {
-        std::cerr << "delaunay-lab: " << state.messages.back().text << "\n";
+    } else if (!dlab::ui::OpenFile(state, input)) {
+        std::cerr << "delaunay-lab: " << state.files.notice << "\n";
         state.loadPoints(dlab::demoPoints(), "built-in demo");
     }
+    // The user's points are autosaved after every change; a session that did not exit cleanly
+    // left its autosave behind, and the first frame offers it.
+    const std::string autosaveFolder = noAutosave ? std::string() : dlab::ui::DefaultAutosaveFolder();
+    dlab::ui::OfferRecovery(state, autosaveFolder);
+    dlab::ui::EnableAutosave(state, autosaveFolder);
     gui.captureFrames(!screenshot.empty());
     for (int frame = 1;; ++frame) {
-        for (const std::string& dropped : platform->takeDroppedFiles()) dlab::ui::LoadPointFile(state, dropped);
+        for (const std::string& dropped : platform->takeDroppedFiles()) dlab::ui::OpenFile(state, dropped);
         platform->setTitle("Delaunay Lab - " + state.source);
         if (!gui.frame()) break;
+        dlab::ui::ServiceCaptures(gui);  // F12 screenshots, GIF exports
         if (frames > 0 && frame >= frames) break;
         if (!state.run.running) platform->waitForEvents(0.25);
     }
@@ -87,6 +95,7 @@ int main(int argc, char** argv) {
             std::cout << "wrote " << screenshot << "\n";
         }
     }
+    dlab::ui::RemoveAutosave(state);  // a clean exit: nothing to recover
     dlab::ui::windowPlacement(*platform, window);
     if (!dlab::ui::saveSettings(settingsPath, state, window, error)) std::cerr << "delaunay-lab: " << error << "\n";
     return status;

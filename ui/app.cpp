@@ -16,6 +16,10 @@ namespace {
 const SideTab kSideTabs[] = {
     {"Corner table", ShowCornerTable},
     {"G (vertices)", ShowVertexTable},
+    {"Expressions", ShowExpressions},
+    {"Predicates", ShowPredicates},
+    {"ID buffer", ShowIdBuffer},
+    {"Statistics", ShowStatistics},
 };
 
 // A draggable bar; returns the drag delta in pixels along its axis.
@@ -37,6 +41,7 @@ void ShowApplication(AppState& state) {
     ImGuiIO& io = ImGui::GetIO();
     HandleShortcuts(state);
     AdvanceRun(state, io.DeltaTime);
+    UpdateDebugPanels(state);  // watches (may pause the run), checks, autosave
 
     const ImGuiViewport* vp = ImGui::GetMainViewport();
     ImGui::SetNextWindowPos(vp->WorkPos);
@@ -63,6 +68,7 @@ void ShowApplication(AppState& state) {
     // ---- Left: canvas and timeline -------------------------------------------------------------
     ImGui::BeginChild("##left", ImVec2(canvasW, mainH), false, ImGuiWindowFlags_NoScrollbar | ImGuiWindowFlags_NoScrollWithMouse);
     ShowCanvas(state);
+    DrawDebugOverlays(state);
     ShowTimeline(state);
     ImGui::EndChild();
     ImGui::SameLine(0, 0);
@@ -105,6 +111,7 @@ void ShowApplication(AppState& state) {
     ImGui::End();
 
     if (state.showHelp) ShowHelp(state);
+    ShowFileDialogs(state);
 }
 
 void RecordItem(AppState& state, const char* name) {
@@ -121,6 +128,7 @@ void HandleShortcuts(AppState& state) {
     const bool ctrl = io.KeyCtrl, shift = io.KeyShift;
 
     if (once(key::kF1)) state.showHelp = !state.showHelp;
+    if (once(key::kF12)) state.files.screenshotRequested = true;  // ServiceCaptures writes it
     if (once(key::kEscape)) {
         if (state.showHelp) state.showHelp = false;
         else state.select(kNone);
@@ -129,6 +137,8 @@ void HandleShortcuts(AppState& state) {
         if (once(key::letter('Z'))) shift ? state.redoEdit() : state.undoEdit();
         if (once(key::letter('Y'))) state.redoEdit();
         if (once(key::letter('Q'))) state.quitRequested = true;
+        if (once(key::letter('S'))) state.files.dialog = FileState::Dialog::SaveSession;
+        if (once(key::letter('O'))) state.files.dialog = FileState::Dialog::OpenFile;
         // Ctrl + arrows pan the canvas by a tenth of its size.
         View& v = state.view;
         const double step = 0.1 * std::min(v.size.x, v.size.y) / v.scale;

@@ -4,6 +4,7 @@
 // through the Engine (that is, through the Inserter and its Journal).
 #pragma once
 
+#include "core/corner_expr.h"
 #include "core/locator.h"
 #include "ui/engine.h"
 
@@ -13,6 +14,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <unordered_map>
 #include <vector>
@@ -108,13 +110,115 @@ struct Layout {
 
 // Text and choices of the menu's dialogs, kept between frames (ImGui is immediate-mode).
 struct DialogState {
-    std::string openPath;
-    std::string openFolder;
     std::vector<int> generatorCounts;
     int generatorSeed = 1;
     int breakVertex = 0;
     int breakCorner = -1;
     std::string breakText;
+};
+
+// ---- Issue 5: the debugging panels and files -------------------------------------------------
+
+// One line of the expression console: what was typed and what it gave.
+struct ExprLine {
+    std::string text;
+    std::string answer;           // "= 17 (corner)", or the error
+    bool ok = false;
+    std::size_t errorColumn = 0;  // where the error starts in `text`
+};
+
+// An identity checked after every step, e.g. o(o(c)) == c (panel_expressions.cpp).
+struct WatchEntry {
+    std::string text;
+    bool enabled = true;
+    std::shared_ptr<const CornerExpr> expr;  // parsed once; null when the text does not parse
+    bool failing = false;
+    std::string status;                      // "holds for 36 corners" / "fails at c = 7: ..."
+};
+
+struct ExpressionState {
+    std::string input;               // the console's input line
+    std::vector<ExprLine> history;   // newest last
+    std::string live;                // the expression shown on the canvas, re-evaluated each step
+    std::vector<PathStep> path;      // its moves, drawn on the canvas as arrows between corners
+    std::optional<ExprValue> result;
+    std::uint64_t liveVersion = ~std::uint64_t{0};   // engine version `path` was computed at
+    std::int32_t liveCorner = kNone;                 // the c it was computed with
+    std::vector<WatchEntry> watches;
+    std::string watchInput;
+    bool pauseOnFailure = true;                      // a failing watch pauses a running animation
+    std::uint64_t watchedVersion = ~std::uint64_t{0};  // engine version the watches last saw
+    std::size_t watchedPosition = 0;                 // and its position (for the replay on failure)
+};
+
+struct PredicateState {
+    std::array<std::string, 4> points{"0, 0", "1, 0", "0, 1", "1, 1"};  // the user's a, b, c, d as "x, y"
+};
+
+struct IdBufferView;  // panel_idbuffer.cpp: the texture and the ids it was made from
+
+struct IdBufferViewState {
+    bool trueColours = false;  // the encoded colours instead of false colour
+    std::shared_ptr<IdBufferView> cache;
+    // The buffer pixel under the mouse, decoded and checked (tests read it).
+    struct Hover {
+        bool valid = false;
+        int i = 0, j = 0;                    // pixel, row 0 = lowest y
+        std::int32_t id = kNone;             // what the buffer holds there
+        Vec2 centre{};                       // the pixel centre in the world
+        std::int32_t exactTriangle = kNone;  // a triangle that contains the centre (exact), if any
+        bool agrees = false;                 // the id's triangle contains the centre (exact)
+    } hover;
+};
+
+// Counts over the journal's ops [0, position): kept up while the run goes forward, recounted
+// when it goes back or restarts (panel_statistics.cpp).
+struct RunCounts {
+    std::size_t position = 0;
+    Op last{};  // ops[position - 1] when counted: tells a continuation from a new run
+    std::vector<float> flipsPerInsertion;  // finished insertions, in order
+    std::int64_t flipsNow = 0;             // flips of the insertion in progress
+    std::int64_t flips = 0, walkSteps = 0, inCircleTests = 0, inserted = 0, duplicates = 0, splits = 0, edgeSplits = 0;
+    std::int64_t locates = 0, hits = 0, stepsNow = 0;
+};
+
+struct StatisticsState {
+    static constexpr std::size_t kFrames = 240;
+    std::vector<float> frameMs;  // the last kFrames frame times, oldest first
+    bool autoValidate = true;    // validate() after every change (meshes up to kAutoValidateCorners)
+    static constexpr std::int32_t kAutoValidateCorners = 300000;
+    std::uint64_t validatedVersion = ~std::uint64_t{0};
+    std::vector<Violation> violations;  // drawn on the canvas
+    std::vector<std::int32_t> hullDents;  // boundary vertices where the hull turns right (not convex)
+    std::string hullReport;               // the hull / Euler check in one line
+    bool showViolations = true;
+    RunCounts counts;
+};
+
+struct GifRequest {
+    std::string path;
+    std::size_t from = 0, to = 0;  // journal positions, inclusive
+    std::size_t every = 1;         // one frame per this many operations
+    int delayMs = 250;
+    bool wholeWindow = false;      // the whole window instead of the canvas
+};
+
+struct FileState {
+    std::string autosavePath;        // empty: no autosave (tests, --no-autosave)
+    std::vector<Vec2> autosaved;     // the points the autosave file holds now
+    bool autosaveTooBig = false;     // said once: too many points to autosave
+    std::string recoveryPath;        // an autosave left by a session that did not exit cleanly
+    std::size_t recoveryPoints = 0;
+    std::string recoverySource;
+    std::string notice;              // a file error, shown over the canvas until dismissed
+    bool screenshotRequested = false;  // F12: main loop / tests call ServiceCaptures
+    std::string screenshotFolder;      // empty: the current directory
+    std::optional<GifRequest> gif;     // a GIF to render (ServiceCaptures)
+    enum class Dialog : std::uint8_t { None, SavePoints, SaveSession, OpenFile, ExportMesh, ExportSvg, ExportGif };
+    Dialog dialog = Dialog::None;    // to open at the next frame
+    std::string dialogPath;          // the path field of the open dialog
+    int meshFormat = 0;              // export dialog: 0 .ele/.neigh, 1 OFF, 2 OBJ
+    GifRequest gifDraft;             // the GIF dialog's fields
 };
 
 struct AppState {
@@ -142,6 +246,14 @@ struct AppState {
 
     // Undo/redo of edits to the point set (never lose a user's points).
     std::vector<std::vector<Vec2>> undoPoints, redoPoints;
+
+    // Issue 5: expression console and watches, predicate inspector, ID-buffer view, statistics,
+    // files and sessions.
+    ExpressionState expressions;
+    PredicateState predicates;
+    IdBufferViewState idBuffer;
+    StatisticsState statistics;
+    FileState files;
 
     // ---- Actions (every change of points or options goes through these) ---------------------
     void log(Message::Level level, std::string text);

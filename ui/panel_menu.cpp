@@ -2,6 +2,7 @@
 // Generate (the inputs that broke other triangulators), Help.
 #include "core/generators.h"
 #include "core/io_read.h"
+#include "ui/files.h"
 #include "ui/panels.h"
 
 #include <imgui.h>
@@ -51,13 +52,20 @@ bool LoadPointFile(AppState& st, const std::string& path) {
 
 void ShowMenuBar(AppState& st) {
     DialogState& dialog = st.dialogs;
-    bool openDialog = false;
     if (!ImGui::BeginMenuBar()) return;
     if (ImGui::BeginMenu("File")) {
-        if (ImGui::MenuItem("Open points...", "")) openDialog = true;
+        if (ImGui::MenuItem("Open points or a session...", "Ctrl+O")) st.files.dialog = FileState::Dialog::OpenFile;
         if (ImGui::MenuItem("Built-in demo")) {
             st.loadPoints(demoPoints(), "built-in demo");
         }
+        ImGui::Separator();
+        if (ImGui::MenuItem("Save points as .node / .csv...")) st.files.dialog = FileState::Dialog::SavePoints;
+        if (ImGui::MenuItem("Save session...", "Ctrl+S")) st.files.dialog = FileState::Dialog::SaveSession;
+        if (ImGui::IsItemHovered()) ImGui::SetTooltip("Points, options, the step, view, selection and overlays in one JSON file:\nattach it to a bug report, or share a class");
+        if (ImGui::MenuItem("Export mesh (.ele/.neigh, OFF, OBJ)...")) st.files.dialog = FileState::Dialog::ExportMesh;
+        if (ImGui::MenuItem("Export SVG of the view...")) st.files.dialog = FileState::Dialog::ExportSvg;
+        if (ImGui::MenuItem("Screenshot (PNG)", "F12")) st.files.screenshotRequested = true;
+        if (ImGui::MenuItem("Animated GIF of steps...")) st.files.dialog = FileState::Dialog::ExportGif;
         ImGui::Separator();
         if (ImGui::MenuItem("Undo point edit", "Ctrl+Z", false, !st.undoPoints.empty())) st.undoEdit();
         if (ImGui::MenuItem("Redo point edit", "Ctrl+Y", false, !st.redoPoints.empty())) st.redoEdit();
@@ -116,42 +124,6 @@ void ShowMenuBar(AppState& st) {
         ImGui::EndMenu();
     }
     ImGui::EndMenuBar();
-
-    if (openDialog) {
-        ImGui::OpenPopup("Open points");
-        if (dialog.openFolder.empty()) dialog.openFolder = std::filesystem::current_path().string();
-    }
-    if (ImGui::BeginPopupModal("Open points", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
-        ImGui::TextUnformatted("A point file: Triangle .node, CSV / XY (x,y per line) or .pts");
-        ImGui::SetNextItemWidth(520);
-        const bool enter = ImGui::InputText("Path", &dialog.openPath, ImGuiInputTextFlags_EnterReturnsTrue);
-        ImGui::TextDisabled("%s", dialog.openFolder.c_str());
-        ImGui::BeginChild("##files", ImVec2(520, 220), true);
-        std::error_code ec;
-        if (ImGui::Selectable("..")) dialog.openFolder = std::filesystem::path(dialog.openFolder).parent_path().string();
-        std::vector<std::filesystem::directory_entry> entries;
-        for (const auto& entry : std::filesystem::directory_iterator(dialog.openFolder, ec)) entries.push_back(entry);
-        std::sort(entries.begin(), entries.end(), [](const auto& a, const auto& b) { return a.path() < b.path(); });
-        for (const auto& entry : entries) {
-            const std::string name = entry.path().filename().string();
-            if (entry.is_directory(ec)) {
-                if (ImGui::Selectable((name + "/").c_str())) dialog.openFolder = entry.path().string();
-                continue;
-            }
-            const std::string ext = entry.path().extension().string();
-            if (ext != ".node" && ext != ".csv" && ext != ".xy" && ext != ".txt" && ext != ".pts") continue;
-            if (ImGui::Selectable(name.c_str())) {
-                dialog.openPath = entry.path().string();
-            }
-        }
-        ImGui::EndChild();
-        if (ImGui::Button("Open") || enter) {
-            if (LoadPointFile(st, dialog.openPath)) ImGui::CloseCurrentPopup();
-        }
-        ImGui::SameLine();
-        if (ImGui::Button("Cancel")) ImGui::CloseCurrentPopup();
-        ImGui::EndPopup();
-    }
 }
 
 }  // namespace dlab::ui

@@ -2,9 +2,15 @@
 // is one file plus one line in kSideTabs (app.cpp) or a call in ShowApplication.
 #pragma once
 
+#include "core/predicates.h"
 #include "ui/app_state.h"
 
+#include <array>
+#include <cstdint>
+#include <functional>
+#include <span>
 #include <string>
+#include <string_view>
 
 namespace dlab::ui {
 
@@ -34,6 +40,57 @@ void RecordItem(AppState& state, const char* name);
 void HandleShortcuts(AppState& state);
 // Advances a running animation by this frame's share of operations (panel_toolbar.cpp).
 void AdvanceRun(AppState& state, double dtSeconds);
+
+// ---- Issue 5: debugging panels (side tabs), files and sessions --------------------------------
+void ShowExpressions(AppState& state);   // panel_expressions.cpp: console, path on the canvas, watches
+void ShowPredicates(AppState& state);    // panel_predicates.cpp: the current test's determinant and signs
+void ShowIdBuffer(AppState& state);      // panel_idbuffer.cpp: the colour-ID buffer, pixel under the mouse
+void ShowStatistics(AppState& state);    // panel_statistics.cpp: counts, flips plot, frame times, checks
+void ShowFileDialogs(AppState& state);   // panel_files.cpp: save/export/GIF dialogs, recovery, notices
+
+// Per-frame work of those panels whichever tab is open: watches (pausing a run that breaks
+// one), validate(), frame times, autosave (debug_hooks.cpp; ShowApplication calls it).
+void UpdateDebugPanels(AppState& state);
+// What they draw on the canvas, over it: the expression's path, violations (after ShowCanvas).
+void DrawDebugOverlays(AppState& state);
+
+// Expression console (panel_expressions.cpp). Evaluates `text` with c = the selected corner,
+// adds a history line and draws the path; true when it gave a value.
+bool EvaluateExpression(AppState& state, const std::string& text);
+// Adds a watch (a comparison, e.g. o(o(c)) == c); logs why not when it cannot.
+bool AddWatch(AppState& state, const std::string& text);
+// Checks the watches if the mesh changed; a run that broke one is stopped at the first
+// operation that did, and the failure is logged with that operation and corner.
+void CheckWatches(AppState& state);
+void DrawExpressionOverlay(AppState& state);
+
+// Predicate inspector (panel_predicates.cpp): the predicate calls the current operation made.
+struct PredicateCall {
+    bool inCircle = false;       // incircle(a, b, c, d); else orient2d(a, b, c)
+    std::string what;            // one line: what is being asked
+    std::array<Vec2, 4> p{};
+    std::array<std::int32_t, 4> v{kNone, kNone, kNone, kNone};  // their vertex ids (kNone: typed)
+    PredicateReport report;
+};
+std::vector<PredicateCall> CurrentPredicateCalls(const Engine& engine);
+// "x, y" (or "(x, y)", "x y"): two finite decimal numbers, read exactly.
+bool ParsePointText(std::string_view text, Vec2& out);
+
+// ID-buffer view (panel_idbuffer.cpp). What the view shows of a locator's ID buffer; the one
+// function that reads it (the CPU buffer now; a GL buffer plugs in there).
+struct IdBufferFrame {
+    const char* kind = "";
+    int width = 0, height = 0;
+    std::span<const std::int32_t> ids;      // width * height, row 0 = lowest y
+    std::function<Vec2(int, int)> centre;   // world position of the centre of pixel (i, j)
+};
+bool ReadIdBuffer(const Engine& engine, IdBufferFrame& out);
+// The false colour of a triangle id (kNone: light grey), as the view draws it.
+std::uint32_t IdFalseColour(std::int32_t id);  // ImU32, as IM_COL32 packs it
+
+// Statistics (panel_statistics.cpp).
+void UpdateStatistics(AppState& state);
+void DrawViolationOverlay(AppState& state);
 
 // A side-column tab: issue 5's debugging panels slot in here.
 struct SideTab {

@@ -1,0 +1,575 @@
+// Files and sessions through the GUI: every export read back and compared (points bit-exact,
+// .node/.ele/.neigh, OFF, OBJ, SVG of the view, PNG on F12, an animated GIF of steps), a session
+// saved and loaded (same state, same step), bad files that change nothing and show an error, and
+// recovery after the process is killed (kill -9) in the middle of editing.
+#include "core/generators.h"
+#include "core/io_read.h"
+#include "core/mesh_build.h"
+#include "tests/ui/ui_harness.h"
+#include "ui/files.h"
+#include "ui/gif_export.h"
+#include "ui/keys.h"
+#include "ui/panels.h"
+#include "ui/session.h"
+
+#include <gif_lib.h>
+#include <gtest/gtest.h>
+#include <imgui.h>
+#include <stb_image.h>
+
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cfloat>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <sstream>
+#include <thread>
+
+using dlab::kNone;
+using dlab::Vec2;
+using dlab::test::UiHarness;
+namespace fs = std::filesystem;
+namespace key = dlab::ui::key;
+
+namespace {
+
+constexpr std::array<int, 3> kNoticeRgb = {191, 20, 26};  // the notice's background (0.75, 0.08, 0.10)
+
+// A fresh folder per test, removed at the end.
+struct TempDir {
+    fs::path path;
+    explicit TempDir(const std::string& name) {
+        path = fs::temp_directory_path() / ("dlab_files_" + name + "_" + std::to_string(::getpid()));
+        fs::remove_all(path);
+        fs::create_directories(path);
+    }
+    ~TempDir() {
+        std::error_code ec;
+        fs::remove_all(path, ec);
+    }
+    std::string operator/(const std::string& f) const { return (path / f).string(); }
+};
+
+std::string slurp(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::ostringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
+bool sameBits(const std::vector<Vec2>& a, const std::vector<Vec2>& b) {
+    return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(Vec2)) == 0);
+}
+
+// Lines of a text file split into whitespace fields, comments ('#') dropped.
+std::vector<std::vector<std::string>> fields(const std::string& path) {
+    std::vector<std::vector<std::string>> out;
+    std::istringstream in(slurp(path));
+    std::string line;
+    while (std::getline(in, line)) {
+        if (const auto h = line.find('#'); h != std::string::npos) line.resize(h);
+        std::istringstream ls(line);
+        std::vector<std::string> f;
+        for (std::string w; ls >> w;) f.push_back(w);
+        if (!f.empty()) out.push_back(std::move(f));
+    }
+    return out;
+}
+
+// Points that stress an exact round trip: subnormals, huge and tiny magnitudes, -0, 0.1.
+std::vector<Vec2> awkwardPoints() {
+    return {{0.1, 0.2}, {-0.0, 1e-300}, {5e-324, 3}, {1.7976931348623157e308, -2.5}, {-1e308, 7e-310},
+            {123456789.123456789, -0.3}, {1.0 / 3, 2.0 / 3}, {4, 4}, {4, 4}};
+}
+
+}  // namespace
+
+// ============================================================================================
+// Points and meshes
+// ============================================================================================
+
+TEST(Files, PointsRoundTripBitExactAsNodeAndCsv) {
+    TempDir dir("points");
+    UiHarness h;
+    auto& st = h.state();
+    ASSERT_TRUE(st.loadPoints(awkwardPoints(), "awkward"));
+    for (const char* name : {"p.node", "p.csv"}) {
+        ASSERT_TRUE(dlab::ui::SavePoints(st, dir / name)) << st.files.notice;
+        const dlab::PointSet back = dlab::readPointsFile(dir / name);
+        EXPECT_TRUE(sameBits(back.points, awkwardPoints())) << name;
+    }
+    // Opened again through the GUI (as a dropped file is): the same points, bit for bit.
+    ASSERT_TRUE(st.loadPoints(dlab::demoPoints(), "demo"));
+    ASSERT_TRUE(dlab::ui::OpenFile(st, dir / "p.csv"));
+    EXPECT_TRUE(sameBits(st.engine.points(), awkwardPoints()));
+    EXPECT_FALSE(dlab::ui::SavePoints(st, dir / "p.xyz"));  // unknown format: refused, said
+    EXPECT_NE(st.files.notice.find("p.xyz"), std::string::npos);
+}
+
+TEST(Files, MeshExportsReadBackAsTheMesh) {
+    TempDir dir("mesh");
+    UiHarness h;
+    auto& st = h.state();
+    while (!st.engine.toEnd(1 << 20)) {}
+    const dlab::Mesh& m = st.engine.mesh();
+    ASSERT_GT(m.numTriangles(), 10);
+
+    ASSERT_TRUE(dlab::ui::ExportMesh(st, dir / "m.ele", dlab::ui::MeshFormat::Triangle));
+    const dlab::PointSet node = dlab::readPointsFile(dir / "m.node");
+    EXPECT_TRUE(sameBits(node.points, m.G));
+    const auto ele = fields(dir / "m.ele");
+    const auto neigh = fields(dir / "m.neigh");
+    ASSERT_EQ(std::stoi(ele[0][0]), m.numTriangles());
+    ASSERT_EQ(static_cast<int>(ele.size()), m.numTriangles() + 1);
+    ASSERT_EQ(static_cast<int>(neigh.size()), m.numTriangles() + 1);
+    for (std::int32_t t = 0; t < m.numTriangles(); ++t) {
+        for (int k = 0; k < 3; ++k) {
+            EXPECT_EQ(std::stoi(ele[t + 1][k + 1]), m.V[3 * t + k]);
+            const std::int32_t o = m.O[3 * t + k];
+            EXPECT_EQ(std::stoi(neigh[t + 1][k + 1]), o == kNone ? -1 : dlab::tri(o));
+        }
+    }
+
+    ASSERT_TRUE(dlab::ui::ExportMesh(st, dir / "m.off", dlab::ui::MeshFormat::Off));
+    const auto off = fields(dir / "m.off");
+    ASSERT_EQ(off[0][0], "OFF");
+    ASSERT_EQ(std::stoi(off[1][0]), m.numVertices());
+    ASSERT_EQ(std::stoi(off[1][1]), m.numTriangles());
+    for (std::int32_t v = 0; v < m.numVertices(); ++v) {
+        EXPECT_EQ(std::stod(off[2 + v][0]), m.G[v].x);
+        EXPECT_EQ(std::stod(off[2 + v][1]), m.G[v].y);
+    }
+    dlab::Mesh fromOff;
+    fromOff.G = m.G;
+    for (std::int32_t t = 0; t < m.numTriangles(); ++t) {
+        const auto& f = off[2 + m.numVertices() + t];
+        ASSERT_EQ(f[0], "3");
+        for (int k = 1; k <= 3; ++k) fromOff.V.push_back(std::stoi(f[k]));
+    }
+    EXPECT_EQ(fromOff.V, m.V);
+    dlab::computeOpposites(fromOff);  // the triangles alone rebuild the same neighbours
+    EXPECT_EQ(fromOff.O, m.O);
+
+    ASSERT_TRUE(dlab::ui::ExportMesh(st, dir / "m.obj", dlab::ui::MeshFormat::Obj));
+    std::vector<Vec2> objV;
+    std::vector<std::int32_t> objF;
+    for (const auto& f : fields(dir / "m.obj")) {
+        if (f[0] == "v") objV.push_back({std::stod(f[1]), std::stod(f[2])});
+        if (f[0] == "f") {
+            for (int k = 1; k <= 3; ++k) objF.push_back(std::stoi(f[k]) - 1);
+        }
+    }
+    EXPECT_TRUE(sameBits(objV, m.G));
+    EXPECT_EQ(objF, m.V);
+
+    // In the middle of the run: the real triangles of the step, ghosts left out, neighbours
+    // consistent.
+    st.engine.seek(60);
+    ASSERT_FALSE(st.engine.inserter().done());
+    ASSERT_TRUE(dlab::ui::ExportMesh(st, dir / "mid.off", dlab::ui::MeshFormat::Off));
+    const auto mid = fields(dir / "mid.off");
+    std::int32_t real = 0;
+    for (std::int32_t t = 0; t < st.engine.mesh().numTriangles(); ++t) real += !st.engine.inserter().isVirtualTriangle(t);
+    EXPECT_EQ(std::stoi(mid[1][1]), real);
+    const dlab::Mesh em = dlab::ui::ExportableMesh(st.engine);
+    dlab::ValidateOptions combinatorial;
+    combinatorial.delaunay = false;  // mid-insertion some edges still wait for their flip
+    EXPECT_TRUE(dlab::validate(em, combinatorial).empty());
+}
+
+TEST(Files, ViewSvgHasEveryVisibleEdgeAndPointWhereTheCanvasDrawsThem) {
+    TempDir dir("svg");
+    UiHarness h;
+    auto& st = h.state();
+    st.engine.seek(70);
+    h.scroll(st.view.origin.x + st.view.size.x * 0.4f, st.view.origin.y + st.view.size.y * 0.5f, 2.0f);  // zoom in: some edges leave the view
+    ASSERT_TRUE(dlab::ui::ExportViewSvg(st, dir / "v.svg"));
+    const std::string svg = slurp(dir / "v.svg");
+    std::smatch mm;
+    ASSERT_TRUE(std::regex_search(svg, mm, std::regex("viewBox=\"0 0 (\\d+) (\\d+)\"")));
+    EXPECT_EQ(std::stoi(mm[1]), static_cast<int>(std::lround(st.view.size.x)));
+    // Edges: one <line> per edge of a real triangle that crosses the view's box.
+    const auto edgesBegin = svg.find("<g id=\"edges\""), edgesEnd = svg.find("</g>", edgesBegin);
+    const std::string edges = svg.substr(edgesBegin, edgesEnd - edgesBegin);
+    std::set<std::pair<long, long>> drawn;  // screen-rounded endpoints
+    const std::regex lineRe("<line x1=\"([-0-9.]+)\" y1=\"([-0-9.]+)\" x2=\"([-0-9.]+)\" y2=\"([-0-9.]+)\"/>");
+    int lines = 0;
+    for (auto it = std::sregex_iterator(edges.begin(), edges.end(), lineRe); it != std::sregex_iterator(); ++it) ++lines;
+    const dlab::Mesh& m = st.engine.mesh();
+    const auto& ins = st.engine.inserter();
+    int expected = 0;
+    for (std::int32_t c = 0; c < m.numCorners(); ++c) {
+        if (m.O[c] != kNone && m.O[c] < c) continue;
+        const std::int32_t a = m.V[dlab::next(c)], b = m.V[dlab::prev(c)];
+        if (ins.isVirtual(a) || ins.isVirtual(b)) continue;
+        const auto p = st.view.toScreen(m.G[a]) - st.view.origin, q = st.view.toScreen(m.G[b]) - st.view.origin;
+        expected += std::max(p.x, q.x) >= 0 && std::min(p.x, q.x) <= st.view.size.x && std::max(p.y, q.y) >= 0 &&
+                    std::min(p.y, q.y) <= st.view.size.y;
+    }
+    EXPECT_EQ(lines, expected);
+    EXPECT_GT(lines, 5);
+    // Points: each circle maps back (through the view) to its input point.
+    const std::regex circleRe("<circle data-id=\"(\\d+)\" cx=\"([-0-9.]+)\" cy=\"([-0-9.]+)\"");
+    int circles = 0;
+    for (auto it = std::sregex_iterator(svg.begin(), svg.end(), circleRe); it != std::sregex_iterator(); ++it) {
+        const std::size_t i = std::stoul((*it)[1]);
+        ASSERT_LT(i, st.engine.points().size());
+        const Vec2 w = st.view.toWorld({std::stod((*it)[2]) + st.view.origin.x, std::stod((*it)[3]) + st.view.origin.y});
+        EXPECT_NEAR(w.x, st.engine.points()[i].x, 0.01 / st.view.scale);
+        EXPECT_NEAR(w.y, st.engine.points()[i].y, 0.01 / st.view.scale);
+        ++circles;
+    }
+    EXPECT_GT(circles, 3);
+    EXPECT_NE(svg.find("<title>Delaunay Lab"), std::string::npos);
+}
+
+// ============================================================================================
+// Captures
+// ============================================================================================
+
+TEST(Files, F12WritesAPngOfTheWindow) {
+    TempDir dir("png");
+    UiHarness h(1000, 700);
+    auto& st = h.state();
+    st.files.screenshotFolder = dir.path.string();
+    st.engine.seek(30);
+    h.frames(2);
+    h.press(key::kF12);
+    ASSERT_TRUE(st.files.screenshotRequested);
+    dlab::ui::ServiceCaptures(h.gui());
+    EXPECT_FALSE(st.files.screenshotRequested);
+    std::vector<fs::path> pngs;
+    for (const auto& e : fs::directory_iterator(dir.path)) pngs.push_back(e.path());
+    ASSERT_EQ(pngs.size(), 1u);
+    EXPECT_EQ(pngs[0].extension(), ".png");
+    int w = 0, hgt = 0, n = 0;
+    unsigned char* data = stbi_load(pngs[0].string().c_str(), &w, &hgt, &n, 4);
+    ASSERT_NE(data, nullptr);
+    int fw = 0, fh = 0;
+    const auto& frame = h.gui().lastFrame(fw, fh);
+    ASSERT_EQ(w, fw);
+    ASSERT_EQ(hgt, fh);
+    std::size_t diff = 0;
+    for (std::size_t i = 0; i < static_cast<std::size_t>(w) * hgt * 4; ++i) diff += (i % 4 != 3) && data[i] != frame[i];
+    stbi_image_free(data);
+    EXPECT_EQ(diff, 0u);
+}
+
+TEST(Files, AnimatedGifHasOneFramePerStepAsRendered) {
+    TempDir dir("gif");
+    UiHarness h(1000, 700);
+    auto& st = h.state();
+    st.engine.seek(5);
+    h.frames(2);
+    dlab::ui::GifRequest req;
+    req.path = dir / "steps.gif";
+    req.from = 10;
+    req.to = 40;
+    req.every = 10;
+    req.delayMs = 300;
+    st.files.gif = req;
+    dlab::ui::ServiceCaptures(h.gui());
+    EXPECT_FALSE(st.files.gif.has_value());
+    EXPECT_EQ(st.engine.position(), 5u);  // back where it was
+    int err = 0;
+    GifFileType* gif = DGifOpenFileName(req.path.c_str(), &err);
+    ASSERT_NE(gif, nullptr) << GifErrorString(err);
+    ASSERT_EQ(DGifSlurp(gif), GIF_OK);
+    ASSERT_EQ(gif->ImageCount, 4);
+    const auto canvas = h.rect("canvas");
+    EXPECT_EQ(gif->SWidth, static_cast<int>(std::lround(canvas[2] - canvas[0])));
+    EXPECT_EQ(gif->SHeight, static_cast<int>(std::lround(canvas[3] - canvas[1])));
+    GraphicsControlBlock gcb;
+    ASSERT_EQ(DGifSavedExtensionToGCB(gif, 0, &gcb), GIF_OK);
+    EXPECT_EQ(gcb.DelayTime, 30);
+    // Frame k is the canvas at step 10 + 10 k: compare with a fresh rendering (the palette
+    // quantization costs a little precision, nothing more).
+    for (int k = 0; k < 4; ++k) {
+        st.engine.seek(10 + 10 * k);
+        h.frames(2);
+        int w = 0, hh = 0;
+        const auto px = dlab::ui::CaptureRegion(h.gui(), false, w, hh);
+        ASSERT_EQ(w, gif->SWidth);
+        const SavedImage& img = gif->SavedImages[k];
+        const ColorMapObject* map = img.ImageDesc.ColorMap ? img.ImageDesc.ColorMap : gif->SColorMap;
+        ASSERT_NE(map, nullptr);
+        // 256 colours cannot hold every antialiased shade: most pixels come back exact, nearly
+        // all close.
+        int exact = 0, close = 0;
+        for (int i = 0; i < w * hh; ++i) {
+            const GifColorType c = map->Colors[img.RasterBits[i]];
+            const int d = std::max({std::abs(c.Red - px[4 * i]), std::abs(c.Green - px[4 * i + 1]), std::abs(c.Blue - px[4 * i + 2])});
+            exact += d == 0;
+            close += d <= 24;
+        }
+        std::printf("[ info ] GIF frame %d: %.1f%% of pixels exact, %.2f%% within 24\n", k, 100.0 * exact / (w * hh), 100.0 * close / (w * hh));
+        EXPECT_GT(exact, 0.9 * w * hh) << "frame " << k;
+        EXPECT_GT(close, 0.99 * w * hh) << "frame " << k;
+    }
+    DGifCloseFile(gif, &err);
+    // A request beyond the frame limit is refused with one line naming the file.
+    req.to = 100000;
+    req.every = 1;
+    st.files.gif = req;
+    dlab::ui::ServiceCaptures(h.gui());
+    EXPECT_NE(st.files.notice.find("steps.gif"), std::string::npos) << st.files.notice;
+}
+
+// ============================================================================================
+// Sessions
+// ============================================================================================
+
+TEST(Files, SessionRoundTripRestoresTheSameStateAtTheSameStep) {
+    TempDir dir("session");
+    std::string path = dir / "s.json";
+    std::uint64_t fingerprint = 0;
+    std::vector<dlab::ui::BreakpointEntry> bps;
+    std::vector<Vec2> savedPoints;
+    {
+        UiHarness h;
+        auto& st = h.state();
+        std::vector<Vec2> pts = dlab::demoPoints();
+        pts.push_back({0.1, 1e-7});
+        pts.push_back({-0.0, 5e-324});
+        ASSERT_TRUE(st.loadPoints(pts, "demo plus two"));
+        dlab::InsertOptions o = st.engine.options();
+        o.order = dlab::OrderKind::Random;
+        o.seed = 7;
+        o.locator = dlab::LocatorKind::IdBufferCpu;
+        ASSERT_TRUE(st.setOptions(o));
+        st.engine.seek(57);
+        h.frames(1);
+        st.select(5);
+        st.view.center = {123.25, -7.5};
+        st.view.scale = 0.75;
+        st.overlays.voronoi = true;
+        st.overlays.cornerIds = false;
+        ASSERT_TRUE(dlab::ui::AddWatch(st, "o(o(c)) == c"));
+        st.expressions.watches.back().enabled = false;
+        ASSERT_TRUE(dlab::ui::EvaluateExpression(st, "c.n"));
+        st.run.breakpoints.push_back({*dlab::parseBreakpoint("insert:5"), true});
+        h.frames(1);
+        ASSERT_TRUE(dlab::ui::SaveSessionFile(st, path));
+        fingerprint = dlab::ui::MeshFingerprint(st.engine.mesh());
+        savedPoints = st.engine.points();
+        bps = st.run.breakpoints;
+    }
+    UiHarness h;
+    auto& st = h.state();
+    ASSERT_TRUE(dlab::ui::OpenFile(st, path)) << st.files.notice;
+    h.frames(2);
+    EXPECT_TRUE(sameBits(st.engine.points(), savedPoints));
+    EXPECT_EQ(st.engine.options().order, dlab::OrderKind::Random);
+    EXPECT_EQ(st.engine.options().seed, 7u);
+    EXPECT_EQ(st.engine.options().locator, dlab::LocatorKind::IdBufferCpu);
+    EXPECT_EQ(st.engine.position(), 57u);
+    EXPECT_EQ(dlab::ui::MeshFingerprint(st.engine.mesh()), fingerprint);
+    EXPECT_EQ(st.selection.corner, 5);
+    EXPECT_EQ(st.view.center.x, 123.25);
+    EXPECT_EQ(st.view.center.y, -7.5);
+    EXPECT_EQ(st.view.scale, 0.75);
+    EXPECT_TRUE(st.overlays.voronoi);
+    EXPECT_FALSE(st.overlays.cornerIds);
+    ASSERT_EQ(st.expressions.watches.size(), 1u);
+    EXPECT_EQ(st.expressions.watches[0].text, "o(o(c)) == c");
+    EXPECT_FALSE(st.expressions.watches[0].enabled);
+    EXPECT_EQ(st.expressions.live, "c.n");
+    ASSERT_EQ(st.run.breakpoints.size(), 1u);
+    EXPECT_EQ(st.run.breakpoints[0].bp, bps[0].bp);
+    for (const auto& msg : st.messages) EXPECT_NE(msg.level, dlab::ui::Message::Level::Warning) << msg.text;
+    // Saving again gives the same file: nothing was lost or invented on the way.
+    ASSERT_TRUE(dlab::ui::SaveSessionFile(st, dir / "again.json"));
+    std::string a = slurp(path), b = slurp(dir / "again.json");
+    const std::regex source("\"source\": \"[^\"]*\"");
+    EXPECT_EQ(std::regex_replace(a, source, ""), std::regex_replace(b, source, ""));
+}
+
+TEST(Files, ASessionWhoseMeshDiffersSaysSo) {
+    TempDir dir("bugreport");
+    UiHarness h;
+    auto& st = h.state();
+    st.engine.seek(40);
+    std::string text = dlab::ui::SessionText(st);
+    const auto at = text.find("\"fingerprint\": \"") + 16;
+    text.replace(at, 16, "0123456789abcdef");
+    std::string error;
+    ASSERT_TRUE(dlab::ui::LoadSessionText(st, text, "report.json", error)) << error;
+    EXPECT_EQ(st.engine.position(), 40u);
+    ASSERT_FALSE(st.messages.empty());
+    EXPECT_EQ(st.messages.back().level, dlab::ui::Message::Level::Warning);
+    EXPECT_NE(st.messages.back().text.find("differs"), std::string::npos) << st.messages.back().text;
+}
+
+TEST(Files, ABadFileChangesNothingAndShowsOneLineNamingFileAndLine) {
+    TempDir dir("bad");
+    UiHarness h;
+    auto& st = h.state();
+    st.engine.seek(33);
+    st.select(4);
+    h.frames(2);
+    const auto points = st.engine.points();
+    const auto view = st.view;
+    const auto options = st.engine.options();
+    const std::string good = dlab::ui::SessionText(st);
+    auto lineOf = [&](const std::string& text, const std::string& needle) {
+        const auto at = text.find(needle);
+        return 1 + static_cast<int>(std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(at), '\n'));
+    };
+    struct Case {
+        std::string name, text, expect;
+    };
+    std::string badPoint = good;
+    const std::string third = "\n    [";
+    std::size_t at = 0;
+    for (int k = 0; k < 4; ++k) at = badPoint.find(third, at + 1);
+    badPoint.insert(at + third.size(), "\"x\", ");  // point 3 becomes ["x", x, y]
+    std::string badVersion = std::regex_replace(good, std::regex("\"version\": 1"), "\"version\": 9");
+    std::string badLocator = std::regex_replace(good, std::regex("\"locator\": \"walk\""), "\"locator\": \"teleport\"");
+    std::string syntax = good;
+    syntax.insert(syntax.find("\"view\""), "oops ");
+    const std::vector<Case> cases = {
+        {"point.json", badPoint, ":" + std::to_string(lineOf(badPoint, "\"x\", ")) + ": expected [x, y]"},
+        {"version.json", badVersion, ":" + std::to_string(lineOf(badVersion, "\"version\"")) + ": session version 9 is newer"},
+        {"locator.json", badLocator, ":" + std::to_string(lineOf(badLocator, "teleport")) + ": unknown locator"},
+        {"syntax.json", syntax, ":" + std::to_string(lineOf(syntax, "oops")) + ": not valid JSON"},
+        {"other.json", "{\"hello\": 1}\n", ": not a Delaunay Lab session"},
+        {"points.csv", "1,2\n3,4\n5,inf\n", ":3:"},
+    };
+    for (const Case& c : cases) {
+        const std::string path = dir / c.name;
+        std::ofstream(path) << c.text;
+        st.files.notice.clear();
+        const std::size_t before = st.messages.size();
+        EXPECT_FALSE(dlab::ui::OpenFile(st, path)) << c.name;
+        EXPECT_TRUE(sameBits(st.engine.points(), points)) << c.name;
+        EXPECT_EQ(st.engine.position(), 33u) << c.name;
+        EXPECT_EQ(st.engine.options().locator, options.locator) << c.name;
+        EXPECT_EQ(st.view.center, view.center) << c.name;
+        EXPECT_EQ(st.selection.corner, 4) << c.name;
+        ASSERT_GT(st.messages.size(), before);
+        const std::string& msg = st.messages.back().text;
+        EXPECT_EQ(st.messages.back().level, dlab::ui::Message::Level::Error);
+        EXPECT_EQ(msg.find('\n'), std::string::npos) << msg;
+        EXPECT_EQ(msg.rfind(path, 0), 0u) << "does not start with the file: " << msg;
+        EXPECT_NE(msg.find(c.expect), std::string::npos) << c.name << ": " << msg;
+        EXPECT_FALSE(st.files.notice.empty());
+        // The notice is on the screen, red, over the canvas.
+        st.itemRects.erase("file-notice");
+        h.frames(2);
+        ASSERT_TRUE(st.itemRects.count("file-notice")) << c.name;
+        EXPECT_GT(h.countColour(h.rect("file-notice"), kNoticeRgb), 500) << c.name;
+    }
+    h.clickItem("notice-dismiss");
+    EXPECT_TRUE(st.files.notice.empty());
+}
+
+// ============================================================================================
+// Autosave and recovery after kill -9
+// ============================================================================================
+
+// The child of Files.RecoveryAfterKillRestoresEveryPoint: edits points by clicking on the canvas
+// until it is killed, appending each point to a progress file once it is in the autosave.
+TEST(Files, DISABLED_RecoveryChildEditsUntilKilled) {
+    const char* dir = std::getenv("DLAB_RECOVERY_DIR");
+    ASSERT_NE(dir, nullptr);
+    UiHarness h;
+    auto& st = h.state();
+    dlab::ui::EnableAutosave(st, dir);
+    const auto canvas = h.rect("canvas");
+    std::ofstream progress(std::string(dir) + "/progress.txt");
+    for (int i = 0; i < 400; ++i) {
+        const float x = canvas[0] + 25 + 22 * static_cast<float>(i % 12), y = canvas[3] - 25 - 22 * static_cast<float>(i / 12);
+        const std::size_t n = st.engine.points().size();
+        h.click(x, y);  // the frame after the edit autosaves
+        if (st.engine.points().size() != n + 1) continue;  // landed on a point: no edit
+        const Vec2 p = st.engine.points().back();
+        char line[96];
+        std::snprintf(line, sizeof line, "%a %a\n", p.x, p.y);
+        progress << line << std::flush;
+    }
+    for (;;) std::this_thread::sleep_for(std::chrono::seconds(1));  // wait for the kill
+}
+
+TEST(Files, RecoveryAfterKillRestoresEveryPoint) {
+    TempDir dir("recovery");
+    const std::string progressPath = dir / "progress.txt";
+    // The environment is set before fork: between fork and exec only exec is safe to call.
+    ::setenv("DLAB_RECOVERY_DIR", dir.path.c_str(), 1);
+    const pid_t child = ::fork();
+    if (child == 0) {
+        ::execl("/proc/self/exe", "dlab_ui_tests", "--gtest_also_run_disabled_tests",
+                "--gtest_filter=Files.DISABLED_RecoveryChildEditsUntilKilled", static_cast<char*>(nullptr));
+        ::_exit(127);
+    }
+    ::unsetenv("DLAB_RECOVERY_DIR");
+    ASSERT_GT(child, 0);
+    // Kill it in the middle of its edits: once it has made a few, at no particular point.
+    auto lines = [&] {
+        std::ifstream in(progressPath);
+        std::vector<std::string> out;
+        for (std::string l; std::getline(in, l);) out.push_back(l);
+        return out;
+    };
+    for (int i = 0; i < 600 && lines().size() < 8; ++i) std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    ASSERT_EQ(::kill(child, SIGKILL), 0);
+    int status = 0;
+    ::waitpid(child, &status, 0);
+    ASSERT_TRUE(WIFSIGNALED(status)) << "the child ended by itself (status " << status << ")";
+    const auto reported = lines();
+    ASSERT_GE(reported.size(), 8u) << "the child made too few edits before the kill";
+
+    // Start again: the autosave of the dead instance is offered, and accepting it restores every
+    // point the child had added (and perhaps the one it was adding when it died).
+    UiHarness h;
+    auto& st = h.state();
+    ASSERT_TRUE(dlab::ui::OfferRecovery(st, dir.path.string()));
+    h.frames(2);
+    h.clickItem("recover");
+    EXPECT_TRUE(st.files.recoveryPath.empty());
+    const auto& pts = st.engine.points();
+    const std::size_t demo = dlab::demoPoints().size();
+    ASSERT_GE(pts.size(), demo + reported.size());
+    EXPECT_LE(pts.size(), demo + reported.size() + 1);
+    for (std::size_t k = 0; k < reported.size(); ++k) {
+        double x = 0, y = 0;
+        ASSERT_EQ(std::sscanf(reported[k].c_str(), "%la %la", &x, &y), 2);
+        EXPECT_EQ(pts[demo + k], (Vec2{x, y})) << "point " << k;
+    }
+    // The dead instance's autosave is gone; a clean exit of this one leaves nothing behind.
+    dlab::ui::EnableAutosave(st, dir.path.string());
+    std::vector<Vec2> more = pts;
+    more.push_back({1, 1});
+    ASSERT_TRUE(st.editPoints(more));
+    h.frames(1);
+    int autosaves = 0;
+    for (const auto& e : fs::directory_iterator(dir.path)) autosaves += e.path().filename().string().rfind("autosave-", 0) == 0;
+    EXPECT_EQ(autosaves, 1);
+    ASSERT_TRUE(fs::exists(st.files.autosavePath));
+    dlab::ui::RemoveAutosave(st);
+    EXPECT_FALSE(fs::exists(st.files.autosavePath));
+    EXPECT_FALSE(dlab::ui::OfferRecovery(st, dir.path.string()));
+}
+
+TEST(Files, DiscardingTheRecoveryDeletesTheAutosave) {
+    TempDir dir("discard");
+    // An autosave of a pid that does not run.
+    std::string autosave = dir / "autosave-999999999.json";
+    {
+        UiHarness h;
+        std::ofstream(autosave) << dlab::ui::SessionText(h.state());
+    }
+    UiHarness h;
+    auto& st = h.state();
+    ASSERT_TRUE(dlab::ui::OfferRecovery(st, dir.path.string()));
+    EXPECT_EQ(st.files.recoveryPoints, dlab::demoPoints().size());
+    h.frames(2);
+    h.clickItem("discard-recovery");
+    EXPECT_FALSE(fs::exists(autosave));
+    EXPECT_TRUE(st.files.recoveryPath.empty());
+}
