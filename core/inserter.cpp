@@ -75,6 +75,10 @@ struct JournalRec {
 
 constexpr std::int32_t kMaxInputPoints = 1 << 26;  // corners and slots stay inside int32
 
+// Within one triangle: the index of next(c) and prev(c) for c = 3t + k.
+constexpr int kNext[3] = {1, 2, 0};
+constexpr int kPrev[3] = {2, 0, 1};
+
 // Calls f for every corner at the vertex of corner `start` (start first). Interior vertices
 // have a closed ring; it is walked one way, then the other way if it is open.
 template <class F>
@@ -460,10 +464,13 @@ void Inserter::beginLocate() {
     };
     m_known.tri = kNone;
 
+    // Corners are c0 + k; the edge opposite c0 + k runs from c0 + kNext[k] to c0 + kPrev[k]
+    // (index arithmetic instead of next()/prev(), whose % 3 costs more than the rest of a step).
     if (m_options.boundary == Boundary::Exact && isVirtualTriangle(t)) {
-        std::int32_t g = c0;
-        while (!isVirtual(V[g])) ++g;
-        const Vec2 x = G[V[next(g)]], y = G[V[prev(g)]];
+        int k = 0;
+        while (!isVirtual(V[c0 + k])) ++k;
+        const std::int32_t g = c0 + k;
+        const Vec2 x = G[V[c0 + kNext[k]]], y = G[V[c0 + kPrev[k]]];
         const int s = orient2d(x, y, p);
         if (s > 0 || (s == 0 && (onOpenSegment(x, y, p) || p == x || p == y))) {
             return found(g, s, kNone, 0, kNone, 0);
@@ -476,10 +483,12 @@ void Inserter::beginLocate() {
     // from t, p is strictly inside that edge (orient2d is exact, hence antisymmetric).
     const std::int32_t entry = w.entry;
     if (w.straight && entry != kNone) {
-        const bool left = orient2d(w.origin, p, G[V[entry]]) >= 0;
+        const int k = entry - c0;
+        const Vec2 a = G[V[entry]], b = G[V[c0 + kNext[k]]], c = G[V[c0 + kPrev[k]]];
+        const bool left = orient2d(w.origin, p, a) >= 0;
         // Left: L leaves through the edge p(e)->e (opposite n(e)); right: e->n(e) (opposite p(e)).
-        const std::int32_t exitCorner = left ? next(entry) : prev(entry);
-        const Vec2 from = G[V[next(exitCorner)]], to = G[V[prev(exitCorner)]];
+        const std::int32_t exitCorner = c0 + (left ? kNext[k] : kPrev[k]);
+        const Vec2 from = left ? c : a, to = left ? a : b;
         const int s = orient2d(from, to, p);
         if (s < 0) return moveTo(exitCorner, true);
         return found(entry, 1, exitCorner, s, kNone, 0);
@@ -499,9 +508,9 @@ void Inserter::beginLocate() {
             for (int k = 0; k < 3; ++k) left[k] = orient2d(q, p, G[V[c0 + k]]) >= 0;
             for (int k = 0; k < 3; ++k) {
                 // Exit edge n(c)->p(c): its start right of L, its end left of L.
-                if (!left[(k + 1) % 3] && left[(k + 2) % 3]) {
+                if (!left[kNext[k]] && left[kPrev[k]]) {
                     const std::int32_t c = c0 + k;
-                    const int s = orient2d(G[V[next(c)]], G[V[prev(c)]], p);
+                    const int s = orient2d(G[V[c0 + kNext[k]]], G[V[c0 + kPrev[k]]], p);
                     if (s >= 0) return found(c, s, kNone, 0, kNone, 0);
                     w.origin = q;
                     return moveTo(c, true);
@@ -516,7 +525,7 @@ void Inserter::beginLocate() {
     for (int k = 0; k < 3; ++k) {
         const std::int32_t c = c0 + k;
         if (c == entry) { side[k] = 1; continue; }  // we came from there
-        side[k] = orient2d(G[V[next(c)]], G[V[prev(c)]], p);
+        side[k] = orient2d(G[V[c0 + kNext[k]]], G[V[c0 + kPrev[k]]], p);
     }
     if (side[0] >= 0 && side[1] >= 0 && side[2] >= 0) return found(c0, side[0], c0 + 1, side[1], c0 + 2, side[2]);
     if (w.straight) {
@@ -568,20 +577,20 @@ void Inserter::classify() {
     };
     m_ctl.where = Where::None;
     if (m_options.boundary == Boundary::Exact && isVirtualTriangle(t)) {
-        std::int32_t g = c0;
-        while (!isVirtual(V[g])) ++g;
-        const Vec2 x = G[V[next(g)]], y = G[V[prev(g)]];
-        const int s = sideOf(g - c0, x, y);
+        int k = 0;
+        while (!isVirtual(V[c0 + k])) ++k;
+        const std::int32_t g = c0 + k;
+        const Vec2 x = G[V[c0 + kNext[k]]], y = G[V[c0 + kPrev[k]]];
+        const int s = sideOf(k, x, y);
         if (s > 0) { m_ctl.where = Where::Outside; m_ctl.whereCorner = g; }
-        else if (s == 0 && p == x) { m_ctl.where = Where::OnVertex; m_ctl.whereCorner = next(g); }
-        else if (s == 0 && p == y) { m_ctl.where = Where::OnVertex; m_ctl.whereCorner = prev(g); }
+        else if (s == 0 && p == x) { m_ctl.where = Where::OnVertex; m_ctl.whereCorner = c0 + kNext[k]; }
+        else if (s == 0 && p == y) { m_ctl.where = Where::OnVertex; m_ctl.whereCorner = c0 + kPrev[k]; }
         else if (s == 0 && onOpenSegment(x, y, p)) { m_ctl.where = Where::OnEdge; m_ctl.whereCorner = g; }
         return;
     }
     int side[3], zeros = 0;
     for (int k = 0; k < 3; ++k) {
-        const std::int32_t c = c0 + k;
-        side[k] = sideOf(k, G[V[next(c)]], G[V[prev(c)]]);
+        side[k] = sideOf(k, G[V[c0 + kNext[k]]], G[V[c0 + kPrev[k]]]);
         if (side[k] < 0) return;
         zeros += side[k] == 0;
     }
