@@ -3,12 +3,14 @@
 
 #include "core/generators.h"
 #include "ui/gui.h"
+#include "ui/lesson_player.h"
 #include "ui/panels.h"
 
 #include <imgui.h>
 
 #include <chrono>
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 
 namespace dlab::cli {
@@ -26,6 +28,9 @@ struct RenderArgs {
     std::vector<std::string> overlays;
     bool engineGiven = false;
     int benchFrames = 0;
+    std::string lesson;
+    int stop = 1;
+    std::string slides;
     EngineFlags engine;
 };
 
@@ -83,7 +88,28 @@ void runRender(const RenderArgs& args) {
     state.presentation = args.presentation;
     if (args.engineGiven) state.setOptions(args.engine.options());
     else state.setOptions(ui::demoOptions());
-    if (args.input.empty()) {
+    if (!args.lesson.empty()) {
+        if (!ui::openLesson(state, args.lesson)) fail(state.messages.back().text, 2);
+        const std::size_t stops = state.lessonPlayer.lesson->stops.size();
+        if (!args.slides.empty()) {
+            // One slide per stop: DIR/01.png, DIR/02.png, ...
+            std::error_code ec;
+            std::filesystem::create_directories(args.slides, ec);
+            for (std::size_t k = 0; k < stops; ++k) {
+                ui::goToStop(state, k);
+                for (int i = 0; i < 3; ++i) gui.frame();
+                char name[32];
+                std::snprintf(name, sizeof name, "/%02zu.png", k + 1);
+                if (!gui.saveScreenshot(args.slides + name, error)) fail(error);
+            }
+            std::cout << "wrote " << stops << " slides to " << args.slides << "\n";
+            return;
+        }
+        if (args.stop < 1 || static_cast<std::size_t>(args.stop) > std::max<std::size_t>(stops, 1)) {
+            fail("--stop must be between 1 and " + std::to_string(stops) + " for " + args.lesson, 2);
+        }
+        ui::goToStop(state, static_cast<std::size_t>(args.stop - 1));
+    } else if (args.input.empty()) {
         state.loadPoints(demoPoints(), "built-in demo");
     } else {
         LoadedPoints loaded = loadPoints(args.input);
@@ -98,12 +124,14 @@ void runRender(const RenderArgs& args) {
         else if (o == "no-fill") ov.fill = false;
         else fail("unknown --overlay \"" + o + "\" (voronoi, circumcircles, triangle-ids, no-corner-ids, no-fill)", 2);
     }
-    if (args.toEnd) {
+    if (!args.lesson.empty()) {
+        // The lesson decided the position and the selection.
+    } else if (args.toEnd) {
         while (!state.engine.toEnd(1 << 20)) {}
     } else if (args.steps >= 0) {
         state.engine.seek(static_cast<std::size_t>(args.steps));
     }
-    if (args.select >= 0) state.select(static_cast<std::int32_t>(args.select));
+    if (args.select >= 0 && args.lesson.empty()) state.select(static_cast<std::int32_t>(args.select));
     // ImGui lays out in the first frames (tables measure their columns): render a few.
     for (int i = 0; i < 3; ++i) gui.frame();
     if (args.benchFrames > 0) benchFrames(gui, state, args.benchFrames);
@@ -124,6 +152,9 @@ void addRender(CLI::App& app) {
     cmd->add_option("--size", args->size, "Window size WIDTHxHEIGHT")->capture_default_str();
     cmd->add_option("--select", args->select, "Select this corner (inspector, highlights)");
     cmd->add_flag("--presentation", args->presentation, "Presentation mode (large fonts, high contrast)");
+    cmd->add_option("--lesson", args->lesson, "A lesson (.toml): render one of its stops");
+    cmd->add_option("--stop", args->stop, "The lesson's stop to render (1-based)")->capture_default_str();
+    cmd->add_option("--slides", args->slides, "Render every stop of the lesson to DIR/01.png, DIR/02.png, ...");
     cmd->add_option("--bench-frames", args->benchFrames, "Also time this many frames idle, running and scrolling");
     cmd->add_option("--overlay", args->overlays, "voronoi, circumcircles, triangle-ids, no-corner-ids, no-fill (repeatable)");
     args->engine.add(*cmd);

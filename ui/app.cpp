@@ -3,6 +3,7 @@
 // inspector in a side column, messages below; splitters between them, remembered in Layout.
 #include "ui/gui.h"
 #include "ui/keys.h"
+#include "ui/lesson_player.h"
 #include "ui/panels.h"
 
 #include <imgui.h>
@@ -14,12 +15,12 @@ namespace dlab::ui {
 namespace {
 
 const SideTab kSideTabs[] = {
-    {"Corner table", ShowCornerTable},
-    {"G (vertices)", ShowVertexTable},
-    {"Expressions", ShowExpressions},
-    {"Predicates", ShowPredicates},
-    {"ID buffer", ShowIdBuffer},
-    {"Statistics", ShowStatistics},
+    {"Corner table", ShowCornerTable, "corner-table"},
+    {"G (vertices)", ShowVertexTable, "vertex-table"},
+    {"Expressions", ShowExpressions, "expressions"},
+    {"Predicates", ShowPredicates, "predicates"},
+    {"ID buffer", ShowIdBuffer, "idbuffer"},
+    {"Statistics", ShowStatistics, "statistics"},
 };
 
 // A draggable bar; returns the drag delta in pixels along its axis.
@@ -77,28 +78,54 @@ void ShowApplication(AppState& state) {
     }
     ImGui::SameLine(0, 0);
 
-    // ---- Right: tables (tabs) above, inspector below -------------------------------------------
+    // ---- Right: the lesson (when one is open), tables (tabs), inspector ------------------------
+    // A lesson stop may name the panels it wants: only those show (lesson_player.h).
     ImGui::BeginChild("##side", ImVec2(sideW, mainH), false, ImGuiWindowFlags_NoScrollbar);
-    const float inspH = std::clamp(L.inspectorHeight * mainH, 80.0f, mainH - 80.0f);
-    ImGui::BeginChild("##tabs", ImVec2(0, mainH - inspH - kBar), false, ImGuiWindowFlags_NoScrollbar);
-    if (ImGui::BeginTabBar("##sidetabs")) {
-        for (const SideTab& tab : kSideTabs) {
-            const bool open = ImGui::BeginTabItem(tab.name);
-            RecordItem(state, tab.name);
-            if (open) {
-                tab.show(state);
-                ImGui::EndTabItem();
-            }
+    float sideH = mainH;
+    if (state.lessonPlayer.lesson) {
+        const float lessonH = std::clamp(L.lessonHeight * mainH, 120.0f, mainH - 60.0f);
+        ImGui::BeginChild("##lesson", ImVec2(0, lessonH), true);
+        ShowLesson(state);
+        ImGui::EndChild();
+        if (const float d = Splitter("##lsplit", false, kBar, sideW); d != 0) {
+            L.lessonHeight = std::clamp(L.lessonHeight + d / std::max(1.0f, mainH), 0.2f, 0.9f);
         }
-        ImGui::EndTabBar();
+        sideH -= lessonH + kBar;
     }
-    ImGui::EndChild();
-    if (const float d = Splitter("##isplit", false, kBar, sideW); d != 0) {
-        L.inspectorHeight = std::clamp(L.inspectorHeight - d / std::max(1.0f, mainH), 0.1f, 0.9f);
+    const SideTab* firstWanted = nullptr;
+    for (const SideTab& tab : kSideTabs) {
+        if (!firstWanted && tab.id && lessonWantsPanel(state, tab.id)) firstWanted = &tab;
     }
-    ImGui::BeginChild("##inspector", ImVec2(0, 0), false);
-    ShowInspector(state);
-    ImGui::EndChild();
+    const bool showInspector = lessonWantsPanel(state, "inspector");
+    const float inspH = !showInspector ? 0.0f : firstWanted ? std::clamp(L.inspectorHeight * sideH, 80.0f, std::max(80.0f, sideH - 80.0f)) : sideH;
+    if (firstWanted) {
+        ImGui::BeginChild("##tabs", ImVec2(0, showInspector ? sideH - inspH - kBar : sideH), false, ImGuiWindowFlags_NoScrollbar);
+        if (ImGui::BeginTabBar("##sidetabs")) {
+            for (const SideTab& tab : kSideTabs) {
+                if (tab.id && !lessonWantsPanel(state, tab.id)) continue;
+                const bool select = state.lessonPlayer.pendingTabSelect && &tab == firstWanted;
+                const bool open = ImGui::BeginTabItem(tab.name, nullptr, select ? ImGuiTabItemFlags_SetSelected : 0);
+                RecordItem(state, tab.name);
+                if (open) {
+                    tab.show(state);
+                    ImGui::EndTabItem();
+                }
+            }
+            ImGui::EndTabBar();
+        }
+        ImGui::EndChild();
+    }
+    state.lessonPlayer.pendingTabSelect = false;
+    if (showInspector && firstWanted) {
+        if (const float d = Splitter("##isplit", false, kBar, sideW); d != 0) {
+            L.inspectorHeight = std::clamp(L.inspectorHeight - d / std::max(1.0f, sideH), 0.1f, 0.9f);
+        }
+    }
+    if (showInspector) {
+        ImGui::BeginChild("##inspector", ImVec2(0, 0), false);
+        ShowInspector(state);
+        ImGui::EndChild();
+    }
     ImGui::EndChild();
 
     // ---- Bottom: messages ---------------------------------------------------------------------

@@ -7,6 +7,7 @@
 #include "core/corner_expr.h"
 #include "core/locator.h"
 #include "ui/engine.h"
+#include "ui/lesson_player.h"
 
 #include <glm/vec2.hpp>
 
@@ -106,12 +107,14 @@ struct Layout {
     float rightWidth = 0.36f;  // the side column, as a fraction of the window width
     float bottomHeight = 0.2f; // the message strip, as a fraction of the window height
     float inspectorHeight = 0.42f;  // the inspector, as a fraction of the side column
+    float lessonHeight = 0.5f;      // the lesson panel, as a fraction of the side column
 };
 
 // Text and choices of the menu's dialogs, kept between frames (ImGui is immediate-mode).
 struct DialogState {
     std::vector<int> generatorCounts;
     int generatorSeed = 1;
+    std::vector<std::pair<std::string, std::string>> lessons;  // (path, title) of lessons/*.toml
     int breakVertex = 0;
     int breakCorner = -1;
     std::string breakText;
@@ -239,6 +242,7 @@ struct AppState {
     std::shared_ptr<CanvasCache> canvas;  // created by the canvas on its first frame
     DialogState dialogs;
     FrameStats frameStats;
+    LessonState lessonPlayer;  // the lesson on show, if any (lesson_player.h)
     std::uint64_t tableVersion = 0;  // the engine version the corner table last showed
     // Screen rectangles of named widgets from the last frame (x0, y0, x1, y1): how tests and
     // lessons find "the step button" without hard-coding the layout.

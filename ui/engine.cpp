@@ -8,10 +8,6 @@
 
 namespace dlab::ui {
 
-bool endsInsertion(OpType t) {
-    return t == OpType::Inserted || t == OpType::SkipDuplicate || t == OpType::Start || t == OpType::Finalize;
-}
-
 Engine::Engine() {
     std::string error;
     reset({}, InsertOptions{}, error);

@@ -107,7 +107,5 @@ private:
     mutable std::uint64_t m_statesVersion = ~std::uint64_t{0};
 };
 
-// True for the ops that end an insertion (the next op starts the next point).
-bool endsInsertion(OpType t);
 
 }  // namespace dlab::ui

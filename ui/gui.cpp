@@ -61,6 +61,7 @@ void Gui::loadFonts() {
     ImGuiIO& io = ImGui::GetIO();
     const char* sans = firstExisting({"/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf"});
     const char* mono = firstExisting({"/usr/share/fonts/truetype/dejavu/DejaVuSansMono.ttf"});
+    const char* bold = firstExisting({"/usr/share/fonts/truetype/dejavu/DejaVuSans-Bold.ttf"});
     const float base = m_state.presentation ? 26.0f : 16.0f;
     io.Fonts->Clear();
     ImFontConfig cfg;
@@ -72,6 +73,7 @@ void Gui::loadFonts() {
         m_fonts.caption = io.Fonts->AddFontFromFileTTF(sans, base * 1.3f, &cfg, ranges);
     }
     if (mono) m_fonts.mono = io.Fonts->AddFontFromFileTTF(mono, base, &cfg);
+    if (bold) m_fonts.bold = io.Fonts->AddFontFromFileTTF(bold, base, &cfg);
     if (!m_fonts.ui) {
         ImFontConfig def;
         def.SizePixels = base;
@@ -80,6 +82,7 @@ void Gui::loadFonts() {
         m_state.log(Message::Level::Warning, "DejaVu fonts not found (apt-get install fonts-dejavu-core): using ImGui's built-in font");
     }
     if (!m_fonts.mono) m_fonts.mono = m_fonts.ui;
+    if (!m_fonts.bold) m_fonts.bold = m_fonts.ui;
     io.FontDefault = m_fonts.ui;
     ImGui_ImplOpenGL2_DestroyFontsTexture();
     ImGui_ImplOpenGL2_CreateFontsTexture();

@@ -18,6 +18,7 @@ struct Fonts {
     ImFont* ui = nullptr;       // labels, buttons, text
     ImFont* mono = nullptr;     // tables and ids
     ImFont* caption = nullptr;  // the caption line
+    ImFont* bold = nullptr;     // lesson text
 };
 
 // Fonts of the current frame (set by Gui before the panels run; the defaults when absent).

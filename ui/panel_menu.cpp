@@ -2,6 +2,8 @@
 // Generate (the inputs that broke other triangulators), Help.
 #include "core/generators.h"
 #include "core/io_read.h"
+#include "core/lesson.h"
+#include "ui/lesson_player.h"
 #include "ui/files.h"
 #include "ui/panels.h"
 
@@ -117,6 +119,31 @@ void ShowMenuBar(AppState& st) {
             }
             ImGui::PopID();
         }
+        ImGui::EndMenu();
+    }
+    if (ImGui::BeginMenu("Lessons")) {
+        auto& list = st.dialogs.lessons;
+        if (list.empty()) {
+            std::error_code ec;
+            for (const auto& entry : std::filesystem::directory_iterator(DLAB_LESSONS_DIR, ec)) {
+                if (entry.path().extension() != ".toml") continue;
+                std::string title = entry.path().filename().string();
+                try {
+                    title = loadLesson(entry.path().string()).title;
+                } catch (const std::exception&) {
+                    title += " (cannot be read)";
+                }
+                list.emplace_back(entry.path().string(), title);
+            }
+            std::sort(list.begin(), list.end());
+        }
+        for (const auto& [path, title] : list) {
+            const bool current = st.lessonPlayer.lesson && st.lessonPlayer.progress.lesson == path;
+            if (ImGui::MenuItem(title.c_str(), nullptr, current)) openLesson(st, path);
+        }
+        if (list.empty()) ImGui::TextDisabled("no lessons in %s", DLAB_LESSONS_DIR);
+        ImGui::Separator();
+        if (ImGui::MenuItem("Close the lesson", nullptr, false, st.lessonPlayer.lesson != nullptr)) closeLesson(st);
         ImGui::EndMenu();
     }
     if (ImGui::BeginMenu("Help")) {

@@ -24,6 +24,7 @@ void ShowVertexTable(AppState& state);   // panel_corner_table.cpp: G (vertex co
 void ShowInspector(AppState& state);     // panel_inspector.cpp: the selected corner's operators
 void ShowMessages(AppState& state);      // panel_messages.cpp: every warning and error
 void ShowHelp(AppState& state);          // panel_help.cpp: F1 overlay with all shortcuts
+void ShowLesson(AppState& state);        // panel_lesson.cpp: the lesson's text and questions
 
 // Loads a point file into the run; on bad input logs one line (file:line: what) and changes
 // nothing (panel_menu.cpp).
@@ -96,6 +97,7 @@ void DrawViolationOverlay(AppState& state);
 struct SideTab {
     const char* name;
     void (*show)(AppState&);
+    const char* id = nullptr;  // the panel's name in lesson files (core/lesson.h kPanelNames)
 };
 
 }  // namespace dlab::ui

@@ -77,6 +77,18 @@ void loadSettings(const std::string& path, AppState& st, WindowOptions& window, 
         read(*o, "pending_points", ov.pendingPoints);
         read(*o, "virtual_triangles", ov.virtualTriangles);
     }
+    if (const auto ls = j.find("lessons"); ls != j.end() && ls->is_object()) {
+        for (const auto& [path, v] : ls->items()) {
+            if (!v.is_object()) continue;
+            LessonProgress p;
+            p.lesson = path;
+            read(v, "title", p.title);
+            read(v, "stop", p.stop);
+            read(v, "furthest", p.furthest);
+            read(v, "answers", p.answers);
+            st.lessonPlayer.saved[path] = std::move(p);
+        }
+    }
     read(j, "presentation", st.presentation);
     read(j, "ops_per_second", st.run.opsPerSecond);
     st.run.opsPerSecond = std::clamp(st.run.opsPerSecond, 0.5f, RunControl::kFullSpeed);
@@ -88,7 +100,7 @@ void loadSettings(const std::string& path, AppState& st, WindowOptions& window, 
 bool saveSettings(const std::string& path, const AppState& st, const WindowOptions& window, std::string& error) {
     if (path.empty()) return true;
     const Overlays& ov = st.overlays;
-    const nlohmann::json j = {
+    nlohmann::json j = {
         {"window", {{"x", window.x}, {"y", window.y}, {"width", window.width}, {"height", window.height}, {"maximized", window.maximized}}},
         {"layout", {{"right_width", st.layout.rightWidth}, {"bottom_height", st.layout.bottomHeight}, {"inspector_height", st.layout.inspectorHeight}}},
         {"overlays", {{"fill", ov.fill}, {"vertex_ids", ov.vertexIds}, {"corner_ids", ov.cornerIds}, {"triangle_ids", ov.triangleIds},
@@ -99,6 +111,11 @@ bool saveSettings(const std::string& path, const AppState& st, const WindowOptio
         {"snap_to_grid", st.snapToGrid},
         {"grid_step", st.gridStep},
     };
+    nlohmann::json lessons = nlohmann::json::object();
+    for (const auto& [file, p] : st.lessonPlayer.saved) {
+        lessons[file] = {{"title", p.title}, {"stop", p.stop}, {"furthest", p.furthest}, {"answers", p.answers}};
+    }
+    j["lessons"] = std::move(lessons);
     std::error_code ec;
     const std::filesystem::path p(path);
     std::filesystem::create_directories(p.parent_path(), ec);

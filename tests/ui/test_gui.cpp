@@ -66,9 +66,9 @@ TEST(Gui, KeysStepRunAndRewind) {
     h.press(key::kPageDown);  // a presentation clicker
     EXPECT_EQ(e.position(), 2u);
     h.press(key::kRight, /*shift=*/true);
-    EXPECT_TRUE(dlab::ui::endsInsertion(e.current()->type));
+    EXPECT_TRUE(dlab::endsInsertion(e.current()->type));
     h.press(key::kLeft);
-    EXPECT_FALSE(dlab::ui::endsInsertion(e.current()->type));
+    EXPECT_FALSE(dlab::endsInsertion(e.current()->type));
     h.press(key::kHome);
     EXPECT_EQ(e.position(), 0u);
     h.press(key::kEnd);  // run to the end at full speed, a frame budget at a time

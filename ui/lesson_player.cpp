@@ -1,0 +1,123 @@
+// Lesson player: open (load + plan), go to a stop (seek, select, panels, overlays), answers.
+#include "ui/lesson_player.h"
+
+#include "ui/app_state.h"
+
+#include <algorithm>
+#include <cstring>
+
+namespace dlab::ui {
+
+namespace {
+
+bool* overlaySwitch(Overlays& o, const std::string& name) {
+    if (name == "fill") return &o.fill;
+    if (name == "vertex-ids") return &o.vertexIds;
+    if (name == "corner-ids") return &o.cornerIds;
+    if (name == "triangle-ids") return &o.triangleIds;
+    if (name == "walk") return &o.walk;
+    if (name == "flip-queue") return &o.flipQueue;
+    if (name == "flipped") return &o.flipped;
+    if (name == "circumcircles") return &o.circumcircles;
+    if (name == "voronoi") return &o.voronoi;
+    if (name == "pending-points") return &o.pendingPoints;
+    if (name == "virtual-triangles") return &o.virtualTriangles;
+    return nullptr;  // e.g. "idbuffer": shown by its panel
+}
+
+void saveProgress(AppState& st) {
+    LessonState& L = st.lessonPlayer;
+    if (L.lesson) L.saved[L.progress.lesson] = L.progress;
+}
+
+}  // namespace
+
+bool openLesson(AppState& st, const std::string& path) {
+    std::shared_ptr<Lesson> lesson;
+    LessonPlan plan;
+    try {
+        lesson = std::make_shared<Lesson>(loadLesson(path));
+        plan = planLesson(*lesson);
+    } catch (const LessonError& e) {
+        st.log(Message::Level::Error, std::string(e.what()) + " (the lesson was not opened)");
+        return false;
+    } catch (const std::exception& e) {
+        st.log(Message::Level::Error, path + ": " + e.what() + " (the lesson was not opened)");
+        return false;
+    }
+    saveProgress(st);
+    if (!st.setOptions(lesson->options) || !st.loadPoints(lesson->points, lesson->title)) return false;
+    LessonState& L = st.lessonPlayer;
+    L.lesson = lesson;
+    L.plan = std::move(plan);
+    L.progress = {};
+    if (const auto it = L.saved.find(path); it != L.saved.end() && it->second.title == lesson->title) L.progress = it->second;
+    L.progress.lesson = path;
+    L.progress.title = lesson->title;
+    L.progress.answers.resize(lesson->stops.size(), 0);
+    st.log(Message::Level::Info, "lesson: " + lesson->title + " (" + std::to_string(lesson->stops.size()) + " stops)");
+    if (lesson->stops.empty()) {
+        st.engine.seek(0);
+    } else {
+        goToStop(st, std::min(L.progress.stop, lesson->stops.size() - 1));
+    }
+    return true;
+}
+
+void closeLesson(AppState& st) {
+    saveProgress(st);
+    st.lessonPlayer.lesson.reset();
+    st.lessonPlayer.plan = {};
+}
+
+void goToStop(AppState& st, std::size_t k) {
+    LessonState& L = st.lessonPlayer;
+    if (!L.lesson || L.lesson->stops.empty()) return;
+    k = std::min(k, L.lesson->stops.size() - 1);
+    const LessonStop& stop = L.lesson->stops[k];
+    const StopState& at = L.plan.stops[k];
+    st.run.running = false;
+    st.engine.seek(at.position);
+    st.select(at.selected);
+    if (at.selected != kNone) st.selection.jumpToCorner = at.selected;
+    if (!stop.overlays.empty()) {
+        // A stop that names overlays shows exactly those.
+        Overlays& o = st.overlays;
+        for (bool* b : {&o.fill, &o.vertexIds, &o.cornerIds, &o.triangleIds, &o.walk, &o.flipQueue, &o.flipped,
+                        &o.circumcircles, &o.voronoi, &o.pendingPoints, &o.virtualTriangles}) {
+            *b = false;
+        }
+        for (const std::string& name : stop.overlays) {
+            if (bool* b = overlaySwitch(o, name)) *b = true;
+        }
+    }
+    L.progress.stop = k;
+    L.progress.furthest = std::max(L.progress.furthest, k);
+    L.typed.clear();
+    L.feedback = LessonState::Feedback::None;
+    L.showHint = false;
+    L.pendingTabSelect = true;
+    saveProgress(st);
+}
+
+bool checkAnswer(AppState& st) {
+    LessonState& L = st.lessonPlayer;
+    if (!L.lesson) return false;
+    const std::size_t k = L.progress.stop;
+    if (k >= L.plan.stops.size() || !L.plan.stops[k].answer) return false;
+    const bool right = acceptsAnswer(*L.plan.stops[k].answer, L.typed);
+    L.feedback = right ? LessonState::Feedback::Right : LessonState::Feedback::Wrong;
+    if (k < L.progress.answers.size()) L.progress.answers[k] = std::max<std::uint8_t>(L.progress.answers[k], right ? 2 : 1);
+    saveProgress(st);
+    return right;
+}
+
+bool lessonWantsPanel(const AppState& st, const char* panel) {
+    const LessonState& L = st.lessonPlayer;
+    if (!L.lesson || L.lesson->stops.empty()) return true;
+    const auto& panels = L.lesson->stops[std::min(L.progress.stop, L.lesson->stops.size() - 1)].panels;
+    if (panels.empty()) return true;
+    return std::any_of(panels.begin(), panels.end(), [&](const std::string& p) { return p == panel; });
+}
+
+}  // namespace dlab::ui

@@ -1,0 +1,39 @@
+// The lesson player: a loaded lesson, its plan (every stop's position, selection and answer,
+// computed headlessly by core/lesson), the stop on show, and the student's answers. Going to a
+// stop seeks the run, selects the stop's corner and shows the stop's panels and overlays.
+#pragma once
+
+#include "core/lesson.h"
+
+#include <map>
+#include <memory>
+#include <string>
+
+namespace dlab::ui {
+
+struct AppState;
+
+struct LessonState {
+    std::shared_ptr<const Lesson> lesson;  // null: no lesson open
+    LessonPlan plan;
+    LessonProgress progress;
+    std::string typed;  // the answer field
+    enum class Feedback : std::uint8_t { None, Right, Wrong, Shown } feedback = Feedback::None;
+    bool showHint = false;
+    bool pendingTabSelect = false;  // the side column shows the stop's panel once
+    // Progress of every lesson opened, by path (persisted with the settings).
+    std::map<std::string, LessonProgress> saved;
+};
+
+// Loads, checks and plans the lesson, then shows its first stop (or where the student was).
+// On a bad lesson: logs "FILE:LINE: stop K: what", changes nothing, returns false.
+bool openLesson(AppState& state, const std::string& path);
+void closeLesson(AppState& state);
+// Shows stop k (0-based, clamped).
+void goToStop(AppState& state, std::size_t k);
+// Checks the typed answer against the engine's; records it in the progress.
+bool checkAnswer(AppState& state);
+// The side-column tab and the visibility of the inspector/messages a stop asks for.
+bool lessonWantsPanel(const AppState& state, const char* panelName);
+
+}  // namespace dlab::ui
