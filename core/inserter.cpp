@@ -422,6 +422,15 @@ bool Inserter::onOpenSegment(Vec2 a, Vec2 b, Vec2 p) const {
 // [SECTION] Walking (the paper's line walk, with a visibility-walk fallback)
 // ============================================================================================
 
+// A ghost triangle 3t..3t+2 (exact mode): its ghost corner's index and the hull edge x->y
+// opposite it.
+Inserter::HullEdge Inserter::hullEdgeOf(std::int32_t c0) const {
+    const auto& V = m_mesh.V;
+    int k = 0;
+    while (!isVirtual(V[c0 + k])) ++k;
+    return {k, m_mesh.G[V[c0 + kNext[k]]], m_mesh.G[V[c0 + kPrev[k]]]};
+}
+
 void Inserter::beginLocate() {
     std::int32_t t = m_locator->hint(currentPoint(), m_ctl.lastTri);
     if (t < 0 || t >= m_mesh.numTriangles()) t = 0;
@@ -467,10 +476,8 @@ void Inserter::beginLocate() {
     // Corners are c0 + k; the edge opposite c0 + k runs from c0 + kNext[k] to c0 + kPrev[k]
     // (index arithmetic instead of next()/prev(), whose % 3 costs more than the rest of a step).
     if (m_options.boundary == Boundary::Exact && isVirtualTriangle(t)) {
-        int k = 0;
-        while (!isVirtual(V[c0 + k])) ++k;
+        const auto [k, x, y] = hullEdgeOf(c0);
         const std::int32_t g = c0 + k;
-        const Vec2 x = G[V[c0 + kNext[k]]], y = G[V[c0 + kPrev[k]]];
         const int s = orient2d(x, y, p);
         if (s > 0 || (s == 0 && (onOpenSegment(x, y, p) || p == x || p == y))) {
             return found(g, s, kNone, 0, kNone, 0);
@@ -577,10 +584,8 @@ void Inserter::classify() {
     };
     m_ctl.where = Where::None;
     if (m_options.boundary == Boundary::Exact && isVirtualTriangle(t)) {
-        int k = 0;
-        while (!isVirtual(V[c0 + k])) ++k;
+        const auto [k, x, y] = hullEdgeOf(c0);
         const std::int32_t g = c0 + k;
-        const Vec2 x = G[V[c0 + kNext[k]]], y = G[V[c0 + kPrev[k]]];
         const int s = sideOf(k, x, y);
         if (s > 0) { m_ctl.where = Where::Outside; m_ctl.whereCorner = g; }
         else if (s == 0 && p == x) { m_ctl.where = Where::OnVertex; m_ctl.whereCorner = c0 + kNext[k]; }

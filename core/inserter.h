@@ -173,6 +173,11 @@ private:
     void collectDuplicatesWithoutMesh();  // all points collinear: report equal points anyway
     std::vector<std::int32_t> virtualTriangles() const;  // sorted ids of triangles to drop
     void beginLocate();
+    struct HullEdge {
+        int k;       // index of the ghost vertex's corner in its triangle
+        Vec2 x, y;   // the hull edge opposite it
+    };
+    HullEdge hullEdgeOf(std::int32_t c0) const;
     // The walk's part of Control, as locals while it runs.
     struct WalkState {
         std::int32_t tri;
