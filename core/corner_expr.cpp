@@ -2,6 +2,8 @@
 // checks every index before it reads the mesh.
 #include "core/corner_expr.h"
 
+#include "core/text_util.h"
+
 #include <algorithm>
 #include <cctype>
 #include <charconv>
@@ -106,7 +108,7 @@ private:
         return false;
     }
     std::int32_t setError(std::size_t column, std::string message) {
-        if (!m_failed) m_error = ExprError{ExprError::Kind::Syntax, column, std::move(message)};
+        if (!m_failed) m_error = ExprError{ExprError::Kind::Syntax, column, escapeControls(message)};
         m_failed = true;
         return -1;
     }
@@ -315,7 +317,7 @@ public:
 private:
     using Node = CornerExpr::Node;
 
-    std::string src(const Node& n) const { return m_e.m_text.substr(n.begin, n.end - n.begin); }
+    std::string src(const Node& n) const { return escapeControls(m_e.m_text.substr(n.begin, n.end - n.begin)); }
 
     std::nullopt_t fail(ExprError::Kind kind, const Node& at, std::string message) {
         m_error = ExprError{kind, at.begin, std::move(message)};
@@ -528,7 +530,7 @@ WatchReport checkWatchOver(const CornerExpr& w, const Mesh& mesh, const Corners&
             rep.ok = false;
             rep.corner = c;
             rep.failure = w.evaluateAt(mesh, c, ctx);  // again, with the path, for the report
-            rep.message = "fails at c = " + std::to_string(c) + ": " + w.text() +
+            rep.message = "fails at c = " + std::to_string(c) + ": " + escapeControls(w.text()) +
                           (rep.failure.ok() ? " is false" : " cannot be evaluated: " + rep.failure.error.message);
             return rep;
         }

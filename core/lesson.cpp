@@ -50,11 +50,11 @@ std::string joinNames(const Names& names) {
 }  // namespace
 
 LessonError::LessonError(std::string file, int line, int stop, std::string message)
-    : std::runtime_error(composeMessage(file, line, stop, message)),
+    : std::runtime_error(composeMessage(file, line, stop, escapeControls(message))),
       m_file(std::move(file)),
       m_line(line),
       m_stop(stop),
-      m_message(std::move(message)) {}
+      m_message(escapeControls(message)) {}
 
 // ============================================================================================
 // [SECTION] Markdown-light text
@@ -662,7 +662,9 @@ public:
 
     void checkKeys(const toml::table& t, std::initializer_list<const char*> known, const char* where) {
         for (auto&& [key, value] : t) {
-            const bool ok = std::any_of(known.begin(), known.end(), [&](const char* k) { return key.str() == k; });
+            // A plain copy for the lambda: clang 14 cannot capture a structured binding.
+            const std::string_view name = key.str();
+            const bool ok = std::any_of(known.begin(), known.end(), [&](const char* k) { return name == k; });
             if (!ok) {
                 fail(static_cast<int>(key.source().begin.line),
                      "unknown key \"" + std::string(key.str()) + "\" " + where + " (known: " + joinNames(known) + ")");

@@ -29,4 +29,26 @@ inline std::string looseName(std::string_view s) {
     return out;
 }
 
+// One line for a message: control characters written as escapes ("\\n", "\\t", "\\x01"), so
+// that user text quoted in an error can never split it.
+inline std::string escapeControls(std::string_view s) {
+    std::string out;
+    out.reserve(s.size());
+    for (char ch : s) {
+        const auto u = static_cast<unsigned char>(ch);
+        if (ch == '\n') out += "\\n";
+        else if (ch == '\r') out += "\\r";
+        else if (ch == '\t') out += "\\t";
+        else if (u < 0x20 || u == 0x7f) {
+            static const char* const kHex = "0123456789abcdef";
+            out += "\\x";
+            out += kHex[u >> 4];
+            out += kHex[u & 15];
+        } else {
+            out += ch;
+        }
+    }
+    return out;
+}
+
 }  // namespace dlab

@@ -1,6 +1,8 @@
 // Input limits and the bugs that fuzzing found in the readers, each pinned by a test named after
 // it (the inputs themselves are replayed from tests/fuzz/corpus/ by the FuzzReplay.* tests).
+#include "core/corner_expr.h"
 #include "core/io_read.h"
+#include "core/lesson.h"
 #include "core/trace.h"
 
 #include <gtest/gtest.h>
@@ -153,4 +155,41 @@ TEST(Regression, TraceErrorQuotingAnOpNameWithANewlineStaysOneLine) {
     const InputError e = traceError("{\"i\":0,\"op\":\"Flip\\nrm -rf\"}");
     EXPECT_TRUE(isOneLine(e.what())) << e.what();
     EXPECT_NE(e.message().find("unknown op"), std::string::npos) << e.what();
+}
+
+TEST(Regression, CornerExpressionErrorQuotingANewlineStaysOneLine) {
+    // Before: the evaluation error quoted the source span raw ("G[9.n.\nn]" split the message).
+    Mesh m;
+    m.G = {{0, 0}, {1, 0}, {0, 1}};
+    m.V = {0, 1, 2};
+    m.O = {kNone, kNone, kNone};
+    const auto e = CornerExpr::parse("G[9.n.\nn]");
+    ASSERT_TRUE(e.has_value());
+    const ExprResult r = e->evaluate(m);
+    ASSERT_FALSE(r.ok());
+    EXPECT_TRUE(isOneLine(r.error.message)) << r.error.message;
+}
+
+TEST(Regression, CornerExpressionWatchMessageWithANewlineStaysOneLine) {
+    // Before: the watch's failure message pasted the watch text raw ("o(o(c)) ==\nzc").
+    Mesh m;
+    m.G = {{0, 0}, {1, 0}, {0, 1}};
+    m.V = {0, 1, 2};
+    m.O = {kNone, kNone, kNone};
+    const auto w = CornerExpr::parse("n(c) ==\n p(c)");
+    ASSERT_TRUE(w.has_value());
+    const WatchReport rep = checkWatch(*w, m);
+    EXPECT_FALSE(rep.ok);
+    EXPECT_TRUE(isOneLine(rep.message)) << rep.message;
+}
+
+TEST(Regression, LessonTomlErrorQuotingANewlineStaysOneLine) {
+    // Before: toml++'s own description ("saw 't\n'") reached the message raw.
+    try {
+        parseLesson("title = \"t\"\nflag = t\n", "bad.toml");
+        ADD_FAILURE() << "a bad lesson was accepted";
+    } catch (const LessonError& e) {
+        EXPECT_TRUE(isOneLine(e.what())) << e.what();
+        EXPECT_NE(std::string(e.what()).find("bad.toml:2"), std::string::npos) << e.what();
+    }
 }
