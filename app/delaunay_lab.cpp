@@ -4,7 +4,6 @@
 #include "core/generators.h"
 #include "ui/files.h"
 #include "ui/gui.h"
-#include "ui/lesson_player.h"
 #include "ui/panels.h"
 #include "ui/settings.h"
 
@@ -69,11 +68,6 @@ int main(int argc, char** argv) {
     if (input.empty()) {
         state.setOptions(dlab::ui::demoOptions());
         state.loadPoints(dlab::demoPoints(), "built-in demo");
-    } else if (input.size() > 5 && input.compare(input.size() - 5, 5, ".toml") == 0) {
-        if (!dlab::ui::openLesson(state, input)) {
-            std::cerr << "delaunay-lab: " << state.messages.back().text << "\n";
-            state.loadPoints(dlab::demoPoints(), "built-in demo");
-        }
     } else if (!dlab::ui::OpenFile(state, input)) {
         std::cerr << "delaunay-lab: " << state.files.notice << "\n";
         state.loadPoints(dlab::demoPoints(), "built-in demo");

@@ -9,11 +9,14 @@
 //   [SECTION] Autosave and recovery
 #include "ui/files.h"
 
+#include "ui/lesson_player.h"
+
 #include "core/describe.h"
 #include "core/io_write.h"
 #include "core/mesh_build.h"
 #include "ui/gif_export.h"
 #include "ui/gui.h"
+#include "ui/lesson_player.h"
 #include "ui/panels.h"
 #include "ui/session.h"
 
@@ -90,7 +93,11 @@ bool OpenFile(AppState& st, const std::string& path) {
         return false;
     }
     bool ok = false;
-    if (lowerExtension(path) == ".json" || looksLikeJson(path)) {
+    if (lowerExtension(path) == ".toml") {
+        const std::size_t before = st.messages.size();
+        ok = openLesson(st, path);
+        if (!ok) st.files.notice = st.messages.size() > before ? st.messages.back().text : path + ": cannot be read";
+    } else if (lowerExtension(path) == ".json" || looksLikeJson(path)) {
         std::string error;
         ok = LoadSession(st, path, error);
         if (!ok) FileError(st, error + " (nothing was changed)");
