@@ -9,8 +9,6 @@
 //   [SECTION] Autosave and recovery
 #include "ui/files.h"
 
-#include "ui/lesson_player.h"
-
 #include "core/describe.h"
 #include "core/io_write.h"
 #include "core/mesh_build.h"
