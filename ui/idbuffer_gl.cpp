@@ -330,7 +330,9 @@ void IdBufferGl::trianglesChanged(const std::int32_t* tris, int count) {
     for (int k = 0; k < count; ++k) {
         const std::int32_t t = tris[k];
         if (t < 0) continue;
-        if (static_cast<std::size_t>(t) >= m_isDirty.size()) m_isDirty.resize(std::max<std::size_t>(t + 1, 2 * m_isDirty.size()), 0);
+        if (static_cast<std::size_t>(t) >= m_isDirty.size()) {
+            m_isDirty.resize(std::max<std::size_t>(t + 1, 2 * m_isDirty.size()), 0);
+        }
         if (!m_isDirty[t]) {
             m_isDirty[t] = 1;
             m_dirty.push_back(t);
@@ -340,7 +342,57 @@ void IdBufferGl::trianglesChanged(const std::int32_t* tris, int count) {
 
 void IdBufferGl::resync() { m_fullRepaint = true; }
 
-// Brings the pixels up to the mesh: the changed triangles in one draw call (inside a Scope).
+void IdBufferGl::corners(std::int32_t t, float* out) const {
+    const Mesh& m = *m_ctx.mesh;
+    for (int k = 0; k < 3; ++k) {
+        const Vec2 g = m.G[m.V[3 * t + k]];
+        out[2 * k] = toPixel(m_map.fx(g.x));
+        out[2 * k + 1] = toPixel(m_map.fy(g.y));
+    }
+}
+
+// Queues triangle t's current shape in its colour (or notes that it is not shown) and marks it
+// clean; the shadow keeps what was painted.
+void IdBufferGl::paintShape(std::int32_t t) {
+    if (paintable(t)) {
+        float* xy = &m_shadow[6 * static_cast<std::size_t>(t)];
+        corners(t, xy);
+        appendTriangle(packColour(t), xy);
+        m_shown[t] = 1;
+    } else {
+        m_shown[t] = 0;
+    }
+    if (static_cast<std::size_t>(t) < m_isDirty.size()) m_isDirty[t] = 0;
+}
+
+void IdBufferGl::growShadow(std::int32_t triangles) {
+    if (m_shown.size() < static_cast<std::size_t>(triangles)) {
+        m_shown.resize(triangles, 0);
+        m_shadow.resize(6 * static_cast<std::size_t>(triangles));
+    }
+}
+
+// One draw call for the queued triangles, through a buffer object (llvmpipe takes client arrays
+// about half as fast).
+void IdBufferGl::submit() {
+    if (m_vertices.empty()) return;
+    const GlApi& a = m_gl->api();
+    a.bindBuffer(GL_ARRAY_BUFFER, m_vbo);
+    a.bufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(m_vertices.size() * sizeof(Vertex)), m_vertices.data(),
+                 GL_STREAM_DRAW);
+    glEnableClientState(GL_COLOR_ARRAY);
+    glVertexPointer(2, GL_FLOAT, sizeof(Vertex), reinterpret_cast<const void*>(offsetof(Vertex, x)));
+    glColorPointer(4, GL_UNSIGNED_BYTE, sizeof(Vertex), reinterpret_cast<const void*>(offsetof(Vertex, rgba)));
+    glDrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(m_vertices.size()));
+    glDisableClientState(GL_COLOR_ARRAY);
+    a.bindBuffer(GL_ARRAY_BUFFER, 0);
+    ++m_glStats.draws;
+    m_glStats.trianglesPainted += m_vertices.size() / 3;
+    m_vertices.clear();
+    ++m_version;
+}
+
+// Brings every pixel up to the mesh: all changed triangles in one draw call (inside a Scope).
 //
 // Without a shrinking hull the new shapes of the changed triangles cover every pixel whose id
 // changed, so painting them is enough. When the covered area shrinks (triangles removed, or a
@@ -357,38 +409,18 @@ void IdBufferGl::paintPending() {
     }
     const auto t0 = Clock::now();
     m_vertices.clear();
-    const std::size_t keep = static_cast<std::size_t>(std::max(nt, m_shadowTriangles));
-    if (m_shown.size() < keep) {
-        m_shown.resize(keep, 0);
-        m_shadow.resize(6 * keep);
-    }
-    auto corners = [&](std::int32_t t, float* out) {
-        for (int k = 0; k < 3; ++k) {
-            const Vec2 g = m.G[m.V[3 * t + k]];
-            out[2 * k] = toPixel(m_map.fx(g.x));
-            out[2 * k + 1] = toPixel(m_map.fy(g.y));
-        }
-    };
-    auto paint = [&](std::int32_t t) {
-        if (paintable(t)) {
-            corners(t, &m_shadow[6 * static_cast<std::size_t>(t)]);
-            appendTriangle(packColour(t), &m_shadow[6 * static_cast<std::size_t>(t)]);
-            m_shown[t] = 1;
-        } else {
-            m_shown[t] = 0;
-        }
-    };
-    const std::uint32_t none = packColour(kNone);
+    growShadow(std::max(nt, m_shadowTriangles));
+    bool shrink = nt < m_shadowTriangles;
+    for (std::int32_t t : m_dirty) shrink |= t < m_shadowTriangles && m_shown[t] && !paintable(t);
     if (m_fullRepaint) {
         glClearColor(1, 1, 1, 1);
         glClear(GL_COLOR_BUFFER_BIT);
-        for (std::int32_t t = 0; t < nt; ++t) paint(t);
+        for (std::int32_t t = 0; t < nt; ++t) paintShape(t);
         std::fill(m_shown.begin() + nt, m_shown.end(), 0);
         ++m_glStats.fullRepaints;
     } else {
-        bool shrink = nt < m_shadowTriangles;
-        for (std::int32_t t : m_dirty) shrink |= t < m_shadowTriangles && m_shown[t] && !paintable(t);
         if (shrink) {
+            const std::uint32_t none = packColour(kNone);
             auto clear = [&](std::int32_t t) {
                 if (!m_shown[t]) return;
                 appendTriangle(none, &m_shadow[6 * static_cast<std::size_t>(t)]);
@@ -401,7 +433,7 @@ void IdBufferGl::paintPending() {
             }
         }
         for (std::int32_t t : m_dirty) {
-            if (t < nt) paint(t);
+            if (t < nt) paintShape(t);
         }
     }
     for (std::int32_t t : m_dirty) m_isDirty[t] = 0;
@@ -409,22 +441,7 @@ void IdBufferGl::paintPending() {
     m_shadowTriangles = nt;
     m_seenVertices = m.numVertices();
     m_fullRepaint = false;
-    if (!m_vertices.empty()) {
-        // Through a buffer object: llvmpipe takes client arrays about half as fast.
-        const GlApi& a = m_gl->api();
-        a.bindBuffer(GL_ARRAY_BUFFER, m_vbo);
-        a.bufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(m_vertices.size() * sizeof(Vertex)), m_vertices.data(),
-                     GL_STREAM_DRAW);
-        glEnableClientState(GL_COLOR_ARRAY);
-        glVertexPointer(2, GL_FLOAT, sizeof(Vertex), reinterpret_cast<const void*>(offsetof(Vertex, x)));
-        glColorPointer(4, GL_UNSIGNED_BYTE, sizeof(Vertex), reinterpret_cast<const void*>(offsetof(Vertex, rgba)));
-        glDrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(m_vertices.size()));
-        glDisableClientState(GL_COLOR_ARRAY);
-        a.bindBuffer(GL_ARRAY_BUFFER, 0);
-        ++m_glStats.draws;
-        m_glStats.trianglesPainted += m_vertices.size() / 3;
-    }
-    ++m_version;
+    submit();
     m_paintedAt = m_hints;
     m_glStats.paintMs += msSince(t0);
 }
@@ -462,6 +479,12 @@ std::vector<std::int32_t> IdBufferGl::readAll() {
     return ids;
 }
 
+// A batch spans at most as many insertions as came before it: early on, when the mesh is small,
+// ids read K insertions ahead would mostly show the small old hull (no triangle).
+std::int32_t IdBufferGl::batchCount(std::int32_t start) const {
+    return std::min({m_opt.batch, std::max<std::int32_t>(start, 1), static_cast<std::int32_t>(m_order.size()) - start});
+}
+
 // The ids under the points [start, start + count) of the insertion order, in one draw and one
 // read: each point is a GL point at its own pixel of the gather target that samples the ID
 // texture (nearest texel, colour replaced by the texel: exact). The read goes into the PBO; a
@@ -469,10 +492,7 @@ std::vector<std::int32_t> IdBufferGl::readAll() {
 void IdBufferGl::requestBatch(std::int32_t start) {
     const auto t0 = Clock::now();
     const GlApi& a = m_gl->api();
-    // A batch spans at most as many insertions as came before it: early on, when the mesh is
-    // small, ids read K insertions ahead would mostly show the small old hull (no triangle).
-    const std::int32_t count = std::min({m_opt.batch, std::max<std::int32_t>(start, 1),
-                                         static_cast<std::int32_t>(m_order.size()) - start});
+    const std::int32_t count = batchCount(start);
     m_gatherXy.resize(2 * static_cast<std::size_t>(count));
     m_gatherUv.resize(2 * static_cast<std::size_t>(count));
     for (std::int32_t k = 0; k < count; ++k) {
@@ -617,7 +637,7 @@ std::int32_t IdBufferGl::windowId(int& age) {
             if (after < static_cast<std::int32_t>(m_order.size())) requestBatch(after);
             scope.target(m_fbo, m_opt.width, m_opt.height);
             paintPending();
-            glFlush();  // hand the drawing to the rasterizer now, not at the next read
+            glFlush();  // to the rasterizer now: it draws while the CPU inserts the next K points
         }
     }
     age = static_cast<int>(std::min<std::uint64_t>(m_hints - m_window.readAt, 1u << 30));

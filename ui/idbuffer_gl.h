@@ -20,10 +20,10 @@
 //              up to K-1 insertions old: a stale id is a triangle near the right one, and the
 //              exact walk goes the rest of the way. A batch spans at most as many insertions as
 //              came before it (the first batches grow 3, 6, 12, ... up to K).
-//   Pipelined  Batched, one batch ahead: at each batch boundary the ids of the batch after next
-//              are gathered from the texture as it is, and only then are the changes painted, so
-//              the rasterizer (a GPU, or llvmpipe's threads) draws while the CPU inserts; the
-//              PBO is mapped one batch later. Ids are 2K to 3K-1 insertions old.
+//   Pipelined  Batched, one batch ahead: when batch b starts, its ids (read one batch earlier)
+//              are mapped, the ids of batch b+1 are gathered from the texture as it is, and only
+//              then are the changes painted, so that the rasterizer (a GPU, or llvmpipe's
+//              threads) draws while the CPU inserts. Ids are about 2K to 3K insertions old.
 //
 // The locator draws on whatever context is current when it is called: an OSMesa context in
 // dtlab and the UI tests, the window's context in the GUI (mid-frame: every piece of GL state it
@@ -125,8 +125,13 @@ private:
     };
 
     bool paintable(std::int32_t t) const;
-    void paintPending();                    // inside a Scope
+    void corners(std::int32_t t, float* xy) const;  // pixel coordinates, as GL gets them
+    void growShadow(std::int32_t triangles);
+    void paintShape(std::int32_t t);
     void appendTriangle(std::uint32_t colour, const float* xy);
+    void submit();
+    void paintPending();                    // inside a Scope: every changed triangle
+    std::int32_t batchCount(std::int32_t start) const;
     std::int32_t readOne(int i, int j);    // inside a Scope, painted
     void requestBatch(std::int32_t start);  // inside a Scope: gather + read into the PBO
     void takeBatch();                       // map the PBO into m_window
@@ -146,7 +151,7 @@ private:
     std::vector<float> m_shadow;
     std::vector<std::uint8_t> m_shown;
     std::int32_t m_shadowTriangles = 0;     // triangles the shadow covers
-    std::vector<std::int32_t> m_dirty;
+    std::vector<std::int32_t> m_dirty;      // changed since painted
     std::vector<std::uint8_t> m_isDirty;
     bool m_fullRepaint = true;
     std::int32_t m_seenVertices = 0;        // |G| at the last paint (Finalize changes it unseen)
