@@ -21,7 +21,6 @@ struct BenchArgs {
 
 void runBench(const BenchArgs& args) {
     const LoadedPoints loaded = loadPoints(args.input);
-    const InsertOptions options = args.engine.options();
     const std::size_t n = loaded.points.size();
     std::vector<double> ms;
     InsertStats stats;
@@ -30,7 +29,8 @@ void runBench(const BenchArgs& args) {
     for (int r = 0; r < args.warmup + args.repeat; ++r) {  // the first `warmup` runs are not timed
         std::vector<Vec2> pts = loaded.points;  // copied outside the timed region
         const auto t0 = std::chrono::steady_clock::now();
-        Inserter ins(std::move(pts), options);
+        const auto made = args.engine.makeInserter(std::move(pts));  // GL locators need a context
+        Inserter& ins = *made;
         ins.run();
         const auto t1 = std::chrono::steady_clock::now();
         if (r >= args.warmup) ms.push_back(std::chrono::duration<double, std::milli>(t1 - t0).count());

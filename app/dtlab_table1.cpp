@@ -11,6 +11,7 @@
 #include <imgui.h>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -58,6 +59,7 @@ struct Table1Args {
     int batch = 256;
     std::string readback = "batched";
     std::string sweep;  // batch sizes to try at the largest n
+    std::string methods = "naive,idbuffer-gl,idbuffer-gl-batched,idbuffer-cpu,walk,best";
     int idBufferSize = 1600;
     std::uint64_t seed = 1;
 };
@@ -149,6 +151,7 @@ std::vector<std::size_t> parseSizes(const std::string& text) {
 }
 
 std::string fmtMs(double ms) {
+    if (std::isnan(ms)) return "-";  // a method left out with --methods
     char b[32];
     std::snprintf(b, sizeof b, ms >= 100 ? "%.0f" : ms >= 10 ? "%.1f" : "%.2f", ms);
     return b;
@@ -216,15 +219,13 @@ void drawPlot(ImDrawList* dl, ImFont* font, ImFont* small, float W, float H, con
         const float x = X(n);
         dl->AddLine(ImVec2(x, top), ImVec2(x, bottom), grid);
         dl->AddLine(ImVec2(x, bottom), ImVec2(x, bottom + 6), ink);
-        if (n >= 1024 * 1024) std::snprintf(label, sizeof label, "%gM", n / 1048576);
-        else if (n >= 1024) std::snprintf(label, sizeof label, "%gK", n / 1024);
-        else std::snprintf(label, sizeof label, "%g", n);
+        std::snprintf(label, sizeof label, "%.0f", n);
         const ImVec2 ts = small->CalcTextSizeA(17, 1e9f, 0, label);
         dl->AddText(small, 17, ImVec2(x - ts.x / 2, bottom + 10), ink, label);
     }
     dl->AddRect(ImVec2(left, top), ImVec2(right, bottom), ink, 0, 0, 1.5f);
     // Axis labels.
-    const char* xlabel = "number of points n (log scale; K = 1024)";
+    const char* xlabel = "number of points n (log scale)";
     const ImVec2 xs = font->CalcTextSizeA(20, 1e9f, 0, xlabel);
     dl->AddText(font, 20, ImVec2((left + right) / 2 - xs.x / 2, bottom + 40), ink, xlabel);
     // The y label, one glyph under the other would be hard to read: write it rotated by hand.
@@ -351,10 +352,22 @@ void runTable1(const Table1Args& args) {
     if (!args.sweep.empty()) {
         for (std::size_t k : parseSizes(args.sweep)) sweep.push_back(static_cast<int>(std::min<std::size_t>(k, ui::IdBufferGlOptions::kMaxBatch)));
     }
+    std::array<bool, kNumMethods> on{};
+    {
+        std::stringstream ss(args.methods);
+        for (std::string name; std::getline(ss, name, ',');) {
+            int found = -1;
+            for (int m = 0; m < kNumMethods; ++m) found = name == kMethods[m].name ? m : found;
+            if (found < 0) fail("--methods: no method \"" + name + "\" (naive, idbuffer-gl, idbuffer-gl-batched, idbuffer-cpu, walk, best)", 2);
+            on[found] = true;
+        }
+    }
     headlessGl();  // fail early, before minutes of timing, if there is no GL
     // Warm-up: each method once on a small set (llvmpipe compiles its shaders on first use).
     const std::vector<Vec2> warm = generatePoints(Generator::Uniform, 2000, args.seed + 1000);
-    for (const Method& m : kMethods) runOnce(warm, m, args, args.batch);
+    for (int m = 0; m < kNumMethods; ++m) {
+        if (on[m] || (m == 2 && !sweep.empty())) runOnce(warm, kMethods[m], args, args.batch);
+    }
 
     std::printf("Table 1: uniform random points in the 1600 x 1600 box (seed %llu), exact boundary, %dx%d ID buffer,\n"
                 "batched readback \"%s\" with K = %d; median of %d runs, ms. The paper: Core 2 Duo 1.6 GHz, GeForce "
@@ -369,15 +382,17 @@ void runTable1(const Table1Args& args) {
         const std::vector<Vec2> points = generatePoints(Generator::Uniform, n, args.seed);
         std::array<std::vector<Run>, kNumMethods> runs;
         for (int r = 0; r < args.repeat; ++r) {  // interleaved: load changes hit every method alike
-            for (int m = 0; m < kNumMethods; ++m) runs[m].push_back(runOnce(points, kMethods[m], args, args.batch));
+            for (int m = 0; m < kNumMethods; ++m) {
+                if (on[m]) runs[m].push_back(runOnce(points, kMethods[m], args, args.batch));
+            }
         }
         std::array<double, kNumMethods> row{};
         std::array<Run, kNumMethods> med{};
         for (int m = 0; m < kNumMethods; ++m) {
             std::vector<double> ms;
             for (const Run& run : runs[m]) ms.push_back(run.ms);
-            row[m] = median(ms);
-            med[m] = medianRun(runs[m]);
+            row[m] = on[m] ? median(ms) : std::nan("");
+            if (on[m]) med[m] = medianRun(runs[m]);
         }
         table.push_back(row);
         detail.push_back(med);
@@ -391,43 +406,44 @@ void runTable1(const Table1Args& args) {
     }
 
     // Where the time goes, and how good the pixels are.
-    std::printf("\nLocator statistics (the median run of each size). hits: the pixel's triangle contained the point;\n"
-                "walk: mean walk steps after a miss; readback: time in glReadPixels / gather / map, including the\n"
-                "wait for the drawing that the read forces; draw: GL state, vertex arrays, draw calls; other: the\n"
-                "rest of the run (walking, splitting, flipping).\n\n");
-    std::printf("%8s | %-40s | %-62s | %s\n", "", "idbuffer-gl (one pixel per insertion)", "idbuffer-gl-batched",
-                "idbuffer-cpu");
-    std::printf("%8s | %6s %6s %8s %6s %6s | %6s %6s %6s %9s %6s %8s %6s %6s | %6s %6s\n", "n", "hits", "walk",
-                "readback", "draw", "other", "hits", "walk", "stale", "stale hit", "steps", "readback", "draw",
-                "other", "hits", "walk");
+    std::printf("\nLocator statistics (the median run of each size):\n"
+                "  hits    the pixel's triangle contained the point (no walk step)\n"
+                "  walk    mean walk steps after a miss (including the points with no triangle under them)\n"
+                "  none    points with no triangle under their pixel (outside the hull the pixels show)\n"
+                "  stale   points whose id was read before earlier insertions changed the mesh (batched);\n"
+                "          s.hits: such ids still right; steps: mean walk steps from such an id\n"
+                "  read    share of the run's time in glReadPixels / gather / fence / map, including the wait\n"
+                "          for the drawing that a read forces (as the paper measured readback)\n"
+                "  draw    GL state, vertex arrays and draw calls; other: the rest (walk, split, flips)\n"
+                "  painted triangles drawn into the buffer over the run\n\n");
+    std::printf("%8s  %-20s %7s %7s %6s %7s %7s %6s %6s %6s %6s %9s\n", "n", "method", "hits", "walk", "none",
+                "stale", "s.hits", "steps", "read", "draw", "other", "painted");
     auto pct = [](double part, double whole) { return whole > 0 ? 100.0 * part / whole : 0.0; };
-    auto hitRate = [](const LocatorStats& s) { return s.queries ? static_cast<double>(s.hits) / s.queries : 0.0; };
-    auto walkAfterMiss = [](const LocatorStats& s) {
-        return s.queries > s.hits ? static_cast<double>(s.missSteps) / (s.queries - s.hits) : 0.0;
-    };
     for (std::size_t k = 0; k < sizes.size(); ++k) {
-        const Run& one = detail[k][1];
-        const Run& bat = detail[k][2];
-        const Run& cpu = detail[k][3];
-        const ui::IdBufferGlStats& b = bat.gl;
-        const double staleShare = bat.loc.queries ? static_cast<double>(b.staleQueries) / bat.loc.queries : 0.0;
-        const double staleHit = b.staleQueries ? static_cast<double>(b.staleHits) / b.staleQueries : 0.0;
-        const double staleSteps = b.staleQueries ? static_cast<double>(b.staleSteps) / b.staleQueries : 0.0;
-        std::printf("%8zu | %5.1f%% %6.2f %7.1f%% %5.1f%% %5.1f%% | %5.1f%% %6.2f %5.1f%% %8.1f%% %6.2f %7.1f%% %5.1f%% "
-                    "%5.1f%% | %5.1f%% %6.2f\n",
-                    sizes[k], 100 * hitRate(one.loc), walkAfterMiss(one.loc), pct(one.gl.readbackMs, one.ms),
-                    pct(one.gl.paintMs, one.ms), pct(one.ms - one.gl.readbackMs - one.gl.paintMs, one.ms),
-                    100 * hitRate(bat.loc), walkAfterMiss(bat.loc), 100 * staleShare, 100 * staleHit, staleSteps,
-                    pct(b.readbackMs, bat.ms), pct(b.paintMs, bat.ms), pct(bat.ms - b.readbackMs - b.paintMs, bat.ms),
-                    100 * hitRate(cpu.loc), walkAfterMiss(cpu.loc));
+        for (int m = 1; m <= 3; ++m) {
+            if (!on[m]) continue;
+            const Run& r = detail[k][m];
+            const ui::IdBufferGlStats& g = r.gl;
+            const LocatorStats& l = r.loc;
+            const bool gl = m != 3;
+            const double hits = l.queries ? 100.0 * l.hits / l.queries : 0.0;
+            const double walk = l.queries > l.hits ? static_cast<double>(l.missSteps) / (l.queries - l.hits) : 0.0;
+            std::printf("%8zu  %-20s %6.1f%% %7.2f", sizes[k], kMethods[m].name, hits, walk);
+            if (gl) {
+                std::printf(" %5.1f%% %6.1f%% %6.1f%% %6.2f %5.1f%% %5.1f%% %5.1f%% %9llu\n", pct(g.noPixel, l.queries),
+                            pct(g.staleQueries, l.queries), g.staleQueries ? 100.0 * g.staleHits / g.staleQueries : 0.0,
+                            g.staleQueries ? static_cast<double>(g.staleSteps) / g.staleQueries : 0.0,
+                            pct(g.readbackMs, r.ms), pct(g.paintMs, r.ms), pct(r.ms - g.readbackMs - g.paintMs, r.ms),
+                            static_cast<unsigned long long>(g.trianglesPainted));
+            } else {
+                std::printf("\n");
+            }
+        }
     }
-    std::printf("(batched: stale = share of points whose id was read before earlier points of the batch were "
-                "inserted;\n stale hit = how often such an id was still right; steps = mean walk steps from a stale "
-                "id.)\n");
 
     const std::size_t last = sizes.size() - 1;
     const std::array<double, kNumMethods>& big = table[last];
-    std::printf("\nAt n = %zu: idbuffer-gl-batched is %.1fx faster than naive and %.1fx faster than idbuffer-gl "
+    if (on[0] && on[1] && on[2]) std::printf("\nAt n = %zu: idbuffer-gl-batched is %.1fx faster than naive and %.1fx faster than idbuffer-gl "
                 "(one pixel per insertion);\nidbuffer-gl spends %.0f%% of its time in readback (the paper: > 90%%).\n",
                 sizes[last], big[0] / big[2], big[1] / big[2], pct(detail[last][1].gl.readbackMs, detail[last][1].ms));
 
@@ -459,13 +475,16 @@ void runTable1(const Table1Args& args) {
         std::ofstream out(args.csv);
         if (!out) fail("cannot write " + args.csv);
         out << "n";
-        for (const Method& m : kMethods) out << "," << m.name;
+        for (int m = 0; m < kNumMethods; ++m) {
+            if (on[m]) out << "," << kMethods[m].name;
+        }
         out << "\n";
         char v[32];
         for (std::size_t k = 0; k < sizes.size(); ++k) {
             out << sizes[k];
-            for (double ms : table[k]) {
-                std::snprintf(v, sizeof v, "%.3f", ms);
+            for (int m = 0; m < kNumMethods; ++m) {
+                if (!on[m]) continue;
+                std::snprintf(v, sizeof v, "%.3f", table[k][m]);
                 out << "," << v;
             }
             out << "\n";
@@ -480,6 +499,7 @@ void runTable1(const Table1Args& args) {
                                             IM_COL32(40, 150, 70, 255),  IM_COL32(20, 20, 20, 255)};
         std::vector<Series> series;
         for (int m = 0; m < kNumMethods; ++m) {
+            if (!on[m]) continue;
             Series s{kMethods[m].name, colours[m], false, {}};
             if (std::string(kMethods[m].name) == "best") s.name = "best (brio + walk)";
             if (std::string(kMethods[m].name) == "naive") s.name = "naive (walk from triangle 0)";
@@ -499,8 +519,8 @@ void runTable1(const Table1Args& args) {
         series.push_back(std::move(pn));
         series.push_back(std::move(pi));
         writePlot(args.png, series, "Incremental Delaunay: point location (the paper's Table 1 / Figure 8)",
-                  "uniform random points in the 1600 x 1600 box; median of " + std::to_string(args.repeat) +
-                      " runs; ours on llvmpipe (OSMesa, 2 cores); dashed: the paper's numbers");
+                  "uniform random points in the 1600 x 1600 box; ours: median of " + std::to_string(args.repeat) +
+                      (args.repeat == 1 ? " run" : " runs") + " on llvmpipe (OSMesa, 2 cores); dashed: the paper's numbers (2008)");
         std::printf("wrote %s\n", args.png.c_str());
     }
 }
@@ -522,6 +542,8 @@ void addTable1(CLI::App& app) {
         ->capture_default_str();
     cmd->add_option("--readback", args->readback, "idbuffer-gl-batched: batched | pipelined (read one batch ahead)")
         ->check(CLI::IsMember({"batched", "pipelined"}))
+        ->capture_default_str();
+    cmd->add_option("--methods", args->methods, "Methods to time, comma-separated (the CSV has their columns)")
         ->capture_default_str();
     cmd->add_option("--sweep", args->sweep, "Also time idbuffer-gl-batched at the largest size for these K (comma-separated)");
     cmd->add_option("--idbuffer-size", args->idBufferSize, "Width and height of the ID buffers in pixels")
