@@ -146,11 +146,9 @@ void reportFailure(AppState& st, const WatchEntry& w, const WatchReport& rep, bo
     const std::string where = opName(st.engine);
     st.log(Message::Level::Error, "watch " + w.text + " fails after " + where + ": " + rep.message);
     if (rep.corner != kNone) {
-        // Show the failing evaluation: select the corner and draw the watch's path from it.
+        // Show where: select the failing corner (the table scrolls to it).
         st.select(rep.corner);
         st.selection.jumpToCorner = rep.corner;
-        st.expressions.live = w.text;
-        st.expressions.liveVersion = ~std::uint64_t{0};
     }
     if ((runMoved || st.run.running) && st.expressions.pauseOnFailure) {
         st.run.running = false;
@@ -177,9 +175,10 @@ void refreshLive(AppState& st) {
 
 ImVec2 toIm(glm::dvec2 v) { return ImVec2(static_cast<float>(v.x), static_cast<float>(v.y)); }
 
-void PathArrow(ImDrawList* dl, ImVec2 a, ImVec2 b, ImU32 col, float w) {
+// A curved arrow from a to b; returns the middle of the curve (where its label goes).
+ImVec2 PathArrow(ImDrawList* dl, ImVec2 a, ImVec2 b, ImU32 col, float w) {
     const float dx = b.x - a.x, dy = b.y - a.y, len = std::sqrt(dx * dx + dy * dy);
-    if (len < 2) return;
+    if (len < 2) return a;
     const float ux = dx / len, uy = dy / len;
     // Stop short of the label at b, and bow the line a little so that a -> b and b -> a differ.
     const ImVec2 end(b.x - ux * 9, b.y - uy * 9);
@@ -190,6 +189,8 @@ void PathArrow(ImDrawList* dl, ImVec2 a, ImVec2 b, ImU32 col, float w) {
     const float vx = hx / hl, vy = hy / hl;
     dl->AddTriangleFilled(end, ImVec2(end.x - vx * s - vy * s * 0.5f, end.y - vy * s + vx * s * 0.5f),
                           ImVec2(end.x - vx * s + vy * s * 0.5f, end.y - vy * s - vx * s * 0.5f), col);
+    // The quadratic curve at t = 1/2.
+    return ImVec2(0.25f * a.x + 0.5f * mid.x + 0.25f * end.x, 0.25f * a.y + 0.5f * mid.y + 0.25f * end.y);
 }
 
 }  // namespace
@@ -207,7 +208,8 @@ bool EvaluateExpression(AppState& st, const std::string& text) {
     } else {
         const ExprResult r = evaluateWithSelection(*expr, st);
         if (r.ok()) {
-            line.answer = "= " + formatValue(*r.value) + "  (" + toString(r.value->kind) + ")";
+            line.answer = "= " + formatValue(*r.value) + "  (" + toString(r.value->kind) +
+                          (expr->uses("c") ? ", c = " + std::to_string(st.selection.corner) : "") + ")";
             ok = true;
         } else {
             line.answer = r.error.message;
@@ -297,6 +299,7 @@ void CheckWatches(AppState& st) {
 
 void DrawExpressionOverlay(AppState& st) {
     const ExpressionState& ex = st.expressions;
+    for (int k = 1; st.itemRects.erase("expr-path-" + std::to_string(k)) > 0; ++k) {}
     if (ex.live.empty() || ex.liveVersion != st.engine.version()) return;
     const Mesh& m = st.engine.mesh();
     const View& view = st.view;
@@ -348,13 +351,15 @@ void DrawExpressionOverlay(AppState& st) {
                         dl->AddLine(ImVec2(a.x - 8, a.y + 8), ImVec2(a.x + 8, a.y - 8), kPathColour, w);
                     }
                 } else if (anchor(s.from, a) && anchor(s.to, b)) {
-                    PathArrow(dl, a, b, kPathColour, w);
+                    const ImVec2 at = PathArrow(dl, a, b, kPathColour, w);
+                    // The step's number and operator in a box on the curve ("2.o").
                     char label[24];
                     std::snprintf(label, sizeof label, "%d.%c", stepNo, s.op);
-                    const ImVec2 at((a.x + b.x) / 2, (a.y + b.y) / 2);
                     const ImVec2 ts = font->CalcTextSizeA(fs, 1e9f, 0, label);
-                    dl->AddRectFilled(ImVec2(at.x - 2, at.y - ts.y / 2), ImVec2(at.x + ts.x + 2, at.y + ts.y / 2), kPathColour, 3);
-                    dl->AddText(font, fs, ImVec2(at.x, at.y - ts.y / 2), IM_COL32(255, 255, 255, 255), label);
+                    const ImVec2 l0(at.x - ts.x / 2 - 3, at.y - ts.y / 2), l1(at.x + ts.x / 2 + 3, at.y + ts.y / 2);
+                    dl->AddRectFilled(l0, l1, kPathColour, 3);
+                    dl->AddText(font, fs, ImVec2(l0.x + 3, l0.y), IM_COL32(255, 255, 255, 255), label);
+                    st.itemRects["expr-path-" + std::to_string(stepNo)] = {l0.x, l0.y, l1.x, l1.y};
                 }
                 break;
         }
@@ -400,8 +405,11 @@ void ShowExpressions(AppState& st) {
         ex.input.clear();
         ImGui::SetKeyboardFocusHere(-1);
     }
-    const float watchesH = std::max(150.0f, ImGui::GetContentRegionAvail().y * 0.45f);
-    ImGui::BeginChild("##exprlog", ImVec2(0, std::max(60.0f, ImGui::GetContentRegionAvail().y - watchesH)), true);
+    // Below the input line everything scrolls (the side column may be short); the history has
+    // its own scrolling box that keeps the newest line in view.
+    ImGui::BeginChild("##exprbody", ImVec2(0, 0), false);
+    const float logH = std::max(ImGui::GetTextLineHeightWithSpacing() * 5, ImGui::GetContentRegionAvail().y * 0.45f);
+    ImGui::BeginChild("##exprlog", ImVec2(0, logH), true);
     ImGui::PushFont(fonts().mono);
     for (const ExprLine& line : ex.history) {
         ImGui::TextDisabled(">");
@@ -483,6 +491,7 @@ void ShowExpressions(AppState& st) {
         for (const char* s : standardWatches()) AddWatch(st, s);
     }
     if (ImGui::IsItemHovered()) ImGui::SetTooltip("Add the identities every corner table satisfies");
+    ImGui::EndChild();
 }
 
 }  // namespace dlab::ui

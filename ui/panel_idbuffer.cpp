@@ -6,6 +6,7 @@
 // in beside the CPU one.
 #include "core/predicates.h"
 #include "ui/gui.h"
+#include "ui/idbuffer_gl.h"
 #include "ui/panels.h"
 
 #include <GL/gl.h>
@@ -28,6 +29,7 @@ struct IdBufferView {
     // The last hover's exact check, cached per pixel and mesh version.
     int hoverI = -1, hoverJ = -1;
     std::uint64_t hoverVersion = ~std::uint64_t{0};
+    IdBufferCopy copy;  // the GL buffer's ids
 };
 
 namespace {
@@ -36,15 +38,6 @@ constexpr int kMaxTexture = 800;  // texels per side; the magnifier shows full r
 
 // Up to this many triangles, a hover checks every triangle for exact containment.
 constexpr std::int32_t kExactScanLimit = 2000000;
-
-// The paper's encoding (as ui/idbuffer_gl.h writes it): r = id >> 16, g = id >> 8, b = id,
-// a = id >> 24; all four bytes 255 mean "no triangle".
-std::array<std::uint8_t, 4> encodedColour(std::int32_t id) {
-    if (id == kNone) return {255, 255, 255, 255};
-    const auto u = static_cast<std::uint32_t>(id);
-    return {static_cast<std::uint8_t>(u >> 16), static_cast<std::uint8_t>(u >> 8), static_cast<std::uint8_t>(u),
-            static_cast<std::uint8_t>(u >> 24)};
-}
 
 bool containsClosed(const Mesh& m, std::int32_t t, Vec2 q) {
     const Vec2 a = m.G[m.V[3 * t]], b = m.G[m.V[3 * t + 1]], c = m.G[m.V[3 * t + 2]];
@@ -68,7 +61,7 @@ void rebuildTexture(IdBufferView& v, const IdBufferFrame& f, bool trueColours) {
             const std::int32_t id = f.ids[static_cast<std::size_t>(j) * f.width + i];
             std::uint8_t* px = &v.rgba[(static_cast<std::size_t>(y) * v.texW + x) * 4];
             if (trueColours) {
-                const auto c = encodedColour(id);
+                const auto c = encodeTriangleId(id);
                 px[0] = c[0], px[1] = c[1], px[2] = c[2];
             } else {
                 const ImU32 c = IdFalseColour(id);
@@ -115,7 +108,7 @@ LocateSummary lastLocate(const Engine& e) {
 }
 
 void HexColour(const char* label, std::int32_t id) {
-    const auto c = encodedColour(id);
+    const auto c = encodeTriangleId(id);
     ImGui::Text("%sRGBA %02X %02X %02X %02X", label, c[0], c[1], c[2], c[3]);
 }
 
@@ -130,7 +123,23 @@ std::uint32_t IdFalseColour(std::int32_t id) {
     return IM_COL32(static_cast<int>(r * 255 + 0.5f), static_cast<int>(g * 255 + 0.5f), static_cast<int>(b * 255 + 0.5f), 255);
 }
 
-bool ReadIdBuffer(const Engine& e, IdBufferFrame& out) {
+bool ReadIdBuffer(const Engine& e, IdBufferFrame& out, IdBufferCopy& copy) {
+    if (IdBufferGl* gl = e.idBufferGl()) {
+        if (!gl->ready()) return false;
+        // Reading back paints what is pending first (and bumps its version): read when the run
+        // moved or the buffer changed since the copy.
+        if (copy.engineVersion != e.version() || copy.bufferVersion != gl->version() || copy.ids.empty()) {
+            copy.ids = gl->readAll();
+            copy.engineVersion = e.version();
+            copy.bufferVersion = gl->version();
+        }
+        out.kind = e.options().locator == LocatorKind::IdBufferGlBatched ? "idbuffer-gl-batched" : "idbuffer-gl";
+        out.width = gl->width();
+        out.height = gl->height();
+        out.ids = std::span<const std::int32_t>(copy.ids);
+        out.centre = [gl](int i, int j) { return gl->pixelCentre(i, j); };
+        return copy.ids.size() == static_cast<std::size_t>(out.width) * out.height;
+    }
     // The inserter owns the locator and lets the panel look (reads only): const_cast here, in
     // the one place that touches the buffer, because Inserter::locator() is not const.
     Locator* loc = const_cast<Inserter&>(e.inserter()).locator();
@@ -150,24 +159,37 @@ void ShowIdBuffer(AppState& st) {
     const Engine& e = st.engine;
     IdBufferViewState& vs = st.idBuffer;
     vs.hover.valid = false;
+    if (!vs.cache) vs.cache = std::make_shared<IdBufferView>();
+    IdBufferView& v = *vs.cache;
     IdBufferFrame f;
-    if (!ReadIdBuffer(e, f)) {
+    if (!ReadIdBuffer(e, f, v.copy)) {
         ImGui::TextWrapped("The run's locator is \"%s\": it keeps no ID buffer.", toString(e.options().locator));
         ImGui::TextWrapped("The ID-buffer locator paints every triangle in a colour that encodes its id, and reads the "
                            "pixel under each new point to find where to start the walk (the paper's section 4).");
-        if (e.options().locator == LocatorKind::IdBufferCpu) {
+        if (e.options().locator == LocatorKind::IdBufferCpu || needsGl(e.options().locator)) {
             ImGui::TextDisabled("The buffer is made at the first triangle: take a step.");
-        } else if (ImGui::Button("Use the ID-buffer locator (idbuffer-cpu)")) {
-            InsertOptions o = e.options();
-            o.locator = LocatorKind::IdBufferCpu;
-            st.setOptions(o);
+        } else {
+            if (ImGui::Button("Use idbuffer-cpu")) {
+                InsertOptions o = e.options();
+                o.locator = LocatorKind::IdBufferCpu;
+                st.setOptions(o);
+            }
+            RecordItem(st, "idbuffer-use");
+            if (ImGui::IsItemHovered()) ImGui::SetTooltip("A software rasterizer of triangle ids: the paper's idea without GL");
+            if (e.hasGl()) {
+                ImGui::SameLine();
+                if (ImGui::Button("Use idbuffer-gl")) {
+                    InsertOptions o = e.options();
+                    o.locator = LocatorKind::IdBufferGl;
+                    st.setOptions(o);
+                }
+                RecordItem(st, "idbuffer-use-gl");
+                if (ImGui::IsItemHovered()) ImGui::SetTooltip("The paper's GL colour-ID buffer: an offscreen framebuffer, one pixel read back per insertion");
+            }
         }
-        RecordItem(st, "idbuffer-use");
         ImGui::TextDisabled("or choose it under Locate in the toolbar (the run restarts with the same points)");
         return;
     }
-    if (!vs.cache) vs.cache = std::make_shared<IdBufferView>();
-    IdBufferView& v = *vs.cache;
     if (v.version != e.version() || v.trueColours != vs.trueColours || v.bufW != f.width || v.bufH != f.height) {
         rebuildTexture(v, f, vs.trueColours);
         v.version = e.version();
@@ -193,12 +215,9 @@ void ShowIdBuffer(AppState& st) {
     } else {
         ImGui::TextDisabled("No locate yet.");
     }
-    if (const Locator* l = const_cast<Inserter&>(e.inserter()).locator()) {
-        const LocatorStats& ls = l->stats();
-        if (ls.queries > 0) {
-            ImGui::TextDisabled("all locates so far: %llu of %llu hits, %llu steps on misses", static_cast<unsigned long long>(ls.hits),
-                                static_cast<unsigned long long>(ls.queries), static_cast<unsigned long long>(ls.missSteps));
-        }
+    if (const RunCounts& rc = UpdateRunCounts(st); rc.locates > 0) {
+        ImGui::TextDisabled("locates so far: %lld of %lld hits, %lld walk steps in all", static_cast<long long>(rc.hits),
+                            static_cast<long long>(rc.locates), static_cast<long long>(rc.walkSteps));
     }
 
     // ---- The image, and beside it the pixel under the mouse -----------------------------------
@@ -245,6 +264,10 @@ void ShowIdBuffer(AppState& st) {
     const ImVec2 mouse = ImGui::GetIO().MousePos;
     const int tx = std::clamp(static_cast<int>(std::floor((mouse.x + 0.5f - p0.x) / sx)), 0, v.texW - 1);
     const int ty = std::clamp(static_cast<int>(std::floor((mouse.y + 0.5f - p0.y) / sy)), 0, v.texH - 1);
+    // Mark the texel on the image (the mouse pointer is not in screenshots or on every projector).
+    const ImVec2 t0(p0.x + static_cast<float>(tx) * sx, p0.y + static_cast<float>(ty) * sy);
+    dl->AddRect(ImVec2(t0.x - 4, t0.y - 4), ImVec2(t0.x + sx + 4, t0.y + sy + 4), IM_COL32(0, 0, 0, 255), 0, 0, 2);
+    dl->AddRect(ImVec2(t0.x - 6, t0.y - 6), ImVec2(t0.x + sx + 6, t0.y + sy + 6), IM_COL32(255, 255, 255, 255), 0, 0, 2);
     IdBufferViewState::Hover& h = vs.hover;
     h.valid = true;
     h.i = static_cast<int>(static_cast<long long>(tx) * f.width / v.texW);
@@ -278,7 +301,7 @@ void ShowIdBuffer(AppState& st) {
             if (i >= 0 && j >= 0 && i < f.width && j < f.height) {
                 const std::int32_t id = f.ids[static_cast<std::size_t>(j) * f.width + i];
                 if (vs.trueColours) {
-                    const auto c = encodedColour(id);
+                    const auto c = encodeTriangleId(id);
                     col = IM_COL32(c[0], c[1], c[2], 255);
                 } else {
                     col = IdFalseColour(id);

@@ -66,9 +66,9 @@ void ShowCall(AppState& st, const PredicateCall& call, int index) {
     const int n = call.inCircle ? 4 : 3;
     static const char* const kNames[] = {"a", "b", "c", "d"};
     ImGui::PushFont(fonts().mono);
-    if (ImGui::BeginTable("##pred", 2, ImGuiTableFlags_RowBg | ImGuiTableFlags_BordersInnerV | ImGuiTableFlags_SizingStretchProp)) {
-        ImGui::TableSetupColumn("", ImGuiTableColumnFlags_WidthStretch, 0.9f);
-        ImGui::TableSetupColumn("", ImGuiTableColumnFlags_WidthStretch, 3.0f);
+    if (ImGui::BeginTable("##pred", 2, ImGuiTableFlags_RowBg | ImGuiTableFlags_BordersInnerV)) {
+        ImGui::TableSetupColumn("", ImGuiTableColumnFlags_WidthFixed);
+        ImGui::TableSetupColumn("", ImGuiTableColumnFlags_WidthStretch);
         auto row = [](const std::string& name, const std::string& value, ImVec4 col = ImVec4(0, 0, 0, 0)) {
             ImGui::TableNextRow();
             ImGui::TableSetColumnIndex(0);
@@ -107,7 +107,7 @@ void ShowCall(AppState& st, const PredicateCall& call, int index) {
     } else if (r.tier != PredicateTier::Filter) {
         ImGui::TextColored(ImVec4(0.7f, 0.4f, 0.0f, 1), "Too close for the filter: decided exactly (the float sign happened to be right).");
     }
-    if (ImGui::SmallButton("Copy these points below")) {
+    if (call.v[0] != kNone && ImGui::SmallButton("Copy these points below")) {
         for (int k = 0; k < 4; ++k) {
             const Vec2 p = k < n ? call.p[k] : call.p[0];
             st.predicates.points[k] = shortest(p.x) + ", " + shortest(p.y);
@@ -213,6 +213,7 @@ void ShowPredicates(AppState& st) {
                           "when |det| exceeds the error bound, the float sign is certain. Otherwise the determinant is\n"
                           "evaluated exactly (expansions, or big integers for extreme exponents).");
     }
+    ImGui::BeginChild("##predbody", ImVec2(0, 0), false);  // scrolls when the column is short
     if (calls.empty()) {
         ImGui::TextWrapped("%s", e.current() ? "This operation makes no predicate call. Step to an in-circle test or a locate step."
                                              : "Nothing has happened yet. Step to an in-circle test or a locate step.");
@@ -255,6 +256,7 @@ void ShowPredicates(AppState& st) {
     ImGui::PopFont();
     if (!ok) {
         ImGui::TextColored(ImVec4(0.8f, 0.1f, 0.1f, 1), "Each point is two finite numbers, e.g. 0.5, 1e-3");
+        ImGui::EndChild();
         return;
     }
     PredicateCall orient;
@@ -268,6 +270,7 @@ void ShowPredicates(AppState& st) {
     circle.p = {p[0], p[1], p[2], p[3]};
     circle.report = incircleReport(p[0], p[1], p[2], p[3]);
     ShowCall(st, circle, 101);
+    ImGui::EndChild();
 }
 
 }  // namespace dlab::ui

@@ -17,6 +17,8 @@ namespace dlab::ui {
 namespace {
 
 constexpr ImU32 kViolationColour = IM_COL32(230, 0, 0, 255);
+// Edges not Delaunay yet while the insertion's flips are still to come: expected, drawn calmer.
+constexpr ImU32 kPendingColour = IM_COL32(250, 170, 60, 255);
 
 bool sameOp(const Op& a, const Op& b) {
     return a.type == b.type && a.vertex == b.vertex && a.a == b.a && a.b == b.b && a.firstChange == b.firstChange;
@@ -136,6 +138,11 @@ bool midInsertion(const Engine& e) {
 
 }  // namespace
 
+const RunCounts& UpdateRunCounts(AppState& st) {
+    if (!st.engine.batch()) countOps(st.statistics.counts, st.engine);
+    return st.statistics.counts;
+}
+
 void UpdateStatistics(AppState& st) {
     StatisticsState& s = st.statistics;
     s.frameMs.push_back(ImGui::GetIO().DeltaTime * 1000.0f);
@@ -155,16 +162,20 @@ void DrawViolationOverlay(AppState& st) {
     ImDrawList* dl = ImGui::GetWindowDrawList();
     auto im = [](glm::dvec2 v) { return ImVec2(static_cast<float>(v.x), static_cast<float>(v.y)); };
     dl->PushClipRect(im(view.origin), im(view.origin + view.size), true);
-    const float w = st.presentation ? 7.0f : 5.0f;
+    const bool expected = midInsertion(st.engine) && std::all_of(s.violations.begin(), s.violations.end(), [](const Violation& v) {
+                              return v.kind == Violation::Kind::NotDelaunay;
+                          });
+    const ImU32 col = expected ? kPendingColour : kViolationColour;
+    const float w = (st.presentation ? 7.0f : 5.0f) * (expected ? 0.6f : 1.0f);
     const Inserter& ins = st.engine.inserter();
     auto drawable = [&](std::int32_t v) { return v >= 0 && v < m.numVertices() && (ins.done() || !ins.isVirtual(v) || st.engine.options().boundary == Boundary::Super); };
     for (const Violation& v : s.violations) {
         const std::int32_t c = v.corner;
         if (c < 0 || c >= m.numCorners()) continue;
         const std::int32_t a = m.V[next(c)], b = m.V[prev(c)];
-        if (drawable(a) && drawable(b)) dl->AddLine(im(view.toScreen(m.G[a])), im(view.toScreen(m.G[b])), kViolationColour, w);
+        if (drawable(a) && drawable(b)) dl->AddLine(im(view.toScreen(m.G[a])), im(view.toScreen(m.G[b])), col, w);
         float x = 0, y = 0;
-        if (CornerAnchor(st, c, x, y)) dl->AddCircle(ImVec2(x, y), 14, kViolationColour, 0, 3);
+        if (CornerAnchor(st, c, x, y)) dl->AddCircle(ImVec2(x, y), 14, col, 0, 3);
     }
     for (std::int32_t v : s.hullDents) {
         if (drawable(v)) dl->AddCircle(im(view.toScreen(m.G[v])), 12, kViolationColour, 0, 3);
@@ -183,14 +194,17 @@ void ShowStatistics(AppState& st) {
         for (std::int32_t t = 0; t < m.numTriangles(); ++t) virtualTriangles += ins.isVirtualTriangle(t);
     }
 
+    ImGui::BeginChild("##statsbody", ImVec2(0, 0), false);  // scrolls when the column is short
     // ---- Counts -----------------------------------------------------------------------------
     const bool batch = e.batch();
-    if (!batch) countOps(c, e);
+    UpdateRunCounts(st);
     const InsertStats& bs = ins.stats();
     const std::int64_t flips = batch ? bs.flips : c.flips, steps = batch ? bs.walkSteps : c.walkSteps;
     const std::int64_t tests = batch ? bs.inCircleTests : c.inCircleTests;
     const std::int64_t inserted = batch ? bs.inserted : c.inserted, dups = batch ? bs.duplicates : c.duplicates;
-    if (ImGui::BeginTable("##counts", 2, ImGuiTableFlags_RowBg | ImGuiTableFlags_BordersInnerV | ImGuiTableFlags_SizingStretchProp)) {
+    if (ImGui::BeginTable("##counts", 2, ImGuiTableFlags_RowBg | ImGuiTableFlags_BordersInnerV)) {
+        ImGui::TableSetupColumn("", ImGuiTableColumnFlags_WidthFixed);
+        ImGui::TableSetupColumn("", ImGuiTableColumnFlags_WidthStretch);
         auto row = [](const char* name, const std::string& value) {
             ImGui::TableNextRow();
             ImGui::TableSetColumnIndex(0);
@@ -212,13 +226,14 @@ void ShowStatistics(AppState& st) {
         if (!batch && c.locates > 0) {
             std::snprintf(buf, sizeof buf, "%lld of %lld (%.0f%%)", static_cast<long long>(c.hits), static_cast<long long>(c.locates),
                           100.0 * static_cast<double>(c.hits) / static_cast<double>(c.locates));
-            row("locates with 0 steps", buf);
+            row("0-step locates", buf);
         }
         row("in-circle tests", num(tests));
         if (!batch) row("splits", num(c.splits) + " in triangles, " + num(c.edgeSplits) + " on edges");
         const PredicateCounters& pc = predicateCounters();
-        row("exact predicate calls", num(static_cast<std::int64_t>(pc.orientExact)) + " orient2d, " +
-                                         num(static_cast<std::int64_t>(pc.incircleExact)) + " incircle (this thread, since start)");
+        row("exact fallbacks", num(static_cast<std::int64_t>(pc.orientExact)) + " orient2d, " +
+                                   num(static_cast<std::int64_t>(pc.incircleExact)) + " incircle");
+        if (ImGui::IsItemHovered()) ImGui::SetTooltip("Predicate calls the floating-point filter could not decide, since the program started");
         ImGui::EndTable();
     }
 
@@ -231,7 +246,7 @@ void ShowStatistics(AppState& st) {
         char overlay[96];
         std::snprintf(overlay, sizeof overlay, "flips per insertion (last %zu of %zu, max %.0f)", n - first, n, maxFlips);
         ImGui::PlotHistogram("##flips", c.flipsPerInsertion.data() + first, static_cast<int>(n - first), 0, overlay, 0.0f,
-                             std::max(4.0f, maxFlips * 1.15f), ImVec2(-1, 90));
+                             std::max(4.0f, maxFlips * 1.15f), ImVec2(ImGui::GetContentRegionAvail().x, 90));
         RecordItem(st, "flips-plot");
         if (ImGui::IsItemHovered()) ImGui::SetTooltip("Expected about 3 per insertion on average for random insertion orders (the new vertex gets about 6 edges, 3 from the split).");
     }
@@ -243,7 +258,7 @@ void ShowStatistics(AppState& st) {
         char overlay[128];
         std::snprintf(overlay, sizeof overlay, "frame ms: mean %.1f, worst %.1f", mean, worst);
         ImGui::PlotLines("##frames", s.frameMs.data(), static_cast<int>(s.frameMs.size()), 0, overlay, 0.0f, std::max(40.0f, worst * 1.1f),
-                         ImVec2(-1, 60));
+                         ImVec2(ImGui::GetContentRegionAvail().x, 60));
         const FrameStats& fs = st.frameStats;
         ImGui::TextDisabled("mesh rebuild %.1f ms, %zu edges drawn%s, %zu ops this frame", fs.meshBuildMs, fs.visibleEdges,
                             fs.denseMesh ? " (dense raster)" : "", fs.opsStepped);
@@ -261,6 +276,7 @@ void ShowStatistics(AppState& st) {
     ImGui::Checkbox("show on canvas", &s.showViolations);
     if (s.validatedVersion != e.version()) {
         ImGui::TextDisabled("not checked at this step%s", m.numCorners() > StatisticsState::kAutoValidateCorners ? " (large mesh: press Validate now)" : "");
+        ImGui::EndChild();
         return;
     }
     const bool expected = midInsertion(e);
@@ -280,7 +296,8 @@ void ShowStatistics(AppState& st) {
                          s.hullReport.find("touches") != std::string::npos;
     ImGui::TextColored(hullBad ? ImVec4(0.8f, 0.1f, 0.1f, 1) : ImVec4(0.05f, 0.45f, 0.15f, 1), "%s", s.hullReport.c_str());
     if (!s.violations.empty()) {
-        ImGui::BeginChild("##violations", ImVec2(0, 0), true);
+        const float listH = ImGui::GetTextLineHeightWithSpacing() * static_cast<float>(std::min<std::size_t>(s.violations.size(), 8) + 1);
+        ImGui::BeginChild("##violations", ImVec2(0, listH), true);
         for (std::size_t i = 0; i < s.violations.size(); ++i) {
             const Violation& v = s.violations[i];
             ImGui::PushID(static_cast<int>(i));
@@ -294,6 +311,7 @@ void ShowStatistics(AppState& st) {
         }
         ImGui::EndChild();
     }
+    ImGui::EndChild();
 }
 
 }  // namespace dlab::ui

@@ -77,20 +77,28 @@ std::vector<PredicateCall> CurrentPredicateCalls(const Engine& engine);
 // "x, y" (or "(x, y)", "x y"): two finite decimal numbers, read exactly.
 bool ParsePointText(std::string_view text, Vec2& out);
 
-// ID-buffer view (panel_idbuffer.cpp). What the view shows of a locator's ID buffer; the one
-// function that reads it (the CPU buffer now; a GL buffer plugs in there).
+// ID-buffer view (panel_idbuffer.cpp). What the view shows of a locator's ID buffer, read by
+// one function: the CPU buffer in place, the GL buffer read back into a copy.
 struct IdBufferFrame {
     const char* kind = "";
     int width = 0, height = 0;
     std::span<const std::int32_t> ids;      // width * height, row 0 = lowest y
     std::function<Vec2(int, int)> centre;   // world position of the centre of pixel (i, j)
 };
-bool ReadIdBuffer(const Engine& engine, IdBufferFrame& out);
+// A copy of a buffer that lives on the GPU, read back only when it may have changed.
+struct IdBufferCopy {
+    std::vector<std::int32_t> ids;
+    std::uint64_t engineVersion = ~std::uint64_t{0}, bufferVersion = ~std::uint64_t{0};
+};
+// False when the run's locator keeps no ID buffer (or it has none yet).
+bool ReadIdBuffer(const Engine& engine, IdBufferFrame& out, IdBufferCopy& copy);
 // The false colour of a triangle id (kNone: light grey), as the view draws it.
 std::uint32_t IdFalseColour(std::int32_t id);  // ImU32, as IM_COL32 packs it
 
 // Statistics (panel_statistics.cpp).
 void UpdateStatistics(AppState& state);
+// The counts over the journal up to the current position, brought up to date (stepping mode).
+const RunCounts& UpdateRunCounts(AppState& state);
 void DrawViolationOverlay(AppState& state);
 
 // A side-column tab: issue 5's debugging panels slot in here.

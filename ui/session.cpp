@@ -72,6 +72,20 @@ struct SessionError {
 
 [[noreturn]] void fail(std::string pointer, std::string message) { throw SessionError{std::move(pointer), std::move(message)}; }
 
+// "/points/3/1" -> "points[3][1]", as one would write it.
+std::string readablePath(const std::string& pointer) {
+    std::string out;
+    std::size_t i = 1;
+    while (i <= pointer.size()) {
+        const std::size_t j = std::min(pointer.find('/', i), pointer.size());
+        const std::string token = pointer.substr(i, j - i);
+        const bool index = !token.empty() && token.find_first_not_of("0123456789") == std::string::npos;
+        out += index ? "[" + token + "]" : (out.empty() ? "" : ".") + token;
+        i = j + 1;
+    }
+    return out;
+}
+
 // A minimal scanner over text that nlohmann already accepted: finds where the value at a JSON
 // pointer starts, so that a bad value is reported with its line.
 class LineFinder {
@@ -455,8 +469,8 @@ bool LoadSessionText(AppState& st, std::string_view textIn, const std::string& n
     } catch (const SessionError& e) {
         LineFinder finder(textIn);
         const int line = e.pointer.empty() ? 0 : finder.lineOf(e.pointer);
-        error = line > 0 ? name + ":" + std::to_string(line) + ": " + e.message
-                         : name + (e.pointer.empty() ? "" : ": at " + e.pointer) + ": " + e.message;
+        error = name + (line > 0 ? ":" + std::to_string(line) : "") + (e.pointer.empty() ? "" : ": " + readablePath(e.pointer)) + ": " +
+                e.message;
         return false;
     } catch (const std::exception& e) {
         error = name + ": " + e.what();
@@ -555,7 +569,7 @@ bool PeekSession(const std::string& path, SessionSummary& out, std::string& erro
         out.position = s.position;
         out.source = s.source;
     } catch (const SessionError& e) {
-        error = path + (e.pointer.empty() ? "" : ": at " + e.pointer) + ": " + e.message;
+        error = path + (e.pointer.empty() ? "" : ": " + readablePath(e.pointer)) + ": " + e.message;
         return false;
     } catch (const std::exception& e) {
         error = path + ": " + e.what();

@@ -16,8 +16,8 @@
 //               "fingerprint": "0123456789abcdef"}}
 //
 // Everything but "format", "version" and "points" is optional; unknown keys are ignored. A file
-// of a newer version is refused. Every error is one line "FILE:LINE: message" (or "FILE: at
-// /json/pointer: message"), and a file with an error changes nothing.
+// of a newer version is refused. Every error is one line, "FILE:LINE: points[3][1]: expected a
+// number" (the line where that value starts), and a file with an error changes nothing.
 #pragma once
 
 #include "ui/app_state.h"

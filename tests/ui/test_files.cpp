@@ -434,9 +434,9 @@ TEST(Files, ABadFileChangesNothingAndShowsOneLineNamingFileAndLine) {
     std::string syntax = good;
     syntax.insert(syntax.find("\"view\""), "oops ");
     const std::vector<Case> cases = {
-        {"point.json", badPoint, ":" + std::to_string(lineOf(badPoint, "\"x\", ")) + ": expected [x, y]"},
-        {"version.json", badVersion, ":" + std::to_string(lineOf(badVersion, "\"version\"")) + ": session version 9 is newer"},
-        {"locator.json", badLocator, ":" + std::to_string(lineOf(badLocator, "teleport")) + ": unknown locator"},
+        {"point.json", badPoint, ":" + std::to_string(lineOf(badPoint, "\"x\", ")) + ": points[3]: expected [x, y]"},
+        {"version.json", badVersion, ":" + std::to_string(lineOf(badVersion, "\"version\"")) + ": version: session version 9 is newer"},
+        {"locator.json", badLocator, ":" + std::to_string(lineOf(badLocator, "teleport")) + ": options.locator: unknown locator"},
         {"syntax.json", syntax, ":" + std::to_string(lineOf(syntax, "oops")) + ": not valid JSON"},
         {"other.json", "{\"hello\": 1}\n", ": not a Delaunay Lab session"},
         {"points.csv", "1,2\n3,4\n5,inf\n", ":3:"},

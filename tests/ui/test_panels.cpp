@@ -4,6 +4,7 @@
 // the ID-buffer view hovered and checked against the core's locator, and the statistics.
 #include "core/generators.h"
 #include "core/predicates.h"
+#include "ui/idbuffer_gl.h"
 #include "tests/ui/ui_harness.h"
 #include "ui/keys.h"
 #include "ui/panels.h"
@@ -27,6 +28,7 @@ namespace {
 constexpr std::array<int, 3> kPathRgb = {214, 0, 120};       // panel_expressions.cpp
 constexpr std::array<int, 3> kWarningRgb = {200, 20, 30};    // panel_predicates.cpp
 constexpr std::array<int, 3> kViolationRgb = {230, 0, 0};    // panel_statistics.cpp
+constexpr std::array<int, 3> kPendingRgb = {250, 170, 60};    // panel_statistics.cpp: expected mid-insertion
 
 void typeText(UiHarness& h, const std::string& text) {
     for (char ch : text) {
@@ -85,16 +87,25 @@ TEST(Panels, TypedExpressionGivesItsValueAndDrawsItsPath) {
     EXPECT_EQ(line.text, "c.n.o");
     EXPECT_TRUE(line.ok) << line.answer;
     const std::int32_t expected = m.O[dlab::next(c)];
-    EXPECT_EQ(line.answer, "= " + std::to_string(expected) + "  (corner)");
+    EXPECT_EQ(line.answer, "= " + std::to_string(expected) + "  (corner, c = " + std::to_string(c) + ")");
     ASSERT_EQ(ex.path.size(), 2u);
     EXPECT_EQ(ex.path[0].op, 'n');
     EXPECT_EQ(ex.path[0].from, c);
     EXPECT_EQ(ex.path[0].to, dlab::next(c));
     EXPECT_EQ(ex.path[1].op, 'o');
     EXPECT_EQ(ex.path[1].to, expected);
-    // Each move is drawn: its label box (path colour) sits halfway between the two corners.
-    EXPECT_GT(h.countColour(around((ax + bx) / 2 + 6, (ay + by) / 2, 8), kPathRgb), 15) << "no arrow c -> n(c)";
-    EXPECT_GT(h.countColour(around((bx + ox) / 2 + 6, (by + oy) / 2, 8), kPathRgb), 15) << "no arrow n(c) -> o(n(c))";
+    // Each move is drawn: a curve in the path colour with a label box ("1.n", "2.o") on it,
+    // between the two corners.
+    const float ends[2][4] = {{ax, ay, bx, by}, {bx, by, ox, oy}};
+    for (int k = 0; k < 2; ++k) {
+        const std::string label = "expr-path-" + std::to_string(k + 1);
+        ASSERT_TRUE(st.itemRects.count(label)) << "move " << k + 1 << " not drawn";
+        const auto r = h.rect(label);
+        EXPECT_GT(h.countColour(r, kPathRgb), 30) << label;
+        const float mx = (r[0] + r[2]) / 2, my = (r[1] + r[3]) / 2, (&e)[4] = ends[k];
+        const float len = std::hypot(e[2] - e[0], e[3] - e[1]);
+        EXPECT_LT(std::hypot(mx - (e[0] + e[2]) / 2, my - (e[1] + e[3]) / 2), 0.2f * len + 4) << label << " is not between its corners";
+    }
     EXPECT_TRUE(st.expressions.input.empty());  // the console is ready for the next line
 
     // The call form with a number, and an error with its column.
@@ -103,7 +114,7 @@ TEST(Panels, TypedExpressionGivesItsValueAndDrawsItsPath) {
     h.press(key::kEnter);
     const std::int32_t r = m.O[dlab::next(c)] == kNone ? kNone : m.O[dlab::prev(m.O[dlab::next(c)])];
     if (r != kNone) {
-        EXPECT_EQ(ex.history.back().answer, "= " + std::to_string(r) + "  (corner)");
+        EXPECT_EQ(ex.history.back().answer, "= " + std::to_string(r) + "  (corner)");  // no c in it
     }
     h.clickItem("expr-input");
     typeText(h, "c.n.x");
@@ -362,7 +373,9 @@ TEST(Panels, StatisticsCountTheRunAndViolationsShowOnTheCanvas) {
     ASSERT_TRUE(found) << "no split left a non-Delaunay edge in the demo";
     for (const auto& v : st.statistics.violations) EXPECT_EQ(v.kind, dlab::Violation::Kind::NotDelaunay);
     h.frames(1);
-    EXPECT_GT(h.countColour(h.rect("canvas"), kViolationRgb), 40) << "violations not drawn";
+    // Expected mid-insertion: drawn in the calmer colour, not as errors.
+    EXPECT_GT(h.countColour(h.rect("canvas"), kPendingRgb), 40) << "violations not drawn";
+    EXPECT_EQ(h.countColour(h.rect("canvas"), kViolationRgb), 0);
     // To the end: every check passes, nothing red, and the counts are the inserter's.
     while (!st.engine.toEnd(1 << 20)) {}
     h.frames(3);
@@ -371,6 +384,8 @@ TEST(Panels, StatisticsCountTheRunAndViolationsShowOnTheCanvas) {
     EXPECT_NE(st.statistics.hullReport.find("Euler holds"), std::string::npos) << st.statistics.hullReport;
     EXPECT_EQ(h.countColour(h.rect("canvas"), kViolationRgb), 0);
     ASSERT_TRUE(drawnNow(h, "flips-plot"));
+    constexpr std::array<int, 3> kHistogramRgb = {230, 179, 0};  // ImGui's light style PlotHistogram
+    EXPECT_GT(h.countColour(h.rect("flips-plot"), kHistogramRgb), 100) << "the flips plot is not drawn";
     const auto& ins = st.engine.inserter().stats();
     const auto& c = st.statistics.counts;
     EXPECT_EQ(c.flips, ins.flips);
@@ -408,4 +423,36 @@ TEST(Panels, SuperTriangleHullDentIsShown) {
     while (!st.engine.toEnd(1 << 20)) {}
     h.frames(2);
     EXPECT_TRUE(st.statistics.hullDents.empty()) << st.statistics.hullReport;
+}
+
+TEST(Panels, TheGlIdBufferShowsInTheSameViewAndAgreesWithItsOwnReadback) {
+    UiHarness h;
+    auto& st = h.state();
+    if (!st.engine.hasGl()) GTEST_SKIP() << "no GL context with framebuffer objects here";
+    openTab(h, "ID buffer");
+    ASSERT_TRUE(drawnNow(h, "idbuffer-use-gl"));
+    h.clickItem("idbuffer-use-gl");
+    ASSERT_EQ(st.engine.options().locator, dlab::LocatorKind::IdBufferGl);
+    ASSERT_TRUE(st.loadPoints(dlab::generatePoints(dlab::Generator::Uniform, 40, 9), "uniform 40"));
+    while (!st.engine.toEnd(1 << 20)) {}
+    h.frames(3);
+    ASSERT_TRUE(drawnNow(h, "idbuffer-image"));
+    dlab::ui::IdBufferGl* gl = st.engine.idBufferGl();
+    ASSERT_NE(gl, nullptr);
+    const auto img = h.rect("idbuffer-image");
+    const dlab::Mesh& m = st.engine.mesh();
+    int inside = 0;
+    for (int k = 1; k <= 7; ++k) {
+        h.moveTo(img[0] + (img[2] - img[0]) * k / 8.0f, img[1] + (img[3] - img[1]) * ((k * 3) % 8 + 0.5f) / 8.0f);
+        const auto& hv = st.idBuffer.hover;
+        ASSERT_TRUE(hv.valid);
+        EXPECT_EQ(hv.id, gl->idAt(hv.i, hv.j));  // the view decodes what GL holds there
+        EXPECT_EQ(hv.centre, gl->pixelCentre(hv.i, hv.j));
+        if (hv.id == kNone) continue;
+        ++inside;
+        const Vec2 a = m.G[m.V[3 * hv.id]], b = m.G[m.V[3 * hv.id + 1]], c = m.G[m.V[3 * hv.id + 2]];
+        const bool contains = dlab::orient2d(a, b, hv.centre) >= 0 && dlab::orient2d(b, c, hv.centre) >= 0 && dlab::orient2d(c, a, hv.centre) >= 0;
+        EXPECT_EQ(hv.agrees, contains);
+    }
+    EXPECT_GE(inside, 3);
 }
