@@ -169,22 +169,20 @@ void ShowIdBuffer(AppState& st) {
         if (e.options().locator == LocatorKind::IdBufferCpu || needsGl(e.options().locator)) {
             ImGui::TextDisabled("The buffer is made at the first triangle: take a step.");
         } else {
-            if (ImGui::Button("Use idbuffer-cpu")) {
-                InsertOptions o = e.options();
-                o.locator = LocatorKind::IdBufferCpu;
-                st.setOptions(o);
-            }
-            RecordItem(st, "idbuffer-use");
-            if (ImGui::IsItemHovered()) ImGui::SetTooltip("A software rasterizer of triangle ids: the paper's idea without GL");
-            if (e.hasGl()) {
-                ImGui::SameLine();
-                if (ImGui::Button("Use idbuffer-gl")) {
+            auto offer = [&](const char* label, LocatorKind kind, const char* item, const char* tip) {
+                if (ImGui::Button(label)) {
                     InsertOptions o = e.options();
-                    o.locator = LocatorKind::IdBufferGl;
+                    o.locator = kind;
                     st.setOptions(o);
                 }
-                RecordItem(st, "idbuffer-use-gl");
-                if (ImGui::IsItemHovered()) ImGui::SetTooltip("The paper's GL colour-ID buffer: an offscreen framebuffer, one pixel read back per insertion");
+                RecordItem(st, item);
+                if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", tip);
+            };
+            offer("Use idbuffer-cpu", LocatorKind::IdBufferCpu, "idbuffer-use", "A software rasterizer of triangle ids: the paper's idea without GL");
+            if (e.hasGl()) {
+                ImGui::SameLine();
+                offer("Use idbuffer-gl", LocatorKind::IdBufferGl, "idbuffer-use-gl",
+                      "The paper's GL colour-ID buffer: an offscreen framebuffer, one pixel read back per insertion");
             }
         }
         ImGui::TextDisabled("or choose it under Locate in the toolbar (the run restarts with the same points)");
