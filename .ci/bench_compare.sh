@@ -3,12 +3,13 @@
 # paper's 1600x1600 box, then dtlab's peak memory (GNU time). Needs jq and /usr/bin/time.
 #
 # usage: bash .ci/bench_compare.sh [BUILD_DIR]      (default: build)
-# Environment: BENCH_N (points, default 1048576), BENCH_REPEAT (default 7), BENCH_SEED (default 1).
+# Environment: BENCH_N (points, default 1048576), BENCH_ROUNDS (alternating rounds, default 7),
+# BENCH_SEED (default 1).
 set -euo pipefail
 
 build=${1:-build}
 n=${BENCH_N:-1048576}
-repeat=${BENCH_REPEAT:-7}
+rounds=${BENCH_ROUNDS:-7}
 seed=${BENCH_SEED:-1}
 dtlab=$build/app/dtlab
 cgal=$build/app/cgal_baseline
@@ -31,38 +32,50 @@ fi
 json_of() { jq -ces 'last | if type == "object" then . else error("no JSON object") end' <<<"$1"; }
 field() { jq -r --arg k "$2" '.[$k] // "n/a"' <<<"$1"; }
 
-echo
-echo "== dtlab bench --input $input --repeat $repeat --json"
-dt_out=$("$dtlab" bench --input "$input" --repeat "$repeat" --json)
-dt_json=$(json_of "$dt_out")
-echo "$dt_json"
+# The VM's load drifts from second to second: the two tools run in alternation, one timed run
+# each per round (after each process's own warm-up run), so that both medians cover the same
+# span of time. A ratio from two back-to-back blocks of runs swung by +-20% here.
+median_min() {
+    printf '%s\n' "$@" | sort -g | awk '{ v[NR] = $1 } END {
+        m = NR % 2 ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2; printf "%.1f %.1f", m, v[1] }'
+}
 
-cg_json=""
-if [[ -x $cgal ]]; then
-    echo
-    echo "== cgal_baseline $input --repeat $repeat --json"
-    cg_out=$("$cgal" "$input" --repeat "$repeat" --json)
-    cg_json=$(json_of "$cg_out")
-    echo "$cg_json"
-else
-    echo
+have_cgal=0
+if [[ -x $cgal ]]; then have_cgal=1; else
     echo "bench: $cgal was not built (CGAL not found: apt-get install libcgal-dev); no comparison"
 fi
-
 echo
-echo "== summary (n = $(field "$dt_json" n), median of $repeat runs)"
+echo "== $rounds rounds: dtlab bench --input $input --repeat 1 --json; cgal_baseline $input --repeat 1 --json"
+dt_ms=()
+cg_ms=()
+dt_json=""
+for (( r = 1; r <= rounds; ++r )); do
+    dt_json=$(json_of "$("$dtlab" bench --input "$input" --repeat 1 --json)")
+    dt_ms+=("$(field "$dt_json" median_ms)")
+    line=$(printf 'round %d: dtlab %9.1f ms' "$r" "${dt_ms[-1]}")
+    if (( have_cgal )); then
+        cg_json=$(json_of "$("$cgal" "$input" --repeat 1 --json)")
+        cg_ms+=("$(field "$cg_json" median_ms)")
+        line+=$(printf '   cgal %9.1f ms   ratio %.2f' "${cg_ms[-1]}" "$(awk -v a="${dt_ms[-1]}" -v b="${cg_ms[-1]}" 'BEGIN { print a / b }')")
+    fi
+    echo "$line"
+done
+echo "dtlab (last round): $dt_json"
+
+read -r dt_med dt_min <<<"$(median_min "${dt_ms[@]}")"
+echo
+echo "== summary (n = $(field "$dt_json" n), $rounds alternating rounds)"
 printf '%-8s %12s %10s %14s %16s %20s\n' tool median_ms min_ms ns_per_point flips_per_point walk_steps_per_point
-printf '%-8s %12s %10s %14s %16s %20s\n' dtlab "$(field "$dt_json" median_ms)" "$(field "$dt_json" min_ms)" \
-    "$(field "$dt_json" ns_per_point)" "$(field "$dt_json" flips_per_point)" \
-    "$(field "$dt_json" walk_steps_per_point)"
-if [[ -n $cg_json ]]; then
-    printf '%-8s %12s %10s %14s %16s %20s\n' cgal "$(field "$cg_json" median_ms)" "$(field "$cg_json" min_ms)" \
-        "$(field "$cg_json" ns_per_point)" "-" "-"
-    awk -v a="$(field "$dt_json" median_ms)" -v b="$(field "$cg_json" median_ms)" \
-        -v am="$(field "$dt_json" min_ms)" -v bm="$(field "$cg_json" min_ms)" 'BEGIN {
-        if (b + 0 > 0) printf "ratio dtlab/cgal (median): %.2f\n", a / b;
-        else print "ratio dtlab/cgal: n/a";
-        if (bm + 0 > 0) printf "ratio dtlab/cgal (min):    %.2f\n", am / bm;
+printf '%-8s %12s %10s %14.1f %16.3f %20.3f\n' dtlab "$dt_med" "$dt_min" \
+    "$(awk -v m="$dt_med" -v n="$n" 'BEGIN { print m * 1e6 / n }')" \
+    "$(field "$dt_json" flips_per_point)" "$(field "$dt_json" walk_steps_per_point)"
+if (( have_cgal )); then
+    read -r cg_med cg_min <<<"$(median_min "${cg_ms[@]}")"
+    printf '%-8s %12s %10s %14.1f %16s %20s\n' cgal "$cg_med" "$cg_min" \
+        "$(awk -v m="$cg_med" -v n="$n" 'BEGIN { print m * 1e6 / n }')" "-" "-"
+    awk -v a="$dt_med" -v b="$cg_med" -v am="$dt_min" -v bm="$cg_min" 'BEGIN {
+        printf "ratio dtlab/cgal (median): %.2f\n", a / b;
+        printf "ratio dtlab/cgal (min):    %.2f\n", am / bm;
     }'
 fi
 

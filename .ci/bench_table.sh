@@ -10,7 +10,7 @@
 # usage: bash .ci/bench_table.sh [BUILD_DIR]      (default: build)
 # Environment: BENCH_TABLE_FROM, BENCH_TABLE_TO (exponents, default 10 and 20),
 #   BENCH_TABLE_LIMIT_S (default 120), BENCH_SEED (default 1),
-#   BENCH_COMPARE=0 (skip the CGAL comparison), BENCH_REPEAT (passed on to bench_compare.sh).
+#   BENCH_COMPARE=0 (skip the CGAL comparison), BENCH_ROUNDS (passed on to bench_compare.sh).
 set -euo pipefail
 
 build=${1:-build}
