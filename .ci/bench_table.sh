@@ -37,19 +37,20 @@ repeats_for() {
     if (( $1 <= 16384 )); then echo 21; elif (( $1 <= 131072 )); then echo 11; else echo 7; fi
 }
 
-# One row's cells from a dtlab bench JSON object: median ms, ns/point, flips/point, steps/point.
+# One row's cells from a dtlab bench JSON object: ns/point of the median and of the fastest run
+# (this VM's load makes the minimum the steadier figure), flips/point, walk steps/point.
 cells() {
-    jq -r '[.median_ms, .ns_per_point, .flips_per_point, .walk_steps_per_point] | @tsv' <<<"$1" |
-        awk -F'\t' '{ printf "%.2f | %.1f | %.3f | %.2f", $1, $2, $3, $4 }'
+    jq -r '[.ns_per_point, .min_ms * 1e6 / .n, .flips_per_point, .walk_steps_per_point] | @tsv' <<<"$1" |
+        awk -F'\t' '{ printf "%.1f | %.1f | %.3f | %.2f", $1, $2, $3, $4 }'
 }
 
 model=$(lscpu 2>/dev/null | awk -F: '/^Model name/ { sub(/^[ \t]+/, "", $2); print $2; exit }')
 build_type=$(awk -F= '/^CMAKE_BUILD_TYPE:/ { print $2 }' "$build/CMakeCache.txt" 2>/dev/null || true)
 echo "Machine: ${model:-unknown CPU}, $(nproc) cores; build ${build_type:-?}; $(date -u +%Y-%m-%d)"
-echo "dtlab bench: median of the timed runs after a warm-up, triangulation only (no I/O)."
+echo "dtlab bench: triangulation only (no I/O), median and fastest of the timed runs after a warm-up."
 echo "default = exact boundary, brio order, walk locator; paper = --locate naive --order input."
 echo
-echo "| n | default ms | ns/point | flips/point | walk steps/point | paper ms | ns/point | flips/point | walk steps/point |"
+echo "| n | default ns/point | (min) | flips/point | walk steps/point | paper ns/point | (min) | flips/point | walk steps/point |"
 echo "|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
 
 naive_prev_ms=""   # the paper baseline's median at the previous size
