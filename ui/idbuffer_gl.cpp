@@ -479,10 +479,12 @@ std::vector<std::int32_t> IdBufferGl::readAll() {
     return ids;
 }
 
-// A batch spans at most as many insertions as came before it: early on, when the mesh is small,
-// ids read K insertions ahead would mostly show the small old hull (no triangle).
+// A batch spans at most four times as many insertions as came before it: early on, when the mesh
+// is small, ids read K insertions ahead would mostly show the small old hull (no triangle under
+// the point, and a long walk from the last triangle). Four, not one: every early batch repaints
+// most of the box, and each costs a full read.
 std::int32_t IdBufferGl::batchCount(std::int32_t start) const {
-    return std::min({m_opt.batch, std::max<std::int32_t>(start, 1), static_cast<std::int32_t>(m_order.size()) - start});
+    return std::min({m_opt.batch, std::max<std::int32_t>(4 * start, 1), static_cast<std::int32_t>(m_order.size()) - start});
 }
 
 // The ids under the points [start, start + count) of the insertion order, in one draw and one

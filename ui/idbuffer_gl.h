@@ -18,8 +18,8 @@
 //              order are gathered in one draw (points sampling the ID texture) and read back in
 //              one go through a pixel-buffer object. Later points of the batch get ids that are
 //              up to K-1 insertions old: a stale id is a triangle near the right one, and the
-//              exact walk goes the rest of the way. A batch spans at most as many insertions as
-//              came before it (the first batches grow 3, 6, 12, ... up to K).
+//              exact walk goes the rest of the way. A batch spans at most four times as many
+//              insertions as came before it (the first batches grow 12, 60, 300, ... up to K).
 //   Pipelined  Batched, one batch ahead: when batch b starts, its ids (read one batch earlier)
 //              are mapped, the ids of batch b+1 are gathered from the texture as it is, and only
 //              then are the changes painted, so that the rasterizer (a GPU, or llvmpipe's

@@ -640,6 +640,7 @@ TEST(IdBufferGlGui, TheGuiRunsTheGlLocatorOnItsContext) {
         o.locator = kind;
         o.locatorOptions.idBufferWidth = 400;
         o.locatorOptions.idBufferHeight = 300;
+        o.locatorOptions.idBufferBatch = 32;
         ASSERT_TRUE(st.setOptions(o)) << st.messages.back().text;
         IdBufferGl* gl = st.engine.idBufferGl();
         ASSERT_NE(gl, nullptr);
@@ -662,10 +663,8 @@ TEST(IdBufferGlGui, TheGuiRunsTheGlLocatorOnItsContext) {
         h.frames(2);
         EXPECT_TRUE(st.engine.atEnd());
         EXPECT_TRUE(validate(st.engine.mesh()).empty());
-        // One pixel per insertion: most hints right. Batched on 400 points in input order: the
-        // late batches span half the run, so fewer (the first points lie outside the hull the
-        // batch's pixels show).
-        EXPECT_GT(gl->stats().hits, gl->stats().queries * (kind == LocatorKind::IdBufferGl ? 7 : 3) / 10);
+        // Most hints right (batched: ids up to 31 insertions old, on a mesh of a few hundred).
+        EXPECT_GT(gl->stats().hits, gl->stats().queries * (kind == LocatorKind::IdBufferGl ? 7 : 5) / 10);
     }
     // Without a context, the engine refuses the GL kinds with a reason.
     ui::Engine bare;
