@@ -415,9 +415,10 @@ void runTable1(const Table1Args& args) {
                 "  read    share of the run's time in glReadPixels / gather / fence / map, including the wait\n"
                 "          for the drawing that a read forces (as the paper measured readback)\n"
                 "  draw    GL state, vertex arrays and draw calls; other: the rest (walk, split, flips)\n"
-                "  painted triangles drawn into the buffer over the run\n\n");
-    std::printf("%8s  %-20s %7s %7s %6s %7s %7s %6s %6s %6s %6s %9s\n", "n", "method", "hits", "walk", "none",
-                "stale", "s.hits", "steps", "read", "draw", "other", "painted");
+                "  painted triangles drawn into the buffer over the run, and their area in millions of\n"
+                "          pixels (the buffer has 2.56 Mpx at 1600 x 1600)\n\n");
+    std::printf("%8s  %-20s %7s %7s %6s %7s %7s %6s %6s %6s %6s %9s %7s\n", "n", "method", "hits", "walk", "none",
+                "stale", "s.hits", "steps", "read", "draw", "other", "painted", "Mpx");
     auto pct = [](double part, double whole) { return whole > 0 ? 100.0 * part / whole : 0.0; };
     for (std::size_t k = 0; k < sizes.size(); ++k) {
         for (int m = 1; m <= 3; ++m) {
@@ -430,11 +431,11 @@ void runTable1(const Table1Args& args) {
             const double walk = l.queries > l.hits ? static_cast<double>(l.missSteps) / (l.queries - l.hits) : 0.0;
             std::printf("%8zu  %-20s %6.1f%% %7.2f", sizes[k], kMethods[m].name, hits, walk);
             if (gl) {
-                std::printf(" %5.1f%% %6.1f%% %6.1f%% %6.2f %5.1f%% %5.1f%% %5.1f%% %9llu\n", pct(g.noPixel, l.queries),
+                std::printf(" %5.1f%% %6.1f%% %6.1f%% %6.2f %5.1f%% %5.1f%% %5.1f%% %9llu %7.1f\n", pct(g.noPixel, l.queries),
                             pct(g.staleQueries, l.queries), g.staleQueries ? 100.0 * g.staleHits / g.staleQueries : 0.0,
                             g.staleQueries ? static_cast<double>(g.staleSteps) / g.staleQueries : 0.0,
                             pct(g.readbackMs, r.ms), pct(g.paintMs, r.ms), pct(r.ms - g.readbackMs - g.paintMs, r.ms),
-                            static_cast<unsigned long long>(g.trianglesPainted));
+                            static_cast<unsigned long long>(g.trianglesPainted), g.pixelsPainted / 1e6);
             } else {
                 std::printf("\n");
             }

@@ -14,6 +14,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstddef>
 #include <cstring>
 #include <stdexcept>
@@ -358,6 +359,7 @@ void IdBufferGl::paintShape(std::int32_t t) {
         float* xy = &m_shadow[6 * static_cast<std::size_t>(t)];
         corners(t, xy);
         appendTriangle(packColour(t), xy);
+        m_glStats.pixelsPainted += std::abs((xy[2] - xy[0]) * (xy[5] - xy[1]) - (xy[3] - xy[1]) * (xy[4] - xy[0])) / 2;
         m_shown[t] = 1;
     } else {
         m_shown[t] = 0;

@@ -67,6 +67,7 @@ struct IdBufferGlStats {
     std::uint64_t draws = 0;           // paint draw calls
     std::uint64_t trianglesPainted = 0;
     std::uint64_t trianglesCleared = 0;  // old footprints cleared (undo shrinking the hull)
+    double pixelsPainted = 0;            // area of the painted triangles, in pixels (clipped: less)
     std::uint64_t fullRepaints = 0;
     double readbackMs = 0;  // in glReadPixels / gather / fence wait / map: includes the wait for
                             // the drawing that the read forces (as the paper measured it)
