@@ -189,7 +189,7 @@ void ShowToolbar(AppState& state) {
     ImGui::SameLine();
     if (e.hasGl()) {  // the GL ID buffer draws on this window's context
         changed |= EnumCombo("Locate", o.locator, {LocatorKind::Walk, LocatorKind::Naive, LocatorKind::Grid, LocatorKind::IdBufferCpu,
-                                                   LocatorKind::IdBufferGl, LocatorKind::IdBufferGlBatched}, 150);
+                                                   LocatorKind::IdBufferGl, LocatorKind::IdBufferGlBatched}, 175);
     } else {
         changed |= EnumCombo("Locate", o.locator, {LocatorKind::Walk, LocatorKind::Naive, LocatorKind::Grid, LocatorKind::IdBufferCpu}, 120);
     }
