@@ -45,6 +45,16 @@ float toPixel(double v) {
     return static_cast<float>(v);
 }
 
+// Draw into `fbo` (w x h pixels) with pixel coordinates: x in [0, w), y in [0, h), y up.
+void drawInto(const GlApi& gl, GLuint fbo, int w, int h) {
+    gl.bindFramebuffer(GL_FRAMEBUFFER, fbo);
+    glViewport(0, 0, w, h);
+    glMatrixMode(GL_PROJECTION);
+    glLoadIdentity();
+    glOrtho(0, w, 0, h, -1, 1);
+    glMatrixMode(GL_MODELVIEW);
+}
+
 std::uint32_t packColour(std::int32_t id) {
     const std::array<std::uint8_t, 4> c = encodeTriangleId(id);
     std::uint32_t v;
@@ -183,15 +193,7 @@ public:
         glEnableClientState(GL_VERTEX_ARRAY);
     }
 
-    // Draw into `fbo` (w x h pixels) with pixel coordinates: x in [0, w), y in [0, h), y up.
-    void target(GLuint fbo, int w, int h) {
-        m_gl.bindFramebuffer(GL_FRAMEBUFFER, fbo);
-        glViewport(0, 0, w, h);
-        glMatrixMode(GL_PROJECTION);
-        glLoadIdentity();
-        glOrtho(0, w, 0, h, -1, 1);
-        glMatrixMode(GL_MODELVIEW);
-    }
+    void target(GLuint fbo, int w, int h) { drawInto(m_gl, fbo, w, h); }
 
     ~Scope() {
         for (GLenum mode : {GL_TEXTURE, GL_MODELVIEW, GL_PROJECTION}) {
@@ -508,12 +510,7 @@ void IdBufferGl::requestBatch(std::int32_t start) {
         m_gatherUv[2 * k + 1] = (static_cast<float>(j) + 0.5f) / static_cast<float>(m_opt.height);
     }
     const int rows = (count + kGatherWidth - 1) / kGatherWidth;
-    a.bindFramebuffer(GL_FRAMEBUFFER, m_gatherFbo);
-    glViewport(0, 0, kGatherWidth, m_gatherRows);
-    glMatrixMode(GL_PROJECTION);
-    glLoadIdentity();
-    glOrtho(0, kGatherWidth, 0, m_gatherRows, -1, 1);
-    glMatrixMode(GL_MODELVIEW);
+    drawInto(a, m_gatherFbo, kGatherWidth, m_gatherRows);
     glEnable(GL_TEXTURE_2D);
     glBindTexture(GL_TEXTURE_2D, m_tex);
     glTexEnvi(GL_TEXTURE_ENV, GL_TEXTURE_ENV_MODE, GL_REPLACE);
