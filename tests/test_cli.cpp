@@ -3,38 +3,23 @@
 #include "core/io_read.h"
 #include "core/mesh.h"
 #include "tests/exact_check.h"
+#include "tests/run_dtlab.h"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
-#include <sys/wait.h>
 
 namespace fs = std::filesystem;
 
 namespace {
 
-struct Result {
-    int status = -1;
-    std::string out;  // stdout and stderr together
-};
+using Result = dlab::testutil::DtlabResult;
 
-Result dtlab(const std::string& args) {
-    const std::string cmd = std::string(DLAB_DTLAB_PATH) + " " + args + " 2>&1";
-    Result r;
-    FILE* pipe = popen(cmd.c_str(), "r");
-    if (!pipe) return r;
-    char buf[4096];
-    std::size_t n;
-    while ((n = fread(buf, 1, sizeof buf, pipe)) > 0) r.out.append(buf, n);
-    const int st = pclose(pipe);
-    r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
-    return r;
-}
+Result dtlab(const std::string& args) { return dlab::testutil::runDtlab(args); }
 
 fs::path tempDir() {
     const fs::path dir = fs::temp_directory_path() / ("dlab_cli_" + std::to_string(::getpid()));

@@ -75,24 +75,29 @@ bool AppState::editPoints(std::vector<Vec2> points) {
     return true;
 }
 
-bool AppState::undoEdit() {
-    if (undoPoints.empty()) return false;
+namespace {
+
+// Undo and redo: the points on top of `from` come back; the points now go onto `to`.
+bool swapPoints(Engine& engine, std::vector<std::vector<Vec2>>& from, std::vector<std::vector<Vec2>>& to) {
+    if (from.empty()) return false;
     std::string error;
     std::vector<Vec2> now = engine.points();
-    if (!engine.resetAt(undoPoints.back(), engine.options(), engine.position(), error)) return false;
-    undoPoints.pop_back();
-    redoPoints.push_back(std::move(now));
+    if (!engine.resetAt(from.back(), engine.options(), engine.position(), error)) return false;
+    from.pop_back();
+    to.push_back(std::move(now));
+    return true;
+}
+
+}  // namespace
+
+bool AppState::undoEdit() {
+    if (!swapPoints(engine, undoPoints, redoPoints)) return false;
     selection = {};
     return true;
 }
 
 bool AppState::redoEdit() {
-    if (redoPoints.empty()) return false;
-    std::string error;
-    std::vector<Vec2> now = engine.points();
-    if (!engine.resetAt(redoPoints.back(), engine.options(), engine.position(), error)) return false;
-    redoPoints.pop_back();
-    undoPoints.push_back(std::move(now));
+    if (!swapPoints(engine, redoPoints, undoPoints)) return false;
     selection = {};
     return true;
 }
