@@ -62,7 +62,17 @@ void WarningBox(AppState& st, const std::string& text) {
 void ShowCall(AppState& st, const PredicateCall& call, int index) {
     const PredicateReport& r = call.report;
     ImGui::PushID(index);
-    ImGui::TextUnformatted(call.what.c_str());
+    ImGui::TextWrapped("%s", call.what.c_str());
+    // The verdict first (on a projector the table below may be cut off), then the numbers.
+    if (r.naiveSign != r.exactSign) {
+        WarningBox(st, std::string("Plain floating point is WRONG here: it gives ") + signText(r.naiveSign) + " (" +
+                           signMeaning(call.inCircle, r.naiveSign) + "), the exact sign is " + signText(r.exactSign) + " (" +
+                           signMeaning(call.inCircle, r.exactSign) + ").");
+    } else if (r.tier != PredicateTier::Filter) {
+        ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(0.7f, 0.4f, 0.0f, 1));
+        ImGui::TextWrapped("Too close for the filter: decided exactly (the float sign happened to be right).");
+        ImGui::PopStyleColor();
+    }
     const int n = call.inCircle ? 4 : 3;
     static const char* const kNames[] = {"a", "b", "c", "d"};
     ImGui::PushFont(fonts().mono);
@@ -74,8 +84,9 @@ void ShowCall(AppState& st, const PredicateCall& call, int index) {
             ImGui::TableSetColumnIndex(0);
             ImGui::TextUnformatted(name.c_str());
             ImGui::TableSetColumnIndex(1);
-            if (col.w > 0) ImGui::TextColored(col, "%s", value.c_str());
-            else ImGui::TextUnformatted(value.c_str());
+            if (col.w > 0) ImGui::PushStyleColor(ImGuiCol_Text, col);
+            ImGui::TextWrapped("%s", value.c_str());  // long coordinates wrap in a narrow column
+            if (col.w > 0) ImGui::PopStyleColor();
         };
         for (int k = 0; k < n; ++k) {
             row(std::string(kNames[k]) + " " + vertexName(call.v[k], ""),
@@ -100,13 +111,6 @@ void ShowCall(AppState& st, const PredicateCall& call, int index) {
         ImGui::EndTable();
     }
     ImGui::PopFont();
-    if (r.naiveSign != r.exactSign) {
-        WarningBox(st, std::string("Plain floating point is WRONG here: it gives ") + signText(r.naiveSign) + " (" +
-                           signMeaning(call.inCircle, r.naiveSign) + "), the exact sign is " + signText(r.exactSign) + " (" +
-                           signMeaning(call.inCircle, r.exactSign) + ").");
-    } else if (r.tier != PredicateTier::Filter) {
-        ImGui::TextColored(ImVec4(0.7f, 0.4f, 0.0f, 1), "Too close for the filter: decided exactly (the float sign happened to be right).");
-    }
     if (call.v[0] != kNone && ImGui::SmallButton("Copy these points below")) {
         for (int k = 0; k < 4; ++k) {
             const Vec2 p = k < n ? call.p[k] : call.p[0];

@@ -183,6 +183,66 @@ void DrawViolationOverlay(AppState& st) {
     dl->PopClipRect();
 }
 
+namespace {
+
+// validate() and the hull check, with the violations listed (click: select the corner).
+void ShowChecks(AppState& st) {
+    const Engine& e = st.engine;
+    StatisticsState& s = st.statistics;
+    const Mesh& m = e.mesh();
+    // ---- validate() and the hull ------------------------------------------------------------
+    ImGui::TextUnformatted("Checks of the current mesh (exact)");
+    ImGui::Checkbox("after every change", &s.autoValidate);
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("validate() after each step, for meshes up to %d corners", StatisticsState::kAutoValidateCorners);
+    ImGui::SameLine();
+    if (ImGui::Button("Validate now")) validateNow(st);
+    RecordItem(st, "validate-now");
+    ImGui::SameLine();
+    ImGui::Checkbox("show on canvas", &s.showViolations);
+    if (s.validatedVersion != e.version()) {
+        ImGui::TextDisabled("not checked at this step%s", m.numCorners() > StatisticsState::kAutoValidateCorners ? " (large mesh: press Validate now)" : "");
+        return;
+    }
+    const bool expected = midInsertion(e);
+    if (s.violations.empty()) {
+        ImGui::TextColored(ImVec4(0.05f, 0.45f, 0.15f, 1), "validate(): every invariant holds (O symmetric, CCW, local Delaunay)");
+    } else {
+        const bool onlyDelaunay = std::all_of(s.violations.begin(), s.violations.end(),
+                                              [](const Violation& v) { return v.kind == Violation::Kind::NotDelaunay; });
+        const ImVec4 col = expected && onlyDelaunay ? ImVec4(0.7f, 0.4f, 0.0f, 1) : ImVec4(0.8f, 0.1f, 0.1f, 1);
+        ImGui::TextColored(col, "validate(): %zu violation%s%s", s.violations.size(), s.violations.size() == 1 ? "" : "s",
+                           s.violations.size() >= 200 ? " (first 200)" : "");
+        if (expected && onlyDelaunay) {
+            ImGui::PushStyleColor(ImGuiCol_Text, col);
+            ImGui::TextWrapped("expected mid-insertion: these edges are still to be tested and flipped");
+            ImGui::PopStyleColor();
+        }
+    }
+    const bool hullBad = !s.hullDents.empty() || s.hullReport.find("FAILS") != std::string::npos ||
+                         s.hullReport.find("touches") != std::string::npos;
+    ImGui::PushStyleColor(ImGuiCol_Text, hullBad ? ImVec4(0.8f, 0.1f, 0.1f, 1) : ImVec4(0.05f, 0.45f, 0.15f, 1));
+    ImGui::TextWrapped("%s", s.hullReport.c_str());
+    ImGui::PopStyleColor();
+    if (!s.violations.empty()) {
+        const float listH = ImGui::GetTextLineHeightWithSpacing() * static_cast<float>(std::min<std::size_t>(s.violations.size(), 8) + 1);
+        ImGui::BeginChild("##violations", ImVec2(0, listH), true);
+        for (std::size_t i = 0; i < s.violations.size(); ++i) {
+            const Violation& v = s.violations[i];
+            ImGui::PushID(static_cast<int>(i));
+            if (ImGui::Selectable((std::string(toString(v.kind)) + " at corner " + std::to_string(v.corner)).c_str(),
+                                  st.selection.corner == v.corner)) {
+                st.select(v.corner);
+                st.selection.jumpToCorner = v.corner;
+            }
+            if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", v.message.c_str());
+            ImGui::PopID();
+        }
+        ImGui::EndChild();
+    }
+}
+
+}  // namespace
+
 void ShowStatistics(AppState& st) {
     const Engine& e = st.engine;
     StatisticsState& s = st.statistics;
@@ -195,6 +255,9 @@ void ShowStatistics(AppState& st) {
     }
 
     ImGui::BeginChild("##statsbody", ImVec2(0, 0), false);  // scrolls when the column is short
+    // What a debugging user looks for first: does the mesh hold its invariants at this step.
+    ShowChecks(st);
+    ImGui::Separator();
     // ---- Counts -----------------------------------------------------------------------------
     const bool batch = e.batch();
     UpdateRunCounts(st);
@@ -264,53 +327,6 @@ void ShowStatistics(AppState& st) {
                             fs.denseMesh ? " (dense raster)" : "", fs.opsStepped);
     }
 
-    // ---- validate() and the hull ------------------------------------------------------------
-    ImGui::Separator();
-    ImGui::TextUnformatted("Checks of the current mesh (exact)");
-    ImGui::Checkbox("after every change", &s.autoValidate);
-    if (ImGui::IsItemHovered()) ImGui::SetTooltip("validate() after each step, for meshes up to %d corners", StatisticsState::kAutoValidateCorners);
-    ImGui::SameLine();
-    if (ImGui::Button("Validate now")) validateNow(st);
-    RecordItem(st, "validate-now");
-    ImGui::SameLine();
-    ImGui::Checkbox("show on canvas", &s.showViolations);
-    if (s.validatedVersion != e.version()) {
-        ImGui::TextDisabled("not checked at this step%s", m.numCorners() > StatisticsState::kAutoValidateCorners ? " (large mesh: press Validate now)" : "");
-        ImGui::EndChild();
-        return;
-    }
-    const bool expected = midInsertion(e);
-    if (s.violations.empty()) {
-        ImGui::TextColored(ImVec4(0.05f, 0.45f, 0.15f, 1), "validate(): every invariant holds (O symmetric, CCW, local Delaunay)");
-    } else {
-        const bool onlyDelaunay = std::all_of(s.violations.begin(), s.violations.end(),
-                                              [](const Violation& v) { return v.kind == Violation::Kind::NotDelaunay; });
-        const ImVec4 col = expected && onlyDelaunay ? ImVec4(0.7f, 0.4f, 0.0f, 1) : ImVec4(0.8f, 0.1f, 0.1f, 1);
-        ImGui::TextColored(col, "validate(): %zu violation%s%s", s.violations.size(), s.violations.size() == 1 ? "" : "s",
-                           s.violations.size() >= 200 ? " (first 200)" : "");
-        if (expected && onlyDelaunay) {
-            ImGui::TextColored(col, "expected mid-insertion: these edges are still to be tested and flipped");
-        }
-    }
-    const bool hullBad = !s.hullDents.empty() || s.hullReport.find("FAILS") != std::string::npos ||
-                         s.hullReport.find("touches") != std::string::npos;
-    ImGui::TextColored(hullBad ? ImVec4(0.8f, 0.1f, 0.1f, 1) : ImVec4(0.05f, 0.45f, 0.15f, 1), "%s", s.hullReport.c_str());
-    if (!s.violations.empty()) {
-        const float listH = ImGui::GetTextLineHeightWithSpacing() * static_cast<float>(std::min<std::size_t>(s.violations.size(), 8) + 1);
-        ImGui::BeginChild("##violations", ImVec2(0, listH), true);
-        for (std::size_t i = 0; i < s.violations.size(); ++i) {
-            const Violation& v = s.violations[i];
-            ImGui::PushID(static_cast<int>(i));
-            if (ImGui::Selectable((std::string(toString(v.kind)) + " at corner " + std::to_string(v.corner)).c_str(),
-                                  st.selection.corner == v.corner)) {
-                st.select(v.corner);
-                st.selection.jumpToCorner = v.corner;
-            }
-            if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", v.message.c_str());
-            ImGui::PopID();
-        }
-        ImGui::EndChild();
-    }
     ImGui::EndChild();
 }
 
