@@ -155,7 +155,9 @@ bool ReadIdBuffer(const Engine& e, IdBufferFrame& out, IdBufferCopy& copy) {
     return false;
 }
 
-void ShowIdBuffer(AppState& st) {
+namespace {
+
+void IdBufferBody(AppState& st) {
     const Engine& e = st.engine;
     IdBufferViewState& vs = st.idBuffer;
     vs.hover.valid = false;
@@ -195,7 +197,6 @@ void ShowIdBuffer(AppState& st) {
     }
 
     ImGui::Text("%s, %d x %d pixels", f.kind, f.width, f.height);
-    ImGui::SameLine();
     if (ImGui::RadioButton("false colour", !vs.trueColours)) vs.trueColours = false;
     ImGui::SameLine();
     if (ImGui::RadioButton("encoded colours", vs.trueColours)) vs.trueColours = true;
@@ -204,12 +205,14 @@ void ShowIdBuffer(AppState& st) {
     // The last locate: did the buffer's hint already contain the point?
     const LocateSummary loc = lastLocate(e);
     if (loc.found) {
+        ImGui::PushStyleColor(ImGuiCol_Text, loc.steps == 0 ? ImVec4(0.05f, 0.45f, 0.15f, 1) : ImVec4(0.7f, 0.4f, 0.0f, 1));
         if (loc.steps == 0) {
-            ImGui::TextColored(ImVec4(0.05f, 0.45f, 0.15f, 1), "Last locate (v%d): HIT - the hinted triangle t%d contains it", loc.vertex, loc.end);
+            ImGui::TextWrapped("Last locate (v%d): HIT - the hinted triangle t%d contains it", loc.vertex, loc.end);
         } else {
-            ImGui::TextColored(ImVec4(0.7f, 0.4f, 0.0f, 1), "Last locate (v%d): missed - walked %d step%s from t%d to t%d", loc.vertex,
-                               loc.steps, loc.steps == 1 ? "" : "s", loc.start, loc.end);
+            ImGui::TextWrapped("Last locate (v%d): missed - walked %d step%s from t%d to t%d", loc.vertex, loc.steps,
+                               loc.steps == 1 ? "" : "s", loc.start, loc.end);
         }
+        ImGui::PopStyleColor();
     } else {
         ImGui::TextDisabled("No locate yet.");
     }
@@ -220,10 +223,12 @@ void ShowIdBuffer(AppState& st) {
 
     // ---- The image, and beside it the pixel under the mouse -----------------------------------
     constexpr int kR = 5;         // the magnifier shows (2 kR + 1)^2 buffer pixels
-    const float cell = std::max(9.0f, std::floor(ImGui::GetFontSize() * 0.7f));
-    const float sideW = (2 * kR + 1) * cell + 16;
     const ImVec2 avail = ImGui::GetContentRegionAvail();
-    const float side = std::max(80.0f, std::min(avail.x - sideW - ImGui::GetStyle().ItemSpacing.x, avail.y - ImGui::GetFrameHeightWithSpacing()));
+    const float cell = std::clamp(std::floor(ImGui::GetFontSize() * 0.6f), 6.0f, std::floor(avail.x * 0.3f / (2 * kR + 1)));
+    const float sideW = std::max((2 * kR + 1) * cell + 16, ImGui::CalcTextSize("RGBA 00 00 00 00").x + 8);
+    // As tall as the panel allows, but never so small it cannot be read (the panel scrolls then).
+    const float widthLeft = avail.x - sideW - ImGui::GetStyle().ItemSpacing.x;
+    const float side = std::max({80.0f, std::min(widthLeft, avail.y - ImGui::GetFrameHeightWithSpacing()), 0.6f * widthLeft});
     const float fit = side / static_cast<float>(std::max(v.texW, v.texH));
     const ImVec2 size(std::floor(v.texW * fit), std::floor(v.texH * fit));
     const float sx = size.x / static_cast<float>(v.texW), sy = size.y / static_cast<float>(v.texH);  // screen px per texel
@@ -329,6 +334,14 @@ void ShowIdBuffer(AppState& st) {
     ImGui::PopTextWrapPos();
     ImGui::EndGroup();
     ImGui::TextDisabled("centre of pixel (%d, %d): (%.9g, %.9g)", h.i, h.j, h.centre.x, h.centre.y);
+}
+
+}  // namespace
+
+void ShowIdBuffer(AppState& st) {
+    ImGui::BeginChild("##idbody", ImVec2(0, 0), false);  // scrolls when the column is short
+    IdBufferBody(st);
+    ImGui::EndChild();
 }
 
 }  // namespace dlab::ui
