@@ -59,11 +59,9 @@ void WarningBox(AppState& st, const std::string& text) {
     RecordItem(st, "predicate-warning");
 }
 
-void ShowCall(AppState& st, const PredicateCall& call, int index) {
+// The verdict: a red box where float is wrong, a note where only the exact tiers could decide.
+void ShowVerdict(AppState& st, const PredicateCall& call) {
     const PredicateReport& r = call.report;
-    ImGui::PushID(index);
-    ImGui::TextWrapped("%s", call.what.c_str());
-    // The verdict first (on a projector the table below may be cut off), then the numbers.
     if (r.naiveSign != r.exactSign) {
         WarningBox(st, std::string("Plain floating point is WRONG here: it gives ") + signText(r.naiveSign) + " (" +
                            signMeaning(call.inCircle, r.naiveSign) + "), the exact sign is " + signText(r.exactSign) + " (" +
@@ -73,6 +71,15 @@ void ShowCall(AppState& st, const PredicateCall& call, int index) {
         ImGui::TextWrapped("Too close for the filter: decided exactly (the float sign happened to be right).");
         ImGui::PopStyleColor();
     }
+}
+
+// One call: its verdict first (on a projector the table below may be cut off) unless the caller
+// showed it already, then the numbers.
+void ShowCall(AppState& st, const PredicateCall& call, int index, bool verdict = true) {
+    const PredicateReport& r = call.report;
+    ImGui::PushID(index);
+    ImGui::TextWrapped("%s", call.what.c_str());
+    if (verdict) ShowVerdict(st, call);
     const int n = call.inCircle ? 4 : 3;
     static const char* const kNames[] = {"a", "b", "c", "d"};
     ImGui::PushFont(fonts().mono);
@@ -267,13 +274,20 @@ void ShowPredicates(AppState& st) {
     orient.what = "orient2d(a, b, c)";
     orient.p = {p[0], p[1], p[2], p[3]};
     orient.report = orient2dReport(p[0], p[1], p[2]);
-    ShowCall(st, orient, 100);
     PredicateCall circle;
     circle.inCircle = true;
     circle.what = "incircle(a, b, c, d) (for counter-clockwise a, b, c)";
     circle.p = {p[0], p[1], p[2], p[3]};
     circle.report = incircleReport(p[0], p[1], p[2], p[3]);
-    ShowCall(st, circle, 101);
+    // Both verdicts right under the fields, where the user is typing; the numbers below.
+    for (const PredicateCall* call : {&orient, &circle}) {
+        ImGui::TextWrapped("%s: %s %s", call->inCircle ? "incircle" : "orient2d", signText(call->report.exactSign),
+                           signMeaning(call->inCircle, call->report.exactSign));
+        ShowVerdict(st, *call);
+    }
+    ImGui::Separator();
+    ShowCall(st, orient, 100, false);
+    ShowCall(st, circle, 101, false);
     ImGui::EndChild();
 }
 
