@@ -70,10 +70,25 @@ void closeLesson(AppState& st) {
     st.lessonPlayer.plan = {};
 }
 
+bool lessonStateChanged(const AppState& st) {
+    const LessonState& L = st.lessonPlayer;
+    if (!L.lesson) return false;
+    const InsertOptions& a = st.engine.options();
+    const InsertOptions& b = L.lesson->options;
+    return a.boundary != b.boundary || a.locator != b.locator || a.order != b.order || a.seed != b.seed ||
+           st.engine.points() != L.lesson->points;
+}
+
 void goToStop(AppState& st, std::size_t k) {
     LessonState& L = st.lessonPlayer;
     if (!L.lesson || L.lesson->stops.empty()) return;
     k = std::min(k, L.lesson->stops.size() - 1);
+    // The stops are operations of the lesson's own run: after the user changed the points or
+    // the options, going to a stop brings the lesson's back (their own stay on the undo stack).
+    if (lessonStateChanged(st)) {
+        if (!st.setOptions(L.lesson->options) || !st.loadPoints(L.lesson->points, L.lesson->title)) return;
+        st.log(Message::Level::Info, "lesson: its points and options are back (Ctrl+Z brings your points back)");
+    }
     const LessonStop& stop = L.lesson->stops[k];
     const StopState& at = L.plan.stops[k];
     st.run.running = false;

@@ -29,8 +29,11 @@ struct LessonState {
 // On a bad lesson: logs "FILE:LINE: stop K: what", changes nothing, returns false.
 bool openLesson(AppState& state, const std::string& path);
 void closeLesson(AppState& state);
-// Shows stop k (0-based, clamped).
+// Shows stop k (0-based, clamped); brings the lesson's points and options back first when the
+// user changed them (the stops are operations of the lesson's own run).
 void goToStop(AppState& state, std::size_t k);
+// Whether the engine's points or options differ from the open lesson's.
+bool lessonStateChanged(const AppState& state);
 // Checks the typed answer against the engine's; records it in the progress.
 bool checkAnswer(AppState& state);
 // The side-column tab and the visibility of the inspector/messages a stop asks for.

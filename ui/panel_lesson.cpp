@@ -95,7 +95,11 @@ void ShowLesson(AppState& st) {
     if (ImGui::Button("Next >") && k + 1 < n) goToStop(st, k + 1);
     RecordItem(st, "lesson-next");
     ImGui::SameLine();
-    if (st.engine.position() != L.plan.stops[k].position) {
+    if (lessonStateChanged(st)) {
+        if (ImGui::SmallButton("Back to the lesson")) goToStop(st, k);
+        if (ImGui::IsItemHovered()) ImGui::SetTooltip("You changed the points or the options: this brings the lesson's back (Ctrl+Z, yours)");
+        ImGui::SameLine();
+    } else if (st.engine.position() != L.plan.stops[k].position) {
         if (ImGui::SmallButton("Back to the stop")) goToStop(st, k);
         if (ImGui::IsItemHovered()) ImGui::SetTooltip("You stepped away from this stop's operation");
         ImGui::SameLine();

@@ -1,6 +1,7 @@
 // The lesson player in the GUI: open a lesson, go from stop to stop, answer its questions.
 #include "core/lesson.h"
 #include "tests/ui/ui_harness.h"
+#include "ui/keys.h"
 #include "ui/lesson_player.h"
 #include "ui/panels.h"
 
@@ -50,6 +51,33 @@ TEST(LessonPlayer, StopsSeekTheRunAndSelectTheirCorner) {
         EXPECT_EQ(st.selection.corner, L.plan.stops[k].selected) << "stop " << k + 1;
         EXPECT_EQ(st.engine.position(), L.plan.stops[k].position) << "stop " << k + 1;
     }
+}
+
+TEST(LessonPlayer, AfterTheUserChangesThePointsNextBringsTheLessonBackAndCtrlZTheirs) {
+    UiHarness h;
+    auto& st = h.state();
+    ASSERT_TRUE(dlab::ui::openLesson(st, lessonPath("05_flips.toml")));
+    h.frames(2);
+    const auto& L = st.lessonPlayer;
+    const std::vector<dlab::Vec2> mine = {{0, 0}, {4, 0}, {0, 3}, {5, 5}};
+    ASSERT_TRUE(st.loadPoints(mine, "mine"));
+    dlab::InsertOptions other = st.engine.options();
+    other.order = dlab::OrderKind::Input;
+    other.boundary = dlab::Boundary::Super;
+    ASSERT_TRUE(st.setOptions(other));
+    h.frames(2);
+    EXPECT_TRUE(dlab::ui::lessonStateChanged(st));
+    ASSERT_TRUE(st.itemRects.count("lesson-next"));
+    h.clickItem("lesson-next");
+    EXPECT_EQ(L.progress.stop, 1u);
+    EXPECT_FALSE(dlab::ui::lessonStateChanged(st));
+    EXPECT_EQ(st.engine.points(), L.lesson->points);
+    EXPECT_EQ(st.engine.options().boundary, L.lesson->options.boundary);
+    EXPECT_EQ(st.engine.position(), L.plan.stops[1].position);
+    EXPECT_EQ(st.engine.current()->type, dlab::OpType::Split);
+    // The user's points are one undo away.
+    h.press(dlab::ui::key::letter('Z'), false, true);
+    EXPECT_EQ(st.engine.points(), mine);
 }
 
 TEST(LessonPlayer, AnswersAreCheckedAgainstTheEngine) {
