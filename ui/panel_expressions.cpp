@@ -24,7 +24,7 @@ constexpr ImU32 kResultColour = IM_COL32(214, 0, 120, 255);
 
 // Above this many corners a step's watches look only at the corners it changed (and their
 // neighbours): every corner after every operation would stall a large run.
-constexpr std::int32_t kWatchAllCorners = 30000;
+constexpr std::int32_t kWatchAllCorners = 6000;  // six standard watches over 6000 corners: ~3 ms
 
 ExprContext contextOf(const Engine& e) {
     ExprContext ctx;
@@ -118,7 +118,8 @@ WatchReport checkOne(const WatchEntry& w, const Engine& e, const std::vector<std
 }
 
 // Checks every enabled watch; returns the index of the first one that newly fails, or -1.
-// Updates each watch's status and failing flag.
+// Updates each watch's status and failing flag. A check of some corners only (`corners` set)
+// can find a failure but cannot clear one: the failing corner may lie elsewhere.
 int checkAll(AppState& st, const std::vector<std::int32_t>* corners, WatchReport* firstFailure) {
     int first = -1;
     for (std::size_t i = 0; i < st.expressions.watches.size(); ++i) {
@@ -126,6 +127,7 @@ int checkAll(AppState& st, const std::vector<std::int32_t>* corners, WatchReport
         if (!w.enabled || !w.expr) continue;
         WatchReport rep = checkOne(w, st.engine, corners);
         const bool wasFailing = w.failing;
+        if (rep.ok && corners && wasFailing) continue;
         w.failing = !rep.ok;
         w.status = rep.message;
         if (w.failing && !wasFailing && first < 0) {
@@ -263,19 +265,25 @@ void CheckWatches(AppState& st) {
     if (!any) return;
 
     const bool small = e.mesh().numCorners() <= kWatchAllCorners;
+    const bool anyFailing = std::any_of(ex.watches.begin(), ex.watches.end(), [](const WatchEntry& w) { return w.enabled && w.failing; });
     std::vector<std::int32_t> changed;
     bool tooMany = firstCheck;
     if (!small && !firstCheck) changed = cornersChangedBetween(e, from, to, tooMany);
-    const std::vector<std::int32_t>* scope = small || tooMany ? nullptr : &changed;
+    // Large meshes: the corners the step changed; all of them when a failing watch may have
+    // recovered and nothing is running (a step by hand costs one full check).
+    const bool full = small || tooMany || (anyFailing && !st.run.running);
     WatchReport rep;
-    int failed = checkAll(st, scope, &rep);
+    int failed = checkAll(st, full ? nullptr : &changed, &rep);
     if (failed < 0) return;
 
     // A run may have advanced many operations this frame (perhaps to its end): find the first
     // one that broke the watch by replaying them one at a time (they are recorded: this is
-    // cheap), and stop there.
+    // cheap) with the corners each one changed, and stop there.
     const bool runMoved = st.frameStats.opsStepped > 0;
     if (runMoved && to > from + 1 && !e.batch()) {
+        const std::vector<WatchEntry> atTo = ex.watches;
+        const WatchReport repAtTo = rep;
+        const int failedAtTo = failed;
         for (WatchEntry& w : ex.watches) w.failing = false;
         e.seek(from);
         checkAll(st, nullptr, nullptr);  // the state before: which watches already failed
@@ -283,14 +291,20 @@ void CheckWatches(AppState& st) {
         while (e.position() < to && failed < 0) {
             const std::size_t before = e.position();
             if (!e.forward()) break;
-            std::vector<std::int32_t> local;
             bool many = false;
-            if (!small) local = cornersChangedBetween(e, before, e.position(), many);
-            failed = checkAll(st, small || many ? nullptr : &local, &rep);
+            const std::vector<std::int32_t> local = cornersChangedBetween(e, before, e.position(), many);
+            failed = checkAll(st, many ? nullptr : &local, &rep);
+        }
+        if (failed < 0) {
+            // Beyond the corners the ops changed (a far-reaching expression): report where it
+            // was seen.
+            e.seek(to);
+            ex.watches = atTo;
+            failed = failedAtTo;
+            rep = repAtTo;
         }
         ex.watchedVersion = e.version();
         ex.watchedPosition = e.position();
-        if (failed < 0) return;
     }
     reportFailure(st, ex.watches[static_cast<std::size_t>(failed)], rep, runMoved);
     // reportFailure may have selected a corner: the live path follows at the next refresh.

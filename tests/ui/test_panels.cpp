@@ -184,6 +184,26 @@ TEST(Panels, AWatchPausesTheRunAtTheFirstOperationThatBreaksIt) {
     EXPECT_TRUE(st.engine.atEnd());
 }
 
+TEST(Panels, OnALargeMeshAWatchChecksTheChangedCornersAndStillStopsAtTheRightOperation) {
+    UiHarness h;
+    auto& st = h.state();
+    // 1500 points in input order: about 9000 corners, beyond where every corner is checked.
+    ASSERT_TRUE(st.loadPoints(dlab::generatePoints(dlab::Generator::Uniform, 1500, 4), "uniform 1500"));
+    ASSERT_TRUE(dlab::ui::AddWatch(st, "V[c] != 1400"));
+    ASSERT_TRUE(dlab::ui::AddWatch(st, "o(o(c)) == c"));
+    h.press(key::kEnd);
+    for (int i = 0; i < 2000 && st.run.running; ++i) h.frames(1);
+    ASSERT_FALSE(st.run.running);
+    ASSERT_GT(st.engine.mesh().numCorners(), 6000);
+    ASSERT_FALSE(st.engine.atEnd()) << st.run.stopReason;
+    const auto& V = st.engine.mesh().V;
+    EXPECT_NE(std::find(V.begin(), V.end(), 1400), V.end());
+    st.engine.back();  // one op earlier, vertex 1400 was in no corner
+    const auto& before = st.engine.mesh().V;
+    EXPECT_EQ(std::find(before.begin(), before.end(), 1400), before.end());
+    EXPECT_FALSE(st.expressions.watches[1].failing) << st.expressions.watches[1].status;
+}
+
 TEST(Panels, TheStandardWatchesHoldThroughAWholeRun) {
     UiHarness h;
     auto& st = h.state();
