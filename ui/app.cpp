@@ -70,6 +70,7 @@ void ShowApplication(AppState& state) {
     ImGui::BeginChild("##left", ImVec2(canvasW, mainH), false, ImGuiWindowFlags_NoScrollbar | ImGuiWindowFlags_NoScrollWithMouse);
     ShowCanvas(state);
     DrawDebugOverlays(state);
+    ShowCanvasNotice(state);
     ShowTimeline(state);
     ImGui::EndChild();
     ImGui::SameLine(0, 0);

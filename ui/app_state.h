@@ -95,6 +95,7 @@ struct FrameStats {
     std::size_t visibleEdges = 0;
     bool denseMesh = false;        // drawn as a CPU raster
     std::size_t opsStepped = 0;    // operations the run advanced this frame
+    bool canvasFull = false;       // some overlay shapes were left out (CanvasHasRoom)
 };
 
 struct Message {

@@ -24,7 +24,11 @@
 namespace dlab::ui {
 
 // Up to this many points, points are drawn as ImDrawList circles with ids; above, by GL.
-constexpr std::size_t kFewPoints = 3000;
+// Up to this many points are drawn as ImGui circles (with ids when asked); beyond, our GL renderer
+// draws them: each circle costs ~50 of a draw list's 65536 vertices (CanvasHasRoom).
+constexpr std::size_t kFewPoints = 600;
+constexpr unsigned kVerticesPerPoint = 64;
+constexpr int kSkippedDrawn = 300;  // crosses for skipped duplicates when there are many points
 
 struct CanvasCache {
     MeshRenderer renderer;
@@ -84,7 +88,34 @@ Palette palette(bool presentation) {
 
 ImVec2 toIm(glm::dvec2 v) { return ImVec2(static_cast<float>(v.x), static_cast<float>(v.y)); }
 
+// Clips segment ab to the rectangle [lo, hi] (Liang-Barsky); false when nothing is left.
+bool ClipSegment(ImVec2& a, ImVec2& b, ImVec2 lo, ImVec2 hi) {
+    const double dx = static_cast<double>(b.x) - a.x, dy = static_cast<double>(b.y) - a.y;
+    double t0 = 0, t1 = 1;
+    const double p[4] = {-dx, dx, -dy, dy};
+    const double q[4] = {static_cast<double>(a.x) - lo.x, static_cast<double>(hi.x) - a.x, static_cast<double>(a.y) - lo.y,
+                         static_cast<double>(hi.y) - a.y};
+    for (int i = 0; i < 4; ++i) {
+        if (!std::isfinite(p[i]) || !std::isfinite(q[i])) return false;
+        if (p[i] == 0) {
+            if (q[i] < 0) return false;
+            continue;
+        }
+        const double r = q[i] / p[i];
+        if (p[i] < 0) t0 = std::max(t0, r);
+        else t1 = std::min(t1, r);
+        if (t0 > t1) return false;
+    }
+    const ImVec2 a0 = a;
+    a = ImVec2(static_cast<float>(a0.x + t0 * dx), static_cast<float>(a0.y + t0 * dy));
+    b = ImVec2(static_cast<float>(a0.x + t1 * dx), static_cast<float>(a0.y + t1 * dy));
+    return true;
+}
+
+// Dashes only the visible part: an edge to a super-triangle vertex of a huge box can be
+// millions of pixels long on screen (a dash each would exhaust memory).
 void DashedLine(ImDrawList* dl, ImVec2 a, ImVec2 b, ImU32 col, float thickness, float dash = 7, float gap = 5) {
+    if (!ClipSegment(a, b, dl->GetClipRectMin(), dl->GetClipRectMax())) return;
     const float dx = b.x - a.x, dy = b.y - a.y, len = std::sqrt(dx * dx + dy * dy);
     if (len < 1e-3f) return;
     const float ux = dx / len, uy = dy / len;
@@ -116,7 +147,7 @@ void LabelBox(ImDrawList* dl, ImFont* font, float size, ImVec2 centre, ImU32 tex
 
 // Everything the overlays need to place things on the screen.
 struct Scene {
-    const AppState& st;
+    AppState& st;  // non-const only for frameStats.canvasFull (room())
     const Engine& e;
     const Mesh& m;
     const Inserter& ins;
@@ -128,6 +159,11 @@ struct Scene {
 
     ImVec2 screen(std::int32_t v) const { return toIm(view.toScreen(m.G[v])); }
     bool virtualTri(std::int32_t t) const { return running && ins.isVirtualTriangle(t); }
+    bool room(unsigned vertices) const { return CanvasHasRoom(st, dl, vertices); }
+    // Labels leave this much room for the points, drawn after them (on top).
+    unsigned pointReserve() const {
+        return kVerticesPerPoint * static_cast<unsigned>(std::min<std::size_t>(e.points().size(), kFewPoints));
+    }
     bool drawable(std::int32_t t) const { return t >= 0 && t < m.numTriangles() && !(ghostMode && virtualTri(t)); }
     // The three screen corners of a drawable triangle.
     void corners(std::int32_t t, ImVec2 out[3]) const {
@@ -150,11 +186,21 @@ struct Scene {
         out = ImVec2(a.x + bx * dist, a.y + by * dist);
         return true;
     }
+    // Whether a screen box [x0, x1] x [y0, y1] (plus a margin) meets the canvas: shapes off it
+    // are not sent to the draw list at all (it holds at most 65536 vertices).
+    bool onCanvas(float x0, float y0, float x1, float y1, float margin = 4) const {
+        return x1 >= view.origin.x - margin && x0 <= view.origin.x + view.size.x + margin && y1 >= view.origin.y - margin &&
+               y0 <= view.origin.y + view.size.y + margin;
+    }
+    bool onCanvas(const ImVec2 (&p)[3]) const {
+        return onCanvas(std::min({p[0].x, p[1].x, p[2].x}), std::min({p[0].y, p[1].y, p[2].y}), std::max({p[0].x, p[1].x, p[2].x}),
+                        std::max({p[0].y, p[1].y, p[2].y}));
+    }
     void fillTriangle(std::int32_t t, ImU32 col) const {
         if (!drawable(t)) return;
         ImVec2 p[3];
         corners(t, p);
-        dl->AddTriangleFilled(p[0], p[1], p[2], col);
+        if (onCanvas(p)) dl->AddTriangleFilled(p[0], p[1], p[2], col);
     }
     void outlineTriangle(std::int32_t t, ImU32 col, float w) const {
         if (!drawable(t)) return;
@@ -165,13 +211,21 @@ struct Scene {
     void edge(std::int32_t a, std::int32_t b, ImU32 col, float w, bool dashed = false) const {
         if (a < 0 || b < 0 || a >= m.numVertices() || b >= m.numVertices()) return;
         if (ghostMode && running && (ins.isVirtual(a) || ins.isVirtual(b))) return;
-        dashed ? DashedLine(dl, screen(a), screen(b), col, w) : dl->AddLine(screen(a), screen(b), col, w);
+        const ImVec2 pa = screen(a), pb = screen(b);
+        if (!onCanvas(std::min(pa.x, pb.x), std::min(pa.y, pb.y), std::max(pa.x, pb.x), std::max(pa.y, pb.y), w)) return;
+        dashed ? DashedLine(dl, pa, pb, col, w) : dl->AddLine(pa, pb, col, w);
     }
     // A circle given in world coordinates (centre, radius), clipped by the canvas.
     void circle(Vec2 c, double r, ImU32 col, float w) const {
         const glm::dvec2 s = view.toScreen(c);
         const double rs = r * view.scale;
         if (!std::isfinite(rs) || rs > 1e6) return;
+        const float x = static_cast<float>(s.x), y = static_cast<float>(s.y), rf = static_cast<float>(rs);
+        if (!onCanvas(x - rf, y - rf, x + rf, y + rf, w)) return;
+        // Wholly around the canvas: nothing of it shows.
+        const double dx = std::max(std::abs(s.x - view.origin.x), std::abs(s.x - view.origin.x - view.size.x));
+        const double dy = std::max(std::abs(s.y - view.origin.y), std::abs(s.y - view.origin.y - view.size.y));
+        if (dx * dx + dy * dy < (rs - w) * (rs - w)) return;
         dl->AddCircle(toIm(s), static_cast<float>(rs), col, std::clamp(static_cast<int>(rs / 3), 24, 256), w);
     }
 };
@@ -195,7 +249,10 @@ void DrawOpUnderlay(const Scene& s) {
         case OpType::LocateStep:
         case OpType::Located: {
             const std::vector<std::int32_t> path = s.e.walkPath();
-            for (std::int32_t t : path) s.fillTriangle(t, s.pal.walk);
+            for (std::int32_t t : path) {
+                if (!s.room(16)) break;
+                s.fillTriangle(t, s.pal.walk);
+            }
             if (!path.empty()) s.fillTriangle(path.back(), s.pal.walkNow);
             break;
         }
@@ -227,10 +284,16 @@ void DrawOpOverlay(const Scene& s) {
     const float w = s.st.presentation ? 4.0f : 2.5f;
     // Through the whole insertion: edges flipped so far and edges still to test.
     if (ov.flipped) {
-        for (const VertexEdge& fe : s.e.flippedEdges()) s.edge(fe.a, fe.b, s.pal.flipped, w);
+        for (const VertexEdge& fe : s.e.flippedEdges()) {
+            if (!s.room(8)) break;
+            s.edge(fe.a, fe.b, s.pal.flipped, w);
+        }
     }
     if (ov.flipQueue) {
-        for (const VertexEdge& qe : s.e.pendingTests()) s.edge(qe.a, qe.b, s.pal.queue, w, true);
+        for (const VertexEdge& qe : s.e.pendingTests()) {
+            if (!s.room(200)) break;  // dashes: at most ~2 screen diagonals of them
+            s.edge(qe.a, qe.b, s.pal.queue, w, true);
+        }
     }
     if (!op) return;
     switch (op->type) {
@@ -318,10 +381,16 @@ void DrawVoronoi(const Scene& s) {
             const Vec2 d{cc[tri(o)].x - cc[t].x, cc[tri(o)].y - cc[t].y};
             seg = clipToBox(cc[t], d, 1.0, lo, hi);
         }
-        if (seg) s.dl->AddLine(toIm(s.view.toScreen(seg->first)), toIm(s.view.toScreen(seg->second)), s.pal.voronoi, w);
+        if (!seg) continue;
+        if (!s.room(8)) return;
+        s.dl->AddLine(toIm(s.view.toScreen(seg->first)), toIm(s.view.toScreen(seg->second)), s.pal.voronoi, w);
     }
     for (std::int32_t t = 0; t < m.numTriangles(); ++t) {
-        if (!s.virtualTri(t)) s.dl->AddCircleFilled(toIm(s.view.toScreen(cc[t])), 2.5f, s.pal.voronoi);
+        if (s.virtualTri(t)) continue;
+        const ImVec2 q = toIm(s.view.toScreen(cc[t]));
+        if (q.x < s.view.origin.x || q.y < s.view.origin.y || q.x > s.view.origin.x + s.view.size.x || q.y > s.view.origin.y + s.view.size.y) continue;
+        if (!s.room(32)) return;
+        s.dl->AddCircleFilled(q, 2.5f, s.pal.voronoi);
     }
 }
 
@@ -352,7 +421,7 @@ void DrawLabels(const Scene& s, std::int32_t& hoveredCorner, ImVec2 mouse, bool 
         }
         if (ov.triangleIds) {
             const ImVec2 centre((p[0].x + p[1].x + p[2].x) / 3, (p[0].y + p[1].y + p[2].y) / 3);
-            if (maxX - minX > 40 && maxY - minY > 30) {
+            if (maxX - minX > 40 && maxY - minY > 30 && s.room(48 + s.pointReserve())) {
                 std::snprintf(buf, sizeof buf, "t%d", t);
                 LabelBox(s.dl, mono, fs, centre, s.pal.triangleId, IM_COL32(255, 255, 255, 200), buf);
             }
@@ -368,7 +437,7 @@ void DrawLabels(const Scene& s, std::int32_t& hoveredCorner, ImVec2 mouse, bool 
                     hoveredCorner = c;
                 }
             }
-            if (!ov.cornerIds) continue;
+            if (!ov.cornerIds || !s.room(48 + s.pointReserve())) continue;
             const bool isChanged = std::find(changed.begin(), changed.end(), c) != changed.end();
             std::snprintf(buf, sizeof buf, "%d", c);
             LabelBox(s.dl, mono, fs, a, isChanged ? IM_COL32(255, 255, 255, 255) : s.pal.cornerId,
@@ -383,7 +452,7 @@ void DrawPoints(const Scene& s, std::int32_t draggedPoint, Vec2 dragTo) {
     // Many points: the GL renderer draws the inserted and queued ones; here only the point in
     // progress and (at most 2000) skipped duplicates, so the draw list stays small.
     const bool few = pts.size() <= kFewPoints;
-    const bool ids = s.st.overlays.vertexIds && pts.size() <= 2000;
+    const bool ids = s.st.overlays.vertexIds && few;
     int skippedDrawn = 0;
     ImFont* mono = fonts().mono;
     const float fs = ImGui::GetFontSize() * 0.9f;
@@ -398,7 +467,9 @@ void DrawPoints(const Scene& s, std::int32_t draggedPoint, Vec2 dragTo) {
             continue;
         }
         if (!few && (st == Engine::PointState::Inserted || st == Engine::PointState::Pending)) continue;
-        if (!few && st == Engine::PointState::Skipped && ++skippedDrawn > 2000) continue;
+        if (!few && st == Engine::PointState::Skipped && ++skippedDrawn > kSkippedDrawn) continue;
+        // The point in progress always; the others while the draw list has room.
+        if (st != Engine::PointState::Current && !s.room(kVerticesPerPoint)) continue;
         ImU32 idCol = s.pal.vertexId;
         switch (st) {
             case Engine::PointState::Inserted:
@@ -459,12 +530,15 @@ void DrawGrid(const Scene& s, double step) {
     if (!(px >= 6)) return;
     const Vec2 lo = s.view.toWorld({s.view.origin.x, s.view.origin.y + s.view.size.y});
     const Vec2 hi = s.view.toWorld({s.view.origin.x + s.view.size.x, s.view.origin.y});
-    for (double x = std::floor(lo.x / step) * step; x <= hi.x; x += step) {
-        const float sx = static_cast<float>(s.view.toScreen({x, 0}).x);
+    // Lines counted, not stepped: far from the origin x + step can round back to x.
+    const double x0 = std::floor(lo.x / step) * step, y0 = std::floor(lo.y / step) * step;
+    const int nx = static_cast<int>(std::min(4096.0, (hi.x - x0) / step)), ny = static_cast<int>(std::min(4096.0, (hi.y - y0) / step));
+    for (int i = 0; i <= nx; ++i) {
+        const float sx = static_cast<float>(s.view.toScreen({x0 + i * step, 0}).x);
         s.dl->AddLine(ImVec2(sx, s.view.origin.y), ImVec2(sx, s.view.origin.y + s.view.size.y), s.pal.grid);
     }
-    for (double y = std::floor(lo.y / step) * step; y <= hi.y; y += step) {
-        const float sy = static_cast<float>(s.view.toScreen({0, y}).y);
+    for (int i = 0; i <= ny; ++i) {
+        const float sy = static_cast<float>(s.view.toScreen({0, y0 + i * step}).y);
         s.dl->AddLine(ImVec2(s.view.origin.x, sy), ImVec2(s.view.origin.x + s.view.size.x, sy), s.pal.grid);
     }
 }
@@ -561,9 +635,28 @@ void HandleInput(AppState& st, CanvasCache& cache, bool hovered) {
 
 }  // namespace
 
+bool CanvasHasRoom(AppState& st, const ImDrawList* dl, unsigned vertices) {
+    // Room is kept for the notice, the timeline below the canvas and the selection on top.
+    constexpr unsigned kBudget = 56000;
+    if (dl->_VtxCurrentIdx + vertices <= kBudget) return true;
+    st.frameStats.canvasFull = true;
+    return false;
+}
+
+void ShowCanvasNotice(AppState& st) {
+    if (!st.frameStats.canvasFull) return;
+    const char* text = "Too many shapes to draw at this zoom: some labels, circles or points are left out. Zoom in.";
+    ImDrawList* dl = ImGui::GetWindowDrawList();
+    const ImVec2 p(static_cast<float>(st.view.origin.x) + 8, static_cast<float>(st.view.origin.y) + 8);
+    const ImVec2 ts = ImGui::CalcTextSize(text);
+    dl->AddRectFilled(ImVec2(p.x - 4, p.y - 2), ImVec2(p.x + ts.x + 4, p.y + ts.y + 2), IM_COL32(255, 244, 214, 235), 3);
+    dl->AddText(p, IM_COL32(120, 70, 0, 255), text);
+}
+
 bool CornerAnchor(const AppState& st, std::int32_t c, float& x, float& y) {
     const Engine& e = st.engine;
-    const Scene scene{st, e, e.mesh(), e.inserter(), st.view, nullptr, palette(st.presentation), !e.inserter().done(),
+    // A read-only scene (no draw list: room() is never asked).
+    const Scene scene{const_cast<AppState&>(st), e, e.mesh(), e.inserter(), st.view, nullptr, palette(st.presentation), !e.inserter().done(),
                       e.options().boundary == Boundary::Exact};
     ImVec2 a;
     if (!scene.anchor(c, a)) return false;
@@ -601,6 +694,7 @@ void ShowCanvas(AppState& st) {
     const ImVec2 p1(p0.x + size.x, p0.y + size.y);
     dl->PushClipRect(p0, p1, true);
 
+    st.frameStats.canvasFull = false;
     const Engine& e = st.engine;
     Scene scene{st, e, e.mesh(), e.inserter(), view, dl, palette(st.presentation), !e.inserter().done(),
                 e.options().boundary == Boundary::Exact};
@@ -616,7 +710,7 @@ void ShowCanvas(AppState& st) {
     ms.point = scene.pal.vertex;
     ms.pending = scene.pal.pending;
     ms.edgeWidth = st.presentation ? 2.0f : 1.0f;
-    ms.pointSize = 2.0f;
+    ms.pointSize = e.points().size() <= 5000 ? 4.0f : 2.0f;
     ms.drawPoints = e.points().size() > kFewPoints;
     ms.drawVirtual = st.overlays.virtualTriangles;
     // Layers: the fill (GL), the current op's fills (ImDrawList), the edges and points (GL),
@@ -628,11 +722,13 @@ void ShowCanvas(AppState& st) {
     if (ms.drawFill) cache.renderer.enqueue(dl, MeshRenderer::Pass::Fill, p0.x, p0.y, p1.x, p1.y);
     DrawOpUnderlay(scene);
     cache.renderer.enqueue(dl, MeshRenderer::Pass::Lines, p0.x, p0.y, p1.x, p1.y);
-    if (st.overlays.circumcircles && e.mesh().numTriangles() <= 5000) {
+    if (st.overlays.circumcircles) {
         for (std::int32_t t = 0; t < e.mesh().numTriangles(); ++t) {
             Vec2 c;
             double r;
-            if (!scene.virtualTri(t) && circumcircle(e.mesh(), t, c, r)) scene.circle(c, r, scene.pal.circum, 1.0f);
+            if (scene.virtualTri(t) || !circumcircle(e.mesh(), t, c, r)) continue;
+            if (!scene.room(800)) break;
+            scene.circle(c, r, scene.pal.circum, 1.0f);
         }
     }
     if (st.overlays.voronoi) DrawVoronoi(scene);

@@ -335,6 +335,7 @@ void DrawExpressionOverlay(AppState& st) {
     int stepNo = 0;
     for (const PathStep& s : ex.path) {
         ++stepNo;
+        if (!CanvasHasRoom(st, dl, 200)) break;
         ImVec2 a, b;
         switch (s.op) {
             case 't':

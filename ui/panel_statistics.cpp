@@ -176,12 +176,14 @@ void DrawViolationOverlay(AppState& st) {
     for (const Violation& v : s.violations) {
         const std::int32_t c = v.corner;
         if (c < 0 || c >= m.numCorners()) continue;
+        if (!CanvasHasRoom(st, dl, 120)) break;
         const std::int32_t a = m.V[next(c)], b = m.V[prev(c)];
         if (drawable(a) && drawable(b)) dl->AddLine(im(view.toScreen(m.G[a])), im(view.toScreen(m.G[b])), col, w);
         float x = 0, y = 0;
         if (CornerAnchor(st, c, x, y)) dl->AddCircle(ImVec2(x, y), 14, col, 0, 3);
     }
     for (std::int32_t v : s.hullDents) {
+        if (!CanvasHasRoom(st, dl, 100)) break;
         if (drawable(v)) dl->AddCircle(im(view.toScreen(m.G[v])), 12, kViolationColour, 0, 3);
     }
     dl->PopClipRect();

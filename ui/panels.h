@@ -12,6 +12,8 @@
 #include <string>
 #include <string_view>
 
+struct ImDrawList;
+
 namespace dlab::ui {
 
 void ShowMenuBar(AppState& state);       // panel_menu.cpp: File, View, Run, Generate, Help
@@ -33,6 +35,14 @@ bool LoadPointFile(AppState& state, const std::string& path);
 // Where corner c's label sits on the canvas (screen pixels); false when its triangle is not
 // drawn or too small for a label (panel_canvas.cpp).
 bool CornerAnchor(const AppState& state, std::int32_t corner, float& x, float& y);
+
+// ImGui 1.86's OpenGL2 backend draws each draw list with 16-bit indices (at most 65536
+// vertices): the mesh itself is our GL code, and every overlay loop on the canvas asks here
+// before adding about `vertices` more. Past the budget it answers false and the canvas says
+// that shapes were left out (zoom in), instead of aborting (panel_canvas.cpp).
+bool CanvasHasRoom(AppState& state, const ImDrawList* drawList, unsigned vertices);
+// Says so on the canvas when CanvasHasRoom left shapes out this frame (after all overlays).
+void ShowCanvasNotice(AppState& state);
 
 // Remembers the last ImGui item's rectangle under `name` in state.itemRects (app.cpp).
 void RecordItem(AppState& state, const char* name);
