@@ -143,7 +143,15 @@ void ShowApplication(AppState& state) {
 }
 
 void RecordItem(AppState& state, const char* name) {
-    const ImVec2 a = ImGui::GetItemRectMin(), b = ImGui::GetItemRectMax();
+    // Only the part a user can see and click: an item scrolled out of its window (or clipped by
+    // it) is recorded clipped, or not at all.
+    const ImVec2 clipMin = ImGui::GetWindowDrawList()->GetClipRectMin(), clipMax = ImGui::GetWindowDrawList()->GetClipRectMax();
+    const ImVec2 lo = ImGui::GetItemRectMin(), hi = ImGui::GetItemRectMax();
+    const ImVec2 a(std::max(lo.x, clipMin.x), std::max(lo.y, clipMin.y)), b(std::min(hi.x, clipMax.x), std::min(hi.y, clipMax.y));
+    if (a.x >= b.x || a.y >= b.y) {
+        state.itemRects.erase(name);
+        return;
+    }
     state.itemRects[name] = {a.x, a.y, b.x, b.y};
 }
 

@@ -153,6 +153,7 @@ void ShowLesson(AppState& st) {
         if (L.showHint) ImGui::TextWrapped("Hint: %s", stop.hint.c_str());
     }
     ImGui::EndChild();
+    RecordItem(st, "lesson-text");
 }
 
 }  // namespace dlab::ui

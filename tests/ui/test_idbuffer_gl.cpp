@@ -508,7 +508,9 @@ TEST_F(IdBufferGlTest, UndoAndRedoKeepTheBufferInSync) {
         EXPECT_GT(checks, 20);
         // Some undo shrank the hull: one pixel per insertion clears the old footprints; the
         // batched modes (their pixels painted at different times) repaint everything then.
-        if (mode == GlReadback::OnePixel) EXPECT_GT(r.gl->glStats().trianglesCleared, 0u);
+        if (mode == GlReadback::OnePixel) {
+            EXPECT_GT(r.gl->glStats().trianglesCleared, 0u);
+        }
         while (journal.forward()) {}
         EXPECT_TRUE(validate(r.ins->mesh()).empty());
         expectMatchesCpu(r.gl->readAll(), *r.ins, *r.gl, Bounds::of(points), m_subpixelBits, "at the end");
