@@ -915,7 +915,9 @@ void Inserter::run() {
             }
             m_stats.walkSteps += m_ctl.walkSteps;
             m_locator->located(currentPoint(), m_ctl.walkTri, m_ctl.walkSteps);
-            const std::int32_t v = m_ctl.cursor;  // permuted: vertex id = insertion rank
+            // Permuted (a batch from the start): vertex id = insertion rank; a run finishing a
+            // recorded one mid-way keeps the input ids.
+            const std::int32_t v = vertexAt(m_ctl.cursor);
             const std::int32_t c = m_ctl.whereCorner;
             if (m_ctl.where == Where::OnVertex) {
                 keepFirstOccurrence(rec, c, v);

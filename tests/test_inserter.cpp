@@ -193,6 +193,49 @@ TEST(Journal, StepByStepEqualsBatchInBothModes) {
     }
 }
 
+// The GUI finishes a recorded run in one batch when its history grows too long: run() from any
+// point of a stepped run gives the same mesh and statistics as a batch from the start.
+TEST(Journal, RunFinishesAStepByStepRunFromAnyPointAsABatchWould) {
+    for (const auto& [name, pts] : degenerateSets()) {
+        for (Boundary b : {Boundary::Exact, Boundary::Super}) {
+            for (OrderKind order : {OrderKind::Random, OrderKind::Input, OrderKind::Brio}) {
+                SCOPED_TRACE(name + "/" + toString(b) + "/" + std::to_string(static_cast<int>(order)));
+                InsertOptions opt;
+                opt.boundary = b;
+                opt.order = order;
+                Inserter batch(pts, opt);
+                batch.run();
+                Inserter probe(pts, opt);
+                Journal all(probe);
+                while (all.forward()) {}
+                for (const std::size_t stop : {std::size_t{1}, all.recorded() / 3, all.recorded() / 2 + 1, all.recorded() - 1}) {
+                    Inserter stepped(pts, opt);
+                    Journal journal(stepped);
+                    journal.seek(stop);
+                    stepped.run();
+                    ASSERT_TRUE(stepped.done()) << "stopped at " << stop;
+                    EXPECT_TRUE(snap(batch.mesh()) == snap(stepped.mesh())) << "stopped at " << stop;
+                    EXPECT_EQ(batch.stats().inserted, stepped.stats().inserted);
+                    EXPECT_EQ(batch.stats().duplicates, stepped.stats().duplicates);
+                    EXPECT_EQ(batch.stats().flips, stepped.stats().flips);
+                }
+            }
+        }
+    }
+    // And a larger random set in random order (long walks), checked exactly.
+    const std::vector<Vec2> pts = generatePoints(Generator::Uniform, 3000, 9);
+    InsertOptions opt;
+    opt.order = OrderKind::Random;
+    Inserter stepped(pts, opt);
+    Journal journal(stepped);
+    journal.seek(20000);
+    stepped.run();
+    ASSERT_TRUE(stepped.done());
+    EXPECT_EQ(stepped.mesh().numVertices(), 3000);
+    EXPECT_TRUE(validate(stepped.mesh()).empty());
+    EXPECT_EQ(checkDelaunayExact(stepped.mesh()), "");
+}
+
 TEST(Journal, ForwardToEndAndBackRestoresTheEmptyStateBitForBit) {
     for (Boundary b : {Boundary::Exact, Boundary::Super}) {
         const auto pts = generatePoints(Generator::NearDuplicates, 200, 11);
