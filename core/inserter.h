@@ -232,6 +232,12 @@ private:
 class Journal {
 public:
     explicit Journal(Inserter& inserter) : m_ins(&inserter) {}
+    // Reserves room for this many ops and cell changes up front: a vector doubling at millions
+    // of ops (96 bytes each) copies hundreds of megabytes in one step, a visible stall.
+    Journal(Inserter& inserter, std::size_t expectedOps, std::size_t expectedChanges) : m_ins(&inserter) {
+        m_ops.reserve(expectedOps);
+        m_changes.reserve(expectedChanges);
+    }
     // Forward one op: replays a recorded op after an undo, else asks the inserter for a new one.
     // Returns nullptr at the end.
     const Op* forward();

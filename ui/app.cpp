@@ -43,6 +43,10 @@ void ShowApplication(AppState& state) {
     HandleShortcuts(state);
     AdvanceRun(state, io.DeltaTime);
     UpdateDebugPanels(state);  // watches (may pause the run), checks, autosave
+    if (std::string notice = state.engine.takeNotice(); !notice.empty()) {
+        state.run.running = false;
+        state.log(Message::Level::Warning, notice);
+    }
 
     const ImGuiViewport* vp = ImGui::GetMainViewport();
     ImGui::SetNextWindowPos(vp->WorkPos);

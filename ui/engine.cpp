@@ -57,9 +57,11 @@ bool Engine::resetAt(std::vector<Vec2> points, const InsertOptions& options, std
     if (m_points.size() > kHistoryLimit) {
         m_ins->run();
     } else {
-        m_journal = std::make_unique<Journal>(*m_ins);
-        if (m_points.size() <= kPrerecordLimit) m_journal->seek(static_cast<std::size_t>(-1));
-        m_journal->seek(position);
+        // Reserved for a BRIO-like run (~18 ops and ~42 cell changes a point).
+        const std::size_t n = m_points.size();
+        m_journal = std::make_unique<Journal>(*m_ins, std::min(kOpLimit, 20 * n + 64), 44 * n + 64);
+        if (n <= kPrerecordLimit) m_journal->seek(kPrerecordOps);
+        seek(position);
     }
     m_rank.assign(m_points.size(), 0);
     const auto& order = m_ins->order();
@@ -68,8 +70,20 @@ bool Engine::resetAt(std::vector<Vec2> points, const InsertOptions& options, std
     return true;
 }
 
+void Engine::capHistory() {
+    if (!m_journal || m_journal->recorded() < kOpLimit || m_journal->position() < m_journal->recorded() || m_ins->done()) {
+        return;
+    }
+    m_ins->run();
+    m_journal.reset();
+    m_notice = "the history reached " + std::to_string(kOpLimit) +
+               " operations: the run was finished in one batch and stepping is off (BRIO order walks far less)";
+    bump();
+}
+
 bool Engine::forward() {
     if (!m_journal || !m_journal->forward()) return false;
+    capHistory();
     bump();
     return true;
 }
@@ -83,6 +97,7 @@ bool Engine::back() {
 bool Engine::forwardInsertion() {
     if (!m_journal) return false;
     const std::size_t steps = dlab::forwardInsertion(*m_journal, *m_ins, static_cast<std::size_t>(-1)).steps;
+    capHistory();
     if (steps) bump();
     return steps > 0;
 }
@@ -107,7 +122,9 @@ bool Engine::toEnd(std::size_t maxOps) {
 
 void Engine::seek(std::size_t position) {
     if (!m_journal || position == m_journal->position()) return;
-    m_journal->seek(position);
+    // Recording stops at the op limit; a seek beyond it (the End key) finishes the run.
+    m_journal->seek(std::min(position, std::max(m_journal->recorded(), kOpLimit)));
+    if (position > m_journal->position()) capHistory();
     bump();
 }
 

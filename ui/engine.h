@@ -10,6 +10,7 @@
 #include <memory>
 #include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace dlab::ui {
@@ -27,8 +28,14 @@ public:
     // Above this many points the run has no history: it is made in one batch (Inserter::run)
     // and only the final mesh is shown. A history costs about 2 KB per point.
     static constexpr std::size_t kHistoryLimit = 200000;
-    // Up to this many points the whole run is recorded at once, so the timeline spans it all.
+    // Up to this many points the whole run is recorded at once, so the timeline spans it all
+    // (up to kPrerecordOps operations).
     static constexpr std::size_t kPrerecordLimit = 20000;
+    static constexpr std::size_t kPrerecordOps = 1000000;
+    // A history holds at most this many operations (~100 bytes each with their cell changes):
+    // BRIO order needs ~18 per point, but input or random order walk far, ~350 per point at
+    // 200000 points. Past it the run is finished in one batch and stepping is off (notice()).
+    static constexpr std::size_t kOpLimit = 3000000;
 
     Engine();
     ~Engine();
@@ -92,8 +99,14 @@ public:
     enum class PointState : std::uint8_t { Pending, Current, Inserted, Skipped };
     const std::vector<PointState>& pointStates() const;  // cached per version()
 
+    // A one-line warning the engine has for the user (the history was dropped); empty when none.
+    // Reading it clears it.
+    std::string takeNotice() { return std::exchange(m_notice, {}); }
+
 private:
     void bump() { ++m_version; }
+    // At the op limit with the cursor at the tip: finish in one batch, drop the history.
+    void capHistory();
 
     std::vector<Vec2> m_points;
     InsertOptions m_options;
@@ -105,6 +118,7 @@ private:
     std::uint64_t m_version = 0;
     mutable std::vector<PointState> m_states;
     mutable std::uint64_t m_statesVersion = ~std::uint64_t{0};
+    std::string m_notice;
 };
 
 

@@ -270,6 +270,31 @@ TEST(Gui, WheelZoomsAtTheCursorAndDragPans) {
     EXPECT_NEAR(st.view.scale, scale, scale * 1e-9);
 }
 
+// Random order walks far (~170 ops a point at 40000 points): the history stops at the op limit,
+// the run finishes in one batch with a warning, and the mesh is complete and valid.
+TEST(Gui, AHistoryPastTheOpLimitFinishesInOneBatchAndSaysSo) {
+    UiHarness h(1100, 720);
+    auto& st = h.state();
+    dlab::InsertOptions options;
+    options.order = dlab::OrderKind::Random;
+    ASSERT_TRUE(st.setOptions(options));
+    const std::size_t n = 40000;
+    ASSERT_TRUE(st.loadPoints(dlab::generatePoints(dlab::Generator::Uniform, n, 5), "uniform 40k"));
+    ASSERT_FALSE(st.engine.batch());
+    EXPECT_LE(st.engine.recorded(), dlab::ui::Engine::kPrerecordOps);
+    const std::size_t messages = st.messages.size();
+    h.press(key::kEnd);
+    for (int i = 0; i < 200 && st.run.running; ++i) h.frames(1);
+    h.frames(1);
+    ASSERT_TRUE(st.engine.batch());
+    EXPECT_TRUE(st.engine.inserter().done());
+    EXPECT_EQ(st.engine.mesh().numVertices(), static_cast<std::int32_t>(n));
+    EXPECT_TRUE(dlab::validate(st.engine.mesh()).empty());
+    ASSERT_GT(st.messages.size(), messages);
+    EXPECT_NE(st.messages.back().text.find("one batch"), std::string::npos) << st.messages.back().text;
+    EXPECT_EQ(st.messages.back().level, dlab::ui::Message::Level::Warning);
+}
+
 TEST(Gui, TheCornerTableScrollsAMillionCorners) {
     UiHarness h(1400, 900);
     auto& st = h.state();
