@@ -34,8 +34,8 @@ public:
     static constexpr std::size_t kPrerecordOps = 1000000;
     // A history holds at most this many operations (~100 bytes each with their cell changes):
     // BRIO order needs ~18 per point, but input or random order walk far, ~350 per point at
-    // 200000 points. Past it the run is finished in one batch and stepping is off (notice()).
-    static constexpr std::size_t kOpLimit = 3000000;
+    // 200000 points. Past it the run is finished in one batch and stepping is off (takeNotice()).
+    static constexpr std::size_t kOpLimit = 4000000;
 
     Engine();
     ~Engine();
