@@ -84,7 +84,12 @@ struct RunControl {
     float opsPerSecond = 6.0f;  // the slider; kFullSpeed runs as many as a frame allows
     static constexpr float kFullSpeed = 1000.0f;
     double carry = 0.0;         // fractional ops owed from earlier frames
-    double frameBudgetMs = 25;  // stepping time per frame at full speed
+    double frameBudgetMs = 25;  // stepping time per frame at full speed, at most
+    // At full speed the stepping gets what is left of this frame time after the rest of the
+    // last frame (drawing, the mesh rebuild, the GL render): large meshes stay interactive.
+    double targetFrameMs = 24;
+    double lastStepMs = 0;      // the stepping part of the last frame
+    double lastAdvanceMs = -1;  // when AdvanceRun last ran (steady clock ms), -1: not yet
     std::string stopReason;     // why the last run stopped ("end", "breakpoint: next flip", ...)
     std::size_t stopPosition = 0;  // where it stopped (the caption shows the reason only there)
 };

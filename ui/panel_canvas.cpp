@@ -32,6 +32,8 @@ constexpr int kSkippedDrawn = 300;  // crosses for skipped duplicates when there
 
 struct CanvasCache {
     MeshRenderer renderer;
+    bool rebuiltLastFrame = false;
+    View builtView;  // the view of the last rebuild
     // Interaction in progress (press on the canvas until release).
     enum class Drag : std::uint8_t { None, Pan, Point, Pending } drag = Drag::None;
     std::int32_t dragPoint = kNone;
@@ -715,7 +717,16 @@ void ShowCanvas(AppState& st) {
     ms.drawVirtual = st.overlays.virtualTriangles;
     // Layers: the fill (GL), the current op's fills (ImDrawList), the edges and points (GL),
     // then lines, labels and the selection (ImDrawList).
-    const bool rebuilt = cache.renderer.update(e, view, ms);
+    // At full speed on a mesh whose rebuild is costly, the mesh is rebuilt every other frame (it
+    // shows one frame late): the frame stays interactive on software GL. A moved view always
+    // rebuilds.
+    const bool sameView = view.center == cache.builtView.center && view.scale == cache.builtView.scale &&
+                          view.origin == cache.builtView.origin && view.size == cache.builtView.size;
+    const bool defer = st.run.running && st.run.opsPerSecond >= RunControl::kFullSpeed && cache.rebuiltLastFrame && sameView &&
+                       cache.renderer.lastBuildMs() > 5.0;
+    const bool rebuilt = !defer && cache.renderer.update(e, view, ms);
+    cache.rebuiltLastFrame = rebuilt;
+    if (rebuilt) cache.builtView = view;
     st.frameStats.meshBuildMs = rebuilt ? cache.renderer.lastBuildMs() : 0.0;
     st.frameStats.visibleEdges = cache.renderer.visibleEdges();
     st.frameStats.denseMesh = cache.renderer.dense();

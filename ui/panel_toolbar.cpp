@@ -259,7 +259,10 @@ void AdvanceRun(AppState& state, double dt) {
         std::size_t from;
         ~Count() { st.frameStats.opsStepped = st.engine.position() - from; }
     } count{state, startPos};
-    if (!run.running) return;
+    if (!run.running) {
+        run.lastAdvanceMs = -1;  // a pause is not a slow frame
+        return;
+    }
     if (e.batch() || e.atEnd()) {
         run.running = false;
         run.stopReason = "end of the run";
@@ -284,12 +287,25 @@ void AdvanceRun(AppState& state, double dt) {
     };
     if (run.opsPerSecond >= RunControl::kFullSpeed) {
         const auto t0 = std::chrono::steady_clock::now();
+        const double nowMs = std::chrono::duration<double, std::milli>(t0.time_since_epoch()).count();
+        // The rest of the last frame: from the previous call to this one, less its stepping.
+        double budget = run.frameBudgetMs;
+        if (run.lastAdvanceMs >= 0) {
+            const double rest = nowMs - run.lastAdvanceMs - run.lastStepMs;
+            if (rest >= 0 && rest < 1000) budget = std::clamp(run.targetFrameMs - rest, 2.0, run.frameBudgetMs);
+        }
+        run.lastAdvanceMs = nowMs;
+        struct Stepped {
+            RunControl& run;
+            std::chrono::steady_clock::time_point t0;
+            ~Stepped() { run.lastStepMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count(); }
+        } stepped{run, t0};
         // Check the clock every 64 ops: cheap, and a frame stays within its budget.
         for (int i = 0;; ++i) {
             if (!stepOnce()) return;
             if ((i & 63) == 63) {
                 const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-                if (ms > run.frameBudgetMs) break;
+                if (ms > budget) break;
             }
         }
         return;

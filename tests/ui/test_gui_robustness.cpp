@@ -143,6 +143,7 @@ public:
         // one frame (the default budget of 25 ms of wall-clock time would depend on the load).
         st.run.opsPerSecond = ui::RunControl::kFullSpeed;
         st.run.frameBudgetMs = 1e9;
+        st.run.targetFrameMs = 1e9;
     }
     ~RandomUser() {
         std::error_code ec;
