@@ -21,6 +21,7 @@ const SideTab kSideTabs[] = {
     {"Predicates", ShowPredicates, "predicates"},
     {"ID buffer", ShowIdBuffer, "idbuffer"},
     {"Statistics", ShowStatistics, "statistics"},
+    {"Student trace", ShowTraceCompare, "trace-compare"},
 };
 
 // A draggable bar; returns the drag delta in pixels along its axis.
@@ -106,9 +107,11 @@ void ShowApplication(AppState& state) {
     if (firstWanted) {
         ImGui::BeginChild("##tabs", ImVec2(0, showInspector ? sideH - inspH - kBar : sideH), false, ImGuiWindowFlags_NoScrollbar);
         if (ImGui::BeginTabBar("##sidetabs")) {
+            const bool traceOpened = StudentTraceSelectTab(state);
             for (const SideTab& tab : kSideTabs) {
                 if (tab.id && !lessonWantsPanel(state, tab.id)) continue;
-                const bool select = state.lessonPlayer.pendingTabSelect && &tab == firstWanted;
+                const bool select = (state.lessonPlayer.pendingTabSelect && &tab == firstWanted) ||
+                                    (traceOpened && tab.id && std::string_view(tab.id) == "trace-compare");
                 const bool open = ImGui::BeginTabItem(tab.name, nullptr, select ? ImGuiTabItemFlags_SetSelected : 0);
                 RecordItem(state, tab.name);
                 if (open) {

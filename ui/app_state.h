@@ -6,6 +6,7 @@
 
 #include "core/corner_expr.h"
 #include "core/locator.h"
+#include "core/trace_diff.h"
 #include "ui/engine.h"
 #include "ui/lesson_player.h"
 
@@ -264,6 +265,15 @@ struct AppState {
     IdBufferViewState idBuffer;
     StatisticsState statistics;
     FileState files;
+    // Issue 6: a student's trace compared with this run (panel_trace_compare.cpp).
+    struct TraceCompare {
+        std::shared_ptr<const TraceFile> ours, student;  // null: no comparison open
+        TraceDiff diff;
+        std::size_t studentPos = 0;  // student ops applied so far (0 .. student->ops.size())
+        std::vector<Vec2> points;  // the run they were compared on
+        InsertOptions options;
+        bool selectTab = false;
+    } traceCompare;
 
     // ---- Actions (every change of points or options goes through these) ---------------------
     void log(Message::Level level, std::string text);

@@ -15,6 +15,7 @@ void UpdateDebugPanels(AppState& state) {
 void DrawDebugOverlays(AppState& state) {
     DrawViolationOverlay(state);
     DrawExpressionOverlay(state);
+    DrawTraceCompareOverlay(state);
 }
 
 }  // namespace dlab::ui

@@ -95,6 +95,8 @@ bool OpenFile(AppState& st, const std::string& path) {
         const std::size_t before = st.messages.size();
         ok = openLesson(st, path);
         if (!ok) st.files.notice = st.messages.size() > before ? st.messages.back().text : path + ": cannot be read";
+    } else if (lowerExtension(path) == ".jsonl") {
+        ok = OpenStudentTrace(st, path);  // it reported its own error
     } else if (lowerExtension(path) == ".json" || looksLikeJson(path)) {
         std::string error;
         ok = LoadSession(st, path, error);

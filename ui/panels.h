@@ -57,6 +57,16 @@ void ShowExpressions(AppState& state);   // panel_expressions.cpp: console, path
 void ShowPredicates(AppState& state);    // panel_predicates.cpp: the current test's determinant and signs
 void ShowIdBuffer(AppState& state);      // panel_idbuffer.cpp: the colour-ID buffer, pixel under the mouse
 void ShowStatistics(AppState& state);    // panel_statistics.cpp: counts, flips plot, frame times, checks
+void ShowTraceCompare(AppState& state);  // panel_trace_compare.cpp: a student's trace beside our run
+
+// A student's trace (.jsonl) compared with this run (same points and options): opens at the
+// first difference. On a bad file: one FileError line, nothing changed (panel_trace_compare.cpp).
+bool OpenStudentTrace(AppState& state, const std::string& path);
+void CloseStudentTrace(AppState& state);
+// True once after a trace was opened: the side column shows its tab.
+bool StudentTraceSelectTab(AppState& state);
+// The student's triangles that are not ours, over the canvas.
+void DrawTraceCompareOverlay(AppState& state);
 void ShowFileDialogs(AppState& state);   // panel_files.cpp: save/export/GIF dialogs, recovery, notices
 
 // Per-frame work of those panels whichever tab is open: watches (pausing a run that breaks
