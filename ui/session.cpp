@@ -4,6 +4,7 @@
 
 #include "core/io_read.h"
 #include "core/io_write.h"
+#include "core/text_util.h"
 
 #include <nlohmann/json.hpp>
 
@@ -464,16 +465,17 @@ bool LoadSessionText(AppState& st, std::string_view textIn, const std::string& n
         for (std::size_t k = 0; k < e.byte && k < textIn.size(); ++k) line += textIn[k] == '\n';
         std::string what = e.what();
         if (const auto colon = what.find(": "); colon != std::string::npos) what = what.substr(colon + 2);
-        error = name + ":" + std::to_string(line) + ": not valid JSON (" + what + ")";
+        error = name + ":" + std::to_string(line) + ": not valid JSON (" + escapeControls(what) + ")";
         return false;
     } catch (const SessionError& e) {
         LineFinder finder(textIn);
         const int line = e.pointer.empty() ? 0 : finder.lineOf(e.pointer);
+        // The message may quote the file's own text (a bad mode name with a \n in it): one line.
         error = name + (line > 0 ? ":" + std::to_string(line) : "") + (e.pointer.empty() ? "" : ": " + readablePath(e.pointer)) + ": " +
-                e.message;
+                escapeControls(e.message);
         return false;
     } catch (const std::exception& e) {
-        error = name + ": " + e.what();
+        error = name + ": " + escapeControls(e.what());
         return false;
     }
 
@@ -569,10 +571,10 @@ bool PeekSession(const std::string& path, SessionSummary& out, std::string& erro
         out.position = s.position;
         out.source = s.source;
     } catch (const SessionError& e) {
-        error = path + (e.pointer.empty() ? "" : ": " + readablePath(e.pointer)) + ": " + e.message;
+        error = path + (e.pointer.empty() ? "" : ": " + readablePath(e.pointer)) + ": " + escapeControls(e.message);
         return false;
     } catch (const std::exception& e) {
-        error = path + ": " + e.what();
+        error = path + ": " + escapeControls(e.what());
         return false;
     }
     return true;

@@ -94,6 +94,22 @@ std::vector<Vec2> awkwardPoints() {
 // Points and meshes
 // ============================================================================================
 
+// Found by fuzz_session: a mode name with an escaped newline was quoted into the error as a
+// real line break (corpus: regression_control_char_in_mode.json).
+TEST(Files, ASessionErrorQuotingAControlCharacterStaysOneLine) {
+    dlab::ui::AppState st;
+    const std::string text = R"({"format": "delaunay-lab session", "version": 1, "points": [[0, 0], [1, 0], [0, 1]],
+  "options": {"boundary": "sup\nper\r"}})";
+    std::string error;
+    const auto before = st.engine.points();
+    ASSERT_FALSE(dlab::ui::LoadSessionText(st, text, "bad.json", error));
+    EXPECT_EQ(error.find('\n'), std::string::npos) << error;
+    EXPECT_EQ(error.find('\r'), std::string::npos) << error;
+    EXPECT_EQ(error.rfind("bad.json:2:", 0), 0u) << error;
+    EXPECT_NE(error.find("sup\\nper"), std::string::npos) << error;
+    EXPECT_EQ(st.engine.points(), before);
+}
+
 TEST(Files, PointsRoundTripBitExactAsNodeAndCsv) {
     TempDir dir("points");
     UiHarness h;
