@@ -25,6 +25,15 @@ int incircleGmp(Vec2 a, Vec2 b, Vec2 c, Vec2 d) {
     return sgn(det);
 }
 
+std::vector<std::int32_t> firstOccurrences(const std::vector<Vec2>& pts) {
+    std::map<std::pair<double, double>, std::int32_t> seen;
+    std::vector<std::int32_t> out;
+    for (std::int32_t i = 0; i < static_cast<std::int32_t>(pts.size()); ++i) {
+        if (seen.emplace(std::make_pair(pts[i].x, pts[i].y), i).second) out.push_back(i);
+    }
+    return out;
+}
+
 bool allCollinearExact(const std::vector<Vec2>& points) {
     std::size_t i = 1;
     while (i < points.size() && points[i].x == points[0].x && points[i].y == points[0].y) ++i;

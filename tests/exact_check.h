@@ -21,6 +21,10 @@
 std::string checkDelaunayExact(const dlab::Mesh& mesh,
                                const std::vector<std::int32_t>* expectedVertices = nullptr);
 
+// The index of the first occurrence of every distinct point (== on doubles: -0 equals 0, as in
+// the inserter): the vertices a finished triangulation must use.
+std::vector<std::int32_t> firstOccurrences(const std::vector<dlab::Vec2>& points);
+
 // True when every point of `points` lies on one line (or there are fewer than 3 distinct ones):
 // then no triangle exists and an empty mesh is the right answer.
 bool allCollinearExact(const std::vector<dlab::Vec2>& points);

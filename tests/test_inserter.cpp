@@ -32,15 +32,6 @@ struct Snapshot {
 };
 Snapshot snap(const Mesh& m) { return {m.G, m.V, m.O}; }
 
-std::vector<std::int32_t> distinctFirstOccurrences(const std::vector<Vec2>& pts) {
-    std::map<std::pair<double, double>, std::int32_t> seen;
-    std::vector<std::int32_t> out;
-    for (std::int32_t i = 0; i < static_cast<std::int32_t>(pts.size()); ++i) {
-        if (seen.emplace(std::make_pair(pts[i].x, pts[i].y), i).second) out.push_back(i);
-    }
-    return out;
-}
-
 // Triangulates in batch and checks everything the exact mode promises.
 void expectExactDelaunay(const std::vector<Vec2>& pts, const InsertOptions& opt, const std::string& label) {
     SCOPED_TRACE(label);
@@ -51,7 +42,7 @@ void expectExactDelaunay(const std::vector<Vec2>& pts, const InsertOptions& opt,
     ASSERT_EQ(m.numVertices(), static_cast<std::int32_t>(pts.size()));
     const auto violations = validate(m, {});
     ASSERT_TRUE(violations.empty()) << violations[0].message;
-    const auto distinct = distinctFirstOccurrences(pts);
+    const auto distinct = firstOccurrences(pts);
     if (allCollinearExact(pts)) {
         EXPECT_EQ(m.numTriangles(), 0);
         return;

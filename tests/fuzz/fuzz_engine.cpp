@@ -207,16 +207,6 @@ std::string describe(const Case& c) {
     return s;
 }
 
-// The first occurrence of every distinct point (== on doubles: -0 equals 0, as in the inserter).
-std::vector<std::int32_t> firstOccurrences(const std::vector<Vec2>& pts) {
-    std::map<std::pair<double, double>, std::int32_t> seen;
-    std::vector<std::int32_t> out;
-    for (std::int32_t i = 0; i < static_cast<std::int32_t>(pts.size()); ++i) {
-        if (seen.emplace(std::make_pair(pts[i].x, pts[i].y), i).second) out.push_back(i);
-    }
-    return out;
-}
-
 void checkResult(const Case& c, const Inserter& ins) {
     const std::string what = describe(c);
     const Mesh& m = ins.mesh();

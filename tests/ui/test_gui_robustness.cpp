@@ -63,15 +63,6 @@ struct MeshCopy {
 };
 MeshCopy copyOf(const dlab::Mesh& m) { return {m.G, m.V, m.O}; }
 
-std::vector<std::int32_t> firstOccurrences(const std::vector<Vec2>& pts) {
-    std::map<std::pair<double, double>, std::int32_t> seen;
-    std::vector<std::int32_t> out;
-    for (std::int32_t i = 0; i < static_cast<std::int32_t>(pts.size()); ++i) {
-        if (seen.emplace(std::make_pair(pts[i].x, pts[i].y), i).second) out.push_back(i);
-    }
-    return out;
-}
-
 // No insertion is half done: every edge that exists has been tested (or no test is due yet).
 bool betweenInsertions(const dlab::Inserter& ins) {
     switch (ins.control().phase) {
@@ -187,28 +178,18 @@ public:
         return os.str();
     }
 
-    // Ctrl+Z until the undo stack stops shrinking; how many presses undid something.
-    std::size_t undoAll() {
-        ui::AppState& st = m_h.state();
-        std::size_t undone = 0;
+    // Ctrl+Z (Ctrl+Y) until the undo (redo) stack stops shrinking; how many presses did something.
+    std::size_t undoAll() { return pressWhileShrinking('Z', m_h.state().undoPoints); }
+    std::size_t redoAll() { return pressWhileShrinking('Y', m_h.state().redoPoints); }
+    std::size_t pressWhileShrinking(char letter, const std::vector<std::vector<Vec2>>& stack) {
+        std::size_t done = 0;
         for (std::size_t guard = 0; guard < 100000; ++guard) {
-            const std::size_t before = st.undoPoints.size();
-            m_h.press(key::letter('Z'), false, true);
-            if (st.undoPoints.size() >= before) break;
-            ++undone;
+            const std::size_t before = stack.size();
+            m_h.press(key::letter(letter), false, true);
+            if (stack.size() >= before) break;
+            ++done;
         }
-        return undone;
-    }
-    std::size_t redoAll() {
-        ui::AppState& st = m_h.state();
-        std::size_t redone = 0;
-        for (std::size_t guard = 0; guard < 100000; ++guard) {
-            const std::size_t before = st.redoPoints.size();
-            m_h.press(key::letter('Y'), false, true);
-            if (st.redoPoints.size() >= before) break;
-            ++redone;
-        }
-        return redone;
+        return done;
     }
 
     // Leaves any text field, as a user does before using the shortcuts again.
