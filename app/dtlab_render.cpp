@@ -28,6 +28,7 @@ struct RenderArgs {
     std::vector<std::string> overlays;
     bool engineGiven = false;
     int benchFrames = 0;
+    std::string tab;
     std::string lesson;
     int stop = 1;
     std::string slides;
@@ -141,6 +142,7 @@ void runRender(const RenderArgs& args) {
         state.engine.seek(static_cast<std::size_t>(args.steps));
     }
     if (args.select >= 0 && args.lesson.empty()) state.select(static_cast<std::int32_t>(args.select));
+    state.pendingTab = args.tab;
     // ImGui lays out in the first frames (tables measure their columns): render a few.
     for (int i = 0; i < 3; ++i) gui.frame();
     if (args.benchFrames > 0) benchFrames(gui, state, args.benchFrames);
@@ -165,6 +167,8 @@ void addRender(CLI::App& app) {
     cmd->add_option("--stop", args->stop, "The lesson's stop to render (1-based)")->capture_default_str();
     cmd->add_option("--slides", args->slides, "Render every stop of the lesson to DIR/01.png, DIR/02.png, ...");
     cmd->add_option("--bench-frames", args->benchFrames, "Also time this many frames idle, running and scrolling");
+    cmd->add_option("--tab", args->tab, "The side tab to show")
+        ->check(CLI::IsMember({"corner-table", "vertex-table", "expressions", "predicates", "idbuffer", "statistics", "trace-compare"}));
     cmd->add_option("--overlay", args->overlays, "voronoi, circumcircles, triangle-ids, no-corner-ids, no-fill (repeatable)");
     args->engine.add(*cmd);
     cmd->callback([args, cmd] {

@@ -111,7 +111,8 @@ void ShowApplication(AppState& state) {
             for (const SideTab& tab : kSideTabs) {
                 if (tab.id && !lessonWantsPanel(state, tab.id)) continue;
                 const bool select = (state.lessonPlayer.pendingTabSelect && &tab == firstWanted) ||
-                                    (traceOpened && tab.id && std::string_view(tab.id) == "trace-compare");
+                                    (traceOpened && tab.id && std::string_view(tab.id) == "trace-compare") ||
+                                    (tab.id && state.pendingTab == tab.id);
                 const bool open = ImGui::BeginTabItem(tab.name, nullptr, select ? ImGuiTabItemFlags_SetSelected : 0);
                 RecordItem(state, tab.name);
                 if (open) {
@@ -124,6 +125,7 @@ void ShowApplication(AppState& state) {
         ImGui::EndChild();
     }
     state.lessonPlayer.pendingTabSelect = false;
+    state.pendingTab.clear();
     if (showInspector && firstWanted) {
         if (const float d = Splitter("##isplit", false, kBar, sideW); d != 0) {
             L.inspectorHeight = std::clamp(L.inspectorHeight - d / std::max(1.0f, sideH), 0.1f, 0.9f);

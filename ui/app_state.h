@@ -274,6 +274,8 @@ struct AppState {
         InsertOptions options;
         bool selectTab = false;
     } traceCompare;
+    // A side tab to bring to the front at the next frame, by its id ("predicates", ...); "" none.
+    std::string pendingTab;
 
     // ---- Actions (every change of points or options goes through these) ---------------------
     void log(Message::Level level, std::string text);
