@@ -73,7 +73,9 @@ TEST(Regression, ExactlyCocircularPointsNeverFlipForever) {
             ins.run();
             // Terminating is the point; randomized orders also keep the expected O(n) flips
             // (a lattice in row order is a legitimately bad order: O(n sqrt n) flips).
-            if (order != OrderKind::Input) EXPECT_LT(ins.stats().flips, 4 * static_cast<std::int64_t>(pts.size()));
+            if (order != OrderKind::Input) {
+                EXPECT_LT(ins.stats().flips, 4 * static_cast<std::int64_t>(pts.size()));
+            }
             EXPECT_EQ(checkDelaunayExact(ins.mesh()), "");
         }
     }
@@ -173,6 +175,8 @@ TEST(Regression, IdBufferSpanOfANearlyFlatEdgeIsClampedBeforeConversion) {
         while (journal.forward()) {}
         const auto v = validate(ins.mesh());
         EXPECT_TRUE(v.empty()) << v[0].message;
-        if (boundary == Boundary::Exact) EXPECT_EQ(checkDelaunayExact(ins.mesh()), "");
+        if (boundary == Boundary::Exact) {
+            EXPECT_EQ(checkDelaunayExact(ins.mesh()), "");
+        }
     }
 }
