@@ -88,7 +88,6 @@ Palette palette(bool presentation) {
     return p;
 }
 
-ImVec2 toIm(glm::dvec2 v) { return ImVec2(static_cast<float>(v.x), static_cast<float>(v.y)); }
 
 // Clips segment ab to the rectangle [lo, hi] (Liang-Barsky); false when nothing is left.
 bool ClipSegment(ImVec2& a, ImVec2& b, ImVec2 lo, ImVec2 hi) {

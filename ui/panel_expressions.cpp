@@ -175,7 +175,6 @@ void refreshLive(AppState& st) {
     ex.result = r.value;
 }
 
-ImVec2 toIm(glm::dvec2 v) { return ImVec2(static_cast<float>(v.x), static_cast<float>(v.y)); }
 
 // A curved arrow from a to b; returns the middle of the curve (where its label goes).
 ImVec2 PathArrow(ImDrawList* dl, ImVec2 a, ImVec2 b, ImU32 col, float w) {

@@ -164,8 +164,7 @@ void DrawViolationOverlay(AppState& st) {
     const Mesh& m = st.engine.mesh();
     const View& view = st.view;
     ImDrawList* dl = ImGui::GetWindowDrawList();
-    auto im = [](glm::dvec2 v) { return ImVec2(static_cast<float>(v.x), static_cast<float>(v.y)); };
-    dl->PushClipRect(im(view.origin), im(view.origin + view.size), true);
+    dl->PushClipRect(toIm(view.origin), toIm(view.origin + view.size), true);
     const bool expected = midInsertion(st.engine) && std::all_of(s.violations.begin(), s.violations.end(), [](const Violation& v) {
                               return v.kind == Violation::Kind::NotDelaunay;
                           });
@@ -178,13 +177,13 @@ void DrawViolationOverlay(AppState& st) {
         if (c < 0 || c >= m.numCorners()) continue;
         if (!CanvasHasRoom(st, dl, 120)) break;
         const std::int32_t a = m.V[next(c)], b = m.V[prev(c)];
-        if (drawable(a) && drawable(b)) dl->AddLine(im(view.toScreen(m.G[a])), im(view.toScreen(m.G[b])), col, w);
+        if (drawable(a) && drawable(b)) dl->AddLine(toIm(view.toScreen(m.G[a])), toIm(view.toScreen(m.G[b])), col, w);
         float x = 0, y = 0;
         if (CornerAnchor(st, c, x, y)) dl->AddCircle(ImVec2(x, y), 14, col, 0, 3);
     }
     for (std::int32_t v : s.hullDents) {
         if (!CanvasHasRoom(st, dl, 100)) break;
-        if (drawable(v)) dl->AddCircle(im(view.toScreen(m.G[v])), 12, kViolationColour, 0, 3);
+        if (drawable(v)) dl->AddCircle(toIm(view.toScreen(m.G[v])), 12, kViolationColour, 0, 3);
     }
     dl->PopClipRect();
 }

@@ -15,8 +15,6 @@ namespace dlab::ui {
 
 namespace {
 
-ImVec2 toIm(glm::dvec2 v) { return ImVec2(static_cast<float>(v.x), static_cast<float>(v.y)); }
-
 constexpr ImU32 kStudentColour = IM_COL32(200, 0, 160, 255);
 // Our own trace is a whole recorded run: keep it to what the GUI records anyway.
 constexpr std::size_t kMaxComparedPoints = 20000;

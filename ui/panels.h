@@ -12,9 +12,12 @@
 #include <string>
 #include <string_view>
 
-struct ImDrawList;
+#include <imgui.h>
 
 namespace dlab::ui {
+
+// A screen position (View::toScreen) as ImGui's vector.
+inline ImVec2 toIm(glm::dvec2 v) { return ImVec2(static_cast<float>(v.x), static_cast<float>(v.y)); }
 
 void ShowMenuBar(AppState& state);       // panel_menu.cpp: File, View, Run, Generate, Help
 void ShowToolbar(AppState& state);       // panel_toolbar.cpp: stepping, run/pause, speed, modes
