@@ -104,6 +104,12 @@ struct InsertOptions {
     LocatorOptions locatorOptions;
 };
 
+// Whether two option sets make the same run, op for op (the ID buffer's size only changes how
+// the locator finds triangles, not which triangle it finds).
+inline bool sameRun(const InsertOptions& a, const InsertOptions& b) {
+    return a.boundary == b.boundary && a.locator == b.locator && a.order == b.order && a.seed == b.seed;
+}
+
 struct InsertStats {
     std::int64_t inserted = 0;
     std::int64_t duplicates = 0;

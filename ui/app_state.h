@@ -273,6 +273,11 @@ struct AppState {
         std::vector<Vec2> points;  // the run they were compared on
         InsertOptions options;
         bool selectTab = false;
+        // The overlay's caches: the student's triangles after studentPos ops, and ours (sorted)
+        // at an engine version; rebuilt only when those change.
+        std::vector<Triple> studentTriangles, ourTriangles;
+        std::size_t studentTrianglesAt = static_cast<std::size_t>(-1);
+        std::uint64_t ourTrianglesVersion = ~std::uint64_t{0};
     } traceCompare;
     // A side tab to bring to the front at the next frame, by its id ("predicates", ...); "" none.
     std::string pendingTab;

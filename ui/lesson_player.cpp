@@ -73,10 +73,7 @@ void closeLesson(AppState& st) {
 bool lessonStateChanged(const AppState& st) {
     const LessonState& L = st.lessonPlayer;
     if (!L.lesson) return false;
-    const InsertOptions& a = st.engine.options();
-    const InsertOptions& b = L.lesson->options;
-    return a.boundary != b.boundary || a.locator != b.locator || a.order != b.order || a.seed != b.seed ||
-           st.engine.points() != L.lesson->points;
+    return !sameRun(st.engine.options(), L.lesson->options) || st.engine.points() != L.lesson->points;
 }
 
 void goToStop(AppState& st, std::size_t k) {

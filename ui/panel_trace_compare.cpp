@@ -8,7 +8,6 @@
 #include <imgui.h>
 
 #include <algorithm>
-#include <set>
 #include <utility>
 
 namespace dlab::ui {
@@ -19,13 +18,9 @@ constexpr ImU32 kStudentColour = IM_COL32(200, 0, 160, 255);
 // Our own trace is a whole recorded run: keep it to what the GUI records anyway.
 constexpr std::size_t kMaxComparedPoints = 20000;
 
-bool sameOptions(const InsertOptions& a, const InsertOptions& b) {
-    return a.boundary == b.boundary && a.locator == b.locator && a.order == b.order && a.seed == b.seed;
-}
-
 bool stale(const AppState& st) {
     const auto& tc = st.traceCompare;
-    return !tc.student || st.engine.points() != tc.points || !sameOptions(st.engine.options(), tc.options);
+    return !tc.student || st.engine.points() != tc.points || !sameRun(st.engine.options(), tc.options);
 }
 
 // The next (dir > 0) or previous mesh-changing op of a trace from op index `from` (exclusive);
@@ -92,6 +87,7 @@ bool OpenStudentTrace(AppState& st, const std::string& path) {
         return false;
     }
     auto& tc = st.traceCompare;
+    tc = {};  // a new comparison: no cache of the last one
     tc.diff = diffTraces(*ours, *student);
     tc.ours = std::move(ours);
     tc.student = std::move(student);
@@ -182,25 +178,26 @@ void ShowTraceCompare(AppState& st) {
 void DrawTraceCompareOverlay(AppState& st) {
     auto& tc = st.traceCompare;
     if (!tc.student || stale(st)) return;
-    // The student's mesh after their ops so far (a trace of at most a few hundred thousand ops:
-    // replayed when the position changes).
-    static thread_local std::pair<const TraceFile*, std::size_t> cachedAt{nullptr, 0};
-    static thread_local std::vector<Triple> theirs;
-    if (cachedAt.first != tc.student.get() || cachedAt.second != tc.studentPos) {
+    const Mesh& m = st.engine.mesh();
+    // The student's mesh after their ops so far, replayed when their position changes.
+    if (tc.studentTrianglesAt != tc.studentPos) {
         TraceReplay replay;
         for (std::size_t k = 0; k < tc.studentPos && k < tc.student->ops.size(); ++k) replay.apply(tc.student->ops[k]);
-        theirs = replay.triangles();
-        cachedAt = {tc.student.get(), tc.studentPos};
+        tc.studentTriangles = replay.triangles();
+        tc.studentTrianglesAt = tc.studentPos;
     }
-    const Mesh& m = st.engine.mesh();
-    std::set<Triple> ourSet;
-    for (std::int32_t t = 0; t < m.numTriangles(); ++t) ourSet.insert(canonical(m.V[3 * t], m.V[3 * t + 1], m.V[3 * t + 2]));
+    if (tc.ourTrianglesVersion != st.engine.version()) {
+        tc.ourTriangles.clear();
+        for (std::int32_t t = 0; t < m.numTriangles(); ++t) tc.ourTriangles.push_back(canonical(m.V[3 * t], m.V[3 * t + 1], m.V[3 * t + 2]));
+        std::sort(tc.ourTriangles.begin(), tc.ourTriangles.end());
+        tc.ourTrianglesVersion = st.engine.version();
+    }
     ImDrawList* dl = ImGui::GetWindowDrawList();
     const View& view = st.view;
     dl->PushClipRect(toIm(view.origin), toIm(view.origin + view.size), true);
     const float w = st.presentation ? 4.0f : 2.5f;
-    for (const Triple& t : theirs) {
-        if (ourSet.count(t)) continue;
+    for (const Triple& t : tc.studentTriangles) {
+        if (std::binary_search(tc.ourTriangles.begin(), tc.ourTriangles.end(), t)) continue;
         bool ok = true;
         ImVec2 p[3];
         for (int k = 0; k < 3; ++k) {
