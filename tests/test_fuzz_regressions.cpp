@@ -30,6 +30,15 @@ InputError traceError(const std::string& line) {
 
 bool isOneLine(const std::string& s) { return s.find_first_of("\n\r") == std::string::npos; }
 
+// One counter-clockwise triangle, no neighbours: enough for a corner expression to run on.
+Mesh oneTriangle() {
+    Mesh m;
+    m.G = {{0, 0}, {1, 0}, {0, 1}};
+    m.V = {0, 1, 2};
+    m.O = {kNone, kNone, kNone};
+    return m;
+}
+
 }  // namespace
 
 //-----------------------------------------------------------------------------------------------
@@ -159,10 +168,7 @@ TEST(Regression, TraceErrorQuotingAnOpNameWithANewlineStaysOneLine) {
 
 TEST(Regression, CornerExpressionErrorQuotingANewlineStaysOneLine) {
     // Before: the evaluation error quoted the source span raw ("G[9.n.\nn]" split the message).
-    Mesh m;
-    m.G = {{0, 0}, {1, 0}, {0, 1}};
-    m.V = {0, 1, 2};
-    m.O = {kNone, kNone, kNone};
+    const Mesh m = oneTriangle();
     const auto e = CornerExpr::parse("G[9.n.\nn]");
     ASSERT_TRUE(e.has_value());
     const ExprResult r = e->evaluate(m);
@@ -172,10 +178,7 @@ TEST(Regression, CornerExpressionErrorQuotingANewlineStaysOneLine) {
 
 TEST(Regression, CornerExpressionWatchMessageWithANewlineStaysOneLine) {
     // Before: the watch's failure message pasted the watch text raw ("o(o(c)) ==\nzc").
-    Mesh m;
-    m.G = {{0, 0}, {1, 0}, {0, 1}};
-    m.V = {0, 1, 2};
-    m.O = {kNone, kNone, kNone};
+    const Mesh m = oneTriangle();
     const auto w = CornerExpr::parse("n(c) ==\n p(c)");
     ASSERT_TRUE(w.has_value());
     const WatchReport rep = checkWatch(*w, m);
