@@ -7,7 +7,7 @@
 // R timed runs (default 5). Only `dt.insert(first, last)` is timed: CGAL's range insert sorts the
 // points spatially (Hilbert order) before inserting, so this is CGAL at its best, not a naive
 // incremental loop. Destroying the triangulation happens after the clock stops.
-#include "core/io_read.h"
+#include "core/engine/io_read.h"
 
 #include <CGAL/Delaunay_triangulation_2.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>

@@ -1,11 +1,11 @@
 // delaunay-lab: the step-through GUI in a real window (GLFW + libGL). With no display it says
 // so and renders the same view headlessly to a PNG (through `dtlab render`, which uses OSMesa:
 // one GL provider per executable).
-#include "core/generators.h"
-#include "ui/files.h"
+#include "core/engine/generators.h"
+#include "ui/files/files.h"
 #include "ui/gui.h"
-#include "ui/panels.h"
-#include "ui/settings.h"
+#include "ui/panels/panels.h"
+#include "ui/files/settings.h"
 
 #include <CLI/CLI.hpp>
 

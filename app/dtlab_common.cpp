@@ -1,8 +1,8 @@
 // dtlab shared pieces: engine flags, loading with clear errors, exit-status handling.
 #include "app/dtlab_common.h"
 
-#include "core/io_read.h"
-#include "ui/platform.h"
+#include "core/engine/io_read.h"
+#include "ui/platform/platform.h"
 
 #include <iostream>
 

@@ -2,8 +2,8 @@
 // registration function of each subcommand (one file each).
 #pragma once
 
-#include "core/inserter.h"
-#include "ui/idbuffer_gl.h"
+#include "core/engine/inserter.h"
+#include "ui/gl/idbuffer_gl.h"
 
 #include <CLI/CLI.hpp>
 

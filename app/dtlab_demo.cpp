@@ -2,10 +2,10 @@
 // the way back to the empty start and checked; writes the result (SVG, Triangle files, trace).
 #include "app/dtlab_common.h"
 
-#include "core/describe.h"
-#include "core/generators.h"
-#include "core/io_write.h"
-#include "core/trace.h"
+#include "core/teaching/describe.h"
+#include "core/engine/generators.h"
+#include "core/engine/io_write.h"
+#include "core/teaching/trace.h"
 
 #include <filesystem>
 #include <iostream>

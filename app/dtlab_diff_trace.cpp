@@ -2,9 +2,9 @@
 // Exit status: 0 the runs agree, 1 they differ, 2 bad input.
 #include "app/dtlab_common.h"
 
-#include "core/io_read.h"
-#include "core/lesson.h"
-#include "core/trace_diff.h"
+#include "core/engine/io_read.h"
+#include "core/teaching/lesson.h"
+#include "core/teaching/trace_diff.h"
 
 #include <filesystem>
 #include <iostream>

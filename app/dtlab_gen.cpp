@@ -1,9 +1,9 @@
 // dtlab gen: writes one of the built-in point sets (uniform, clusters, grid, ...) to a file.
 #include "app/dtlab_common.h"
 
-#include "core/generators.h"
-#include "core/io_read.h"
-#include "core/io_write.h"
+#include "core/engine/generators.h"
+#include "core/engine/io_read.h"
+#include "core/engine/io_write.h"
 
 #include <charconv>
 #include <filesystem>

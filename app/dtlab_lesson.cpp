@@ -2,7 +2,7 @@
 // and prints a lesson's answer key.
 #include "app/dtlab_common.h"
 
-#include "core/lesson.h"
+#include "core/teaching/lesson.h"
 
 #include <iostream>
 

@@ -1,10 +1,10 @@
 // dtlab render: a screenshot of the whole GUI after K operations, rendered headlessly (OSMesa).
 #include "app/dtlab_common.h"
 
-#include "core/generators.h"
+#include "core/engine/generators.h"
 #include "ui/gui.h"
 #include "ui/lesson_player.h"
-#include "ui/panels.h"
+#include "ui/panels/panels.h"
 
 #include <imgui.h>
 

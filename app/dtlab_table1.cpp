@@ -3,9 +3,9 @@
 // locators side by side; a log-log plot drawn by our own renderer (ImGui draw lists on OSMesa).
 #include "app/dtlab_common.h"
 
-#include "core/generators.h"
+#include "core/engine/generators.h"
 #include "ui/gui.h"
-#include "ui/idbuffer_gl.h"
+#include "ui/gl/idbuffer_gl.h"
 
 #include <backends/imgui_impl_opengl2.h>
 #include <imgui.h>

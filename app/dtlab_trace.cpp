@@ -1,7 +1,7 @@
-// dtlab trace: one JSON object per operation (JSON Lines), as documented in core/trace.h.
+// dtlab trace: one JSON object per operation (JSON Lines), as documented in core/teaching/trace.h.
 #include "app/dtlab_common.h"
 
-#include "core/trace.h"
+#include "core/teaching/trace.h"
 
 #include <fstream>
 #include <iostream>

@@ -2,9 +2,9 @@
 // OFF, OBJ and SVG), ids in the input's index base.
 #include "app/dtlab_common.h"
 
-#include "core/io_write.h"
-#include "core/mesh.h"
-#include "core/voronoi.h"
+#include "core/engine/io_write.h"
+#include "core/engine/mesh.h"
+#include "core/engine/voronoi.h"
 
 #include <chrono>
 #include <iostream>

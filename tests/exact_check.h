@@ -12,8 +12,8 @@
 // Returns "" when all holds, else a description of the first failure.
 #pragma once
 
-#include "core/geometry.h"
-#include "core/mesh.h"
+#include "core/engine/geometry.h"
+#include "core/engine/mesh.h"
 
 #include <string>
 #include <vector>

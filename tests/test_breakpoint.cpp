@@ -1,7 +1,7 @@
 // Breakpoints: text round trips, every kind stops exactly where its definition says (checked
 // against the recorded ops and against mesh snapshots), budgets, and running back restores state.
-#include "core/breakpoint.h"
-#include "core/generators.h"
+#include "core/teaching/breakpoint.h"
+#include "core/engine/generators.h"
 
 #include <gtest/gtest.h>
 

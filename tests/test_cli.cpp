@@ -1,7 +1,7 @@
 // dtlab end to end: outputs of triangulate/trace/bench/gen, and one-line errors with a non-zero
 // exit for bad input.
-#include "core/io_read.h"
-#include "core/mesh.h"
+#include "core/engine/io_read.h"
+#include "core/engine/mesh.h"
 #include "tests/exact_check.h"
 #include "tests/run_dtlab.h"
 

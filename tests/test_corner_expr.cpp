@@ -1,9 +1,9 @@
-// Corner expressions: both notations agree with core/mesh.h's operators, paths are recorded,
+// Corner expressions: both notations agree with core/engine/mesh.h's operators, paths are recorded,
 // every kind of error is precise, watches find the first broken corner, and random strings or a
 // corrupted mesh never crash the parser or the evaluator.
-#include "core/corner_expr.h"
-#include "core/generators.h"
-#include "core/inserter.h"
+#include "core/teaching/corner_expr.h"
+#include "core/engine/generators.h"
+#include "core/engine/inserter.h"
 
 #include <gtest/gtest.h>
 

@@ -1,9 +1,9 @@
 // Input limits and the bugs that fuzzing found in the readers, each pinned by a test named after
 // it (the inputs themselves are replayed from tests/fuzz/corpus/ by the FuzzReplay.* tests).
-#include "core/corner_expr.h"
-#include "core/io_read.h"
-#include "core/lesson.h"
-#include "core/trace.h"
+#include "core/teaching/corner_expr.h"
+#include "core/engine/io_read.h"
+#include "core/teaching/lesson.h"
+#include "core/teaching/trace.h"
 
 #include <gtest/gtest.h>
 

@@ -1,9 +1,9 @@
 // Inserter, Journal and locators: validity and exact Delaunay on degenerate sets in every mode,
 // step-by-step equals batch, and exact undo.
-#include "core/generators.h"
-#include "core/inserter.h"
-#include "core/predicates.h"
-#include "core/trace.h"
+#include "core/engine/generators.h"
+#include "core/engine/inserter.h"
+#include "core/engine/predicates.h"
+#include "core/teaching/trace.h"
 #include "tests/exact_check.h"
 
 #include <gtest/gtest.h>

@@ -2,7 +2,7 @@
 // CSV headers and separators; .pts), and every error with its line and "FILE:LINE:" prefix.
 // Absurd counts must be refused before anything is allocated: this file replaces the global
 // operator new/delete to record the largest request made while a check is armed.
-#include "core/io_read.h"
+#include "core/engine/io_read.h"
 
 #include <gtest/gtest.h>
 

@@ -1,12 +1,12 @@
 // Writers: .node/.ele/.neigh round trips (bit-exact coordinates, CCW triangles, neighbours that
 // agree with computeOpposites), index bases, Voronoi files, OFF/OBJ counts, SVG element counts and
 // no NaN, atomic file output.
-#include "core/generators.h"
-#include "core/inserter.h"
-#include "core/io_read.h"
-#include "core/io_write.h"
-#include "core/mesh_build.h"
-#include "core/voronoi.h"
+#include "core/engine/generators.h"
+#include "core/engine/inserter.h"
+#include "core/engine/io_read.h"
+#include "core/engine/io_write.h"
+#include "core/engine/mesh_build.h"
+#include "core/engine/voronoi.h"
 #include "tests/exact_check.h"
 
 #include <gtest/gtest.h>

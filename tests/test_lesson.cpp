@@ -1,9 +1,9 @@
 // Lessons: every lesson in lessons/ runs to its end; bad lesson files fail with file, line and
 // stop; points files cannot escape the lesson's folder; answers are computed from the live
 // state and checked tolerantly; Markdown-light text.
-#include "core/lesson.h"
+#include "core/teaching/lesson.h"
 
-#include "core/generators.h"
+#include "core/engine/generators.h"
 
 #include "tests/run_dtlab.h"
 

@@ -1,7 +1,7 @@
 // orient2d and incircle against GMP rationals: random, near-degenerate (ulp perturbations of
 // collinear and cocircular points), large offsets, and coordinates whose products under- or
 // overflow double.
-#include "core/predicates.h"
+#include "core/engine/predicates.h"
 #include "tests/exact_check.h"
 
 #include <gtest/gtest.h>

@@ -1,8 +1,8 @@
 // Inputs that broke other triangulators: a flip cascade far deeper than any fixed stack, endless
 // flipping on cocircular points, huge and tiny coordinates, piles of duplicates.
-#include "core/generators.h"
-#include "core/inserter.h"
-#include "core/locator.h"
+#include "core/engine/generators.h"
+#include "core/engine/inserter.h"
+#include "core/engine/locator.h"
 #include "tests/exact_check.h"
 
 #include <gtest/gtest.h>

@@ -2,11 +2,11 @@
 // first difference is found at the right op (wrong triangle, missing flip, truncation, extra ops,
 // other corner layout, clockwise triangles); bad files fail with file:line; dtlab diff-trace
 // exits 0 / 1 / 2.
-#include "core/trace_diff.h"
+#include "core/teaching/trace_diff.h"
 
-#include "core/generators.h"
-#include "core/io_read.h"
-#include "core/lesson.h"
+#include "core/engine/generators.h"
+#include "core/engine/io_read.h"
+#include "core/teaching/lesson.h"
 
 #include "tests/run_dtlab.h"
 

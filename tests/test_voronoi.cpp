@@ -1,9 +1,9 @@
 // Voronoi diagram: circumcenters checked against exact rational ones (at offsets and extreme
 // scales), duality of buildVoronoi with the corner table, cells by swinging, Liang–Barsky clipping.
-#include "core/generators.h"
-#include "core/inserter.h"
-#include "core/mesh_build.h"
-#include "core/voronoi.h"
+#include "core/engine/generators.h"
+#include "core/engine/inserter.h"
+#include "core/engine/mesh_build.h"
+#include "core/engine/voronoi.h"
 
 #include <gmpxx.h>
 #include <gtest/gtest.h>

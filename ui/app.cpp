@@ -2,9 +2,9 @@
 // display, with a menu bar, the toolbar and caption, the canvas in the middle, the tables and
 // inspector in a side column, messages below; splitters between them, remembered in Layout.
 #include "ui/gui.h"
-#include "ui/keys.h"
+#include "ui/platform/keys.h"
 #include "ui/lesson_player.h"
-#include "ui/panels.h"
+#include "ui/panels/panels.h"
 
 #include <imgui.h>
 

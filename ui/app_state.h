@@ -4,9 +4,9 @@
 // through the Engine (that is, through the Inserter and its Journal).
 #pragma once
 
-#include "core/corner_expr.h"
-#include "core/locator.h"
-#include "core/trace_diff.h"
+#include "core/teaching/corner_expr.h"
+#include "core/engine/locator.h"
+#include "core/teaching/trace_diff.h"
 #include "ui/engine.h"
 #include "ui/lesson_player.h"
 
@@ -23,7 +23,7 @@
 
 namespace dlab::ui {
 
-struct CanvasCache;  // panel_canvas.cpp: the mesh renderer's arrays and the drag in progress
+struct CanvasCache;  // canvas.cpp: the mesh renderer's arrays and the drag in progress
 
 // The canvas' one world <-> screen transform: y up in the world, y down on the screen.
 struct View {
@@ -137,7 +137,7 @@ struct ExprLine {
     std::size_t errorColumn = 0;  // where the error starts in `text`
 };
 
-// An identity checked after every step, e.g. o(o(c)) == c (panel_expressions.cpp).
+// An identity checked after every step, e.g. o(o(c)) == c (expressions.cpp).
 struct WatchEntry {
     std::string text;
     bool enabled = true;
@@ -165,7 +165,7 @@ struct PredicateState {
     std::array<std::string, 4> points{"0, 0", "1, 0", "0, 1", "1, 1"};  // the user's a, b, c, d as "x, y"
 };
 
-struct IdBufferView;  // panel_idbuffer.cpp: the texture and the ids it was made from
+struct IdBufferView;  // idbuffer.cpp: the texture and the ids it was made from
 
 struct IdBufferViewState {
     bool trueColours = false;  // the encoded colours instead of false colour
@@ -182,7 +182,7 @@ struct IdBufferViewState {
 };
 
 // Counts over the journal's ops [0, position): kept up while the run goes forward, recounted
-// when it goes back or restarts (panel_statistics.cpp).
+// when it goes back or restarts (statistics.cpp).
 struct RunCounts {
     std::size_t position = 0;
     Op last{};  // ops[position - 1] when counted: tells a continuation from a new run
@@ -265,7 +265,7 @@ struct AppState {
     IdBufferViewState idBuffer;
     StatisticsState statistics;
     FileState files;
-    // Issue 6: a student's trace compared with this run (panel_trace_compare.cpp).
+    // Issue 6: a student's trace compared with this run (trace_compare.cpp).
     struct TraceCompare {
         std::shared_ptr<const TraceFile> ours, student;  // null: no comparison open
         TraceDiff diff;

@@ -1,8 +1,8 @@
 // The per-frame work and canvas drawing of issue 5's panels, which must happen whichever side
 // tab is open: watches, validate(), frame times and autosave; the expression path and the
 // violations over the canvas.
-#include "ui/files.h"
-#include "ui/panels.h"
+#include "ui/files/files.h"
+#include "ui/panels/panels.h"
 
 namespace dlab::ui {
 

@@ -1,7 +1,7 @@
 // The GUI's run: restart on new points or options, step, and derive what the canvas highlights.
 #include "ui/engine.h"
 
-#include "ui/idbuffer_gl.h"
+#include "ui/gl/idbuffer_gl.h"
 
 #include <algorithm>
 #include <exception>

@@ -3,8 +3,8 @@
 // The Inserter/Journal are the only things that change the mesh; this class only drives them.
 #pragma once
 
-#include "core/breakpoint.h"
-#include "core/inserter.h"
+#include "core/teaching/breakpoint.h"
+#include "core/engine/inserter.h"
 
 #include <cstdint>
 #include <memory>

@@ -1,7 +1,7 @@
 // Gui: ImGui context, fonts (DejaVu when installed), light theme, frames and PNG screenshots.
 #include "ui/gui.h"
 
-#include "ui/gl_api.h"
+#include "ui/gl/gl_api.h"
 
 #include <GL/gl.h>
 #include <backends/imgui_impl_opengl2.h>

@@ -4,7 +4,7 @@
 #pragma once
 
 #include "ui/app_state.h"
-#include "ui/platform.h"
+#include "ui/platform/platform.h"
 
 #include <cstdint>
 #include <string>

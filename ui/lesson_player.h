@@ -3,7 +3,7 @@
 // stop seeks the run, selects the stop's corner and shows the stop's panels and overlays.
 #pragma once
 
-#include "core/lesson.h"
+#include "core/teaching/lesson.h"
 
 #include <map>
 #include <memory>

@@ -1,7 +1,7 @@
 // Shared checks of the fuzz targets: reader error rules and the write/read round trip.
 #include "tests/fuzz/fuzz_common.h"
 
-#include "core/io_write.h"
+#include "core/engine/io_write.h"
 
 #include <cmath>
 #include <cstdio>

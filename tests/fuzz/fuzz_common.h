@@ -6,7 +6,7 @@
 // that runs every file of a corpus through the same function (the regression tests in CTest).
 #pragma once
 
-#include "core/io_read.h"
+#include "core/engine/io_read.h"
 
 #include <cstddef>
 #include <cstdint>

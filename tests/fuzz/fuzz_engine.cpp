@@ -14,8 +14,8 @@
 // Integer lattices scaled by powers of two keep collinear and cocircular sets exactly so.
 #include "tests/fuzz/fuzz_common.h"
 
-#include "core/inserter.h"
-#include "core/trace.h"
+#include "core/engine/inserter.h"
+#include "core/teaching/trace.h"
 #include "tests/exact_check.h"
 
 #include <algorithm>

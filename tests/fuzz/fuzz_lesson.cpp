@@ -7,7 +7,7 @@
 // when typed back as displayed.
 #include "tests/fuzz/fuzz_common.h"
 
-#include "core/lesson.h"
+#include "core/teaching/lesson.h"
 
 #include <unistd.h>
 #include <algorithm>

@@ -6,9 +6,9 @@
 // from the loaded state loads again to the same state (a round trip).
 #include "tests/fuzz/fuzz_common.h"
 
-#include "core/mesh.h"
+#include "core/engine/mesh.h"
 #include "ui/app_state.h"
-#include "ui/session.h"
+#include "ui/files/session.h"
 
 #include <algorithm>
 #include <string>

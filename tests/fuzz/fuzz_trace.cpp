@@ -4,7 +4,7 @@
 // record read writes back (toJsonLine) to a line that reads as the same record.
 #include "tests/fuzz/fuzz_common.h"
 
-#include "core/trace.h"
+#include "core/teaching/trace.h"
 
 #include <sstream>
 #include <stdexcept>

@@ -7,7 +7,7 @@
 // holds (libFuzzer's -malloc_limit_mb and the replay's allocation check catch that).
 #include "tests/fuzz/fuzz_common.h"
 
-#include "core/trace_diff.h"
+#include "core/teaching/trace_diff.h"
 
 #include <sstream>
 

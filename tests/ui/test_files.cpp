@@ -2,15 +2,15 @@
 // .node/.ele/.neigh, OFF, OBJ, SVG of the view, PNG on F12, an animated GIF of steps), a session
 // saved and loaded (same state, same step), bad files that change nothing and show an error, and
 // recovery after the process is killed (kill -9) in the middle of editing.
-#include "core/generators.h"
-#include "core/io_read.h"
-#include "core/mesh_build.h"
+#include "core/engine/generators.h"
+#include "core/engine/io_read.h"
+#include "core/engine/mesh_build.h"
 #include "tests/ui/ui_harness.h"
-#include "ui/files.h"
-#include "ui/gif_export.h"
-#include "ui/keys.h"
-#include "ui/panels.h"
-#include "ui/session.h"
+#include "ui/files/files.h"
+#include "ui/files/gif_export.h"
+#include "ui/platform/keys.h"
+#include "ui/panels/panels.h"
+#include "ui/files/session.h"
 
 #include <gif_lib.h>
 #include <gtest/gtest.h>

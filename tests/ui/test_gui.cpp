@@ -1,10 +1,10 @@
 // The GUI driven as a user drives it: clicks on the step buttons, keys, clicks on the canvas,
 // the corner table's scrolling, and pixels of the rendered frames.
-#include "core/generators.h"
-#include "core/mesh.h"
+#include "core/engine/generators.h"
+#include "core/engine/mesh.h"
 #include "tests/ui/ui_harness.h"
-#include "ui/keys.h"
-#include "ui/panels.h"
+#include "ui/platform/keys.h"
+#include "ui/panels/panels.h"
 
 #include <gtest/gtest.h>
 #include <imgui.h>

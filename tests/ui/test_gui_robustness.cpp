@@ -11,15 +11,15 @@
 //   DLAB_GUI_ROBUST_SEED=7 DLAB_GUI_ROBUST_ACTIONS=2000 build/tests/ui/dlab_ui_tests
 //       --gtest_filter='Seeds/GuiRobustness.*/0'
 // Every action is also appended (flushed) to $TMPDIR/dlab_gui_robust_SEED.log, which survives a crash.
-#include "core/breakpoint.h"
-#include "core/generators.h"
-#include "core/mesh.h"
+#include "core/teaching/breakpoint.h"
+#include "core/engine/generators.h"
+#include "core/engine/mesh.h"
 #include "tests/exact_check.h"
 #include "tests/ui/ui_harness.h"
-#include "ui/files.h"
-#include "ui/keys.h"
+#include "ui/files/files.h"
+#include "ui/platform/keys.h"
 #include "ui/lesson_player.h"
-#include "ui/panels.h"
+#include "ui/panels/panels.h"
 
 #include <gtest/gtest.h>
 #include <imgui.h>

@@ -1,13 +1,13 @@
 // The GL colour-ID buffer on OSMesa: its pixels against the CPU reference away from edges, exact
 // locates from its hints, whole triangulations in every readback mode, undo/redo through the
 // Journal, the GL state it must leave alone, the GUI path and `dtlab table1`'s files.
-#include "core/generators.h"
-#include "core/inserter.h"
-#include "core/predicates.h"
+#include "core/engine/generators.h"
+#include "core/engine/inserter.h"
+#include "core/engine/predicates.h"
 #include "tests/ui/ui_harness.h"
-#include "ui/gl_api.h"
-#include "ui/idbuffer_gl.h"
-#include "ui/platform.h"
+#include "ui/gl/gl_api.h"
+#include "ui/gl/idbuffer_gl.h"
+#include "ui/platform/platform.h"
 
 #include <gtest/gtest.h>
 

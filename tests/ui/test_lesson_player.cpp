@@ -1,9 +1,9 @@
 // The lesson player in the GUI: open a lesson, go from stop to stop, answer its questions.
-#include "core/lesson.h"
+#include "core/teaching/lesson.h"
 #include "tests/ui/ui_harness.h"
-#include "ui/keys.h"
+#include "ui/platform/keys.h"
 #include "ui/lesson_player.h"
-#include "ui/panels.h"
+#include "ui/panels/panels.h"
 
 #include <gtest/gtest.h>
 #include <imgui.h>

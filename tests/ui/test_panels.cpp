@@ -2,12 +2,12 @@
 // (its value and the path drawn on the canvas), watches that pause a run, the predicate
 // inspector's warning on a near-degenerate in-circle test where plain floating point is wrong,
 // the ID-buffer view hovered and checked against the core's locator, and the statistics.
-#include "core/generators.h"
-#include "core/predicates.h"
-#include "ui/idbuffer_gl.h"
+#include "core/engine/generators.h"
+#include "core/engine/predicates.h"
+#include "ui/gl/idbuffer_gl.h"
 #include "tests/ui/ui_harness.h"
-#include "ui/keys.h"
-#include "ui/panels.h"
+#include "ui/platform/keys.h"
+#include "ui/panels/panels.h"
 
 #include <gtest/gtest.h>
 #include <imgui.h>
@@ -25,10 +25,10 @@ namespace key = dlab::ui::key;
 
 namespace {
 
-constexpr std::array<int, 3> kPathRgb = {214, 0, 120};       // panel_expressions.cpp
-constexpr std::array<int, 3> kWarningRgb = {200, 20, 30};    // panel_predicates.cpp
-constexpr std::array<int, 3> kViolationRgb = {230, 0, 0};    // panel_statistics.cpp
-constexpr std::array<int, 3> kPendingRgb = {250, 170, 60};    // panel_statistics.cpp: expected mid-insertion
+constexpr std::array<int, 3> kPathRgb = {214, 0, 120};       // expressions.cpp
+constexpr std::array<int, 3> kWarningRgb = {200, 20, 30};    // predicates.cpp
+constexpr std::array<int, 3> kViolationRgb = {230, 0, 0};    // statistics.cpp
+constexpr std::array<int, 3> kPendingRgb = {250, 170, 60};    // statistics.cpp: expected mid-insertion
 
 void typeText(UiHarness& h, const std::string& text) {
     for (char ch : text) {

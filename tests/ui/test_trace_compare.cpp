@@ -1,11 +1,11 @@
 // A student's trace in the GUI (issue 6): opened like any file, it is compared with our run on
 // the same points and options; the view goes to the first difference, and both runs step side by
 // side from there.
-#include "core/inserter.h"
-#include "core/trace.h"
+#include "core/engine/inserter.h"
+#include "core/teaching/trace.h"
 #include "tests/ui/ui_harness.h"
-#include "ui/files.h"
-#include "ui/panels.h"
+#include "ui/files/files.h"
+#include "ui/panels/panels.h"
 
 #include <gtest/gtest.h>
 

@@ -1,7 +1,7 @@
 // UiHarness: OSMesa platform + AppState + Gui on the built-in demo, and synthetic input.
 #include "tests/ui/ui_harness.h"
 
-#include "core/generators.h"
+#include "core/engine/generators.h"
 
 #include <gtest/gtest.h>
 #include <imgui.h>

@@ -1,0 +1,130 @@
+// Point-set generators (deterministic for a seed on every platform).
+#include "core/engine/generators.h"
+
+#include "core/engine/order.h"
+
+#include <cmath>
+#include <numbers>
+
+namespace dlab {
+
+namespace {
+constexpr const char* kNames[] = {"uniform", "clusters",        "grid",  "rotated-grid", "ngon",
+                                  "circle",  "collinear",       "near-duplicates", "huge-tiny-box",
+                                  "all-collinear"};
+constexpr int kCount = 10;
+
+double gaussian(SplitMix64& rng) {
+    // Box-Muller; the first uniform is kept away from 0.
+    const double u = (rng.next() >> 11) * 0x1.0p-53 + 0x1.0p-54;
+    const double v = rng.uniform01();
+    return std::sqrt(-2.0 * std::log(u)) * std::cos(2 * std::numbers::pi * v);
+}
+}  // namespace
+
+const char* toString(Generator g) { return kNames[static_cast<int>(g)]; }
+
+std::optional<Generator> parseGenerator(std::string_view name) {
+    for (int i = 0; i < kCount; ++i) {
+        if (name == kNames[i]) return static_cast<Generator>(i);
+    }
+    return std::nullopt;
+}
+
+std::string generatorNames() {
+    std::string s;
+    for (int i = 0; i < kCount; ++i) s += (i ? ", " : "") + std::string(kNames[i]);
+    return s;
+}
+
+std::vector<Vec2> generatePoints(Generator kind, std::size_t n, std::uint64_t seed) {
+    SplitMix64 rng(seed);
+    std::vector<Vec2> pts;
+    pts.reserve(n);
+    const double box = 1600.0;
+    switch (kind) {
+        case Generator::Uniform:
+            for (std::size_t i = 0; i < n; ++i) pts.push_back({rng.uniform01() * box, rng.uniform01() * box});
+            break;
+        case Generator::Clusters: {
+            const std::size_t k = std::max<std::size_t>(1, static_cast<std::size_t>(std::sqrt(n / 16.0)));
+            std::vector<Vec2> centres;
+            for (std::size_t i = 0; i < k; ++i) centres.push_back({rng.uniform01() * box, rng.uniform01() * box});
+            for (std::size_t i = 0; i < n; ++i) {
+                const Vec2 c = centres[rng.below(static_cast<std::uint32_t>(k))];
+                pts.push_back({c.x + gaussian(rng) * 20, c.y + gaussian(rng) * 20});
+            }
+            break;
+        }
+        case Generator::Grid:
+        case Generator::RotatedGrid: {
+            const std::size_t side = std::max<std::size_t>(1, static_cast<std::size_t>(std::ceil(std::sqrt(double(n)))));
+            const double a = kind == Generator::RotatedGrid ? 0.5 : 0.0;  // radians, irrational-ish
+            for (std::size_t i = 0; i < n; ++i) {
+                const double x = double(i % side), y = double(i / side);
+                pts.push_back({x * std::cos(a) - y * std::sin(a), x * std::sin(a) + y * std::cos(a)});
+            }
+            break;
+        }
+        case Generator::Ngon:
+            for (std::size_t i = 0; i < n; ++i) {
+                // Multiples of 45 degrees are exact; the rest are within an ulp of the circle.
+                const double t = 2 * std::numbers::pi * double(i) / double(n);
+                pts.push_back({800 + 700 * std::cos(t), 800 + 700 * std::sin(t)});
+            }
+            break;
+        case Generator::Circle:
+            for (std::size_t i = 0; i < n; ++i) {
+                const double t = 2 * std::numbers::pi * rng.uniform01();
+                pts.push_back({800 + 700 * std::cos(t), 800 + 700 * std::sin(t)});
+            }
+            break;
+        case Generator::Collinear:
+            for (std::size_t i = 0; i < n; ++i) {
+                const std::uint32_t line = rng.below(4);
+                const double t = double(rng.below(1000));
+                switch (line) {
+                    case 0: pts.push_back({t, 0}); break;
+                    case 1: pts.push_back({0, t}); break;
+                    case 2: pts.push_back({t, t}); break;
+                    default: pts.push_back({rng.uniform01() * 1000, rng.uniform01() * 1000}); break;
+                }
+            }
+            break;
+        case Generator::NearDuplicates:
+            for (std::size_t i = 0; i < n; ++i) {
+                if (i % 3 == 0 || pts.empty()) {
+                    pts.push_back({std::round(rng.uniform01() * 100), std::round(rng.uniform01() * 100)});
+                } else {
+                    Vec2 p = pts[rng.below(static_cast<std::uint32_t>(pts.size()))];
+                    const std::uint32_t ulps = rng.below(5);  // 0: an exact duplicate
+                    for (std::uint32_t k = 0; k < ulps; ++k) p.x = std::nextafter(p.x, 1e300);
+                    for (std::uint32_t k = 0; k < rng.below(3); ++k) p.y = std::nextafter(p.y, -1e300);
+                    pts.push_back(p);
+                }
+            }
+            break;
+        case Generator::HugeTinyBox:
+            for (std::size_t i = 0; i < n; ++i) {
+                // ulp(1e15) = 0.125: only 512 distinct values per axis, every test is close.
+                pts.push_back({1e15 + rng.uniform01() * 64, -3e15 + rng.uniform01() * 64});
+            }
+            break;
+        case Generator::AllCollinear:
+            for (std::size_t i = 0; i < n; ++i) {
+                // Integer x and y = x/2 + 3: exactly on one line (no rounding anywhere).
+                const double t = double(rng.below(100000));
+                pts.push_back({t, 0.5 * t + 3});
+            }
+            break;
+    }
+    return pts;
+}
+
+std::vector<Vec2> demoPoints() {
+    // Hand-placed: (2) lands on the edge 0-1, (7)-(8) trigger flip cascades, (11) duplicates (4).
+    return {{100, 100}, {700, 120}, {400, 110},  {380, 560}, {220, 330}, {560, 360},
+            {640, 520}, {150, 520}, {420, 300},    {300, 200}, {520, 180}, {220, 330}};
+}
+
+}  // namespace dlab

@@ -1,0 +1,36 @@
+// Point-set generators: the paper's uniform box and the inputs that broke other triangulators.
+#pragma once
+
+#include "core/engine/geometry.h"
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace dlab {
+
+enum class Generator : std::uint8_t {
+    Uniform,        // uniform in the paper's 1600 x 1600 box
+    Clusters,       // Gaussian clusters
+    Grid,           // integer lattice: many cocircular quadruples
+    RotatedGrid,    // a lattice rotated by an irrational angle (near-degenerate, not exact)
+    Ngon,           // regular N-gon: all points cocircular
+    Circle,         // random points on a circle (rounded: nearly cocircular)
+    Collinear,      // several collinear runs, plus a few points off the lines
+    NearDuplicates, // clusters of points 1-4 ulps apart, and exact duplicates
+    HugeTinyBox,    // a 64 x 64 box at coordinates around 1e15 (ulp 0.125: tiny relative extent)
+    AllCollinear,   // every point on one line (no triangle exists)
+};
+
+const char* toString(Generator g);
+std::optional<Generator> parseGenerator(std::string_view name);
+std::string generatorNames();  // "uniform, clusters, ..." for help texts
+
+std::vector<Vec2> generatePoints(Generator kind, std::size_t n, std::uint64_t seed);
+
+// The built-in demo: 12 points that show a locate walk, splits, flips and a point on an edge.
+std::vector<Vec2> demoPoints();
+
+}  // namespace dlab

@@ -1,0 +1,1112 @@
+// Lawson's incremental insertion on the corner table: walk, split, in-circle tests and flips,
+// each a recorded operation that the Journal can undo exactly.
+#include "core/engine/inserter.h"
+
+#include "core/engine/predicates.h"
+
+#include <algorithm>
+#include <cassert>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#if defined(__linux__)
+#include <sys/mman.h>
+#endif
+
+namespace dlab {
+
+// ============================================================================================
+// [SECTION] Names
+// ============================================================================================
+
+const char* toString(Boundary b) { return b == Boundary::Exact ? "exact" : "super"; }
+
+std::optional<Boundary> parseBoundary(std::string_view name) {
+    if (name == "exact") return Boundary::Exact;
+    if (name == "super") return Boundary::Super;
+    return std::nullopt;
+}
+
+namespace {
+constexpr const char* kOpNames[] = {"Start",        "LocateStep", "Located",       "Split",
+                                    "SplitEdge",    "InCircleTest", "Flip",        "SkipDuplicate",
+                                    "Inserted",     "Finalize"};
+}
+
+const char* toString(OpType t) { return kOpNames[static_cast<int>(t)]; }
+
+std::optional<OpType> parseOpType(std::string_view name) {
+    for (int i = 0; i < 10; ++i) {
+        if (name == kOpNames[i]) return static_cast<OpType>(i);
+    }
+    return std::nullopt;
+}
+
+const char* toString(Where w) {
+    switch (w) {
+        case Where::None: return "none";
+        case Where::InTriangle: return "inside";
+        case Where::OnEdge: return "edge";
+        case Where::OnVertex: return "vertex";
+        case Where::Outside: return "outside-hull";
+    }
+    return "?";
+}
+
+// ============================================================================================
+// [SECTION] Recorders: the batch path's recorder does nothing and compiles away
+// ============================================================================================
+
+namespace {
+
+struct NullRec {
+    static constexpr bool kOn = false;
+    void cell(std::int32_t, std::int32_t, std::int32_t) {}
+};
+
+struct JournalRec {
+    static constexpr bool kOn = true;
+    Journal* journal;
+    void cell(std::int32_t slot, std::int32_t before, std::int32_t after) {
+        if (journal) journal->record({slot, before, after});
+    }
+};
+
+constexpr std::int32_t kMaxInputPoints = 1 << 26;  // corners and slots stay inside int32
+
+// Within one triangle: the index of next(c) and prev(c) for c = 3t + k.
+constexpr int kNext[3] = {1, 2, 0};
+constexpr int kPrev[3] = {2, 0, 1};
+
+// Calls f for every corner at the vertex of corner `start` (start first). Interior vertices
+// have a closed ring; it is walked one way, then the other way if it is open.
+template <class F>
+void forEachCornerAround(const std::vector<std::int32_t>& O, std::int32_t start, F&& f) {
+    std::int32_t c = start;
+    do {
+        f(c);
+        const std::int32_t l = O[next(c)];
+        c = l == kNone ? kNone : next(l);
+    } while (c != kNone && c != start);
+    if (c == kNone) {
+        for (std::int32_t r = O[prev(start)]; r != kNone;) {
+            const std::int32_t u = prev(r);
+            f(u);
+            r = O[prev(u)];
+        }
+    }
+}
+
+// A million-point run touches ~50 MB of fresh V/O memory; with 4 KiB pages the page faults
+// alone cost tens of milliseconds. Transparent huge pages (where the kernel offers them on
+// request) cut that. Only a hint: nothing depends on it.
+void adviseHugePages(void* data, std::size_t bytes) {
+#if defined(__linux__) && defined(MADV_HUGEPAGE)
+    const std::uintptr_t kHuge = 2u << 20;
+    const std::uintptr_t begin = (reinterpret_cast<std::uintptr_t>(data) + kHuge - 1) & ~(kHuge - 1);
+    const std::uintptr_t end = (reinterpret_cast<std::uintptr_t>(data) + bytes) & ~(kHuge - 1);
+    if (end > begin) madvise(reinterpret_cast<void*>(begin), end - begin, MADV_HUGEPAGE);
+#else
+    (void)data;
+    (void)bytes;
+#endif
+}
+
+}  // namespace
+
+// ============================================================================================
+// [SECTION] Construction
+// ============================================================================================
+
+Inserter::Inserter(std::vector<Vec2> points, const InsertOptions& options,
+                   std::unique_ptr<Locator> locator)
+    : m_options(options), m_locator(std::move(locator)) {
+    if (points.size() > static_cast<std::size_t>(kMaxInputPoints)) {
+        throw std::invalid_argument("too many points: " + std::to_string(points.size()) +
+                                    " (the limit is " + std::to_string(kMaxInputPoints) + ")");
+    }
+    for (std::size_t i = 0; i < points.size(); ++i) {
+        if (!std::isfinite(points[i].x) || !std::isfinite(points[i].y)) {
+            throw std::invalid_argument("point " + std::to_string(i) + " has a non-finite coordinate");
+        }
+    }
+    if (!m_locator) m_locator = makeLocator(options.locator, options.locatorOptions);
+    m_numInput = static_cast<std::int32_t>(points.size());
+    m_bounds = Bounds::of(points);
+    m_mesh.G = std::move(points);
+    m_order = insertionOrder(m_mesh.G, options.order, options.seed);
+    const auto& G = m_mesh.G;
+
+    if (options.boundary == Boundary::Exact) {
+        // Bring the first non-degenerate triple to the front of the order (the rest keeps its
+        // relative order); the ghost vertex g = n needs no coordinates, it gets the centre.
+        const std::int32_t n = m_numInput;
+        if (n >= 3) {
+            const std::int32_t a = m_order[0];
+            std::int32_t ib = kNone, ic = kNone;
+            for (std::int32_t i = 1; i < n && ib == kNone; ++i) {
+                if (!(G[m_order[i]] == G[a])) ib = i;
+            }
+            for (std::int32_t i = ib == kNone ? n : ib + 1; i < n && ic == kNone; ++i) {
+                if (orient2d(G[a], G[m_order[ib]], G[m_order[i]]) != 0) ic = i;
+            }
+            if (ic != kNone) {
+                const std::int32_t b = m_order[ib], c = m_order[ic];
+                m_order.erase(m_order.begin() + ic);
+                m_order.erase(m_order.begin() + ib);
+                m_order.insert(m_order.begin() + 1, {b, c});
+            }
+        }
+        m_virtualPoints = {{m_bounds.lo.x / 2 + m_bounds.hi.x / 2, m_bounds.lo.y / 2 + m_bounds.hi.y / 2}};
+    } else {
+        // The paper's super-triangle: large, finite, strictly containing every input point
+        // (checked exactly, grown until true).
+        const double cx = m_bounds.lo.x / 2 + m_bounds.hi.x / 2;
+        const double cy = m_bounds.lo.y / 2 + m_bounds.hi.y / 2;
+        double size = std::max(m_bounds.hi.x / 2 - m_bounds.lo.x / 2, m_bounds.hi.y / 2 - m_bounds.lo.y / 2) * 2;
+        size = std::max({size, std::abs(cx) * 0x1p-40, std::abs(cy) * 0x1p-40, 1e-300});
+        for (int attempt = 0;; ++attempt) {
+            const Vec2 s0{cx - 30 * size, cy - 20 * size}, s1{cx + 30 * size, cy - 20 * size},
+                s2{cx, cy + 30 * size};
+            bool ok = std::isfinite(s0.x) && std::isfinite(s0.y) && std::isfinite(s1.x) &&
+                      std::isfinite(s2.y) && orient2d(s0, s1, s2) > 0;
+            for (std::int32_t i = 0; ok && i < m_numInput; ++i) {
+                ok = orient2d(s0, s1, G[i]) > 0 && orient2d(s1, s2, G[i]) > 0 && orient2d(s2, s0, G[i]) > 0;
+            }
+            if (ok) {
+                m_virtualPoints = {s0, s1, s2};
+                break;
+            }
+            if (!std::isfinite(size) || attempt > 2000) {
+                throw std::domain_error(
+                    "super mode: no finite super-triangle contains these coordinates; use the exact boundary mode");
+            }
+            size *= 16;
+        }
+    }
+    m_mesh.G.insert(m_mesh.G.end(), m_virtualPoints.begin(), m_virtualPoints.end());
+}
+
+Inserter::~Inserter() = default;
+
+bool Inserter::isVirtualTriangle(std::int32_t t) const {
+    const auto& V = m_mesh.V;
+    return isVirtual(V[3 * t]) || isVirtual(V[3 * t + 1]) || isVirtual(V[3 * t + 2]);
+}
+
+std::int32_t Inserter::currentVertex() const {
+    switch (m_ctl.phase) {
+        case Phase::Locate:
+        case Phase::Place:
+        case Phase::Test:
+        case Phase::Flip:
+        case Phase::Finish:
+            return m_ctl.cursor < static_cast<std::int32_t>(m_order.size()) ? m_order[m_ctl.cursor] : kNone;
+        default: return kNone;
+    }
+}
+
+// ============================================================================================
+// [SECTION] Cell writes: every change of V and O goes through here
+// ============================================================================================
+
+template <class Rec>
+void Inserter::setV(Rec& rec, std::int32_t c, std::int32_t v) {
+    if constexpr (Rec::kOn) rec.cell(2 * c, m_mesh.V[c], v);
+    m_mesh.V[c] = v;
+}
+
+template <class Rec>
+void Inserter::setO(Rec& rec, std::int32_t c, std::int32_t o) {
+    if constexpr (Rec::kOn) rec.cell(2 * c + 1, m_mesh.O[c], o);
+    m_mesh.O[c] = o;
+}
+
+template <class Rec>
+void Inserter::link(Rec& rec, std::int32_t c, std::int32_t d) {
+    setO(rec, c, d);
+    if (d != kNone) setO(rec, d, c);
+}
+
+template <class Rec>
+std::int32_t Inserter::appendTriangles(Rec&, int count) {
+    const std::int32_t t = m_mesh.numTriangles();
+    m_mesh.V.resize(m_mesh.V.size() + 3 * count, kNone);
+    m_mesh.O.resize(m_mesh.O.size() + 3 * count, kNone);
+    return t;
+}
+
+void Inserter::notifyChanged(const std::int32_t* tris, int count) {
+    if (m_locatorWantsChanges && !m_bulk) m_locator->trianglesChanged(tris, count);
+}
+
+void Inserter::setBulk(bool on) {
+    if (m_bulk && !on && m_locatorWantsChanges && m_ctl.phase != Phase::Start) m_locator->resync();
+    m_bulk = on;
+}
+
+// ============================================================================================
+// [SECTION] The three mesh operations
+// ============================================================================================
+
+// Split 1->3. Triangle t = (a, b, c) keeps its corners as (a, b, v); two triangles are
+// appended: t1 = (b, c, v) and t2 = (c, a, v). The corners at v face the three old edges.
+//
+//          c                       c
+//          |`.                     |`.
+//          |  `.          ==>      | t2`.      t  = (a, b, v)
+//          | t  `.                 |  v--`.    t1 = (b, c, v)
+//          |      `.               | / t1  `.  t2 = (c, a, v)
+//          a -------b              a ------- b
+template <class Rec>
+void Inserter::split(Rec& rec, std::int32_t t, std::int32_t v) {
+    const std::int32_t c0 = 3 * t, c1 = c0 + 1, c2 = c0 + 2;
+    const std::int32_t a = m_mesh.V[c0], b = m_mesh.V[c1], c = m_mesh.V[c2];
+    const std::int32_t oa = m_mesh.O[c0], ob = m_mesh.O[c1];
+    const std::int32_t t1 = appendTriangles(rec, 2), t2 = t1 + 1;
+    const std::int32_t d0 = 3 * t1, e0 = 3 * t2;
+    setV(rec, c2, v);  // O[c2] still faces a->b
+    setV(rec, d0, b); setV(rec, d0 + 1, c); setV(rec, d0 + 2, v);
+    setV(rec, e0, c); setV(rec, e0 + 1, a); setV(rec, e0 + 2, v);
+    link(rec, c0, d0 + 1);      // edge b-v
+    link(rec, c1, e0);          // edge v-a
+    link(rec, d0, e0 + 1);      // edge c-v
+    link(rec, d0 + 2, oa);      // old edge b->c
+    link(rec, e0 + 2, ob);      // old edge c->a
+    m_stack.push_back(c2);
+    m_stack.push_back(d0 + 2);
+    m_stack.push_back(e0 + 2);
+    const std::int32_t tris[3] = {t, t1, t2};
+    notifyChanged(tris, 3);
+}
+
+// Split 2->4 (1->2 without a neighbour). v lies on the edge A-B opposite corner c.
+//   t = (C, A, B) becomes (C, A, v), appended t' = (C, v, B);
+//   u = (D, B, A) becomes (D, B, v), appended u' = (D, v, A).
+template <class Rec>
+void Inserter::splitEdge(Rec& rec, std::int32_t c, std::int32_t v) {
+    const std::int32_t cn = next(c), cp = prev(c);
+    const std::int32_t d = m_mesh.O[c];
+    const std::int32_t C = m_mesh.V[c], B = m_mesh.V[cp];
+    const std::int32_t ocn = m_mesh.O[cn];
+    const std::int32_t tp = appendTriangles(rec, d == kNone ? 1 : 2);
+    const std::int32_t x = 3 * tp;  // t' = (C, v, B)
+    setV(rec, cp, v);
+    setV(rec, x, C); setV(rec, x + 1, v); setV(rec, x + 2, B);
+    link(rec, cn, x + 2);   // edge v-C
+    link(rec, x + 1, ocn);  // old edge B->C
+    if (d == kNone) {
+        setO(rec, c, kNone);
+        setO(rec, x, kNone);
+        m_stack.push_back(cp);
+        m_stack.push_back(x + 1);
+        const std::int32_t tris[2] = {tri(c), tp};
+        notifyChanged(tris, 2);
+        return;
+    }
+    const std::int32_t dn = next(d), dp = prev(d);
+    const std::int32_t D = m_mesh.V[d], A = m_mesh.V[dp];
+    const std::int32_t odn = m_mesh.O[dn];
+    const std::int32_t y = x + 3;   // u' = (D, v, A)
+    setV(rec, dp, v);
+    setV(rec, y, D); setV(rec, y + 1, v); setV(rec, y + 2, A);
+    link(rec, c, y);        // edge A-v
+    link(rec, x, d);        // edge v-B
+    link(rec, dn, y + 2);   // edge v-D
+    link(rec, y + 1, odn);  // old edge A->D
+    m_stack.push_back(cp);
+    m_stack.push_back(x + 1);
+    m_stack.push_back(dp);
+    m_stack.push_back(y + 1);
+    const std::int32_t tris[4] = {tri(c), tp, tri(d), tp + 1};
+    notifyChanged(tris, 4);
+}
+
+// Flip the edge A-B opposite corner c (at the new vertex P) in place:
+//
+//            B                        B
+//          / | `.                   /   `.
+//         P  |  D       ==>        P ----- D      the edge A-B becomes P-D
+//          `.| /                    `.   /
+//            A                        A
+//   t = (P, A, B) -> (P, A, D)      u = (D, B, A) -> (D, B, P)
+// Only V[p(c)], V[p(d)] and the O of c, n(c), d, n(d) (plus two back-pointers) change.
+template <class Rec>
+void Inserter::flip(Rec& rec, std::int32_t c) {
+    const std::int32_t d = m_mesh.O[c];
+    const std::int32_t cn = next(c), cp = prev(c), dn = next(d), dp = prev(d);
+    const std::int32_t P = m_mesh.V[c], D = m_mesh.V[d];
+    const std::int32_t ocn = m_mesh.O[cn], odn = m_mesh.O[dn];
+    setV(rec, cp, D);
+    setV(rec, dp, P);
+    link(rec, c, odn);
+    link(rec, d, ocn);
+    link(rec, cn, dn);
+    m_stack.push_back(c);
+    m_stack.push_back(dp);
+    const std::int32_t tris[2] = {tri(c), tri(d)};
+    notifyChanged(tris, 2);
+}
+
+// The lower input index of two equal points stays the vertex: rename it around its star.
+template <class Rec>
+void Inserter::keepFirstOccurrence(Rec& rec, std::int32_t cornerAt, std::int32_t v) {
+    const std::int32_t existing = m_mesh.V[cornerAt];
+    if (inputId(v) > inputId(existing)) {
+        m_skipped.push_back(inputId(v));
+        return;
+    }
+    m_skipped.push_back(inputId(existing));
+    forEachCornerAround(m_mesh.O, cornerAt, [&](std::int32_t c) { setV(rec, c, v); });
+}
+
+// The stars of the virtual vertices, sorted. A corner of each is found by scanning back from
+// the newest triangles: the hull changes until the end, so the scan stops early.
+std::vector<std::int32_t> Inserter::virtualTriangles() const {
+    const auto& V = m_mesh.V;
+    const std::int32_t numVirtual = m_mesh.numVertices() - m_numInput;
+    std::vector<std::int32_t> cornerOf(static_cast<std::size_t>(std::max(numVirtual, 0)), kNone);
+    std::int32_t missing = numVirtual;
+    for (std::int32_t c = m_mesh.numCorners() - 1; c >= 0 && missing > 0; --c) {
+        if (isVirtual(V[c]) && cornerOf[V[c] - m_numInput] == kNone) {
+            cornerOf[V[c] - m_numInput] = c;
+            --missing;
+        }
+    }
+    std::vector<std::int32_t> tris;
+    for (const std::int32_t start : cornerOf) {
+        if (start != kNone) forEachCornerAround(m_mesh.O, start, [&](std::int32_t c) { tris.push_back(tri(c)); });
+    }
+    std::sort(tris.begin(), tris.end());
+    tris.erase(std::unique(tris.begin(), tris.end()), tris.end());
+    return tris;
+}
+
+// ============================================================================================
+// [SECTION] Predicates with the ghost vertex
+// ============================================================================================
+
+bool Inserter::onOpenSegment(Vec2 a, Vec2 b, Vec2 p) const {
+    // p is known to be collinear with a and b.
+    if (a.x != b.x) return (a.x < p.x && p.x < b.x) || (b.x < p.x && p.x < a.x);
+    return (a.y < p.y && p.y < b.y) || (b.y < p.y && p.y < a.y);
+}
+
+// Sign of "the new vertex V[c] lies inside the circle of the triangle across the edge opposite
+// c": +1 flip, 0 cocircular (no flip), -1 Delaunay (also for a boundary edge).
+// Inlined: the flip loop runs it nine times per point.
+[[gnu::always_inline]] inline int Inserter::inCircleSign(std::int32_t c) const {
+    const std::int32_t d = m_mesh.O[c];
+    if (d == kNone) return -1;
+    const auto& G = m_mesh.G;
+    const std::int32_t P = m_mesh.V[c];
+    std::int32_t D = m_mesh.V[d], B = m_mesh.V[next(d)], A = m_mesh.V[prev(d)];
+    const bool ghostMode = m_options.boundary == Boundary::Exact;
+    if (!ghostMode || (!isVirtual(D) && !isVirtual(B) && !isVirtual(A))) {
+        return incircle(G[D], G[B], G[A], G[P]);
+    }
+    // Ghost triangle (u, w, g): its circle is the open half-plane left of w->u... i.e. the side
+    // of the hull edge away from the mesh, plus the open segment u-w itself.
+    std::int32_t u, w;
+    if (isVirtual(D)) { u = B; w = A; }
+    else if (isVirtual(B)) { u = A; w = D; }
+    else { u = D; w = B; }
+    const int s = orient2d(G[u], G[w], G[P]);
+    if (s > 0) return 1;
+    if (s == 0 && onOpenSegment(G[u], G[w], G[P])) return 1;
+    return -1;
+}
+
+// ============================================================================================
+// [SECTION] Walking (the paper's line walk, with a visibility-walk fallback)
+// ============================================================================================
+
+// A ghost triangle 3t..3t+2 (exact mode): its ghost corner's index and the hull edge x->y
+// opposite it.
+Inserter::HullEdge Inserter::hullEdgeOf(std::int32_t c0) const {
+    const auto& V = m_mesh.V;
+    int k = 0;
+    while (!isVirtual(V[c0 + k])) ++k;
+    return {k, m_mesh.G[V[c0 + kNext[k]]], m_mesh.G[V[c0 + kPrev[k]]]};
+}
+
+void Inserter::beginLocate() {
+    std::int32_t t = m_locator->hint(currentPoint(), m_ctl.lastTri);
+    if (t < 0 || t >= m_mesh.numTriangles()) t = 0;
+    m_ctl.walkTri = t;
+    m_ctl.walkEntry = kNone;
+    m_ctl.walkSteps = 0;
+    m_ctl.straight = true;
+    m_ctl.where = Where::None;
+    m_ctl.whereCorner = kNone;
+}
+
+// One step: true when walkTri contains the point (closed); otherwise moves to a neighbour.
+//
+// The line walk follows L from q (inside the start triangle) to p. Entering triangle t through
+// the edge opposite corner e, its third vertex w = V[e] is left or right of L: L leaves through
+// the edge on the far side of w (c.l or c.r in the paper). A vertex exactly on L counts as left,
+// the same as moving L an infinitesimal amount to the right, so every decision stays consistent.
+// One step of the walk on a copy of its state (the batch path keeps it in registers while it
+// walks many steps; walkStep() does one and stores it back).
+[[gnu::always_inline]] inline bool Inserter::walkOnce(WalkState& w, Vec2 p) {
+    const auto& G = m_mesh.G;
+    const auto& V = m_mesh.V;
+    const auto& O = m_mesh.O;
+    const std::int32_t t = w.tri;
+    const std::int32_t c0 = 3 * t;
+    auto moveTo = [&](std::int32_t corner, bool keepEntry) {
+        const std::int32_t o = O[corner];
+        w.tri = tri(o);
+        w.entry = keepEntry ? o : kNone;
+        ++w.steps;
+        return false;
+    };
+    // The walk ends in t: keep the signs it already knows for classify().
+    auto found = [&](std::int32_t c1, int s1, std::int32_t c2, int s2, std::int32_t c3, int s3) {
+        m_known = {t, {kUnknownSide, kUnknownSide, kUnknownSide}};
+        if (c1 != kNone) m_known.side[c1 - c0] = static_cast<std::int8_t>(s1);
+        if (c2 != kNone) m_known.side[c2 - c0] = static_cast<std::int8_t>(s2);
+        if (c3 != kNone) m_known.side[c3 - c0] = static_cast<std::int8_t>(s3);
+        return true;
+    };
+    m_known.tri = kNone;
+
+    // Corners are c0 + k; the edge opposite c0 + k runs from c0 + kNext[k] to c0 + kPrev[k]
+    // (index arithmetic instead of next()/prev(), whose % 3 costs more than the rest of a step).
+    if (m_options.boundary == Boundary::Exact && isVirtualTriangle(t)) {
+        const auto [k, x, y] = hullEdgeOf(c0);
+        const std::int32_t g = c0 + k;
+        const int s = orient2d(x, y, p);
+        if (s > 0 || (s == 0 && (onOpenSegment(x, y, p) || p == x || p == y))) {
+            return found(g, s, kNone, 0, kNone, 0);
+        }
+        // Not beyond this hull edge: restart the walk inside the mesh, across the edge.
+        return moveTo(g, false);
+    }
+
+    // We entered t across the edge opposite walkEntry because p is strictly beyond it: seen
+    // from t, p is strictly inside that edge (orient2d is exact, hence antisymmetric).
+    const std::int32_t entry = w.entry;
+    if (w.straight && entry != kNone) {
+        const int k = entry - c0;
+        const Vec2 a = G[V[entry]], b = G[V[c0 + kNext[k]]], c = G[V[c0 + kPrev[k]]];
+        const bool left = orient2d(w.origin, p, a) >= 0;
+        // Left: L leaves through the edge p(e)->e (opposite n(e)); right: e->n(e) (opposite p(e)).
+        const std::int32_t exitCorner = c0 + (left ? kNext[k] : kPrev[k]);
+        const Vec2 from = left ? c : a, to = left ? a : b;
+        const int s = orient2d(from, to, p);
+        if (s < 0) return moveTo(exitCorner, true);
+        return found(entry, 1, exitCorner, s, kNone, 0);
+    }
+
+    // Start triangle of the line walk: L runs from q, strictly inside t, to p. L leaves t
+    // through one edge; p on L not beyond that edge lies in the closed triangle, so one test
+    // of p decides (plus three for q and three for the sides of L).
+    Vec2 q{};
+    bool qInside = false;
+    if (w.straight) {
+        const Vec2 a = G[V[c0]], b = G[V[c0 + 1]], c = G[V[c0 + 2]];
+        q = {a.x / 3 + b.x / 3 + c.x / 3, a.y / 3 + b.y / 3 + c.y / 3};
+        qInside = orient2d(a, b, q) > 0 && orient2d(b, c, q) > 0 && orient2d(c, a, q) > 0;
+        if (qInside) {
+            bool left[3];
+            for (int k = 0; k < 3; ++k) left[k] = orient2d(q, p, G[V[c0 + k]]) >= 0;
+            for (int k = 0; k < 3; ++k) {
+                // Exit edge n(c)->p(c): its start right of L, its end left of L.
+                if (!left[kNext[k]] && left[kPrev[k]]) {
+                    const std::int32_t c = c0 + k;
+                    const int s = orient2d(G[V[c0 + kNext[k]]], G[V[c0 + kPrev[k]]], p);
+                    if (s >= 0) return found(c, s, kNone, 0, kNone, 0);
+                    w.origin = q;
+                    return moveTo(c, true);
+                }
+            }
+            // No exit edge: p == q, inside t; the side tests below say so.
+        }
+    }
+
+    // The visibility walk (or a start triangle whose centroid test failed): every side.
+    int side[3];
+    for (int k = 0; k < 3; ++k) {
+        const std::int32_t c = c0 + k;
+        if (c == entry) { side[k] = 1; continue; }  // we came from there
+        side[k] = orient2d(G[V[c0 + kNext[k]]], G[V[c0 + kPrev[k]]], p);
+    }
+    if (side[0] >= 0 && side[1] >= 0 && side[2] >= 0) return found(c0, side[0], c0 + 1, side[1], c0 + 2, side[2]);
+    if (w.straight) {
+        if (qInside) w.origin = q;
+        w.straight = false;  // needle triangle or a degenerate case: walk by visibility
+    }
+    for (int k = 0; k < 3; ++k) {
+        if (side[k] < 0) return moveTo(c0 + k, true);
+    }
+    return true;
+}
+
+Inserter::WalkState Inserter::walkState() const {
+    return {m_ctl.walkTri, m_ctl.walkEntry, m_ctl.walkSteps, m_ctl.straight, m_ctl.walkOrigin};
+}
+
+void Inserter::setWalkState(const WalkState& w) {
+    m_ctl.walkTri = w.tri;
+    m_ctl.walkEntry = w.entry;
+    m_ctl.walkSteps = w.steps;
+    m_ctl.straight = w.straight;
+    m_ctl.walkOrigin = w.origin;
+}
+
+bool Inserter::walkStep() {
+    WalkState w = walkState();
+    const bool found = walkOnce(w, currentPoint());
+    setWalkState(w);
+    return found;
+}
+
+void Inserter::walkToTarget() {
+    WalkState w = walkState();
+    const Vec2 p = currentPoint();
+    while (!walkOnce(w, p)) {}
+    setWalkState(w);
+}
+
+void Inserter::classify() {
+    const auto& G = m_mesh.G;
+    const auto& V = m_mesh.V;
+    const Vec2 p = currentPoint();
+    const std::int32_t t = m_ctl.walkTri, c0 = 3 * t;
+    // The side of p for the edge opposite c0 + k: from the walk when it knows it.
+    const bool known = m_known.tri == t;
+    m_known.tri = kNone;
+    auto sideOf = [&](int k, Vec2 a, Vec2 b) {
+        return known && m_known.side[k] != kUnknownSide ? int{m_known.side[k]} : orient2d(a, b, p);
+    };
+    m_ctl.where = Where::None;
+    if (m_options.boundary == Boundary::Exact && isVirtualTriangle(t)) {
+        const auto [k, x, y] = hullEdgeOf(c0);
+        const std::int32_t g = c0 + k;
+        const int s = sideOf(k, x, y);
+        if (s > 0) { m_ctl.where = Where::Outside; m_ctl.whereCorner = g; }
+        else if (s == 0 && p == x) { m_ctl.where = Where::OnVertex; m_ctl.whereCorner = c0 + kNext[k]; }
+        else if (s == 0 && p == y) { m_ctl.where = Where::OnVertex; m_ctl.whereCorner = c0 + kPrev[k]; }
+        else if (s == 0 && onOpenSegment(x, y, p)) { m_ctl.where = Where::OnEdge; m_ctl.whereCorner = g; }
+        return;
+    }
+    int side[3], zeros = 0;
+    for (int k = 0; k < 3; ++k) {
+        side[k] = sideOf(k, G[V[c0 + kNext[k]]], G[V[c0 + kPrev[k]]]);
+        if (side[k] < 0) return;
+        zeros += side[k] == 0;
+    }
+    if (zeros == 0) {
+        m_ctl.where = Where::InTriangle;
+        m_ctl.whereCorner = c0;
+    } else if (zeros == 1) {
+        m_ctl.where = Where::OnEdge;
+        m_ctl.whereCorner = c0 + (side[0] == 0 ? 0 : side[1] == 0 ? 1 : 2);
+    } else {
+        m_ctl.where = Where::OnVertex;
+        m_ctl.whereCorner = c0 + (side[0] != 0 ? 0 : side[1] != 0 ? 1 : 2);
+    }
+}
+
+// ============================================================================================
+// [SECTION] The state machine: one operation per step
+// ============================================================================================
+
+template <class Rec>
+void Inserter::doStart(Rec& rec, Op& op) {
+    const std::int32_t n = m_numInput;
+    if (m_options.boundary == Boundary::Super) {
+        appendTriangles(rec, 1);
+        setV(rec, 0, n); setV(rec, 1, n + 1); setV(rec, 2, n + 2);
+        m_ctl.cursor = 0;
+    } else {
+        const auto& G = m_mesh.G;
+        if (n < 3 || orient2d(G[vertexAt(0)], G[vertexAt(1)], G[vertexAt(2)]) == 0) {
+            // Fewer than three points, or all collinear: there is no triangle to make. Equal
+            // points are still reported, as the triangulating path would.
+            collectDuplicatesWithoutMesh();
+            m_ctl.cursor = n;
+            m_ctl.phase = Phase::Finalize;
+            op.a = kNone;
+            return;
+        }
+        std::int32_t a = vertexAt(0), b = vertexAt(1), c = vertexAt(2);
+        if (orient2d(G[a], G[b], G[c]) < 0) std::swap(b, c);
+        const std::int32_t g = n;
+        appendTriangles(rec, 4);
+        // t0 = (a, b, c); ghosts t1 = (b, a, g), t2 = (c, b, g), t3 = (a, c, g).
+        const std::int32_t vs[12] = {a, b, c, b, a, g, c, b, g, a, c, g};
+        for (int k = 0; k < 12; ++k) setV(rec, k, vs[k]);
+        link(rec, 2, 5); link(rec, 0, 8); link(rec, 1, 11);  // finite edges <-> ghosts
+        link(rec, 3, 10); link(rec, 4, 6); link(rec, 7, 9);  // ghost edges to g
+        m_ctl.cursor = 3;
+        m_stats.inserted += 3;
+    }
+    op.a = 0;
+    LocatorContext ctx{&m_mesh, m_numInput, m_options.boundary == Boundary::Exact,
+                       static_cast<std::size_t>(m_numInput)};
+    m_locator->reset(ctx, m_bounds);
+    m_locatorWantsChanges = m_locator->wantsChanges();
+    m_ctl.lastTri = 0;
+    m_ctl.phase = m_ctl.cursor < n ? Phase::Locate : Phase::Finalize;
+}
+
+void Inserter::collectDuplicatesWithoutMesh() {
+    const auto& G = m_mesh.G;
+    std::vector<std::int32_t> ids(static_cast<std::size_t>(m_numInput));
+    for (std::int32_t v = 0; v < m_numInput; ++v) ids[v] = v;
+    std::sort(ids.begin(), ids.end(), [&](std::int32_t a, std::int32_t b) {
+        if (G[a].x != G[b].x) return G[a].x < G[b].x;
+        if (G[a].y != G[b].y) return G[a].y < G[b].y;
+        return inputId(a) < inputId(b);
+    });
+    m_skipped.clear();
+    for (std::size_t i = 1; i < ids.size(); ++i) {
+        if (G[ids[i]] == G[ids[i - 1]]) m_skipped.push_back(inputId(ids[i]));
+    }
+    std::sort(m_skipped.begin(), m_skipped.end());
+    m_stats.duplicates = static_cast<std::int64_t>(m_skipped.size());
+}
+
+template <class Rec>
+void Inserter::doPlace(Rec& rec, Op& op) {
+    const std::int32_t v = vertexAt(m_ctl.cursor);
+    const std::int32_t c = m_ctl.whereCorner;
+    op.where = m_ctl.where;
+    switch (m_ctl.where) {
+        case Where::InTriangle:
+        case Where::Outside:
+            op.type = OpType::Split;
+            op.a = tri(c);
+            split(rec, tri(c), v);
+            break;
+        case Where::OnEdge:
+            op.type = OpType::SplitEdge;
+            op.a = c;
+            op.b = m_mesh.O[c];
+            splitEdge(rec, c, v);
+            ++m_stats.edgeSplits;
+            break;
+        default:
+            op.type = OpType::SkipDuplicate;
+            op.a = c;
+            op.b = m_mesh.V[c];
+            keepFirstOccurrence(rec, c, v);
+            ++m_stats.duplicates;
+            ++m_ctl.cursor;
+            m_ctl.walkTri = kNone;
+            m_ctl.phase = m_ctl.cursor < m_numInput ? Phase::Locate : Phase::Finalize;
+            return;
+    }
+    m_ctl.phase = Phase::Test;
+}
+
+template <class Rec>
+void Inserter::doFinalize(Rec& rec, Op& op) {
+    // Only the virtual triangles change: they are the stars of the virtual vertices (a few per
+    // hull edge), found by turning around each virtual vertex. The last triangles fill their
+    // slots (swap-remove), so the work is O(hull), not a pass over the whole mesh.
+    auto& V = m_mesh.V;
+    auto& O = m_mesh.O;
+    const std::int32_t nt = m_mesh.numTriangles();
+    const std::vector<std::int32_t> gone = virtualTriangles();
+    const std::int32_t kept = nt - static_cast<std::int32_t>(gone.size());
+    op.a = nt - kept;  // triangles removed
+    // Cut the links from kept triangles into virtual ones: those edges are the boundary now.
+    for (const std::int32_t t : gone) {
+        for (std::int32_t c = 3 * t; c < 3 * t + 3; ++c) {
+            const std::int32_t o = O[c];
+            if (o != kNone && !isVirtualTriangle(tri(o))) setO(rec, o, kNone);
+        }
+    }
+    // Kept triangles at or past the new end move, in increasing order, into the slots below it
+    // that virtual triangles leave, in increasing order; their neighbours follow them.
+    auto hole = gone.begin();
+    for (std::int32_t s = kept; s < nt; ++s) {
+        if (std::binary_search(gone.begin(), gone.end(), s)) continue;
+        const std::int32_t t = *hole++;
+        for (int k = 0; k < 3; ++k) {
+            const std::int32_t o = O[3 * s + k];
+            setV(rec, 3 * t + k, V[3 * s + k]);
+            setO(rec, 3 * t + k, o);
+            if (o != kNone) setO(rec, o, 3 * t + k);
+        }
+    }
+    if constexpr (Rec::kOn) {
+        // Cells past the new end disappear: record them so that undo can bring them back.
+        for (std::int32_t c = 3 * kept; c < 3 * nt; ++c) {
+            setV(rec, c, kNone);
+            setO(rec, c, kNone);
+        }
+    }
+    V.resize(3 * static_cast<std::size_t>(kept));
+    O.resize(3 * static_cast<std::size_t>(kept));
+    m_mesh.G.resize(m_numInput);
+    m_ctl.phase = Phase::Done;
+}
+
+template <class Rec>
+Op Inserter::stepImpl(Rec& rec) {
+    Op op;
+    op.before = m_ctl;
+    op.vertex = currentVertex();
+    op.trianglesBefore = m_mesh.numTriangles();
+    op.verticesBefore = m_mesh.numVertices();
+    switch (m_ctl.phase) {
+        case Phase::Start:
+            op.type = OpType::Start;
+            doStart(rec, op);
+            break;
+        case Phase::Locate: {
+            if (m_ctl.walkTri == kNone) beginLocate();
+            const std::int32_t from = m_ctl.walkTri;
+            op.a = from;
+            if (!walkStep()) {
+                op.type = OpType::LocateStep;
+                op.b = m_ctl.walkTri;
+                ++m_stats.walkSteps;
+                break;
+            }
+            classify();
+            if (m_ctl.where == Where::None) {  // cannot happen with exact predicates; stay safe
+                m_ctl.straight = false;
+                op.type = OpType::LocateStep;
+                op.b = from;
+                break;
+            }
+            op.type = OpType::Located;
+            op.where = m_ctl.where;
+            op.b = m_ctl.whereCorner;
+            m_locator->located(currentPoint(), m_ctl.walkTri, m_ctl.walkSteps);
+            m_ctl.phase = Phase::Place;
+            break;
+        }
+        case Phase::Place:
+            doPlace(rec, op);
+            break;
+        case Phase::Test: {
+            const std::int32_t c = m_stack.back();
+            m_stack.pop_back();
+            op.type = OpType::InCircleTest;
+            op.a = c;
+            op.b = m_mesh.O[c];
+            op.sign = static_cast<std::int8_t>(inCircleSign(c));
+            ++m_stats.inCircleTests;
+            if (op.sign > 0) {
+                m_ctl.flipCorner = c;
+                m_ctl.phase = Phase::Flip;
+            } else {
+                m_ctl.phase = m_stack.empty() ? Phase::Finish : Phase::Test;
+            }
+            break;
+        }
+        case Phase::Flip:
+            op.type = OpType::Flip;
+            op.a = m_ctl.flipCorner;
+            op.b = m_mesh.O[op.a];
+            flip(rec, op.a);
+            ++m_stats.flips;
+            m_ctl.flipCorner = kNone;
+            m_ctl.phase = Phase::Test;
+            break;
+        case Phase::Finish: {
+            op.type = OpType::Inserted;
+            // The last corner tested is at the new vertex; its triangle is the next walk's start.
+            // Flips keep the new vertex in both triangles they touch, so the last appended
+            // triangle still has it: it is the next walk's start.
+            const std::int32_t t = m_mesh.numTriangles() - 1;
+            for (std::int32_t c = 3 * t; c < 3 * t + 3; ++c) {
+                if (m_mesh.V[c] == op.vertex) op.a = c;
+            }
+            m_ctl.lastTri = t;
+            ++m_stats.inserted;
+            ++m_ctl.cursor;
+            m_ctl.walkTri = kNone;
+            m_ctl.phase = m_ctl.cursor < m_numInput ? Phase::Locate : Phase::Finalize;
+            break;
+        }
+        case Phase::Finalize:
+            op.type = OpType::Finalize;
+            doFinalize(rec, op);
+            break;
+        case Phase::Done:
+            throw std::logic_error("Inserter::step called after the end");
+    }
+    op.trianglesAfter = m_mesh.numTriangles();
+    op.verticesAfter = m_mesh.numVertices();
+    return op;
+}
+
+Op Inserter::step(Journal* journal) {
+    JournalRec rec{journal};
+    const std::uint32_t first = journal ? journal->changeCount() : 0;
+    Op op = stepImpl(rec);
+    if (journal) {
+        op.firstChange = first;
+        op.numChanges = journal->changeCount() - first;
+        journal->push(op);
+    }
+    return op;
+}
+
+// ============================================================================================
+// [SECTION] The batch path: the same primitives, no records, no per-op dispatch
+// ============================================================================================
+
+// The batch path stores the points in insertion order while it runs (vertex id = rank), so
+// that consecutive insertions touch neighbouring memory: with BRIO/Hilbert order this halves
+// the cache misses of a million-point run. The points in input order are kept aside (G never
+// changes during a run) and put back at the end, where the ids are mapped back, so the result
+// is bit for bit the one the recorded path makes.
+void Inserter::permuteForBatch() {
+    const std::int32_t n = m_numInput;
+    std::vector<Vec2> byRank;
+    byRank.reserve(m_mesh.G.size());
+    adviseHugePages(byRank.data(), m_mesh.G.size() * sizeof(Vec2));
+    for (std::int32_t k = 0; k < n; ++k) byRank.push_back(m_mesh.G[m_order[k]]);
+    byRank.insert(byRank.end(), m_mesh.G.begin() + n, m_mesh.G.end());
+    m_byInput = std::move(m_mesh.G);
+    m_mesh.G = std::move(byRank);
+    m_permuted = true;
+}
+
+void Inserter::unpermute() {
+    const std::int32_t n = m_numInput;
+    const std::size_t size = m_mesh.G.size();  // Finalize may have dropped the virtual points
+    m_mesh.G = std::move(m_byInput);
+    m_byInput = {};
+    m_mesh.G.resize(size);
+    for (std::int32_t& v : m_mesh.V) {
+        if (v < n) v = m_order[v];
+    }
+    m_ctl.lastTri = 0;
+    m_permuted = false;
+}
+
+void Inserter::run() {
+    NullRec rec;
+    if (m_ctl.phase == Phase::Start) permuteForBatch();
+    // Finish whatever the state machine was in the middle of.
+    while (m_ctl.phase != Phase::Done &&
+           !(m_ctl.phase == Phase::Locate && m_ctl.walkTri == kNone)) {
+        if (m_ctl.phase == Phase::Finalize) break;
+        stepImpl(rec);
+    }
+    const std::int32_t n = m_numInput;
+    if (m_ctl.phase == Phase::Locate) {
+        const std::size_t expected = 3 * static_cast<std::size_t>(2 * n + 8);
+        if (m_mesh.V.capacity() < expected) {
+            m_mesh.V.reserve(expected);
+            m_mesh.O.reserve(expected);
+            adviseHugePages(m_mesh.V.data(), expected * sizeof(std::int32_t));
+            adviseHugePages(m_mesh.O.data(), expected * sizeof(std::int32_t));
+        }
+        m_stack.reserve(64);
+        for (; m_ctl.cursor < n; ++m_ctl.cursor) {
+            beginLocate();
+            while (true) {
+                walkToTarget();
+                classify();
+                if (m_ctl.where != Where::None) break;
+                m_ctl.straight = false;
+            }
+            m_stats.walkSteps += m_ctl.walkSteps;
+            m_locator->located(currentPoint(), m_ctl.walkTri, m_ctl.walkSteps);
+            // Permuted (a batch from the start): vertex id = insertion rank; a run finishing a
+            // recorded one mid-way keeps the input ids.
+            const std::int32_t v = vertexAt(m_ctl.cursor);
+            const std::int32_t c = m_ctl.whereCorner;
+            if (m_ctl.where == Where::OnVertex) {
+                keepFirstOccurrence(rec, c, v);
+                ++m_stats.duplicates;
+                continue;
+            }
+            if (m_ctl.where == Where::OnEdge) {
+                splitEdge(rec, c, v);
+                ++m_stats.edgeSplits;
+            } else {
+                split(rec, tri(c), v);
+            }
+            while (!m_stack.empty()) {
+                const std::int32_t e = m_stack.back();
+                m_stack.pop_back();
+                ++m_stats.inCircleTests;
+                if (inCircleSign(e) > 0) {
+                    flip(rec, e);
+                    ++m_stats.flips;
+                }
+            }
+            m_ctl.lastTri = m_mesh.numTriangles() - 1;
+            ++m_stats.inserted;
+        }
+        m_ctl.walkTri = kNone;
+        m_ctl.phase = Phase::Finalize;
+    }
+    if (m_ctl.phase == Phase::Finalize) {
+        Op op;
+        doFinalize(rec, op);
+    }
+    if (m_permuted) unpermute();
+}
+
+// ============================================================================================
+// [SECTION] Undo / redo of recorded ops
+// ============================================================================================
+
+namespace {
+
+// How an op moved the flip stack: pushes are the corners at the new vertex facing new edges.
+int pushesOf(const Op& op) {
+    switch (op.type) {
+        case OpType::Split: return 3;
+        case OpType::SplitEdge: return op.b == kNone ? 2 : 4;
+        case OpType::Flip: return 2;
+        default: return 0;
+    }
+}
+
+}  // namespace
+
+void Inserter::undo(const Op& op, const std::vector<CellChange>& changes) {
+    const std::size_t big = 3 * static_cast<std::size_t>(std::max(op.trianglesBefore, op.trianglesAfter));
+    m_mesh.V.resize(big, kNone);
+    m_mesh.O.resize(big, kNone);
+    for (std::uint32_t i = op.numChanges; i-- > 0;) {
+        const CellChange& ch = changes[op.firstChange + i];
+        (ch.isO() ? m_mesh.O : m_mesh.V)[ch.corner()] = ch.before;
+    }
+    m_mesh.V.resize(3 * static_cast<std::size_t>(op.trianglesBefore));
+    m_mesh.O.resize(3 * static_cast<std::size_t>(op.trianglesBefore));
+    if (op.verticesBefore > m_mesh.numVertices()) {
+        m_mesh.G.insert(m_mesh.G.end(), m_virtualPoints.begin(), m_virtualPoints.end());
+    }
+    m_stack.resize(m_stack.size() - pushesOf(op));
+    if (op.type == OpType::InCircleTest) m_stack.push_back(op.a);
+    switch (op.type) {
+        case OpType::Start:
+            m_stats = {};
+            m_skipped.clear();
+            break;
+        case OpType::LocateStep: --m_stats.walkSteps; break;
+        case OpType::SplitEdge: --m_stats.edgeSplits; break;
+        case OpType::InCircleTest: --m_stats.inCircleTests; break;
+        case OpType::Flip: --m_stats.flips; break;
+        case OpType::SkipDuplicate: --m_stats.duplicates; m_skipped.pop_back(); break;
+        case OpType::Inserted: --m_stats.inserted; break;
+        default: break;
+    }
+    m_ctl = op.before;
+    if (m_locatorWantsChanges && !m_bulk && op.type != OpType::Finalize) {
+        std::vector<std::int32_t> tris;
+        for (std::uint32_t i = 0; i < op.numChanges; ++i) {
+            const std::int32_t t = tri(changes[op.firstChange + i].corner());
+            if (t < m_mesh.numTriangles()) tris.push_back(t);
+        }
+        std::sort(tris.begin(), tris.end());
+        tris.erase(std::unique(tris.begin(), tris.end()), tris.end());
+        notifyChanged(tris.data(), static_cast<int>(tris.size()));
+    }
+}
+
+void Inserter::redo(const Op& op, const std::vector<CellChange>& changes, const Control& after) {
+    const std::size_t big = 3 * static_cast<std::size_t>(std::max(op.trianglesBefore, op.trianglesAfter));
+    m_mesh.V.resize(big, kNone);
+    m_mesh.O.resize(big, kNone);
+    for (std::uint32_t i = 0; i < op.numChanges; ++i) {
+        const CellChange& ch = changes[op.firstChange + i];
+        (ch.isO() ? m_mesh.O : m_mesh.V)[ch.corner()] = ch.after;
+    }
+    m_mesh.V.resize(3 * static_cast<std::size_t>(op.trianglesAfter));
+    m_mesh.O.resize(3 * static_cast<std::size_t>(op.trianglesAfter));
+    if (op.verticesAfter < m_mesh.numVertices()) m_mesh.G.resize(op.verticesAfter);
+    if (op.type == OpType::InCircleTest) m_stack.pop_back();
+    // Re-derive the pushes exactly as the forward op made them.
+    switch (op.type) {
+        case OpType::Split: {
+            const std::int32_t t1 = op.trianglesBefore;
+            m_stack.insert(m_stack.end(), {3 * op.a + 2, 3 * t1 + 2, 3 * t1 + 5});
+            break;
+        }
+        case OpType::SplitEdge: {
+            const std::int32_t x = 3 * op.trianglesBefore;
+            m_stack.push_back(prev(op.a));
+            m_stack.push_back(x + 1);
+            if (op.b != kNone) {
+                m_stack.push_back(prev(op.b));
+                m_stack.push_back(x + 4);
+            }
+            break;
+        }
+        case OpType::Flip:
+            m_stack.push_back(op.a);
+            m_stack.push_back(prev(op.b));
+            break;
+        default: break;
+    }
+    switch (op.type) {
+        case OpType::Start:
+            if (m_options.boundary == Boundary::Exact && op.a != kNone) m_stats.inserted += 3;
+            if (op.a == kNone) collectDuplicatesWithoutMesh();
+            break;
+        case OpType::LocateStep: ++m_stats.walkSteps; break;
+        case OpType::SplitEdge: ++m_stats.edgeSplits; break;
+        case OpType::InCircleTest: ++m_stats.inCircleTests; break;
+        case OpType::Flip: ++m_stats.flips; break;
+        case OpType::SkipDuplicate:
+            ++m_stats.duplicates;
+            m_skipped.push_back(std::max(op.vertex, op.b));
+            break;
+        case OpType::Inserted: ++m_stats.inserted; break;
+        default: break;
+    }
+    m_ctl = after;
+    if (m_locatorWantsChanges && !m_bulk && op.type != OpType::Finalize) {
+        std::vector<std::int32_t> tris;
+        for (std::uint32_t i = 0; i < op.numChanges; ++i) tris.push_back(tri(changes[op.firstChange + i].corner()));
+        std::sort(tris.begin(), tris.end());
+        tris.erase(std::unique(tris.begin(), tris.end()), tris.end());
+        notifyChanged(tris.data(), static_cast<int>(tris.size()));
+    }
+}
+
+// ============================================================================================
+// [SECTION] Journal
+// ============================================================================================
+
+const Op* Journal::forward() {
+    if (m_pos < m_ops.size()) {
+        const Op& op = m_ops[m_pos];
+        const Control& after = m_pos + 1 < m_ops.size() ? m_ops[m_pos + 1].before : m_tip;
+        m_ins->redo(op, m_changes, after);
+        ++m_pos;
+        return &op;
+    }
+    if (m_ins->done()) return nullptr;
+    m_ins->step(this);
+    return &m_ops.back();
+}
+
+const Op* Journal::back() {
+    if (m_pos == 0) return nullptr;
+    if (m_pos == m_ops.size()) m_tip = m_ins->control();
+    --m_pos;
+    m_ins->undo(m_ops[m_pos], m_changes);
+    return &m_ops[m_pos];
+}
+
+void Journal::seek(std::size_t position) {
+    // Long jumps repaint the locator's index once at the end instead of after every op.
+    // Only replays are bulk: new steps need an up-to-date locator.
+    const std::size_t target = std::min(position, m_ops.size());
+    const bool bulk = (m_pos > target ? m_pos - target : target - m_pos) > 64;
+    if (bulk) m_ins->setBulk(true);
+    while (m_pos > target && back()) {}
+    while (m_pos < target && forward()) {}
+    if (bulk) m_ins->setBulk(false);
+    while (m_pos < position && forward()) {}
+}
+
+}  // namespace dlab

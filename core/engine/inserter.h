@@ -1,0 +1,272 @@
+// Lawson's incremental Delaunay insertion as a resumable state machine of recorded operations.
+//
+// step() performs exactly one operation (one walk step, a split, one in-circle test, one flip,
+// ...) and returns its Op record. A Journal keeps the records and their cell changes so that
+// any prefix can be undone exactly. run() is the batch path: the same primitives (walk step,
+// split, test, flip) instantiated with a recorder that does nothing, so the fast path pays
+// nothing for the teaching path.
+//
+// Boundary modes:
+//   Exact (default): one ghost vertex g = |input| joined to every hull edge. A ghost triangle
+//     (x, y, g) stands for the half-plane right of the hull edge y->x; its "circumcircle" is
+//     that open half-plane plus the open segment xy. The result is the Delaunay triangulation of
+//     the input with its convex hull, collinear hull points included.
+//   Super: the paper's finite super-triangle, its three vertices at the end of G; triangles
+//     touching them are removed at the end. Near the hull the result can be non-convex and
+//     non-Delaunay: that is the paper's flaw, kept on purpose for the lesson that shows it.
+#pragma once
+
+#include "core/engine/geometry.h"
+#include "core/engine/locator.h"
+#include "core/engine/mesh.h"
+#include "core/engine/order.h"
+
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace dlab {
+
+enum class Boundary : std::uint8_t { Exact, Super };
+const char* toString(Boundary b);
+std::optional<Boundary> parseBoundary(std::string_view name);
+
+enum class OpType : std::uint8_t {
+    Start,          // the first triangle(s): super-triangle, or first non-collinear triple + ghosts
+    LocateStep,     // the walk moved from triangle a to triangle b
+    Located,        // the walk ended: triangle a contains the point (where = inside/edge/vertex)
+    Split,          // 1->3: triangle a split around the new vertex; 2 triangles appended
+    SplitEdge,      // 2->4 (or 1->2 on a boundary): the edge opposite corner a split
+    InCircleTest,   // is the new vertex inside the circle of the triangle across the edge
+                    // opposite corner a (corner b)? sign in `sign`
+    Flip,           // the edge opposite corner a (shared with corner b) flipped in place
+    SkipDuplicate,  // the point equals vertex `b`: skipped (the lower input index is kept)
+    Inserted,       // the vertex is in, every edge around it is Delaunay
+    Finalize,       // virtual triangles removed, V and O compacted
+};
+const char* toString(OpType t);
+std::optional<OpType> parseOpType(std::string_view name);
+
+enum class Where : std::uint8_t { None, InTriangle, OnEdge, OnVertex, Outside };
+const char* toString(Where w);
+
+// One changed cell of V or O. slot = 2 * corner + (O ? 1 : 0).
+struct CellChange {
+    std::int32_t slot;
+    std::int32_t before;
+    std::int32_t after;
+    bool isO() const { return slot & 1; }
+    std::int32_t corner() const { return slot >> 1; }
+};
+
+enum class Phase : std::uint8_t { Start, Locate, Place, Test, Flip, Finish, Finalize, Done };
+
+// Everything the state machine needs besides the mesh and the flip stack.
+struct Control {
+    Phase phase = Phase::Start;
+    std::int32_t cursor = 0;        // position in the insertion order of the current point
+    std::int32_t walkTri = kNone;   // current triangle of the walk
+    std::int32_t walkEntry = kNone; // corner of walkTri facing the edge we entered through
+    std::int32_t walkSteps = 0;
+    bool straight = true;           // the paper's line walk (false: visibility-walk fallback)
+    Vec2 walkOrigin{};              // q, the start of the line L = q->p of the straight walk
+    Where where = Where::None;      // classification once located
+    std::int32_t whereCorner = kNone; // Located: corner facing the edge / at the vertex
+    std::int32_t flipCorner = kNone;  // the edge (opposite this corner) a positive test flips
+    std::int32_t lastTri = 0;       // a triangle of the last inserted vertex
+};
+
+struct Op {
+    OpType type = OpType::Start;
+    Where where = Where::None;
+    std::int8_t sign = 0;           // InCircleTest: +1 flip, 0 cocircular, -1 Delaunay
+    std::int32_t vertex = kNone;    // input index of the point being inserted
+    std::int32_t a = kNone;         // see OpType
+    std::int32_t b = kNone;
+    std::int32_t trianglesBefore = 0;
+    std::int32_t trianglesAfter = 0;
+    std::int32_t verticesBefore = 0;  // |G| (Finalize drops the virtual vertices)
+    std::int32_t verticesAfter = 0;
+    std::uint32_t firstChange = 0;  // range in Journal::changes()
+    std::uint32_t numChanges = 0;
+    Control before;                 // control state before the op, for exact undo
+};
+
+struct InsertOptions {
+    Boundary boundary = Boundary::Exact;
+    LocatorKind locator = LocatorKind::Walk;
+    OrderKind order = OrderKind::Brio;
+    std::uint64_t seed = 1;
+    LocatorOptions locatorOptions;
+};
+
+// Whether two option sets make the same run, op for op (the ID buffer's size only changes how
+// the locator finds triangles, not which triangle it finds).
+inline bool sameRun(const InsertOptions& a, const InsertOptions& b) {
+    return a.boundary == b.boundary && a.locator == b.locator && a.order == b.order && a.seed == b.seed;
+}
+
+struct InsertStats {
+    std::int64_t inserted = 0;
+    std::int64_t duplicates = 0;
+    std::int64_t flips = 0;
+    std::int64_t inCircleTests = 0;
+    std::int64_t walkSteps = 0;
+    std::int64_t edgeSplits = 0;
+};
+
+class Journal;
+
+class Inserter {
+public:
+    // Throws std::invalid_argument for non-finite coordinates or too many points, and
+    // std::domain_error when super mode cannot build a finite super-triangle.
+    Inserter(std::vector<Vec2> points, const InsertOptions& options = {},
+             std::unique_ptr<Locator> locator = nullptr);
+    ~Inserter();
+    Inserter(const Inserter&) = delete;
+    Inserter& operator=(const Inserter&) = delete;
+
+    // One recorded operation (journal may be null: then nothing is kept for undo).
+    Op step(Journal* journal = nullptr);
+    // Batch: run to the end with recording compiled out.
+    void run();
+    bool done() const { return m_ctl.phase == Phase::Done; }
+
+    const Mesh& mesh() const { return m_mesh; }
+    const InsertOptions& options() const { return m_options; }
+    const std::vector<std::int32_t>& order() const { return m_order; }
+    std::int32_t numInput() const { return m_numInput; }
+    // Vertices >= firstVirtual() are the ghost vertex or the super-triangle's (until Finalize).
+    std::int32_t firstVirtual() const { return m_numInput; }
+    bool isVirtual(std::int32_t v) const { return v >= m_numInput; }
+    bool isVirtualTriangle(std::int32_t t) const;
+    const Control& control() const { return m_ctl; }
+    const std::vector<std::int32_t>& flipStack() const { return m_stack; }
+    const InsertStats& stats() const { return m_stats; }
+    Locator* locator() { return m_locator.get(); }
+    // Input points that ended up as no vertex of the result (duplicates), in input order.
+    const std::vector<std::int32_t>& skipped() const { return m_skipped; }
+    // The point currently being inserted (kNone when none).
+    std::int32_t currentVertex() const;
+
+    // Journal support: revert / re-apply one recorded op.
+    void undo(const Op& op, const std::vector<CellChange>& changes);
+    // Bulk mode (long seeks): undo/redo stop notifying the locator; leaving it rebuilds the
+    // locator's index once from the current mesh.
+    void setBulk(bool on);
+    void redo(const Op& op, const std::vector<CellChange>& changes, const Control& after);
+
+private:
+    template <class Rec> Op stepImpl(Rec& rec);
+    template <class Rec> void doStart(Rec& rec, Op& op);
+    template <class Rec> void doPlace(Rec& rec, Op& op);
+    template <class Rec> void doFinalize(Rec& rec, Op& op);
+
+    template <class Rec> void setV(Rec& rec, std::int32_t c, std::int32_t v);
+    template <class Rec> void setO(Rec& rec, std::int32_t c, std::int32_t o);
+    template <class Rec> void link(Rec& rec, std::int32_t c, std::int32_t d);  // O[c]=d, O[d]=c
+    template <class Rec> std::int32_t appendTriangles(Rec& rec, int count);
+    template <class Rec> void split(Rec& rec, std::int32_t t, std::int32_t v);
+    template <class Rec> void splitEdge(Rec& rec, std::int32_t c, std::int32_t v);
+    template <class Rec> void flip(Rec& rec, std::int32_t c);
+    template <class Rec> void keepFirstOccurrence(Rec& rec, std::int32_t existing, std::int32_t v);
+
+    void collectDuplicatesWithoutMesh();  // all points collinear: report equal points anyway
+    std::vector<std::int32_t> virtualTriangles() const;  // sorted ids of triangles to drop
+    void beginLocate();
+    struct HullEdge {
+        int k;       // index of the ghost vertex's corner in its triangle
+        Vec2 x, y;   // the hull edge opposite it
+    };
+    HullEdge hullEdgeOf(std::int32_t c0) const;
+    // The walk's part of Control, as locals while it runs.
+    struct WalkState {
+        std::int32_t tri;
+        std::int32_t entry;
+        std::int32_t steps;
+        bool straight;
+        Vec2 origin;
+    };
+    WalkState walkState() const;
+    void setWalkState(const WalkState& w);
+    bool walkOnce(WalkState& w, Vec2 p);  // one step; true when w.tri contains p
+    bool walkStep();      // one step of the walk; true when the walk has found the triangle
+    void walkToTarget();  // walkStep() until it returns true, with the state in registers
+    void classify();   // sets where / whereCorner for walkTri
+    int inCircleSign(std::int32_t c) const;  // is V[c] inside the circle across the edge?
+    bool onOpenSegment(Vec2 a, Vec2 b, Vec2 p) const;
+    void notifyChanged(const std::int32_t* tris, int count);
+    // While run() works on points stored in insertion order, vertex ids are insertion ranks.
+    std::int32_t vertexAt(std::int32_t cursor) const { return m_permuted ? cursor : m_order[cursor]; }
+    std::int32_t inputId(std::int32_t v) const { return m_permuted && v < m_numInput ? m_order[v] : v; }
+    Vec2 currentPoint() const { return m_mesh.G[vertexAt(m_ctl.cursor)]; }
+    void permuteForBatch();
+    void unpermute();
+
+    InsertOptions m_options;
+    Mesh m_mesh;
+    std::int32_t m_numInput = 0;
+    std::vector<std::int32_t> m_order;
+    std::vector<Vec2> m_virtualPoints;  // super-triangle vertices or the ghost placeholder
+    std::unique_ptr<Locator> m_locator;
+    bool m_locatorWantsChanges = false;
+    bool m_permuted = false;
+    std::vector<Vec2> m_byInput;  // while run() works by rank: the points in input order
+    bool m_bulk = false;
+    Bounds m_bounds{};
+    Control m_ctl;
+    // Signs of orient2d(edge opposite corner 3*tri+k, p) that the walk computed (or derived
+    // exactly) when it stopped in tri, so that classify() does not evaluate them again. Valid
+    // only between a walkStep() that returns true and the classify() right after it.
+    static constexpr std::int8_t kUnknownSide = 2;
+    struct KnownSides {
+        std::int32_t tri = kNone;
+        std::array<std::int8_t, 3> side{};
+    };
+    KnownSides m_known;
+    std::vector<std::int32_t> m_stack;   // flip work-list: corners at the new vertex
+    std::vector<std::int32_t> m_skipped;
+    InsertStats m_stats;
+};
+
+// The record of a run: ops and their cell changes, with a cursor for undo/redo.
+class Journal {
+public:
+    explicit Journal(Inserter& inserter) : m_ins(&inserter) {}
+    // Reserves room for this many ops and cell changes up front: a vector doubling at millions
+    // of ops (96 bytes each) copies hundreds of megabytes in one step, a visible stall.
+    Journal(Inserter& inserter, std::size_t expectedOps, std::size_t expectedChanges) : m_ins(&inserter) {
+        m_ops.reserve(expectedOps);
+        m_changes.reserve(expectedChanges);
+    }
+    // Forward one op: replays a recorded op after an undo, else asks the inserter for a new one.
+    // Returns nullptr at the end.
+    const Op* forward();
+    const Op* back();                     // undo the op before the cursor; nullptr at the start
+    void seek(std::size_t position);      // forward/back until position (clamped)
+    std::size_t position() const { return m_pos; }
+    std::size_t recorded() const { return m_ops.size(); }
+    bool atEnd() const { return m_pos == m_ops.size() && m_ins->done(); }
+    const std::vector<Op>& ops() const { return m_ops; }
+    const std::vector<CellChange>& changes() const { return m_changes; }
+    const Op* current() const { return m_pos > 0 ? &m_ops[m_pos - 1] : nullptr; }
+
+    // Used by the inserter while recording.
+    void record(const CellChange& c) { m_changes.push_back(c); }
+    std::uint32_t changeCount() const { return static_cast<std::uint32_t>(m_changes.size()); }
+    void push(const Op& op) { m_ops.push_back(op); ++m_pos; }
+
+private:
+    Inserter* m_ins;
+    std::vector<Op> m_ops;
+    std::vector<CellChange> m_changes;
+    std::size_t m_pos = 0;
+    Control m_tip;  // the inserter's control state after the last recorded op
+};
+
+}  // namespace dlab

@@ -1,0 +1,720 @@
+// Point-set readers: file loading, binary sniffing, line/field splitting, strict numbers, formats.
+//
+// [SECTION] Messages and errors
+// [SECTION] Text checks (size, empty, binary)
+// [SECTION] Lines and fields
+// [SECTION] Numbers
+// [SECTION] Triangle .node
+// [SECTION] XY / CSV
+// [SECTION] Rossignac .pts
+// [SECTION] Files and format sniffing
+#include "core/engine/io_read.h"
+
+#include <algorithm>
+#include <cerrno>
+#include <charconv>
+#include <climits>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <memory>
+#include <system_error>
+#include <utility>
+
+namespace dlab {
+
+namespace {
+
+using LineNo = std::int64_t;  // 64-bit so that counting the lines of any buffer cannot overflow
+
+//-----------------------------------------------------------------------------------------------
+// [SECTION] Messages and errors
+//-----------------------------------------------------------------------------------------------
+
+// Messages quote the input, and the input may be anything: escape what could break the one-line
+// what() or a terminal, and shorten long snippets. High bytes are kept for file names (UTF-8
+// paths are common) but escaped in snippets of content (there they are usually garbage).
+std::string printable(std::string_view s, std::size_t maxLen, bool keepHighBytes) {
+    std::string out;
+    const std::size_t n = std::min(s.size(), maxLen);
+    out.reserve(n + 3);
+    for (std::size_t i = 0; i < n; ++i) {
+        const auto c = static_cast<unsigned char>(s[i]);
+        if ((c >= 0x20 && c < 0x7f) || (keepHighBytes && c >= 0x80)) {
+            out += static_cast<char>(c);
+        } else {
+            static constexpr char kHex[] = "0123456789ABCDEF";
+            out += "\\x";
+            out += kHex[c >> 4];
+            out += kHex[c & 15];
+        }
+    }
+    if (s.size() > maxLen) out += "...";
+    return out;
+}
+
+// Built by appending: "'" + std::string trips GCC 12's -Wrestrict false positive at -O3.
+std::string quoted(std::string_view s) {
+    std::string out = "'";
+    out += printable(s, 40, false);
+    out += '\'';
+    return out;
+}
+
+std::string formatWhat(const std::string& file, int line, const std::string& message) {
+    std::string out = printable(file, 4096, true);
+    if (line > 0) out += ":" + std::to_string(line);
+    out += ": ";
+    out += printable(message, 4096, true);
+    return out;
+}
+
+[[noreturn]] void fail(const std::string& name, LineNo line, std::string message) {
+    const int l = line <= 0 ? 0 : (line > INT_MAX ? INT_MAX : static_cast<int>(line));
+    throw InputError(name, l, std::move(message));
+}
+
+}  // namespace
+
+InputError::InputError(std::string file, int line, std::string message)
+    : std::runtime_error(formatWhat(file, line, message)),
+      m_file(std::move(file)),
+      m_line(line),
+      m_message(std::move(message)) {}
+
+namespace {
+
+//-----------------------------------------------------------------------------------------------
+// [SECTION] Text checks (size, empty, binary)
+//-----------------------------------------------------------------------------------------------
+
+constexpr std::size_t kBinarySniffBytes = std::size_t{1} << 16;
+
+// 1-based line of a byte offset, counting \n, \r\n and lone \r as line ends like LineReader.
+LineNo lineOfOffset(std::string_view text, std::size_t offset) {
+    LineNo line = 1;
+    for (std::size_t i = 0; i < offset && i < text.size(); ++i) {
+        if (text[i] == '\n') ++line;
+        else if (text[i] == '\r' && !(i + 1 < text.size() && text[i + 1] == '\n')) ++line;
+    }
+    return line;
+}
+
+// Counts bytes that no text file of ours contains: control characters other than whitespace,
+// DEL, and bytes that are not part of a well-formed UTF-8 sequence (comments may be UTF-8).
+// A sequence cut off by the end of the sample is not held against it.
+std::size_t countNonTextBytes(std::string_view s) {
+    std::size_t bad = 0;
+    std::size_t i = 0;
+    while (i < s.size()) {
+        const auto c = static_cast<unsigned char>(s[i]);
+        if (c < 0x80) {
+            const bool ws = c == '\t' || c == '\n' || c == '\r' || c == '\f' || c == '\v';
+            if ((c < 0x20 && !ws) || c == 0x7f) ++bad;
+            ++i;
+            continue;
+        }
+        std::size_t len = 0;
+        if (c >= 0xC2 && c <= 0xDF) len = 2;
+        else if (c >= 0xE0 && c <= 0xEF) len = 3;
+        else if (c >= 0xF0 && c <= 0xF4) len = 4;
+        if (len == 0) {
+            ++bad;
+            ++i;
+            continue;
+        }
+        std::size_t k = 1;
+        while (k < len && i + k < s.size() && (static_cast<unsigned char>(s[i + k]) & 0xC0) == 0x80) ++k;
+        if (k == len || i + k == s.size()) {
+            i += k;
+        } else {
+            ++bad;
+            ++i;
+        }
+    }
+    return bad;
+}
+
+// Refuses binary content before any parsing: a NUL anywhere, or more than 10% non-text bytes in
+// the first 64 KiB (a few Latin-1 accents in comments stay well below that).
+void checkNotBinary(std::string_view text, const std::string& name) {
+    if (const void* nul = std::memchr(text.data(), 0, text.size())) {
+        const auto offset = static_cast<std::size_t>(static_cast<const char*>(nul) - text.data());
+        fail(name, lineOfOffset(text, offset),
+             "binary file (NUL byte at offset " + std::to_string(offset) + "); expected a text point file");
+    }
+    const std::string_view sample = text.substr(0, kBinarySniffBytes);
+    const std::size_t bad = countNonTextBytes(sample);
+    if (bad > 0 && bad * 10 > sample.size()) {
+        fail(name, 0,
+             "binary file (" + std::to_string(bad) + " of the first " + std::to_string(sample.size()) +
+                 " bytes are not text); expected a text point file");
+    }
+}
+
+void checkText(std::string_view text, const std::string& name) {
+    if (text.size() > kMaxFileBytes) {
+        fail(name, 0,
+             "input is " + std::to_string(text.size()) + " bytes; the maximum is " +
+                 std::to_string(kMaxFileBytes) + " (kMaxFileBytes)");
+    }
+    if (text.empty()) fail(name, 0, "empty file");
+    checkNotBinary(text, name);
+}
+
+//-----------------------------------------------------------------------------------------------
+// [SECTION] Lines and fields
+//-----------------------------------------------------------------------------------------------
+
+bool isBlank(char c) { return c == ' ' || c == '\t' || c == '\f' || c == '\v'; }
+
+std::string_view trim(std::string_view s) {
+    while (!s.empty() && isBlank(s.front())) s.remove_prefix(1);
+    while (!s.empty() && isBlank(s.back())) s.remove_suffix(1);
+    return s;
+}
+
+struct Line {
+    std::string_view text;  // comment removed, trimmed, never empty
+    LineNo number = 0;      // 1-based
+};
+
+// Walks the text line by line and yields only lines with content once the comment ('#' to the
+// end of the line) and surrounding blanks are removed. Line ends: \n, \r\n and a lone \r (old
+// Mac files), so CRLF files never leave a '\r' inside the last field.
+class LineReader {
+public:
+    explicit LineReader(std::string_view text) : m_text(text) {
+        if (m_text.substr(0, 3) == "\xEF\xBB\xBF") m_pos = 3;  // spreadsheets write a UTF-8 BOM
+    }
+
+    bool next(Line& out) {
+        while (m_pos < m_text.size()) {
+            const std::size_t start = m_pos;
+            std::size_t end = start;
+            while (end < m_text.size() && m_text[end] != '\n' && m_text[end] != '\r') ++end;
+            m_pos = end;
+            if (m_pos < m_text.size()) {
+                const bool crlf = m_text[m_pos] == '\r' && m_pos + 1 < m_text.size() && m_text[m_pos + 1] == '\n';
+                m_pos += crlf ? 2 : 1;
+            }
+            ++m_line;
+            std::string_view content = m_text.substr(start, end - start);
+            if (const std::size_t hash = content.find('#'); hash != std::string_view::npos) {
+                content = content.substr(0, hash);
+            }
+            content = trim(content);
+            if (!content.empty()) {
+                out.text = content;
+                out.number = m_line;
+                return true;
+            }
+        }
+        return false;
+    }
+
+    std::size_t remainingBytes() const { return m_text.size() - m_pos; }
+    LineNo linesRead() const { return m_line; }
+
+private:
+    std::string_view m_text;
+    std::size_t m_pos = 0;
+    LineNo m_line = 0;
+};
+
+enum class Sep { Blanks, Comma, Semicolon };
+
+const char* sepName(Sep sep) {
+    switch (sep) {
+        case Sep::Comma: return "','";
+        case Sep::Semicolon: return "';'";
+        case Sep::Blanks: break;
+    }
+    return "spaces/tabs";
+}
+
+// Splits a trimmed line and returns the true field count, but stores at most `keep` fields: a
+// line with a million fields then costs one pass and no million-entry vector.
+std::size_t splitFields(std::string_view line, Sep sep, std::vector<std::string_view>& out, std::size_t keep) {
+    out.clear();
+    std::size_t count = 0;
+    if (sep == Sep::Blanks) {
+        std::size_t i = 0;
+        for (;;) {
+            while (i < line.size() && isBlank(line[i])) ++i;
+            if (i == line.size()) break;
+            const std::size_t start = i;
+            while (i < line.size() && !isBlank(line[i])) ++i;
+            if (count < keep) out.push_back(line.substr(start, i - start));
+            ++count;
+        }
+        return count;
+    }
+    const char d = sep == Sep::Comma ? ',' : ';';
+    std::size_t start = 0;
+    for (;;) {
+        const std::size_t p = line.find(d, start);
+        const std::string_view field = trim(line.substr(start, p == std::string_view::npos ? std::string_view::npos : p - start));
+        if (count < keep) out.push_back(field);
+        ++count;
+        if (p == std::string_view::npos) break;
+        start = p + 1;
+    }
+    return count;
+}
+
+//-----------------------------------------------------------------------------------------------
+// [SECTION] Numbers
+//-----------------------------------------------------------------------------------------------
+
+// from_chars rejects a leading '+', which many writers emit; accept exactly one.
+std::string_view dropPlus(std::string_view f) {
+    if (f.size() >= 2 && f[0] == '+' && f[1] != '+' && f[1] != '-') f.remove_prefix(1);
+    return f;
+}
+
+// A field counts as numeric when from_chars consumes all of it, even if the value is out of
+// range or not finite: such a line is data with a bad value, not a header.
+bool isNumeric(std::string_view f) {
+    f = dropPlus(f);
+    double v = 0.0;
+    const auto r = std::from_chars(f.data(), f.data() + f.size(), v);
+    return r.ec != std::errc::invalid_argument && r.ptr == f.data() + f.size() && !f.empty();
+}
+
+// A field that starts the way a decimal number does ("1,5", "1.2.3", "-.5x", "\"3\""): such a
+// field is bad data, never a column name. Spelled-out inf/nan count only as whole fields (via
+// isNumeric), so that names like "info" or "nanos" stay names.
+bool startsLikeNumber(std::string_view f) {
+    if (f.size() >= 2 && (f.front() == '"' || f.front() == '\'')) f.remove_prefix(1);
+    f = trim(f);
+    std::size_t i = 0;
+    if (i < f.size() && (f[i] == '+' || f[i] == '-')) ++i;
+    if (i < f.size() && f[i] == '.') ++i;
+    return i < f.size() && f[i] >= '0' && f[i] <= '9';
+}
+
+bool isUnsignedDigits(std::string_view f) {
+    return !f.empty() && std::all_of(f.begin(), f.end(), [](char c) { return c >= '0' && c <= '9'; });
+}
+
+enum class ValueKind { Coordinate, Attribute };
+
+// Parses one decimal floating-point field exactly (std::from_chars rounds correctly), refusing
+// everything else with a message that names the field.
+double parseReal(std::string_view field, const std::string& name, LineNo line, const std::string& what,
+                 ValueKind kind, Sep sep) {
+    if (field.empty()) fail(name, line, "missing " + what + " (empty field)");
+    const std::string_view f = dropPlus(field);
+    double v = 0.0;
+    const auto r = std::from_chars(f.data(), f.data() + f.size(), v);
+    if (r.ec == std::errc::invalid_argument) {
+        fail(name, line, "malformed number " + quoted(field) + " for " + what);
+    }
+    if (r.ptr != f.data() + f.size()) {
+        const std::string_view junk = f.substr(static_cast<std::size_t>(r.ptr - f.data()));
+        std::string msg = "trailing junk " + quoted(junk) + " after the number in " + what + " field " + quoted(field);
+        if (sep == Sep::Semicolon && junk.front() == ',') msg += " (decimal commas are not supported; use '.')";
+        fail(name, line, msg);
+    }
+    if (r.ec == std::errc::result_out_of_range) {
+        fail(name, line, "number " + quoted(field) + " for " + what + " is out of the range of double (overflow or underflow)");
+    }
+    if (!std::isfinite(v)) {
+        fail(name, line,
+             std::string(kind == ValueKind::Coordinate ? "non-finite coordinate " : "non-finite value ") +
+                 quoted(field) + " for " + what);
+    }
+    return v;
+}
+
+// Parses a decimal integer field (indices, markers, counts).
+std::int64_t parseInteger(std::string_view field, const std::string& name, LineNo line, const std::string& what) {
+    if (field.empty()) fail(name, line, "missing " + what + " (empty field)");
+    const std::string_view f = dropPlus(field);
+    std::int64_t v = 0;
+    const auto r = std::from_chars(f.data(), f.data() + f.size(), v);
+    if (r.ec == std::errc::invalid_argument || r.ptr != f.data() + f.size()) {
+        fail(name, line, "expected an integer for " + what + ", found " + quoted(field));
+    }
+    if (r.ec == std::errc::result_out_of_range) {
+        fail(name, line, "integer " + quoted(field) + " for " + what + " is out of range");
+    }
+    return v;
+}
+
+// Parses a declared point count and refuses absurd ones before anything is allocated.
+std::size_t parseCount(std::string_view field, const std::string& name, LineNo line, const std::string& what) {
+    const std::string_view f = dropPlus(field);
+    const std::string limit = " exceeds the maximum of " + std::to_string(kMaxPoints) + " points (kMaxPoints)";
+    if (isUnsignedDigits(f)) {
+        // Compare digit strings first so that 10^30 says "too many", not "out of range".
+        std::string_view digits = f;
+        while (digits.size() > 1 && digits.front() == '0') digits.remove_prefix(1);
+        if (digits.size() > 18) fail(name, line, what + " " + quoted(field) + limit);
+    }
+    const std::int64_t n = parseInteger(field, name, line, what);
+    if (n < 0) fail(name, line, what + " must not be negative, found " + quoted(field));
+    if (static_cast<std::uint64_t>(n) > kMaxPoints) fail(name, line, what + " " + std::to_string(n) + limit);
+    return static_cast<std::size_t>(n);
+}
+
+// Refuses a declared count that the rest of the buffer cannot possibly hold, so that the
+// reserve() that follows is bounded by the input size, never by what a header claims.
+void checkCountFits(std::size_t count, std::uint64_t minBytesPerLine, std::size_t remaining,
+                    const std::string& name, LineNo line, const std::string& what) {
+    if (count == 0) return;
+    // count <= 2^25 and minBytesPerLine <= 2^32: the product fits in 64 bits.
+    const std::uint64_t need = static_cast<std::uint64_t>(count) * minBytesPerLine - 1;  // last line may lack its end
+    if (need > remaining) {
+        fail(name, line,
+             "header declares " + std::to_string(count) + " " + what + " but only " + std::to_string(remaining) +
+                 " bytes follow; that many lines need at least " + std::to_string(need));
+    }
+}
+
+//-----------------------------------------------------------------------------------------------
+// [SECTION] Triangle .node
+//-----------------------------------------------------------------------------------------------
+
+// "1 vertex", "2 vertices": messages read as sentences.
+std::string plural(std::size_t n, const char* one, const char* many) {
+    return std::to_string(n) + " " + (n == 1 ? one : many);
+}
+
+}  // namespace
+
+PointSet parseNode(std::string_view text, const std::string& name) {
+    checkText(text, name);
+    PointSet ps;
+    ps.path = name;
+    LineReader reader(text);
+    Line line;
+    std::vector<std::string_view> f;
+
+    if (!reader.next(line)) fail(name, 0, "no header line: the file holds only blank lines and comments");
+    const LineNo headerLine = line.number;
+    const std::size_t headerFields = splitFields(line.text, Sep::Blanks, f, 4);
+    if (headerFields > 4) {
+        fail(name, headerLine,
+             "header has " + std::to_string(headerFields) +
+                 " fields; expected '<#vertices> <dimension> <#attributes> <#boundary markers>'");
+    }
+    const std::size_t count = parseCount(f[0], name, headerLine, "vertex count");
+    const std::int64_t dim = f.size() > 1 ? parseInteger(f[1], name, headerLine, "dimension") : 2;
+    if (dim != 2) fail(name, headerLine, "dimension must be 2, found " + std::to_string(dim));
+    const std::int64_t attributes = f.size() > 2 ? parseInteger(f[2], name, headerLine, "attribute count") : 0;
+    // No line within kMaxFileBytes can hold more fields than this; the bound also keeps the
+    // field arithmetic below far from overflow.
+    constexpr std::int64_t kMaxAttributes = static_cast<std::int64_t>(kMaxFileBytes / 2);
+    if (attributes < 0 || attributes > kMaxAttributes) {
+        fail(name, headerLine, "attribute count must be between 0 and " + std::to_string(kMaxAttributes) + ", found " + quoted(f[2]));
+    }
+    const std::int64_t markers = f.size() > 3 ? parseInteger(f[3], name, headerLine, "boundary marker count") : 0;
+    if (markers != 0 && markers != 1) {
+        fail(name, headerLine, "boundary marker count must be 0 or 1, found " + std::to_string(markers));
+    }
+    const auto fieldsPerLine = static_cast<std::size_t>(3 + attributes + markers);
+    checkCountFits(count, 2 * static_cast<std::uint64_t>(fieldsPerLine), reader.remainingBytes(), name, headerLine,
+                   "vertices");
+    ps.points.reserve(count);
+
+    const std::string layout = "index, x, y" + (attributes > 0 ? ", " + plural(static_cast<std::size_t>(attributes), "attribute", "attributes") : std::string()) +
+                               (markers > 0 ? ", boundary marker" : "");
+    std::int64_t base = 0;
+    while (reader.next(line)) {
+        if (ps.points.size() == count) {
+            fail(name, line.number,
+                 "extra vertex line: the header on line " + std::to_string(headerLine) + " declares " + plural(count, "vertex", "vertices"));
+        }
+        const std::size_t n = splitFields(line.text, Sep::Blanks, f, fieldsPerLine);
+        if (n != fieldsPerLine) {
+            fail(name, line.number,
+                 std::string(n < fieldsPerLine ? "too few" : "too many") + " fields: expected " + std::to_string(fieldsPerLine) +
+                     " (" + layout + "), found " + std::to_string(n));
+        }
+        const std::int64_t index = parseInteger(f[0], name, line.number, "vertex index");
+        if (ps.points.empty()) {
+            if (index != 0 && index != 1) {
+                fail(name, line.number, "first vertex index must be 0 or 1, found " + std::to_string(index));
+            }
+            base = index;
+        } else if (index != base + static_cast<std::int64_t>(ps.points.size())) {
+            fail(name, line.number,
+                 "vertex index " + std::to_string(index) + " out of sequence: expected " +
+                     std::to_string(base + static_cast<std::int64_t>(ps.points.size())));
+        }
+        Vec2 p;
+        p.x = parseReal(f[1], name, line.number, "x coordinate", ValueKind::Coordinate, Sep::Blanks);
+        p.y = parseReal(f[2], name, line.number, "y coordinate", ValueKind::Coordinate, Sep::Blanks);
+        for (std::int64_t a = 0; a < attributes; ++a) {
+            parseReal(f[3 + static_cast<std::size_t>(a)], name, line.number, "attribute " + std::to_string(a + 1),
+                      ValueKind::Attribute, Sep::Blanks);
+        }
+        if (markers > 0) parseInteger(f[fieldsPerLine - 1], name, line.number, "boundary marker");
+        ps.points.push_back(p);
+    }
+    if (ps.points.size() < count) {
+        fail(name, reader.linesRead(),
+             "end of file: expected " + plural(count, "vertex", "vertices") + " (header on line " + std::to_string(headerLine) +
+                 "), found " + std::to_string(ps.points.size()));
+    }
+    ps.indexBase = static_cast<int>(base);
+    if (count == 0) ps.warnings.push_back("header on line " + std::to_string(headerLine) + " declares 0 vertices");
+    return ps;
+}
+
+//-----------------------------------------------------------------------------------------------
+// [SECTION] XY / CSV
+//-----------------------------------------------------------------------------------------------
+
+namespace {
+
+Sep detectSeparator(std::string_view line) {
+    if (line.find(';') != std::string_view::npos) return Sep::Semicolon;
+    if (line.find(',') != std::string_view::npos) return Sep::Comma;
+    return Sep::Blanks;
+}
+
+std::string_view unquote(std::string_view s) {
+    if (s.size() >= 2 && (s.front() == '"' || s.front() == '\'') && s.back() == s.front()) {
+        s = trim(s.substr(1, s.size() - 2));
+    }
+    return s;
+}
+
+bool namesColumn(std::string_view field, char letter) {
+    const std::string_view s = unquote(field);
+    return s.size() == 1 && (s[0] == letter || s[0] == letter - 'a' + 'A');
+}
+
+}  // namespace
+
+PointSet parseXY(std::string_view text, const std::string& name) {
+    checkText(text, name);
+    PointSet ps;
+    ps.path = name;
+    LineReader reader(text);
+    Line line;
+    std::vector<std::string_view> f;
+
+    if (!reader.next(line)) fail(name, 0, "no data: the file holds only blank lines and comments");
+    const Sep sep = detectSeparator(line.text);
+    std::size_t columns = 2, xCol = 0, yCol = 1;
+    bool haveHeader = false;
+    LineNo headerLine = 0;
+    {
+        // A first line without a single number in it is a header ("x,y", "id;x;y", "lon lat").
+        // A line mixing words and numbers is bad data and is reported as such below. A field
+        // that merely starts like a number ("1,5" with ';' separators, "1.2.3", "\"3\"") is a
+        // number gone wrong, not a column name: taking such a line for a header would silently
+        // drop a row of data (and blame a later line for the decimal commas of the first).
+        constexpr std::size_t kMaxHeaderColumns = 4096;
+        const std::size_t n = splitFields(line.text, sep, f, kMaxHeaderColumns);
+        const auto numberLike = [](std::string_view field) { return isNumeric(field) || startsLikeNumber(field); };
+        if (std::none_of(f.begin(), f.end(), numberLike) && n <= kMaxHeaderColumns) {
+            haveHeader = true;
+            headerLine = line.number;
+            columns = n;
+            const auto x = std::find_if(f.begin(), f.end(), [](std::string_view s) { return namesColumn(s, 'x'); });
+            const auto y = std::find_if(f.begin(), f.end(), [](std::string_view s) { return namesColumn(s, 'y'); });
+            if (x != f.end() && y != f.end()) {
+                xCol = static_cast<std::size_t>(x - f.begin());
+                yCol = static_cast<std::size_t>(y - f.begin());
+            } else if (n != 2) {
+                fail(name, line.number,
+                     "header " + quoted(line.text) + " has " + plural(n, "column", "columns") +
+                         "; expected two, or columns named 'x' and 'y'");
+            }
+            ps.warnings.push_back("skipped header line " + std::to_string(line.number) + ": " + printable(line.text, 80, false));
+        }
+    }
+    if (haveHeader && !reader.next(line)) fail(name, headerLine, "no points after the header");
+
+    do {
+        const std::size_t n = splitFields(line.text, sep, f, columns);
+        if (n != columns) {
+            std::string msg = plural(n, "field", "fields") + " separated by " + sepName(sep) + "; expected " + std::to_string(columns);
+            if (haveHeader) {
+                msg += " as in the header on line " + std::to_string(headerLine);
+            } else {
+                msg += " (x, y)";
+                if (n == 3) msg += "; for id,x,y or x,y,z columns add a header line naming the 'x' and 'y' columns";
+                if (n == 1 && ps.points.empty() && isUnsignedDigits(f[0])) {
+                    msg += "; a point count on the first line suggests Rossignac's .pts format";
+                }
+            }
+            fail(name, line.number, msg);
+        }
+        if (ps.points.size() == kMaxPoints) {
+            fail(name, line.number, "more than " + std::to_string(kMaxPoints) + " points (kMaxPoints)");
+        }
+        Vec2 p;
+        p.x = parseReal(f[xCol], name, line.number, "x coordinate", ValueKind::Coordinate, sep);
+        p.y = parseReal(f[yCol], name, line.number, "y coordinate", ValueKind::Coordinate, sep);
+        ps.points.push_back(p);
+    } while (reader.next(line));
+    return ps;
+}
+
+//-----------------------------------------------------------------------------------------------
+// [SECTION] Rossignac .pts
+//-----------------------------------------------------------------------------------------------
+
+PointSet parsePts(std::string_view text, const std::string& name) {
+    checkText(text, name);
+    PointSet ps;
+    ps.path = name;
+    LineReader reader(text);
+    Line line;
+    std::vector<std::string_view> f;
+
+    if (!reader.next(line)) fail(name, 0, "no point count: the file holds only blank lines and comments");
+    const LineNo countLine = line.number;
+    if (splitFields(line.text, Sep::Blanks, f, 1) != 1 || line.text.find(',') != std::string_view::npos) {
+        fail(name, countLine, "the first line must be the point count alone, found " + quoted(line.text));
+    }
+    const std::size_t count = parseCount(f[0], name, countLine, "point count");
+    checkCountFits(count, 4, reader.remainingBytes(), name, countLine, "points");  // "0,0\n" is the shortest line
+    ps.points.reserve(count);
+
+    bool warnedZ = false;
+    while (reader.next(line)) {
+        if (ps.points.size() == count) {
+            fail(name, line.number,
+                 "extra point line: the count on line " + std::to_string(countLine) + " declares " + plural(count, "point", "points"));
+        }
+        // savePts writes "x,y" (or "x,y,z"); hand-made files often use blanks instead.
+        const Sep sep = line.text.find(',') != std::string_view::npos ? Sep::Comma : Sep::Blanks;
+        const std::size_t n = splitFields(line.text, sep, f, 3);
+        if (n < 2 || n > 3) {
+            fail(name, line.number,
+                 plural(n, "field", "fields") + " separated by " + sepName(sep) + "; expected 2 (x,y) or 3 (x,y,z)");
+        }
+        Vec2 p;
+        p.x = parseReal(f[0], name, line.number, "x coordinate", ValueKind::Coordinate, sep);
+        p.y = parseReal(f[1], name, line.number, "y coordinate", ValueKind::Coordinate, sep);
+        if (n == 3) {
+            const double z = parseReal(f[2], name, line.number, "z coordinate", ValueKind::Coordinate, sep);
+            if (z != 0.0 && !warnedZ) {
+                warnedZ = true;
+                ps.warnings.push_back("z coordinates ignored (first nonzero z on line " + std::to_string(line.number) + ")");
+            }
+        }
+        ps.points.push_back(p);
+    }
+    if (ps.points.size() < count) {
+        fail(name, reader.linesRead(),
+             "end of file: expected " + plural(count, "point", "points") + " (count on line " + std::to_string(countLine) +
+                 "), found " + std::to_string(ps.points.size()));
+    }
+    if (count == 0) ps.warnings.push_back("count on line " + std::to_string(countLine) + " declares 0 points");
+    return ps;
+}
+
+//-----------------------------------------------------------------------------------------------
+// [SECTION] Files and format sniffing
+//-----------------------------------------------------------------------------------------------
+
+namespace {
+
+enum class Format { Node, XY, Pts };
+
+// Guesses the format of a file with an unknown extension from its first two content lines.
+//   "N [2 [A [M]]]" then "i x y ..."  -> .node  (Triangle's header shape, then an indexed vertex)
+//   "N"             then "x,y" / "x y" -> .pts
+//   anything else                      -> XY
+Format sniffFormat(std::string_view text) {
+    LineReader reader(text);
+    Line first, second;
+    if (!reader.next(first)) return Format::XY;  // the XY parser reports "no data"
+    const bool hasSecond = reader.next(second);
+    std::vector<std::string_view> f1, f2;
+    const std::size_t n1 = splitFields(first.text, Sep::Blanks, f1, 4);
+    const std::size_t n2 = hasSecond ? splitFields(second.text, Sep::Blanks, f2, 1) : 0;
+    const bool secondIsVertex = hasSecond && second.text.find(',') == std::string_view::npos &&
+                                second.text.find(';') == std::string_view::npos && n2 >= 3 &&
+                                isUnsignedDigits(f2[0]);
+    const bool allUnsigned = n1 <= 4 && std::all_of(f1.begin(), f1.end(), isUnsignedDigits);
+    if (n1 == 1 && allUnsigned) return secondIsVertex ? Format::Node : Format::Pts;
+    if (n1 >= 2 && allUnsigned && f1[1] == "2" && (!hasSecond || secondIsVertex)) return Format::Node;
+    return Format::XY;
+}
+
+struct FileCloser {
+    void operator()(std::FILE* f) const { std::fclose(f); }
+};
+
+std::string errnoText(int e) { return std::generic_category().message(e); }
+
+// Reads the whole file, refusing oversized files before reading and binary ones after the first
+// chunk: /dev/zero or a stray image fails fast instead of being slurped and parsed.
+std::string readFileText(const std::string& path) {
+    errno = 0;
+    std::unique_ptr<std::FILE, FileCloser> file(std::fopen(path.c_str(), "rb"));
+    if (!file) fail(path, 0, "cannot open file: " + errnoText(errno));
+
+    std::error_code ec;
+    const auto status = std::filesystem::status(path, ec);
+    if (!ec && std::filesystem::is_directory(status)) fail(path, 0, "cannot read: it is a directory");
+    std::string text;
+    if (!ec && std::filesystem::is_regular_file(status)) {
+        const std::uintmax_t size = std::filesystem::file_size(path, ec);
+        if (!ec && size > kMaxFileBytes) {
+            fail(path, 0,
+                 "file is " + std::to_string(size) + " bytes; the maximum is " + std::to_string(kMaxFileBytes) +
+                     " (kMaxFileBytes)");
+        }
+        if (!ec) text.reserve(static_cast<std::size_t>(size));
+    }
+
+    std::vector<char> chunk(kBinarySniffBytes);
+    bool first = true;
+    for (;;) {
+        errno = 0;
+        const std::size_t got = std::fread(chunk.data(), 1, chunk.size(), file.get());
+        if (text.size() + got > kMaxFileBytes) {
+            fail(path, 0, "file is larger than the maximum of " + std::to_string(kMaxFileBytes) + " bytes (kMaxFileBytes)");
+        }
+        text.append(chunk.data(), got);
+        if (first && !text.empty()) {
+            checkNotBinary(text, path);
+            first = false;
+        }
+        if (got < chunk.size()) {
+            if (std::ferror(file.get())) fail(path, 0, "cannot read file: " + errnoText(errno != 0 ? errno : EIO));
+            break;
+        }
+    }
+    return text;
+}
+
+std::string lowercaseExtension(const std::string& path) {
+    std::string ext = std::filesystem::path(path).extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) {
+        return static_cast<char>(c >= 'A' && c <= 'Z' ? c - 'A' + 'a' : c);
+    });
+    return ext;
+}
+
+}  // namespace
+
+PointSet readPointsFile(const std::string& path) {
+    const std::string ext = lowercaseExtension(path);
+    const std::string text = readFileText(path);
+    if (ext == ".node") return parseNode(text, path);
+    if (ext == ".pts") return parsePts(text, path);
+    if (ext == ".csv" || ext == ".xy" || ext == ".txt" || ext == ".dat") return parseXY(text, path);
+
+    checkText(text, path);  // sniff only text that passed the same checks the parsers make
+    const Format format = sniffFormat(text);
+    PointSet ps = format == Format::Node ? parseNode(text, path) : format == Format::Pts ? parsePts(text, path) : parseXY(text, path);
+    const char* guess = format == Format::Node ? "Triangle .node" : format == Format::Pts ? "Rossignac .pts" : "XY";
+    const std::string shown = ext.empty() ? "no extension" : "unknown extension '" + printable(ext, 20, false) + "'";
+    ps.warnings.insert(ps.warnings.begin(), shown + ": read as " + guess + " by its content");
+    return ps;
+}
+
+}  // namespace dlab

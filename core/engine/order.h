@@ -1,0 +1,47 @@
+// Insertion orders: input, seeded random, and BRIO (biased randomized insertion order) with a
+// Hilbert sort inside each round.
+#pragma once
+
+#include "core/engine/geometry.h"
+
+#include <cstdint>
+#include <optional>
+#include <string_view>
+#include <vector>
+
+namespace dlab {
+
+enum class OrderKind : std::uint8_t { Input, Random, Brio };
+
+const char* toString(OrderKind kind);
+std::optional<OrderKind> parseOrderKind(std::string_view name);
+
+// A permutation of [0, points.size()). Deterministic for a given seed on every platform
+// (our own generator and shuffle: std::shuffle's result is implementation-defined).
+std::vector<std::int32_t> insertionOrder(const std::vector<Vec2>& points, OrderKind kind,
+                                         std::uint64_t seed);
+
+// Position of (x, y) along a Hilbert curve filling a 2^bits x 2^bits grid (bits <= 16).
+std::uint32_t hilbertIndex(std::uint32_t x, std::uint32_t y, int bits);
+
+// SplitMix64: a tiny, well-mixed, portable generator for seeds and shuffles.
+class SplitMix64 {
+public:
+    explicit SplitMix64(std::uint64_t seed) : m_state(seed) {}
+    std::uint64_t next() {
+        std::uint64_t z = (m_state += 0x9E3779B97F4A7C15ull);
+        z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+        z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+        return z ^ (z >> 31);
+    }
+    // Uniform in [0, bound) without modulo bias worth noticing for bound < 2^32.
+    std::uint32_t below(std::uint32_t bound) {
+        return static_cast<std::uint32_t>(((next() >> 32) * bound) >> 32);
+    }
+    double uniform01() { return static_cast<double>(next() >> 11) * 0x1.0p-53; }
+
+private:
+    std::uint64_t m_state;
+};
+
+}  // namespace dlab

@@ -1,0 +1,128 @@
+// Exact geometric predicates: orient2d and incircle, exact for every finite double input.
+//
+// Sign conventions (world coordinates, y up):
+//   orient2d(a, b, c) = sign | bx-ax  by-ay |
+//                            | cx-ax  cy-ay |
+//     +1: a, b, c counter-clockwise (c strictly left of the directed line a->b)
+//     -1: clockwise, 0: collinear (including coincident points).
+//
+//   incircle(a, b, c, d) = sign | ax-dx  ay-dy  (ax-dx)^2+(ay-dy)^2 |
+//                               | bx-dx  by-dy  (bx-dx)^2+(by-dy)^2 |
+//                               | cx-dx  cy-dy  (cx-dx)^2+(cy-dy)^2 |
+//     For a, b, c counter-clockwise: +1 if d is strictly inside their circumcircle,
+//     -1 strictly outside, 0 on it. The sign flips when a, b, c are clockwise.
+//
+// Evaluation has three tiers: a floating-point filter with a forward error bound (almost
+// every call ends here), an exact evaluation with floating-point expansions (after exact
+// power-of-two scaling), and an exact big-integer evaluation for calls whose coordinates
+// span an exponent range too wide for expansions (e.g. 1e-300 next to 1e300).
+#pragma once
+
+#include "core/engine/geometry.h"
+
+#include <cmath>
+#include <cstdint>
+
+namespace dlab {
+
+// Inputs must be finite (the inserter refuses NaN and inf at its boundary).
+inline int orient2d(Vec2 a, Vec2 b, Vec2 c);
+inline int incircle(Vec2 a, Vec2 b, Vec2 c, Vec2 d);
+
+// How a predicate reached its answer, for the GUI's predicate inspector and for tests.
+enum class PredicateTier : std::uint8_t { Filter, Expansion, BigInteger };
+
+struct PredicateReport {
+    double approx = 0.0;      // the determinant evaluated in plain double arithmetic
+    double errorBound = 0.0;  // the filter's bound on |approx - exact| (inf if not applicable)
+    int naiveSign = 0;        // sign of approx: what a plain floating-point predicate says
+    int exactSign = 0;        // the true sign
+    PredicateTier tier = PredicateTier::Filter;
+};
+
+PredicateReport orient2dReport(Vec2 a, Vec2 b, Vec2 c);
+PredicateReport incircleReport(Vec2 a, Vec2 b, Vec2 c, Vec2 d);
+
+// How many calls of this thread the filter could not decide (for statistics). Only the slow
+// path counts, so the filter's hot path stays a few flops.
+struct PredicateCounters {
+    std::uint64_t orientExact = 0;
+    std::uint64_t incircleExact = 0;
+};
+PredicateCounters& predicateCounters();
+
+// ============================================================================================
+// The filters, inline: they decide almost every call in a few flops, so they belong in the
+// caller's loop. Every call they cannot decide goes to the exact tiers in predicates.cpp.
+//
+// Shewchuk's forward error bounds (|det - exact| <= k eps * permanent) assume no overflow and
+// no underflow. Overflow needs no test: any overflowed product makes the permanent inf or NaN
+// (it sums the absolute value of every product), and then no comparison succeeds. Underflow
+// adds at most 2^-1075 absolute error per product; multiplied by what follows, the total stays
+// below 2^-1072 * (spread + 1), where spread is the sum of the magnitudes each product is
+// later multiplied by. We add 2^-90 * permanent to the bound and use the filter only when the
+// permanent is large enough for that to cover the underflow error:
+//   orient2d: permanent > 2^-900.
+//   incircle: permanent > 2^-800 and permanent * 2^900 > spread (lifts plus cross magnitudes).
+// These are two compares, where testing every coordinate difference against a safe band
+// cost 10% of a whole triangulation.
+// ============================================================================================
+
+namespace detail {
+
+int orient2dSlow(Vec2 a, Vec2 b, Vec2 c);          // exact; counts in predicateCounters()
+int incircleSlow(Vec2 a, Vec2 b, Vec2 c, Vec2 d);  // exact; counts in predicateCounters()
+
+constexpr double kEpsilon = 0x1p-53;
+constexpr double kOrientBound = (3.0 + 16.0 * kEpsilon) * kEpsilon + 0x1p-90;
+constexpr double kIncircleBound = (10.0 + 96.0 * kEpsilon) * kEpsilon + 0x1p-90;
+
+struct Filtered {
+    double det, bound;
+    bool usable;  // the bound is valid (no overflow, underflow covered)
+    bool decided() const { return usable && (det > bound || -det > bound); }
+    int sign() const { return (det > 0) - (det < 0); }
+};
+
+inline Filtered orientFilter(Vec2 a, Vec2 b, Vec2 c) {
+    const double bx = b.x - a.x, by = b.y - a.y, cx = c.x - a.x, cy = c.y - a.y;
+    const double left = bx * cy, right = by * cx;
+    const double permanent = std::fabs(left) + std::fabs(right);
+    return {left - right, kOrientBound * permanent, permanent > 0x1p-900};
+}
+
+inline Filtered incircleFilter(Vec2 a, Vec2 b, Vec2 c, Vec2 d) {
+    const double adx = a.x - d.x, ady = a.y - d.y;
+    const double bdx = b.x - d.x, bdy = b.y - d.y;
+    const double cdx = c.x - d.x, cdy = c.y - d.y;
+    const double bdxcdy = bdx * cdy, cdxbdy = cdx * bdy;
+    const double cdxady = cdx * ady, adxcdy = adx * cdy;
+    const double adxbdy = adx * bdy, bdxady = bdx * ady;
+    const double alift = adx * adx + ady * ady;
+    const double blift = bdx * bdx + bdy * bdy;
+    const double clift = cdx * cdx + cdy * cdy;
+    const double det = alift * (bdxcdy - cdxbdy) + blift * (cdxady - adxcdy) + clift * (adxbdy - bdxady);
+    const double sa = std::fabs(bdxcdy) + std::fabs(cdxbdy);
+    const double sb = std::fabs(cdxady) + std::fabs(adxcdy);
+    const double sc = std::fabs(adxbdy) + std::fabs(bdxady);
+    const double permanent = sa * alift + sb * blift + sc * clift;
+    const double spread = (alift + blift + clift) + (sa + sb + sc);
+    const bool usable = (permanent > 0x1p-800) & (permanent * 0x1p900 > spread);
+    return {det, kIncircleBound * permanent, usable};
+}
+
+}  // namespace detail
+
+[[gnu::always_inline]] inline int orient2d(Vec2 a, Vec2 b, Vec2 c) {
+    const detail::Filtered f = detail::orientFilter(a, b, c);
+    if (f.decided()) [[likely]] return f.sign();
+    return detail::orient2dSlow(a, b, c);
+}
+
+[[gnu::always_inline]] inline int incircle(Vec2 a, Vec2 b, Vec2 c, Vec2 d) {
+    const detail::Filtered f = detail::incircleFilter(a, b, c, d);
+    if (f.decided()) [[likely]] return f.sign();
+    return detail::incircleSlow(a, b, c, d);
+}
+
+}  // namespace dlab

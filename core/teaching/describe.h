@@ -1,0 +1,14 @@
+// One-line captions of recorded operations ("edge 4-9 is Delaunay: no flip"), for the CLI's
+// narration, the GUI's caption bar and lessons.
+#pragma once
+
+#include "core/engine/inserter.h"
+
+#include <string>
+
+namespace dlab {
+
+// Describes `op` given the mesh as it is right after the op was applied.
+std::string describe(const Op& op, const Inserter& inserter);
+
+}  // namespace dlab

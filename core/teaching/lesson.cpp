@@ -1,0 +1,963 @@
+// Lessons: TOML loading with file/line/stop errors (tomlplusplus), safe points files, answers
+// computed from the live state, the headless planner, and Markdown-light text.
+#include "core/teaching/lesson.h"
+
+#include "core/teaching/corner_expr.h"
+#include "core/teaching/describe.h"
+#include "core/engine/io_read.h"
+#include "core/engine/predicates.h"
+#include "core/engine/text_util.h"
+#include "core/engine/voronoi.h"
+
+#include <toml++/toml.h>
+
+#include <algorithm>
+#include <cctype>
+#include <charconv>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <set>
+#include <sstream>
+
+namespace dlab {
+
+namespace fs = std::filesystem;
+
+// ============================================================================================
+// [SECTION] Errors
+// ============================================================================================
+
+namespace {
+
+std::string composeMessage(const std::string& file, int line, int stop, const std::string& message) {
+    std::string s = file;
+    if (line > 0) s += ":" + std::to_string(line);
+    s += ": ";
+    if (stop > 0) s += "stop " + std::to_string(stop) + ": ";
+    return s + message;
+}
+
+template <class Names>
+std::string joinNames(const Names& names) {
+    std::string s;
+    for (const char* n : names) s += std::string(s.empty() ? "" : ", ") + n;
+    return s;
+}
+
+}  // namespace
+
+LessonError::LessonError(std::string file, int line, int stop, std::string message)
+    : std::runtime_error(composeMessage(file, line, stop, escapeControls(message))),
+      m_file(std::move(file)),
+      m_line(line),
+      m_stop(stop),
+      m_message(escapeControls(message)) {}
+
+// ============================================================================================
+// [SECTION] Markdown-light text
+// ============================================================================================
+
+namespace {
+
+// Splits one block's text into spans. On an unclosed marker returns false with `why` and the
+// marker's offset in `raw`.
+bool parseInline(std::string_view raw, std::vector<TextSpan>& spans, std::string& why, std::size_t& at) {
+    TextSpan::Style style = TextSpan::Style::Plain;
+    std::size_t boldAt = 0;
+    std::string cur;
+    auto flush = [&](TextSpan::Style s) {
+        if (!cur.empty()) spans.push_back({s, cur});
+        cur.clear();
+    };
+    for (std::size_t i = 0; i < raw.size(); ++i) {
+        if (raw[i] == '`') {
+            const std::size_t close = raw.find('`', i + 1);
+            if (close == std::string_view::npos) {
+                why = "unclosed ` (code)";
+                at = i;
+                return false;
+            }
+            flush(style);
+            spans.push_back({TextSpan::Style::Code, std::string(raw.substr(i + 1, close - i - 1))});
+            i = close;
+        } else if (raw.compare(i, 2, "**") == 0) {
+            flush(style);
+            style = style == TextSpan::Style::Bold ? TextSpan::Style::Plain : TextSpan::Style::Bold;
+            boldAt = i;
+            ++i;
+        } else {
+            cur += raw[i];
+        }
+    }
+    if (style == TextSpan::Style::Bold) {
+        why = "unclosed ** (bold)";
+        at = boldAt;
+        return false;
+    }
+    flush(style);
+    return true;
+}
+
+}  // namespace
+
+std::optional<std::vector<TextBlock>> parseLessonText(std::string_view text, std::string* error) {
+    struct RawBlock {
+        TextBlock::Kind kind;
+        int number;
+        std::string raw;
+        std::vector<std::pair<std::size_t, int>> lines;  // (offset in raw, line number) per joined line
+    };
+    std::vector<RawBlock> raws;
+    bool open = false;
+    int lineNo = 0;
+    std::size_t pos = 0;
+    while (pos <= text.size()) {
+        const std::size_t nl = text.find('\n', pos);
+        std::string_view line = text.substr(pos, nl == std::string_view::npos ? std::string_view::npos : nl - pos);
+        pos = nl == std::string_view::npos ? text.size() + 1 : nl + 1;
+        ++lineNo;
+        if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+        const std::string t = trimmed(line);
+        if (t.empty()) {
+            open = false;
+            continue;
+        }
+        std::size_t digits = 0;
+        while (digits < t.size() && std::isdigit(static_cast<unsigned char>(t[digits]))) ++digits;
+        if ((t[0] == '-' || t[0] == '*') && t.size() > 1 && t[1] == ' ') {
+            raws.push_back({TextBlock::Kind::Bullet, 0, trimmed(std::string_view(t).substr(2)), {{0, lineNo}}});
+            open = true;
+        } else if (digits > 0 && digits < 6 && digits + 1 < t.size() && t[digits] == '.' && t[digits + 1] == ' ') {
+            raws.push_back({TextBlock::Kind::Numbered, std::atoi(t.substr(0, digits).c_str()),
+                            trimmed(std::string_view(t).substr(digits + 2)), {{0, lineNo}}});
+            open = true;
+        } else if (open) {
+            raws.back().raw += " ";
+            raws.back().lines.emplace_back(raws.back().raw.size(), lineNo);
+            raws.back().raw += t;
+        } else {
+            raws.push_back({TextBlock::Kind::Paragraph, 0, t, {{0, lineNo}}});
+            open = true;
+        }
+    }
+    std::vector<TextBlock> blocks;
+    for (const RawBlock& r : raws) {
+        TextBlock b{r.kind, r.number, {}};
+        std::string why;
+        std::size_t at = 0;
+        if (!parseInline(r.raw, b.spans, why, at)) {
+            int line = r.lines.front().second;
+            for (const auto& [offset, number] : r.lines) {
+                if (offset <= at) line = number;
+            }
+            if (error) *error = "line " + std::to_string(line) + " of the text: " + why;
+            return std::nullopt;
+        }
+        blocks.push_back(std::move(b));
+    }
+    return blocks;
+}
+
+// ============================================================================================
+// [SECTION] Answers
+// ============================================================================================
+
+namespace {
+
+std::string formatNumber(double x) {
+    char buf[64];
+    const auto [end, ec] = std::to_chars(buf, buf + sizeof buf, x);
+    return ec == std::errc() ? std::string(buf, end) : "?";
+}
+
+// Non-negative integers written in s, in order ("edge 4-9" -> 4, 9).
+std::vector<std::int64_t> digitRuns(std::string_view s) {
+    std::vector<std::int64_t> out;
+    for (std::size_t i = 0; i < s.size();) {
+        if (!std::isdigit(static_cast<unsigned char>(s[i]))) {
+            ++i;
+            continue;
+        }
+        std::size_t j = i;
+        while (j < s.size() && std::isdigit(static_cast<unsigned char>(s[j]))) ++j;
+        std::int64_t v = 0;
+        const auto [end, ec] = std::from_chars(s.data() + i, s.data() + j, v);
+        out.push_back(ec == std::errc() ? v : -1);
+        i = j;
+    }
+    return out;
+}
+
+// Real numbers written in s ("(1.5, -2)" -> 1.5, -2).
+std::vector<double> realRuns(std::string_view s) {
+    std::vector<double> out;
+    for (std::size_t i = 0; i < s.size();) {
+        double v = 0;
+        const auto [end, ec] = std::from_chars(s.data() + i, s.data() + s.size(), v);
+        if (ec == std::errc() && end != s.data() + i) {
+            out.push_back(v);
+            i = static_cast<std::size_t>(end - s.data());
+        } else {
+            ++i;
+        }
+    }
+    return out;
+}
+
+}  // namespace
+
+std::string Answer::display() const {
+    switch (kind) {
+        case Kind::Integer: return std::to_string(a);
+        case Kind::Edge: return std::to_string(a) + "-" + std::to_string(b);
+        case Kind::Text: return text;
+        case Kind::Truth: return truth ? "yes" : "no";
+        case Kind::Point: return "(" + formatNumber(point.x) + ", " + formatNumber(point.y) + ")";
+    }
+    return "?";
+}
+
+bool acceptsAnswer(const Answer& expected, std::string_view typedIn) {
+    const std::string typed = lowered(trimmed(typedIn));
+    if (typed.empty()) return false;
+    switch (expected.kind) {
+        case Answer::Kind::Integer: {
+            if (expected.corner && expected.a == kNone && (typed == "none" || typed == "boundary")) return true;
+            std::string t;
+            for (char ch : typed) {
+                if (ch != ' ') t += ch;
+            }
+            if (!t.empty() && t[0] == '+') t.erase(0, 1);
+            std::int64_t v = 0;
+            const auto [end, ec] = std::from_chars(t.data(), t.data() + t.size(), v);
+            return ec == std::errc() && end == t.data() + t.size() && v == expected.a;
+        }
+        case Answer::Kind::Edge: {
+            const auto v = digitRuns(typed);
+            return v.size() == 2 && ((v[0] == expected.a && v[1] == expected.b) || (v[0] == expected.b && v[1] == expected.a));
+        }
+        case Answer::Kind::Text: return looseName(typed) == looseName(expected.text);
+        case Answer::Kind::Truth: {
+            const bool yes = typed == "yes" || typed == "y" || typed == "true" || typed == "1";
+            const bool no = typed == "no" || typed == "n" || typed == "false" || typed == "0";
+            return expected.truth ? yes : no;
+        }
+        case Answer::Kind::Point: {
+            const auto v = realRuns(typed);
+            const auto close = [](double x, double want) { return std::abs(x - want) <= 1e-9 * std::max(1.0, std::abs(want)); };
+            return v.size() == 2 && close(v[0], expected.point.x) && close(v[1], expected.point.y);
+        }
+    }
+    return false;
+}
+
+// ============================================================================================
+// [SECTION] Quantities: what an answer can ask about the live state
+// ============================================================================================
+
+namespace {
+
+constexpr QuantityInfo kQuantities[] = {
+    {"triangles", "real triangles in the mesh now (ghost / super-triangle ones not counted)"},
+    {"all_triangles", "rows of the table / 3: every triangle, ghost or super ones included"},
+    {"corners", "corners in the table (3 per triangle, virtual ones included)"},
+    {"vertices", "input points that are vertices of the mesh now"},
+    {"position", "operations done so far"},
+    {"op", "the type of the last operation (Flip, Split, ...)"},
+    {"next_op", "the type of the next operation"},
+    {"vertex", "the point the last operation worked on"},
+    {"next_vertex", "the point the next operation works on"},
+    {"flips", "flips so far"},
+    {"tests", "in-circle tests so far"},
+    {"insertion_flips", "flips of the insertion in progress (or the one that just ended)"},
+    {"insertion_tests", "in-circle tests of the insertion in progress (or the one that just ended)"},
+    {"queue", "edges waiting for their in-circle test (the flip queue)"},
+    {"walk_steps", "walk steps so far, all locates together"},
+    {"hint", "the triangle the latest locate started from (the locator's hint)"},
+    {"locate_steps", "walk steps of the latest locate"},
+    {"located", "the triangle the latest locate found"},
+    {"where", "where the latest locate found its point: inside, edge, vertex or outside-hull"},
+    {"test_edge", "the edge of the latest in-circle test (two vertices)"},
+    {"test_result", "the latest in-circle test: 1 flip, 0 cocircular, -1 Delaunay"},
+    {"next_flip", "the edge that flips next in this insertion, or none"},
+    {"flipped_edge", "the edge the latest flip removed"},
+    {"new_edge", "the edge the latest flip made"},
+    {"duplicates", "duplicate points skipped so far"},
+    {"edge_splits", "edge splits so far"},
+    {"hull_edges", "edges of the real triangles with no real triangle across"},
+    {"convex", "whether the real triangles cover a convex region (yes / no)"},
+    {"delaunay_violations", "interior edges whose opposite vertex is strictly inside the circle"},
+    {"degree", "triangles around the vertex of the selected corner"},
+    {"circumcenter", "the circumcenter of the selected corner's triangle (its Voronoi vertex)"},
+    {"pixel", "the triangle id the ID buffer holds under the point about to be located"},
+};
+
+struct Unavailable {
+    std::string why;
+};
+
+// Puts the journal back where it was, whatever happens in between.
+class PositionGuard {
+public:
+    explicit PositionGuard(Journal& j) : m_j(j), m_pos(j.position()) {}
+    ~PositionGuard() { m_j.seek(m_pos); }
+    PositionGuard(const PositionGuard&) = delete;
+    PositionGuard& operator=(const PositionGuard&) = delete;
+
+private:
+    Journal& m_j;
+    std::size_t m_pos;
+};
+
+Answer integer(std::int64_t v, bool corner = false) {
+    Answer a;
+    a.kind = Answer::Kind::Integer;
+    a.a = v;
+    a.corner = corner;
+    return a;
+}
+Answer edge(std::int64_t x, std::int64_t y) {
+    Answer a;
+    a.kind = Answer::Kind::Edge;
+    a.a = std::min(x, y);
+    a.b = std::max(x, y);
+    return a;
+}
+Answer text(std::string t) {
+    Answer a;
+    a.kind = Answer::Kind::Text;
+    a.text = std::move(t);
+    return a;
+}
+Answer truth(bool t) {
+    Answer a;
+    a.kind = Answer::Kind::Truth;
+    a.truth = t;
+    return a;
+}
+
+class Quantities {
+public:
+    Quantities(Inserter& ins, Journal& j, std::int32_t selected) : m_ins(ins), m_j(j), m_sel(selected) {}
+
+    Answer get(std::string_view name) {
+        const Mesh& m = m_ins.mesh();
+        const InsertStats& st = m_ins.stats();
+        if (name == "triangles") return integer(realTriangles());
+        if (name == "all_triangles") return integer(m.numTriangles());
+        if (name == "corners") return integer(m.numCorners());
+        if (name == "vertices") return integer(realVertices());
+        if (name == "position") return integer(static_cast<std::int64_t>(m_j.position()));
+        if (name == "op") return text(toString(last().type));
+        if (name == "next_op") return text(toString(peek().type));
+        if (name == "vertex") return integer(needVertex(last().vertex, "the last operation"));
+        if (name == "next_vertex") return integer(needVertex(peek().vertex, "the next operation"));
+        if (name == "flips") return integer(st.flips);
+        if (name == "tests") return integer(st.inCircleTests);
+        if (name == "insertion_flips") return integer(insertionCount(OpType::Flip));
+        if (name == "insertion_tests") return integer(insertionCount(OpType::InCircleTest));
+        if (name == "queue") return integer(static_cast<std::int64_t>(m_ins.flipStack().size()));
+        if (name == "walk_steps") return integer(st.walkSteps);
+        if (name == "hint" || name == "locate_steps") return latestLocate(name == "hint");
+        if (name == "located" || name == "where") {
+            const Op& op = latest(OpType::Located, "no locate has ended yet");
+            return name == "located" ? integer(op.a) : text(toString(op.where));
+        }
+        if (name == "test_edge" || name == "test_result") {
+            const std::size_t q = latestIndex(OpType::InCircleTest, "no in-circle test yet");
+            const Op& op = m_j.ops()[q];
+            if (name == "test_result") return integer(op.sign);
+            return atPosition(q + 1, [&] { return edge(mesh().V[next(op.a)], mesh().V[prev(op.a)]); });
+        }
+        if (name == "flipped_edge" || name == "new_edge") {
+            const std::size_t q = latestIndex(OpType::Flip, "no flip yet");
+            const Op& op = m_j.ops()[q];
+            const bool old = name == "flipped_edge";
+            return atPosition(q + 1, [&] {
+                const auto& V = mesh().V;
+                return old ? edge(V[next(op.a)], V[next(op.b)]) : edge(V[op.a], V[op.b]);
+            });
+        }
+        if (name == "next_flip") return nextFlip();
+        if (name == "duplicates") return integer(st.duplicates);
+        if (name == "edge_splits") return integer(st.edgeSplits);
+        if (name == "hull_edges") return integer(hullEdges());
+        if (name == "convex") return truth(convex());
+        if (name == "delaunay_violations") return integer(delaunayViolations());
+        if (name == "degree") return integer(degree());
+        if (name == "circumcenter") return circumcenterOfSelection();
+        if (name == "pixel") return pixel();
+        throw Unavailable{"unknown quantity"};
+    }
+
+private:
+    const Mesh& mesh() const { return m_ins.mesh(); }
+    bool virtualTri(std::int32_t t) const {
+        const auto& V = mesh().V;
+        return m_ins.isVirtual(V[3 * t]) || m_ins.isVirtual(V[3 * t + 1]) || m_ins.isVirtual(V[3 * t + 2]);
+    }
+    std::int64_t realTriangles() const {
+        std::int64_t n = 0;
+        for (std::int32_t t = 0; t < mesh().numTriangles(); ++t) n += !virtualTri(t);
+        return n;
+    }
+    std::int64_t realVertices() const {
+        std::set<std::int32_t> seen;
+        for (std::int32_t v : mesh().V) {
+            if (!m_ins.isVirtual(v)) seen.insert(v);
+        }
+        return static_cast<std::int64_t>(seen.size());
+    }
+    const Op& last() const {
+        if (m_j.position() == 0) throw Unavailable{"nothing has happened yet (operation 0)"};
+        return *m_j.current();
+    }
+    Op peek() {
+        if (m_j.atEnd()) throw Unavailable{"the run is finished: there is no next operation"};
+        PositionGuard g(m_j);
+        return *m_j.forward();
+    }
+    static std::int64_t needVertex(std::int32_t v, const char* which) {
+        if (v == kNone) throw Unavailable{std::string(which) + " works on no point"};
+        return v;
+    }
+    std::size_t latestIndex(OpType type, const char* none) const {
+        for (std::size_t q = m_j.position(); q-- > 0;) {
+            if (m_j.ops()[q].type == type) return q;
+        }
+        throw Unavailable{none};
+    }
+    const Op& latest(OpType type, const char* none) const { return m_j.ops()[latestIndex(type, none)]; }
+    template <class F>
+    Answer atPosition(std::size_t p, F&& f) {
+        PositionGuard g(m_j);
+        m_j.seek(p);
+        return f();
+    }
+    std::int64_t insertionCount(OpType type) const {
+        std::size_t q = m_j.position();
+        if (q > 0 && endsInsertion(m_j.ops()[q - 1].type)) --q;  // the insertion that just ended
+        std::int64_t n = 0;
+        while (q > 0 && !endsInsertion(m_j.ops()[q - 1].type)) n += m_j.ops()[--q].type == type;
+        return n;
+    }
+    Answer latestLocate(bool wantHint) const {
+        std::size_t q = m_j.position();
+        while (q > 0 && m_j.ops()[q - 1].type != OpType::LocateStep && m_j.ops()[q - 1].type != OpType::Located) --q;
+        if (q == 0) throw Unavailable{"no locate yet"};
+        std::size_t first = q - 1;
+        const std::int32_t v = m_j.ops()[first].vertex;
+        while (first > 0 && m_j.ops()[first - 1].type == OpType::LocateStep && m_j.ops()[first - 1].vertex == v) --first;
+        if (wantHint) return integer(m_j.ops()[first].a);
+        std::int64_t steps = 0;
+        for (std::size_t i = first; i < q; ++i) steps += m_j.ops()[i].type == OpType::LocateStep;
+        return integer(steps);
+    }
+    Answer nextFlip() {
+        if (m_j.atEnd()) throw Unavailable{"the run is finished: nothing flips any more"};
+        PositionGuard g(m_j);
+        while (const Op* op = m_j.forward()) {
+            if (op->type == OpType::Flip) {
+                const auto& V = mesh().V;
+                return edge(V[next(op->a)], V[next(op->b)]);
+            }
+            if (endsInsertion(op->type)) break;
+        }
+        return text("none");
+    }
+    bool hullCorner(std::int32_t c) const {
+        const std::int32_t o = mesh().O[c];
+        return o == kNone || virtualTri(tri(o));
+    }
+    std::int64_t hullEdges() const {
+        std::int64_t n = 0;
+        for (std::int32_t c = 0; c < mesh().numCorners(); ++c) n += !virtualTri(tri(c)) && hullCorner(c);
+        return n;
+    }
+    bool convex() const {
+        const Mesh& m = mesh();
+        std::set<std::int32_t> verts;
+        for (std::int32_t c = 0; c < m.numCorners(); ++c) {
+            if (!virtualTri(tri(c))) verts.insert(m.V[c]);
+        }
+        for (std::int32_t c = 0; c < m.numCorners(); ++c) {
+            if (virtualTri(tri(c)) || !hullCorner(c)) continue;
+            const Vec2 a = m.G[m.V[next(c)]], b = m.G[m.V[prev(c)]];
+            for (std::int32_t w : verts) {
+                if (orient2d(a, b, m.G[w]) < 0) return false;
+            }
+        }
+        return true;
+    }
+    std::int64_t delaunayViolations() const {
+        ValidateOptions o;
+        o.geometry = false;
+        o.firstVirtual = m_ins.done() ? -1 : m_ins.firstVirtual();
+        o.maxViolations = std::numeric_limits<std::size_t>::max();
+        std::set<std::int32_t> edges;  // each bad edge may be found from both sides: count it once
+        for (const Violation& v : validate(mesh(), o)) {
+            if (v.kind != Violation::Kind::NotDelaunay) continue;
+            const std::int32_t other = mesh().O[v.corner];
+            edges.insert(other == kNone ? v.corner : std::min(v.corner, other));
+        }
+        return static_cast<std::int64_t>(edges.size());
+    }
+    std::int64_t degree() const {
+        const Mesh& m = mesh();
+        if (m_sel < 0 || m_sel >= m.numCorners()) throw Unavailable{"degree needs a selected corner"};
+        std::int64_t n = 1;
+        std::int32_t c = m.s(m_sel);
+        for (; c != kNone && c != m_sel && n <= m.numCorners(); c = m.s(c)) ++n;
+        if (c == kNone) {  // open fan: count the other way too
+            for (c = m.u(m_sel); c != kNone && n <= m.numCorners(); c = m.u(c)) ++n;
+        }
+        return n;
+    }
+    Answer circumcenterOfSelection() const {
+        const Mesh& m = mesh();
+        if (m_sel < 0 || m_sel >= m.numCorners()) throw Unavailable{"circumcenter needs a selected corner"};
+        const std::int32_t t = tri(m_sel);
+        if (virtualTri(t)) throw Unavailable{"the selected corner's triangle is a ghost or super triangle"};
+        Answer a;
+        a.kind = Answer::Kind::Point;
+        a.point = circumcenter(m.G[m.V[3 * t]], m.G[m.V[3 * t + 1]], m.G[m.V[3 * t + 2]]);
+        return a;
+    }
+    Answer pixel() {
+        auto* buffer = dynamic_cast<IdBufferCpu*>(m_ins.locator());
+        if (!buffer) throw Unavailable{"pixel needs locator = \"idbuffer-cpu\""};
+        const Op next = peek();
+        if (next.type != OpType::LocateStep && next.type != OpType::Located) {
+            throw Unavailable{"pixel: the next operation locates no point"};
+        }
+        return integer(buffer->pixelAt(mesh().G[next.vertex]));
+    }
+
+    Inserter& m_ins;
+    Journal& m_j;
+    std::int32_t m_sel;
+};
+
+const QuantityInfo* findQuantity(std::string_view name) {
+    for (const QuantityInfo& q : kQuantities) {
+        if (name == q.name) return &q;
+    }
+    return nullptr;
+}
+
+std::string quantityNames() {
+    std::string s;
+    for (const QuantityInfo& q : kQuantities) s += std::string(s.empty() ? "" : ", ") + q.name;
+    return s;
+}
+
+ExprContext exprContext(const Inserter& ins) {
+    return ExprContext{ins.firstVirtual(), ins.options().boundary == Boundary::Exact && !ins.done()};
+}
+
+std::vector<ExprBinding> selectionBinding(std::int32_t selected) {
+    if (selected == kNone) return {};
+    return {ExprBinding{"c", ExprValue{ValueKind::Corner, selected, {}, false}}};
+}
+
+}  // namespace
+
+std::span<const QuantityInfo> lessonQuantities() { return kQuantities; }
+
+std::optional<Answer> computeAnswer(std::string_view specIn, Inserter& ins, Journal& journal,
+                                    std::int32_t selected, std::string* error) {
+    const std::string spec = trimmed(specIn);
+    auto fail = [&](const std::string& why) -> std::optional<Answer> {
+        if (error) *error = why;
+        return std::nullopt;
+    };
+    if (findQuantity(spec)) {
+        try {
+            return Quantities(ins, journal, selected).get(spec);
+        } catch (const Unavailable& u) {
+            return fail(spec + " is not available here: " + u.why);
+        }
+    }
+    ExprError perr;
+    const auto expr = CornerExpr::parse(spec, &perr);
+    if (!expr) {
+        return fail("\"" + spec + "\" is neither a quantity (" + quantityNames() +
+                    ") nor a corner expression (column " + std::to_string(perr.column + 1) + ": " + perr.message + ")");
+    }
+    const auto bindings = selectionBinding(selected);
+    const ExprResult r = expr->evaluate(ins.mesh(), bindings, exprContext(ins));
+    if (!r.ok()) return fail(spec + ": " + r.error.message);
+    const ExprValue& v = *r.value;
+    switch (v.kind) {
+        case ValueKind::Point: {
+            Answer a;
+            a.kind = Answer::Kind::Point;
+            a.point = v.point;
+            return a;
+        }
+        case ValueKind::Truth: return truth(v.truth);
+        default: return integer(v.i, v.kind == ValueKind::Corner);
+    }
+}
+
+// ============================================================================================
+// [SECTION] Loading
+// ============================================================================================
+
+std::string resolveLessonFile(const std::string& lessonPath, const std::string& relative, int line) {
+    auto fail = [&](const std::string& why) -> LessonError { return LessonError(lessonPath, line, 0, why); };
+    if (relative.empty()) throw fail("points_file is empty");
+    if (relative.find('\0') != std::string::npos) throw fail("points_file contains a NUL character");
+    const fs::path rel(relative);
+    if (rel.is_absolute() || relative[0] == '/' || relative[0] == '\\' || rel.has_root_name()) {
+        throw fail("points_file \"" + relative + "\" must be relative to the lesson's folder, not absolute");
+    }
+    for (const fs::path& part : rel) {
+        if (part == "..") throw fail("points_file \"" + relative + "\" must stay inside the lesson's folder (no \"..\")");
+    }
+    std::error_code ec;
+    fs::path base = fs::path(lessonPath).parent_path();
+    if (base.empty()) base = ".";
+    const fs::path folder = fs::canonical(base, ec);
+    if (ec) throw fail("cannot resolve the lesson's folder: " + ec.message());
+    const fs::path target = fs::canonical(folder / rel, ec);
+    if (ec) throw fail("points_file \"" + relative + "\" not found beside the lesson (" + ec.message() + ")");
+    // Compare component by component: /a/lessons-evil is not inside /a/lessons.
+    auto t = target.begin();
+    for (auto f = folder.begin(); f != folder.end(); ++f, ++t) {
+        if (t == target.end() || *t != *f) {
+            throw fail("points_file \"" + relative + "\" leads outside the lesson's folder (through a symbolic link)");
+        }
+    }
+    if (!fs::is_regular_file(target, ec)) throw fail("points_file \"" + relative + "\" is not a regular file");
+    return target.string();
+}
+
+namespace {
+
+int lineOf(const toml::node& n) { return static_cast<int>(n.source().begin.line); }
+
+// Why `text` cannot be a lesson's corner expression ("" when it can): a syntax error, or a name
+// other than c (the selected corner), caught at load time rather than at the stop.
+std::string expressionProblem(const std::string& text) {
+    ExprError e;
+    const auto expr = CornerExpr::parse(text, &e);
+    if (!expr) return "column " + std::to_string(e.column + 1) + ": " + e.message;
+    for (const std::string& v : expr->variables()) {
+        if (v != "c") return "unknown name '" + v + "': the only name is c, the selected corner";
+    }
+    return "";
+}
+
+class LessonReader {
+public:
+    explicit LessonReader(const std::string& file) : m_file(file) {}
+
+    [[noreturn]] void fail(int line, const std::string& message) const {
+        throw LessonError(m_file, line, m_stop, message);
+    }
+
+    void checkKeys(const toml::table& t, std::initializer_list<const char*> known, const char* where) {
+        for (auto&& [key, value] : t) {
+            // A plain copy for the lambda: clang 14 cannot capture a structured binding.
+            const std::string_view name = key.str();
+            const bool ok = std::any_of(known.begin(), known.end(), [&](const char* k) { return name == k; });
+            if (!ok) {
+                fail(static_cast<int>(key.source().begin.line),
+                     "unknown key \"" + std::string(key.str()) + "\" " + where + " (known: " + joinNames(known) + ")");
+            }
+        }
+    }
+
+    std::optional<std::string> string(const toml::table& t, const char* key) {
+        const toml::node* n = t.get(key);
+        if (!n) return std::nullopt;
+        if (!n->is_string()) fail(lineOf(*n), std::string("\"") + key + "\" must be a string");
+        return n->as_string()->get();
+    }
+
+    std::optional<std::int64_t> integer(const toml::table& t, const char* key, std::int64_t lo, std::int64_t hi) {
+        const toml::node* n = t.get(key);
+        if (!n) return std::nullopt;
+        if (!n->is_integer()) fail(lineOf(*n), std::string("\"") + key + "\" must be a whole number");
+        const std::int64_t v = n->as_integer()->get();
+        if (v < lo || v > hi) {
+            fail(lineOf(*n), std::string("\"") + key + "\" must be between " + std::to_string(lo) + " and " + std::to_string(hi));
+        }
+        return v;
+    }
+
+    std::vector<std::string> names(const toml::table& t, const char* key, std::span<const char* const> known) {
+        std::vector<std::string> out;
+        const toml::node* n = t.get(key);
+        if (!n) return out;
+        const toml::array* a = n->as_array();
+        if (!a) fail(lineOf(*n), std::string("\"") + key + "\" must be a list of names, e.g. [\"" + known[0] + "\"]");
+        for (const toml::node& e : *a) {
+            if (!e.is_string()) fail(lineOf(e), std::string("\"") + key + "\" must hold names (strings)");
+            const std::string name = e.as_string()->get();
+            if (std::none_of(known.begin(), known.end(), [&](const char* k) { return name == k; })) {
+                fail(lineOf(e), std::string("unknown ") + (std::string(key) == "panels" ? "panel" : "overlay") + " \"" +
+                                    name + "\" (known: " + joinNames(known) + ")");
+            }
+            out.push_back(name);
+        }
+        return out;
+    }
+
+    void text(const std::string& s, int line) {
+        std::string why;
+        if (!parseLessonText(s, &why)) fail(line, why);
+    }
+
+    void options(const toml::table& t, InsertOptions& o) {
+        checkKeys(t, {"boundary", "locator", "order", "seed", "idbuffer_size"}, "in [options]");
+        if (auto s = string(t, "boundary")) {
+            const auto b = parseBoundary(*s);
+            if (!b) fail(lineOf(*t.get("boundary")), "boundary must be \"exact\" or \"super\", not \"" + *s + "\"");
+            o.boundary = *b;
+        }
+        if (auto s = string(t, "locator")) {
+            const auto k = parseLocatorKind(*s);
+            if (!k) fail(lineOf(*t.get("locator")), "locator must be naive, walk, grid or idbuffer-cpu, not \"" + *s + "\"");
+            o.locator = *k;
+        }
+        if (auto s = string(t, "order")) {
+            const auto k = parseOrderKind(*s);
+            if (!k) fail(lineOf(*t.get("order")), "order must be input, random or brio, not \"" + *s + "\"");
+            o.order = *k;
+        }
+        if (auto v = integer(t, "seed", 0, std::numeric_limits<std::int64_t>::max())) o.seed = static_cast<std::uint64_t>(*v);
+        if (auto v = integer(t, "idbuffer_size", 1, 4096)) {
+            o.locatorOptions.idBufferWidth = o.locatorOptions.idBufferHeight = static_cast<int>(*v);
+        }
+    }
+
+    std::vector<Vec2> points(const toml::node& n) {
+        const toml::array* a = n.as_array();
+        if (!a) fail(lineOf(n), "\"points\" must be a list of [x, y] pairs");
+        if (a->size() > kMaxLessonPoints) {
+            fail(lineOf(n), "too many points for a lesson (at most " + std::to_string(kMaxLessonPoints) + ")");
+        }
+        std::vector<Vec2> out;
+        for (const toml::node& p : *a) {
+            const toml::array* xy = p.as_array();
+            if (!xy || xy->size() != 2) fail(lineOf(p), "point " + std::to_string(out.size()) + " must be [x, y]");
+            double c[2];
+            for (int k = 0; k < 2; ++k) {
+                const toml::node& e = *xy->get(static_cast<std::size_t>(k));
+                if (e.is_integer()) {
+                    c[k] = static_cast<double>(e.as_integer()->get());
+                } else if (e.is_floating_point()) {
+                    c[k] = e.as_floating_point()->get();
+                } else {
+                    fail(lineOf(e), "point " + std::to_string(out.size()) + ": coordinates must be numbers");
+                }
+                if (!std::isfinite(c[k])) fail(lineOf(e), "point " + std::to_string(out.size()) + ": coordinates must be finite");
+            }
+            out.push_back({c[0], c[1]});
+        }
+        return out;
+    }
+
+    LessonStop stop(const toml::table& t) {
+        LessonStop s;
+        s.line = lineOf(t);
+        checkKeys(t, {"run_to", "count", "panels", "overlays", "select", "text", "question", "answer", "hint"}, "in a [[stop]]");
+        if (auto r = string(t, "run_to")) {
+            std::string why;
+            s.runTo = parseBreakpoint(*r, &why);
+            if (!s.runTo) fail(lineOf(*t.get("run_to")), "run_to: " + why);
+        }
+        if (auto c = integer(t, "count", 1, 1000000)) {
+            if (!s.runTo) fail(lineOf(*t.get("count")), "\"count\" needs a \"run_to\"");
+            if (s.runTo->kind == BreakKind::Op && *c != 1) fail(lineOf(*t.get("count")), "\"count\" makes no sense with op:N");
+            s.count = static_cast<int>(*c);
+        }
+        s.panels = names(t, "panels", kPanelNames);
+        s.overlays = names(t, "overlays", kOverlayNames);
+        if (auto sel = string(t, "select")) {
+            const std::string why = expressionProblem(*sel);
+            if (!why.empty()) fail(lineOf(*t.get("select")), "select \"" + *sel + "\": " + why);
+            s.select = *sel;
+        }
+        if (auto x = string(t, "text")) {
+            text(*x, lineOf(*t.get("text")));
+            s.text = *x;
+        }
+        s.question = string(t, "question").value_or("");
+        s.hint = string(t, "hint").value_or("");
+        if (auto a = string(t, "answer")) {
+            s.answer = trimmed(*a);
+            s.answerLine = lineOf(*t.get("answer"));
+        }
+        if (!s.question.empty() && s.answer.empty()) fail(s.line, "the question has no \"answer\" (a quantity or a corner expression)");
+        if (s.question.empty() && !s.answer.empty()) fail(s.answerLine, "an \"answer\" needs a \"question\"");
+        if (!s.hint.empty() && s.question.empty()) fail(lineOf(*t.get("hint")), "a \"hint\" needs a \"question\"");
+        if (!s.answer.empty() && !findQuantity(s.answer)) {
+            const std::string why = expressionProblem(s.answer);
+            if (!why.empty()) {
+                fail(s.answerLine, "answer \"" + s.answer + "\" is neither a quantity (" + quantityNames() +
+                                       ") nor a corner expression (" + why + ")");
+            }
+        }
+        if (s.text.empty() && s.question.empty()) fail(s.line, "a stop needs a \"text\" or a \"question\"");
+        return s;
+    }
+
+    Lesson lesson(std::string_view source, const std::string& path) {
+        Lesson L;
+        L.file = path;
+        L.options.order = OrderKind::Input;
+        if (source.size() > kMaxLessonFileBytes) fail(0, "lesson file too large (at most 1 MiB)");
+        toml::table root;
+        try {
+            root = toml::parse(source, path);
+        } catch (const toml::parse_error& e) {
+            fail(static_cast<int>(e.source().begin.line), "not valid TOML: " + std::string(e.description()));
+        }
+        checkKeys(root, {"title", "summary", "kind", "text", "points", "points_file", "options", "stop"}, "at the top level");
+        L.title = string(root, "title").value_or("");
+        if (trimmed(L.title).empty()) fail(1, "the lesson needs a \"title\"");
+        L.summary = string(root, "summary").value_or("");
+        if (auto k = string(root, "kind")) {
+            if (*k != "lesson" && *k != "assignment") fail(lineOf(*root.get("kind")), "kind must be \"lesson\" or \"assignment\"");
+            L.assignment = *k == "assignment";
+        }
+        if (auto x = string(root, "text")) text(*x, lineOf(*root.get("text")));
+        if (const toml::node* o = root.get("options")) {
+            if (!o->is_table()) fail(lineOf(*o), "\"options\" must be a table: [options]");
+            options(*o->as_table(), L.options);
+        }
+        const toml::node* inl = root.get("points");
+        const auto file = string(root, "points_file");
+        if (inl && file) fail(lineOf(*inl), "give either \"points\" or \"points_file\", not both");
+        if (!inl && !file) fail(1, "the lesson needs \"points\" (a list of [x, y]) or \"points_file\"");
+        if (inl) {
+            L.points = points(*inl);
+        } else {
+            const int line = lineOf(*root.get("points_file"));
+            L.pointsFile = resolveLessonFile(path, *file, line);
+            try {
+                PointSet set = readPointsFile(L.pointsFile);
+                L.points = std::move(set.points);
+            } catch (const InputError& e) {
+                fail(line, "cannot read points_file: " + std::string(e.what()));
+            }
+            if (L.points.size() > kMaxLessonPoints) {
+                fail(line, "too many points for a lesson (at most " + std::to_string(kMaxLessonPoints) + ")");
+            }
+        }
+        if (const toml::node* st = root.get("stop")) {
+            const toml::array* a = st->as_array();
+            if (!a || !a->is_array_of_tables()) fail(lineOf(*st), "stops are written as [[stop]] tables");
+            if (a->size() > kMaxLessonStops) fail(lineOf(*st), "too many stops (at most " + std::to_string(kMaxLessonStops) + ")");
+            for (const toml::node& n : *a) {
+                m_stop = static_cast<int>(L.stops.size()) + 1;
+                L.stops.push_back(stop(*n.as_table()));
+            }
+            m_stop = 0;
+        }
+        if (L.stops.empty() && !L.assignment) fail(1, "a lesson needs at least one [[stop]] (or kind = \"assignment\")");
+        return L;
+    }
+
+private:
+    const std::string& m_file;
+    int m_stop = 0;
+};
+
+}  // namespace
+
+Lesson parseLesson(std::string_view text, const std::string& path) { return LessonReader(path).lesson(text, path); }
+
+Lesson loadLesson(const std::string& path) {
+    std::error_code ec;
+    if (!fs::is_regular_file(path, ec)) throw LessonError(path, 0, 0, "no such lesson file");
+    const auto size = fs::file_size(path, ec);
+    if (ec || size > kMaxLessonFileBytes) throw LessonError(path, 0, 0, "lesson file unreadable or too large (at most 1 MiB)");
+    std::ifstream in(path, std::ios::binary);
+    std::stringstream ss;
+    ss << in.rdbuf();
+    if (!in && !in.eof()) throw LessonError(path, 0, 0, "cannot read the lesson file");
+    return parseLesson(ss.str(), path);
+}
+
+// ============================================================================================
+// [SECTION] Planning
+// ============================================================================================
+
+std::unique_ptr<Inserter> makeInserter(const Lesson& lesson) {
+    try {
+        return std::make_unique<Inserter>(lesson.points, lesson.options);
+    } catch (const std::exception& e) {
+        throw LessonError(lesson.file, 0, 0, std::string("cannot start the run: ") + e.what());
+    }
+}
+
+LessonPlan planLesson(const Lesson& lesson) {
+    auto ins = makeInserter(lesson);
+    Journal journal(*ins);
+    LessonPlan plan;
+    std::int32_t selected = kNone;
+    for (std::size_t k = 0; k < lesson.stops.size(); ++k) {
+        const LessonStop& s = lesson.stops[k];
+        const int stopNo = static_cast<int>(k) + 1;
+        auto fail = [&](int line, const std::string& why) { throw LessonError(lesson.file, line, stopNo, why); };
+        if (s.runTo) {
+            const Breakpoint& bp = *s.runTo;
+            if (bp.kind == BreakKind::Op) {
+                const auto target = static_cast<std::size_t>(*bp.param);
+                if (target < journal.position()) {
+                    fail(s.line, "run_to op:" + std::to_string(target) + " is before the previous stop (op " +
+                                     std::to_string(journal.position()) + ")");
+                }
+                journal.seek(target);
+                if (journal.position() != target) {
+                    fail(s.line, "run_to op:" + std::to_string(target) + " is past the end of the run (" +
+                                     std::to_string(journal.position()) + " operations)");
+                }
+            } else {
+                for (int i = 0; i < s.count; ++i) {
+                    const RunResult r = runUntil(journal, *ins, std::span(&bp, 1), std::numeric_limits<std::size_t>::max());
+                    if (r.reason != StopReason::Hit) {
+                        fail(s.line, "run_to \"" + toString(bp) + "\" (" + explain(bp) + ") is not reached" +
+                                         (s.count > 1 ? " " + std::to_string(s.count) + " times (only " + std::to_string(i) + ")" : "") +
+                                         ": the run ends after " + std::to_string(journal.position()) + " operations");
+                    }
+                }
+            }
+        }
+        if (selected >= ins->mesh().numCorners()) selected = kNone;  // the table shrank (Finalize)
+        if (!s.select.empty()) {
+            const auto expr = CornerExpr::parse(s.select);
+            const auto bindings = selectionBinding(selected);
+            const ExprResult r = expr->evaluate(ins->mesh(), bindings, exprContext(*ins));
+            if (!r.ok()) fail(s.line, "select \"" + s.select + "\": " + r.error.message);
+            const ExprValue& v = *r.value;
+            if ((v.kind != ValueKind::Corner && v.kind != ValueKind::Number) || v.i < 0 || v.i >= ins->mesh().numCorners()) {
+                fail(s.line, "select \"" + s.select + "\" is " + formatValue(v) + ", not a corner of the mesh (0.." +
+                                 std::to_string(ins->mesh().numCorners() - 1) + ")");
+            }
+            selected = static_cast<std::int32_t>(v.i);
+        }
+        StopState state;
+        state.position = journal.position();
+        state.selected = selected;
+        if (const Op* op = journal.current()) state.caption = describe(*op, *ins);
+        if (!s.question.empty()) {
+            std::string why;
+            state.answer = computeAnswer(s.answer, *ins, journal, selected, &why);
+            if (!state.answer) fail(s.answerLine, "the answer cannot be computed: " + why);
+        }
+        plan.stops.push_back(std::move(state));
+    }
+    runUntil(journal, *ins, {}, std::numeric_limits<std::size_t>::max());
+    plan.totalOps = journal.position();
+    return plan;
+}
+
+}  // namespace dlab

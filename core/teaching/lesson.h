@@ -1,0 +1,188 @@
+// Lessons: the TOML lesson format, its loader (untrusted input: every error names file, line and
+// stop), the headless planner that runs a lesson to its end and computes every stop's state and
+// answer, answer checking, Markdown-light text, and the progress record the GUI persists.
+//
+// A lesson file (lessons/*.toml):
+//
+//   title = "The corner table"
+//   summary = "G, V and O for two triangles."
+//   kind = "lesson"                 # or "assignment": points and text only, no stops needed
+//   points = [[0, 0], [4, 0], [4, 3], [0, 3]]   # or points_file = "square.csv", beside the lesson
+//
+//   [options]                       # all optional
+//   boundary = "exact"              # exact | super
+//   locator = "walk"                # naive | walk | grid | idbuffer-cpu
+//   order = "input"                 # input | random | brio   (default: input, lessons are read in order)
+//   seed = 1
+//   idbuffer_size = 64              # pixels per side of the CPU ID buffer
+//
+//   [[stop]]
+//   run_to = "inserted:3"           # a breakpoint (core/teaching/breakpoint.h); omitted: stay where we are
+//   count = 1                       # the count-th hit after the previous stop
+//   panels = ["canvas", "corner-table"]          # names from kPanelNames
+//   overlays = ["corner-ids", "vertex-ids"]      # names from kOverlayNames
+//   select = "c.n"                  # corner expression; c = the previous stop's selection
+//   text = """Markdown-light: **bold**, `code`, lists with - or 1."""
+//   question = "What is O[c] for the selected corner?"
+//   answer = "O[c]"                 # a quantity name (lessonQuantities) or a corner expression
+//   hint = "Look across the edge opposite c."
+//
+// The answer is computed by the engine at the stop, never typed into the file.
+#pragma once
+
+#include "core/teaching/breakpoint.h"
+#include "core/engine/inserter.h"
+
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <span>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace dlab {
+
+// Names a stop may use. The GUI maps them to its panels and overlay switches.
+inline constexpr const char* kPanelNames[] = {
+    "canvas",      "corner-table", "vertex-table", "inspector",  "messages",
+    "expressions", "predicates",   "idbuffer",     "statistics", "lesson",
+};
+inline constexpr const char* kOverlayNames[] = {
+    "fill",          "vertex-ids", "corner-ids",     "triangle-ids",      "walk",    "flip-queue",
+    "flipped",       "circumcircles", "voronoi",     "pending-points",    "virtual-triangles", "idbuffer",
+};
+
+// A bad lesson file. what() is "FILE:LINE: stop K: message" (parts left out when unknown).
+class LessonError : public std::runtime_error {
+public:
+    LessonError(std::string file, int line, int stop, std::string message);
+    const std::string& file() const noexcept { return m_file; }
+    int line() const noexcept { return m_line; }   // 0: no line
+    int stop() const noexcept { return m_stop; }   // 1-based; 0: not about one stop
+    const std::string& message() const noexcept { return m_message; }
+
+private:
+    std::string m_file;
+    int m_line;
+    int m_stop;
+    std::string m_message;
+};
+
+struct LessonStop {
+    int line = 0;                    // line of its [[stop]] header
+    std::optional<Breakpoint> runTo; // nullopt: stay at the previous stop's position
+    int count = 1;
+    std::vector<std::string> panels, overlays;
+    std::string select;              // corner expression, empty: keep the previous selection
+    std::string text;
+    std::string question, answer, hint;
+    int answerLine = 0;
+};
+
+struct Lesson {
+    std::string file;                // as given to loadLesson
+    std::string title, summary;
+    bool assignment = false;
+    InsertOptions options;
+    std::vector<Vec2> points;
+    std::string pointsFile;          // resolved path of points_file, empty for inline points
+    std::vector<LessonStop> stops;
+};
+
+// Hard limits for untrusted lesson files.
+inline constexpr std::size_t kMaxLessonPoints = 100000;
+inline constexpr std::size_t kMaxLessonStops = 500;
+inline constexpr std::size_t kMaxLessonFileBytes = 1 << 20;
+
+// Reads and checks a lesson (syntax, known names, breakpoints, expressions, text, the points
+// file's location). Throws LessonError.
+Lesson loadLesson(const std::string& path);
+// The same from text; `path` names the file in messages and anchors points_file.
+Lesson parseLesson(std::string_view text, const std::string& path);
+
+// Resolves a points file named in a lesson: relative, no "..", inside the lesson's folder after
+// following symlinks, an existing regular file. Returns the resolved path or throws
+// LessonError(lessonPath, line, 0, why).
+std::string resolveLessonFile(const std::string& lessonPath, const std::string& relative, int line);
+
+// ---- Answers ---------------------------------------------------------------------------------
+
+struct Answer {
+    enum class Kind : std::uint8_t { Integer, Edge, Text, Truth, Point };
+    Kind kind = Kind::Integer;
+    std::int64_t a = 0, b = 0;  // Integer: a; Edge: the two vertices
+    bool corner = false;        // Integer that is a corner: -1 reads "none" too
+    std::string text;           // Text
+    bool truth = false;         // Truth
+    Vec2 point{};               // Point
+    std::string display() const;  // "17", "4-9", "Flip", "yes", "(1, 2)"
+};
+// Whether what a student typed means the same as `expected` (edges in either order, numbers
+// with spaces, "split edge" for SplitEdge, yes/no for truth values...).
+bool acceptsAnswer(const Answer& expected, std::string_view typed);
+
+struct QuantityInfo {
+    const char* name;
+    const char* meaning;
+};
+// The named quantities an answer may use ("triangles", "next_flip", ...).
+std::span<const QuantityInfo> lessonQuantities();
+
+// Computes `spec` (a quantity name or a corner expression with c = `selected`) for the state at
+// the journal's position. May step the journal to look ahead or back; it is back where it was on
+// return. On failure returns nullopt and says why in `error`.
+std::optional<Answer> computeAnswer(std::string_view spec, Inserter& ins, Journal& journal,
+                                    std::int32_t selected, std::string* error = nullptr);
+
+// ---- Planning: what each stop shows, computed headlessly ---------------------------------------
+
+struct StopState {
+    std::size_t position = 0;         // journal position of the stop
+    std::int32_t selected = kNone;    // the selected corner there
+    std::optional<Answer> answer;     // when the stop has a question
+    std::string caption;              // describe() of the last op ("" at position 0)
+};
+
+struct LessonPlan {
+    std::vector<StopState> stops;
+    std::size_t totalOps = 0;         // operations of the whole run
+};
+
+// A fresh engine with the lesson's points and options.
+std::unique_ptr<Inserter> makeInserter(const Lesson& lesson);
+// Runs the lesson to its end: every stop must be reached in order and every question must have
+// a computable answer. Throws LessonError naming the stop.
+LessonPlan planLesson(const Lesson& lesson);
+
+// ---- Markdown-light text ------------------------------------------------------------------------
+
+struct TextSpan {
+    enum class Style : std::uint8_t { Plain, Bold, Code };
+    Style style = Style::Plain;
+    std::string text;
+};
+struct TextBlock {
+    enum class Kind : std::uint8_t { Paragraph, Bullet, Numbered };
+    Kind kind = Kind::Paragraph;
+    int number = 0;                   // Numbered: the number written
+    std::vector<TextSpan> spans;
+};
+// Paragraphs (separated by blank lines; lines join with a space), "- " / "* " bullets, "1. "
+// numbered items, **bold** and `code` inside. Unclosed ** or ` is an error: nullopt and, in
+// `error`, "line N: ...", N counted from 1 within the text.
+std::optional<std::vector<TextBlock>> parseLessonText(std::string_view text, std::string* error = nullptr);
+
+// ---- Progress (the GUI persists it) ----------------------------------------------------------------
+
+struct LessonProgress {
+    std::string lesson;                 // the lesson file as opened
+    std::string title;                  // to notice a different lesson at the same path
+    std::size_t stop = 0;               // the stop shown
+    std::size_t furthest = 0;           // the furthest stop reached
+    std::vector<std::uint8_t> answers;  // per stop: 0 not answered, 1 tried and wrong, 2 right
+};
+
+}  // namespace dlab

@@ -1,0 +1,510 @@
+// Trace comparison: a lenient reader for students' traces, a replay of the mesh each trace
+// describes, and an incremental comparison (multiset of triangles, mismatching corners) so that
+// long traces cost time linear in their length.
+#include "core/teaching/trace_diff.h"
+
+#include "core/engine/io_read.h"
+#include "core/engine/text_util.h"
+#include "core/teaching/trace.h"
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cctype>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+namespace dlab {
+
+namespace {
+
+// Bounds for indices read from untrusted traces: 2^25 corners is the largest mesh a trace that
+// fits in memory can describe, and keeps the replay's arrays small enough to allocate.
+constexpr std::int64_t kMaxCorners = std::int64_t{1} << 25;
+constexpr std::int64_t kMaxId = std::int64_t{1} << 30;
+
+std::optional<OpType> opTypeLenient(const std::string& name) {
+    if (auto t = parseOpType(name)) return t;
+    const std::string s = looseName(name);
+    for (int k = 0; k <= static_cast<int>(OpType::Finalize); ++k) {
+        const auto t = static_cast<OpType>(k);
+        if (s == looseName(toString(t))) return t;
+    }
+    if (s == "incircle") return OpType::InCircleTest;
+    if (s == "duplicate" || s == "skip") return OpType::SkipDuplicate;
+    return std::nullopt;
+}
+
+std::int64_t integer(const nlohmann::json& v, const std::string& what, std::int64_t lo, std::int64_t hi,
+                     const std::string& name, int line) {
+    if (!v.is_number_integer()) throw InputError(name, line, what + " must be an integer, not " + v.dump());
+    std::int64_t x;
+    if (v.is_number_unsigned()) {
+        const auto u = v.get<std::uint64_t>();
+        if (u > static_cast<std::uint64_t>(hi)) throw InputError(name, line, what + " " + std::to_string(u) + " is out of range");
+        x = static_cast<std::int64_t>(u);
+    } else {
+        x = v.get<std::int64_t>();
+    }
+    if (x < lo || x > hi) throw InputError(name, line, what + " " + std::to_string(x) + " is out of range");
+    return x;
+}
+
+TraceOp parseLine(const std::string& text, const std::string& name, int line) {
+    nlohmann::json j;
+    try {
+        j = nlohmann::json::parse(text);
+    } catch (const nlohmann::json::exception&) {
+        throw InputError(name, line, "not a JSON object (each line of a trace is one {...})");
+    }
+    if (!j.is_object()) throw InputError(name, line, "not a JSON object (each line of a trace is one {...})");
+    TraceOp op;
+    op.line = line;
+    if (!j.contains("op")) throw InputError(name, line, "missing \"op\" (e.g. \"op\": \"Flip\")");
+    if (!j["op"].is_string()) throw InputError(name, line, "\"op\" must be a string");
+    const auto type = opTypeLenient(j["op"].get<std::string>());
+    if (!type) throw InputError(name, line, "unknown op " + j["op"].dump());
+    op.type = *type;
+    auto id = [&](const char* key) -> std::optional<std::int32_t> {
+        if (!j.contains(key) || j[key].is_null()) return std::nullopt;
+        return static_cast<std::int32_t>(integer(j[key], key, kNone, kMaxId, name, line));
+    };
+    if (j.contains("i") && !j["i"].is_null()) op.index = integer(j["i"], "i", 0, INT64_MAX, name, line);
+    op.vertex = id("vertex");
+    op.a = id("a");
+    op.b = id("b");
+    if (j.contains("sign") && !j["sign"].is_null()) op.sign = static_cast<int>(integer(j["sign"], "sign", -1, 1, name, line));
+    if (j.contains("where") && j["where"].is_string()) op.where = j["where"].get<std::string>();
+    if (j.contains("changes")) {
+        if (!j["changes"].is_array()) throw InputError(name, line, "\"changes\" must be a list");
+        op.hasChanges = true;
+        for (const auto& c : j["changes"]) {
+            if (!c.is_array() || c.size() != 4 || !c[0].is_string() || (c[0] != "V" && c[0] != "O")) {
+                throw InputError(name, line, "a change is [\"V\" or \"O\", corner, before, after], not " + c.dump());
+            }
+            const auto corner = static_cast<std::int32_t>(integer(c[1], "a corner", 0, kMaxCorners - 1, name, line));
+            const auto before = static_cast<std::int32_t>(integer(c[2], "a cell value", kNone, kMaxId, name, line));
+            const auto after = static_cast<std::int32_t>(integer(c[3], "a cell value", kNone, kMaxId, name, line));
+            op.changes.push_back({2 * corner + (c[0] == "O" ? 1 : 0), before, after});
+        }
+    }
+    if (j.contains("triangles")) {
+        if (!j["triangles"].is_array()) throw InputError(name, line, "\"triangles\" must be a list of [t, v0, v1, v2]");
+        op.hasTriangles = true;
+        for (const auto& t : j["triangles"]) {
+            if (!t.is_array() || t.size() != 4) {
+                throw InputError(name, line, "a triangle is [t, v0, v1, v2] (t: your triangle number), not " + t.dump());
+            }
+            std::array<std::int32_t, 4> v{};
+            v[0] = static_cast<std::int32_t>(integer(t[0], "a triangle number", 0, kMaxCorners / 3 - 1, name, line));
+            for (int k = 1; k < 4; ++k) v[k] = static_cast<std::int32_t>(integer(t[k], "a vertex", 0, kMaxId, name, line));
+            op.triangles.push_back(v);
+        }
+    }
+    return op;
+}
+
+}  // namespace
+
+bool TraceOp::changesMesh() const {
+    switch (type) {
+        case OpType::Start:
+        case OpType::Split:
+        case OpType::SplitEdge:
+        case OpType::Flip:
+        case OpType::SkipDuplicate:
+        case OpType::Finalize: return true;
+        default: return false;
+    }
+}
+
+TraceFile parseTraceText(std::istream& in, const std::string& name) {
+    TraceFile f;
+    f.name = name;
+    std::string line;
+    int number = 0;
+    while (std::getline(in, line)) {
+        ++number;
+        if (!line.empty() && line.back() == '\r') line.pop_back();
+        if (line.find_first_not_of(" \t") == std::string::npos) continue;
+        f.ops.push_back(parseLine(line, name, number));
+    }
+    if (f.ops.empty()) throw InputError(name, 0, "no operations: the trace is empty");
+    return f;
+}
+
+TraceFile readTraceFile(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw InputError(path, 0, "cannot open the trace");
+    return parseTraceText(in, path);
+}
+
+TraceFile traceOfRun(Inserter& ins, const std::string& name) {
+    Journal journal(ins);
+    std::stringstream text;
+    while (journal.forward()) text << toJsonLine(traceRecord(journal, journal.position() - 1, ins.mesh())) << '\n';
+    return parseTraceText(text, name);
+}
+
+Triple canonical(std::int32_t v0, std::int32_t v1, std::int32_t v2) {
+    if (v1 < v0 && v1 <= v2) return {v1, v2, v0};
+    if (v2 < v0 && v2 < v1) return {v2, v0, v1};
+    return {v0, v1, v2};
+}
+
+// ============================================================================================
+// [SECTION] Replay
+// ============================================================================================
+
+void TraceReplay::setTriangle(std::int32_t t, Triple tri) {
+    const std::size_t need = 3 * static_cast<std::size_t>(t) + 3;
+    if (m_V.size() < need) {
+        m_V.resize(need, kNone);
+        m_O.resize(need, kNone);
+    }
+    for (int k = 0; k < 3; ++k) m_V[3 * t + k] = tri[k];
+}
+
+void TraceReplay::apply(const TraceOp& op) {
+    m_touched.clear();
+    std::set<std::int32_t> tris;
+    // The slots the op writes, and their triples before it: touched() lists those that changed.
+    std::map<std::int32_t, Triple> before;
+    auto tripleAt = [&](std::int32_t t) {
+        if (3 * static_cast<std::size_t>(t) + 2 >= m_V.size()) return Triple{kNone, kNone, kNone};
+        return Triple{m_V[3 * t], m_V[3 * t + 1], m_V[3 * t + 2]};
+    };
+    if (op.hasChanges) {
+        for (const CellChange& c : op.changes) before.emplace(tri(c.corner()), tripleAt(tri(c.corner())));
+    } else if (op.hasTriangles) {
+        for (const auto& t : op.triangles) before.emplace(t[0], tripleAt(t[0]));
+    }
+    if (op.hasChanges) {
+        for (const CellChange& c : op.changes) {
+            const std::size_t need = static_cast<std::size_t>(c.corner() / 3) * 3 + 3;
+            if (m_V.size() < need) {
+                m_V.resize(need, kNone);
+                m_O.resize(need, kNone);
+            }
+            (c.isO() ? m_O : m_V)[c.corner()] = c.after;
+            m_hasO = m_hasO || c.isO();
+            tris.insert(tri(c.corner()));
+        }
+    } else if (op.hasTriangles) {
+        if (op.type == OpType::Finalize) {  // the complete final list
+            m_V.clear();
+            m_O.clear();
+        }
+        for (const auto& t : op.triangles) {
+            setTriangle(t[0], {t[1], t[2], t[3]});
+            tris.insert(t[0]);
+        }
+    }
+    // Trailing triangles whose cells were all cleared are gone (Finalize shrinks the table).
+    while (m_V.size() >= 3 && m_V[m_V.size() - 1] == kNone && m_V[m_V.size() - 2] == kNone && m_V[m_V.size() - 3] == kNone) {
+        m_V.resize(m_V.size() - 3);
+        m_O.resize(m_O.size() - 3);
+    }
+    for (std::int32_t t : tris) {
+        const Triple now = tripleAt(t);
+        const auto was = before.find(t);
+        if (was != before.end() && was->second == now) continue;  // only its O cells changed
+        if (now[0] != kNone && now[1] != kNone && now[2] != kNone) m_touched.push_back(canonical(now[0], now[1], now[2]));
+    }
+}
+
+std::vector<Triple> TraceReplay::triangles() const {
+    std::vector<Triple> out;
+    for (std::size_t c = 0; c + 2 < m_V.size(); c += 3) {
+        if (m_V[c] != kNone && m_V[c + 1] != kNone && m_V[c + 2] != kNone) {
+            out.push_back(canonical(m_V[c], m_V[c + 1], m_V[c + 2]));
+        }
+    }
+    std::sort(out.begin(), out.end());
+    return out;
+}
+
+void TraceReplay::dropTrianglesOutside(const std::vector<bool>& keep) {
+    std::vector<std::int32_t> V, O;
+    for (std::size_t c = 0; c + 2 < m_V.size(); c += 3) {
+        bool ok = true;
+        for (int k = 0; k < 3; ++k) {
+            const std::int32_t v = m_V[c + k];
+            ok = ok && v >= 0 && static_cast<std::size_t>(v) < keep.size() && keep[v];
+        }
+        if (!ok) continue;
+        V.insert(V.end(), m_V.begin() + c, m_V.begin() + c + 3);
+        O.insert(O.end(), {kNone, kNone, kNone});
+    }
+    m_V = std::move(V);
+    m_O = std::move(O);
+}
+
+// ============================================================================================
+// [SECTION] Comparison
+// ============================================================================================
+
+namespace {
+
+std::string tripleText(const Triple& t) {
+    return "(" + std::to_string(t[0]) + ", " + std::to_string(t[1]) + ", " + std::to_string(t[2]) + ")";
+}
+
+std::string listText(const std::vector<Triple>& ts, std::size_t most = 6) {
+    std::string s;
+    for (std::size_t i = 0; i < ts.size() && i < most; ++i) s += (i ? " " : "") + tripleText(ts[i]);
+    if (ts.size() > most) s += " ... (" + std::to_string(ts.size()) + " in all)";
+    return s.empty() ? "none" : s;
+}
+
+// The flip's removed and new edges from the two triangles it left: they share the new edge;
+// their other vertices are the ends of the removed one.
+std::string flipText(const std::vector<Triple>& two) {
+    if (two.size() != 2) return "";
+    std::vector<std::int32_t> shared, other;
+    for (std::int32_t v : two[0]) (std::count(two[1].begin(), two[1].end(), v) ? shared : other).push_back(v);
+    for (std::int32_t v : two[1]) {
+        if (!std::count(two[0].begin(), two[0].end(), v)) other.push_back(v);
+    }
+    if (shared.size() != 2 || other.size() != 2) return "";
+    auto edge = [](std::int32_t x, std::int32_t y) { return std::to_string(std::min(x, y)) + "-" + std::to_string(std::max(x, y)); };
+    return "flipped edge " + edge(other[0], other[1]) + " to " + edge(shared[0], shared[1]);
+}
+
+// Sorted multiset difference: in a but not b.
+std::vector<Triple> minus(const std::vector<Triple>& a, const std::vector<Triple>& b) {
+    std::vector<Triple> out;
+    std::set_difference(a.begin(), a.end(), b.begin(), b.end(), std::back_inserter(out));
+    return out;
+}
+
+Triple reversed(const Triple& t) { return canonical(t[0], t[2], t[1]); }
+
+// Keeps the difference of two triangle multisets up to date, op by op.
+class TriangleBalance {
+public:
+    void add(const Triple& t, int side) {  // side +1: reference, -1: student
+        int& n = m_count[t];
+        if (n == 0) ++m_nonZero;
+        n += side;
+        if (n == 0) {
+            --m_nonZero;
+            m_count.erase(t);
+        }
+    }
+    bool equal() const { return m_nonZero == 0; }
+
+private:
+    std::map<Triple, int> m_count;
+    std::size_t m_nonZero = 0;
+};
+
+// The triangles (by slot) of a replay, kept in the balance as the replay changes.
+class Tracked {
+public:
+    Tracked(TriangleBalance& balance, int side) : m_balance(balance), m_side(side) {}
+    void apply(const TraceOp& op) {
+        // Remove the triangles the op may change, replay, add them back as they are now.
+        std::set<std::int32_t> slots;
+        if (op.hasChanges) {
+            for (const CellChange& c : op.changes) slots.insert(tri(c.corner()));
+        } else if (op.hasTriangles) {
+            for (const auto& t : op.triangles) slots.insert(t[0]);
+        }
+        const bool whole = op.type == OpType::Finalize && !op.hasChanges && op.hasTriangles;
+        if (whole) {
+            for (std::size_t t = 0; 3 * t + 2 < m_replay.V().size(); ++t) slots.insert(static_cast<std::int32_t>(t));
+        }
+        for (std::int32_t t : slots) account(t, -1);
+        m_replay.apply(op);
+        for (std::int32_t t : slots) account(t, +1);
+    }
+    void dropOutside(const std::vector<bool>& keep) {
+        for (const Triple& t : m_replay.triangles()) m_balance.add(t, -m_side);
+        m_replay.dropTrianglesOutside(keep);
+        for (const Triple& t : m_replay.triangles()) m_balance.add(t, m_side);
+    }
+    const TraceReplay& replay() const { return m_replay; }
+
+private:
+    void account(std::int32_t t, int sign) {
+        const auto& V = m_replay.V();
+        if (3 * static_cast<std::size_t>(t) + 2 >= V.size()) return;
+        if (V[3 * t] == kNone || V[3 * t + 1] == kNone || V[3 * t + 2] == kNone) return;
+        m_balance.add(canonical(V[3 * t], V[3 * t + 1], V[3 * t + 2]), sign * m_side);
+    }
+    TriangleBalance& m_balance;
+    int m_side;
+    TraceReplay m_replay;
+};
+
+// First corner where two tables differ (kNone when they agree).
+std::int32_t firstCornerDiff(const std::vector<std::int32_t>& a, const std::vector<std::int32_t>& b) {
+    const std::size_t n = std::max(a.size(), b.size());
+    for (std::size_t c = 0; c < n; ++c) {
+        const std::int32_t x = c < a.size() ? a[c] : kNone, y = c < b.size() ? b[c] : kNone;
+        if (x != y) return static_cast<std::int32_t>(c);
+    }
+    return kNone;
+}
+
+std::string cell(const std::vector<std::int32_t>& t, std::int32_t c) {
+    return static_cast<std::size_t>(c) < t.size() ? std::to_string(t[c]) : "(none)";
+}
+
+}  // namespace
+
+TraceDiff diffTraces(const TraceFile& ref, const TraceFile& student, const DiffOptions& options) {
+    TraceDiff d;
+    TriangleBalance balance;
+    Tracked r(balance, +1), s(balance, -1);
+    auto compared = [&](const TraceOp& op) { return options.allOps || op.changesMesh(); };
+    // The vertices the reference keeps at the end: a student's bare Finalize drops the others.
+    std::vector<bool> realVertices;
+    {
+        TraceReplay end;
+        for (const TraceOp& op : ref.ops) end.apply(op);
+        for (const Triple& t : end.triangles()) {
+            for (std::int32_t v : t) {
+                if (static_cast<std::size_t>(v) >= realVertices.size()) realVertices.resize(v + 1, false);
+                realVertices[v] = true;
+            }
+        }
+    }
+    std::size_t i = 0, j = 0;
+    auto fail = [&](std::string what) {
+        d.equal = false;
+        d.what = std::move(what);
+        d.refOp = i;
+        d.studentOp = j;
+        return d;
+    };
+    while (true) {
+        // Replay up to and including the next compared op of each trace.
+        while (i < ref.ops.size() && !compared(ref.ops[i])) r.apply(ref.ops[i++]);
+        while (j < student.ops.size() && !compared(student.ops[j])) s.apply(student.ops[j++]);
+        const bool refDone = i == ref.ops.size(), stuDone = j == student.ops.size();
+        if (refDone && stuDone) break;
+        if (stuDone) {
+            return fail("the student's trace ends early: the reference goes on with " +
+                        std::string(toString(ref.ops[i].type)) + " (" + ref.name + ":" + std::to_string(ref.ops[i].line) + ")");
+        }
+        if (refDone) {
+            return fail("the student's trace goes on after the reference has ended, with " +
+                        std::string(toString(student.ops[j].type)) + " (" + student.name + ":" +
+                        std::to_string(student.ops[j].line) + ")");
+        }
+        const TraceOp& a = ref.ops[i];
+        const TraceOp& b = student.ops[j];
+        if (a.type != b.type) {
+            return fail(std::string("the reference does ") + toString(a.type) + ", the student " + toString(b.type));
+        }
+        if (a.vertex && b.vertex && *a.vertex != *b.vertex) {
+            return fail(std::string(toString(a.type)) + " of vertex " + std::to_string(*a.vertex) + " in the reference, of vertex " +
+                        std::to_string(*b.vertex) + " in the student's run");
+        }
+        if (options.allOps && a.sign && b.sign && *a.sign != *b.sign) {
+            return fail("the in-circle test answers " + std::to_string(*a.sign) + " in the reference, " +
+                        std::to_string(*b.sign) + " in the student's run");
+        }
+        r.apply(a);
+        s.apply(b);
+        if (b.type == OpType::Finalize && !b.hasChanges && !b.hasTriangles) s.dropOutside(realVertices);
+        ++d.compared;
+        if (!balance.equal()) {
+            const auto rt = r.replay().triangles(), st = s.replay().triangles();
+            const auto onlyRef = minus(rt, st), onlyStu = minus(st, rt);
+            TraceDiff out = fail(std::string("the triangles differ after ") + toString(a.type) +
+                                 (a.vertex && *a.vertex != kNone ? " (vertex " + std::to_string(*a.vertex) + ")" : ""));
+            if (a.type == OpType::Flip) {
+                const std::string fr = flipText(r.replay().touched()), fs = flipText(s.replay().touched());
+                if (!fr.empty()) out.details.push_back("reference: " + fr);
+                if (!fs.empty()) out.details.push_back("student:   " + fs);
+            }
+            out.details.push_back("triangles only in the reference: " + listText(onlyRef));
+            out.details.push_back("triangles only in the student's: " + listText(onlyStu));
+            std::size_t flippedOrientation = 0;
+            for (const Triple& t : onlyStu) flippedOrientation += std::binary_search(onlyRef.begin(), onlyRef.end(), reversed(t));
+            if (flippedOrientation) {
+                out.details.push_back(std::to_string(flippedOrientation) +
+                                      " of the student's triangles are reference triangles in the other orientation "
+                                      "(clockwise): list corners counter-clockwise, y up");
+            }
+            return out;
+        }
+        if (options.corners && !(b.type == OpType::Finalize && !b.hasChanges && !b.hasTriangles)) {
+            const std::int32_t cv = firstCornerDiff(r.replay().V(), s.replay().V());
+            if (cv != kNone) {
+                TraceDiff out = fail(std::string("same triangles, but the corners differ after ") + toString(a.type) +
+                                     ": V[" + std::to_string(cv) + "] is " + cell(r.replay().V(), cv) + " in the reference, " +
+                                     cell(s.replay().V(), cv) + " in the student's run");
+                out.details.push_back("the paper's convention: a split keeps the old triangle's corners (it becomes (a, b, v)) "
+                                      "and appends (b, c, v) and (c, a, v); a flip rewrites its two triangles in place");
+                return out;
+            }
+            if (s.replay().hasO()) {
+                const std::int32_t co = firstCornerDiff(r.replay().O(), s.replay().O());
+                if (co != kNone) {
+                    return fail(std::string("same triangles and V, but O differs after ") + toString(a.type) + ": O[" +
+                                std::to_string(co) + "] is " + cell(r.replay().O(), co) + " in the reference, " +
+                                cell(s.replay().O(), co) + " in the student's run");
+                }
+            }
+        }
+        ++i;
+        ++j;
+    }
+    d.refOp = ref.ops.size();
+    d.studentOp = student.ops.size();
+    d.what = "the runs agree: " + std::to_string(d.compared) + " operations compared" +
+             (options.corners ? ", corner by corner" : ", by their triangles");
+    return d;
+}
+
+std::string summarize(const TraceFile& f, std::size_t k) {
+    if (k >= f.ops.size()) return f.name + ": (end of trace)";
+    const TraceOp& op = f.ops[k];
+    std::string s = f.name + ":" + std::to_string(op.line) + " ";
+    if (op.index) s += "[" + std::to_string(*op.index) + "] ";
+    s += toString(op.type);
+    if (op.vertex && *op.vertex != kNone) s += " vertex " + std::to_string(*op.vertex);
+    if (op.a) s += " a=" + std::to_string(*op.a);
+    if (op.b) s += " b=" + std::to_string(*op.b);
+    if (!op.where.empty()) s += " " + op.where;
+    if (op.sign) s += " sign=" + std::to_string(*op.sign);
+    if (op.hasTriangles && !op.triangles.empty()) {
+        std::vector<Triple> ts;
+        for (const auto& t : op.triangles) ts.push_back(canonical(t[1], t[2], t[3]));
+        s += " -> " + listText(ts, 4);
+    }
+    return s;
+}
+
+std::string formatDiff(const TraceDiff& d, const TraceFile& ref, const TraceFile& student, const DiffOptions& options) {
+    std::ostringstream out;
+    if (d.equal) {
+        out << d.what << "\n";
+        return out.str();
+    }
+    auto at = [](const TraceFile& f, std::size_t k) {
+        return k < f.ops.size() ? "op " + std::to_string(k) + " (" + f.name + ":" + std::to_string(f.ops[k].line) + ")"
+                                : std::string("the end of ") + f.name;
+    };
+    out << "first difference at reference " << at(ref, d.refOp) << ", student " << at(student, d.studentOp) << ":\n  "
+        << d.what << "\n";
+    for (const std::string& line : d.details) out << "  " << line << "\n";
+    const auto context = [&](const TraceFile& f, std::size_t k, const char* who) {
+        out << "context (" << who << "):\n";
+        const std::size_t from = k > static_cast<std::size_t>(options.context) ? k - options.context : 0;
+        for (std::size_t x = from; x <= k + 1 && x < f.ops.size(); ++x) {
+            out << (x == k ? "  > " : "    ") << summarize(f, x) << "\n";
+        }
+        if (k >= f.ops.size()) out << "  > (end of trace)\n";
+    };
+    context(ref, d.refOp, "reference");
+    context(student, d.studentOp, "student");
+    return out.str();
+}
+
+}  // namespace dlab

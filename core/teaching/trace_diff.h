@@ -1,0 +1,106 @@
+// Comparing two runs by their traces (JSON Lines, core/teaching/trace.h): ours and a student's. Finds the
+// first operation where the student's run differs, by the triangles (vertex triples, up to
+// rotation) and the flips made, and, for a student who follows the paper's corner-reuse
+// convention, corner by corner.
+//
+// A student's trace may hold only some fields. The minimum, one JSON object per line:
+//   {"op": "Split", "triangles": [[t, v0, v1, v2], ...]}
+// where "op" is one of Start, Split, SplitEdge, Flip, SkipDuplicate, Finalize (the operations
+// that change the mesh; LocateStep, Located, InCircleTest and Inserted lines may be present
+// and are shown as context), and "triangles" lists the triangles the operation created or
+// changed, as they are after it: t is the student's own triangle number, so that a later line
+// can replace triangle t. Instead of "triangles" a line may give "changes" (V/O cell changes,
+// as dtlab trace writes them). Finalize may list every final triangle, or nothing: then the
+// triangles that touch a ghost/super vertex are dropped. "vertex", "a", "b", "i" are optional.
+#pragma once
+
+#include "core/engine/inserter.h"
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <iosfwd>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace dlab {
+
+// One line of a trace, with what it had.
+struct TraceOp {
+    int line = 0;  // 1-based line in its file
+    OpType type = OpType::Start;
+    std::optional<std::int64_t> index;  // "i"
+    std::optional<std::int32_t> vertex, a, b;
+    std::optional<int> sign;
+    std::string where;
+    bool hasChanges = false;
+    std::vector<CellChange> changes;
+    bool hasTriangles = false;
+    std::vector<std::array<std::int32_t, 4>> triangles;  // t, v0, v1, v2
+    bool changesMesh() const;  // Start, Split, SplitEdge, Flip, SkipDuplicate, Finalize
+};
+
+struct TraceFile {
+    std::string name;
+    std::vector<TraceOp> ops;
+};
+
+// Reads a trace leniently (only "op" is required on each line; blank lines are skipped).
+// Throws InputError ("NAME:LINE: what") on anything that is not such a trace.
+TraceFile readTraceFile(const std::string& path);
+TraceFile parseTraceText(std::istream& in, const std::string& name);
+// Our own run as a trace (what dtlab trace writes), without going through a file.
+TraceFile traceOfRun(Inserter& ins, const std::string& name);
+
+// A triangle as a vertex triple rotated so that its smallest vertex comes first (orientation
+// kept): (5, 2, 9) and (2, 9, 5) are the same triangle, (2, 5, 9) is the other orientation.
+using Triple = std::array<std::int32_t, 3>;
+Triple canonical(std::int32_t v0, std::int32_t v1, std::int32_t v2);
+
+// The mesh a trace describes, op by op: V and O from "changes", or triangle t -> triple from
+// "triangles".
+class TraceReplay {
+public:
+    void apply(const TraceOp& op);
+    // The live triangles (no cell unset), canonical and sorted.
+    std::vector<Triple> triangles() const;
+    // The triangles whose vertices the last op set or changed, as they are after it.
+    const std::vector<Triple>& touched() const { return m_touched; }
+    const std::vector<std::int32_t>& V() const { return m_V; }
+    const std::vector<std::int32_t>& O() const { return m_O; }
+    bool hasO() const { return m_hasO; }
+    // Keeps only the triangles all of whose vertices are in `keep` (Finalize without data).
+    void dropTrianglesOutside(const std::vector<bool>& keep);
+
+private:
+    void setTriangle(std::int32_t t, Triple tri);
+    std::vector<std::int32_t> m_V, m_O;
+    bool m_hasO = false;
+    std::vector<Triple> m_touched;
+};
+
+struct DiffOptions {
+    bool allOps = false;   // compare every op one to one (types, vertices), not only mesh changes
+    bool corners = false;  // the student follows the corner-reuse convention: compare V (and O)
+    int context = 3;       // lines of context before the difference
+};
+
+struct TraceDiff {
+    bool equal = true;
+    std::size_t compared = 0;        // operations compared
+    // Where the first difference is: indices into ref.ops / student.ops (== size(): past the end).
+    std::size_t refOp = 0, studentOp = 0;
+    std::string what;                // one line: "the triangles differ after Flip"
+    std::vector<std::string> details;  // the evidence, one line each
+};
+
+TraceDiff diffTraces(const TraceFile& ref, const TraceFile& student, const DiffOptions& options = {});
+// The report dtlab diff-trace prints: the difference, its evidence, the ops around it in both.
+std::string formatDiff(const TraceDiff& diff, const TraceFile& ref, const TraceFile& student,
+                       const DiffOptions& options = {});
+// One op as a short line for context: "ref.jsonl:58 [57] Flip vertex 9 a=12 b=20".
+std::string summarize(const TraceFile& file, std::size_t op);
+
+}  // namespace dlab

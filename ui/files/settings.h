@@ -1,0 +1,22 @@
+// What the GUI remembers between runs: window placement, layout, overlays, presentation mode
+// and animation speed, in $XDG_CONFIG_HOME/delaunay-lab/settings.json (JSON, written atomically).
+#pragma once
+
+#include "ui/app_state.h"
+#include "ui/platform/platform.h"
+
+#include <string>
+
+namespace dlab::ui {
+
+// $XDG_CONFIG_HOME/delaunay-lab/settings.json, else ~/.config/delaunay-lab/settings.json;
+// empty when neither is known.
+std::string defaultSettingsPath();
+
+// Reads what it can; a missing file is not an error, a damaged one gives a warning (and the
+// defaults). Never throws.
+void loadSettings(const std::string& path, AppState& state, WindowOptions& window, std::string& warning);
+// Writes to a temporary file and renames it over the old one. False with a reason on failure.
+bool saveSettings(const std::string& path, const AppState& state, const WindowOptions& window, std::string& error);
+
+}  // namespace dlab::ui

@@ -1,0 +1,759 @@
+// The canvas: the mesh, the current operation highlighted (walk path and line L, the new
+// triangles of a split, the edge under test with its circle, flips, the queue of edges still to
+// test), labels of vertices, corners and triangles, Voronoi and circumcircles; pan, zoom, fit,
+// click to add a point, right-click to remove a queued one, drag queued points, pick corners.
+//
+// Index
+//   [SECTION] Colours and small drawing helpers
+//   [SECTION] Corner anchors (where a corner's label sits inside its triangle)
+//   [SECTION] Highlights of the current operation
+//   [SECTION] Labels, points, selection
+//   [SECTION] Input
+//   [SECTION] ShowCanvas
+#include "core/engine/voronoi.h"
+#include "ui/gui.h"
+#include "ui/gl/mesh_renderer.h"
+#include "ui/panels/panels.h"
+
+#include <imgui.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+namespace dlab::ui {
+
+// Up to this many points, points are drawn as ImDrawList circles with ids; above, by GL.
+// Up to this many points are drawn as ImGui circles (with ids when asked); beyond, our GL renderer
+// draws them: each circle costs ~50 of a draw list's 65536 vertices (CanvasHasRoom).
+constexpr std::size_t kFewPoints = 600;
+constexpr unsigned kVerticesPerPoint = 64;
+constexpr int kSkippedDrawn = 300;  // crosses for skipped duplicates when there are many points
+
+struct CanvasCache {
+    MeshRenderer renderer;
+    bool rebuiltLastFrame = false;
+    View builtView;  // the view of the last rebuild
+    // Interaction in progress (press on the canvas until release).
+    enum class Drag : std::uint8_t { None, Pan, Point, Pending } drag = Drag::None;
+    std::int32_t dragPoint = kNone;
+    ImVec2 pressPos{0, 0};
+    bool moved = false;
+    bool pressedOnCorner = false;
+};
+
+namespace {
+
+// ============================================================================================
+// [SECTION] Colours and small drawing helpers
+// ============================================================================================
+
+struct Palette {
+    ImU32 background, grid, fill, edge, virtualEdge, vertex, vertexId, pending, current, skipped;
+    ImU32 walk, walkNow, lineL, split[3], testEdge, circleFlip, circleKeep, flipped, queue, cornerId, cornerChanged;
+    ImU32 selected, hovered, arrow, triangleId, voronoi, circum;
+};
+
+Palette palette(bool presentation) {
+    Palette p{};
+    p.background = IM_COL32(255, 255, 255, 255);
+    p.grid = IM_COL32(232, 236, 242, 255);
+    p.fill = IM_COL32(236, 242, 252, 255);
+    p.edge = presentation ? IM_COL32(20, 20, 30, 255) : IM_COL32(70, 78, 96, 255);
+    p.virtualEdge = IM_COL32(175, 180, 190, 255);
+    p.vertex = IM_COL32(20, 20, 30, 255);
+    p.vertexId = IM_COL32(25, 60, 160, 255);
+    p.pending = IM_COL32(140, 140, 150, 255);
+    p.current = IM_COL32(240, 120, 0, 255);
+    p.skipped = IM_COL32(200, 30, 30, 255);
+    p.walk = IM_COL32(255, 244, 190, 255);
+    p.walkNow = IM_COL32(255, 214, 90, 255);
+    p.lineL = IM_COL32(30, 90, 220, 255);
+    p.split[0] = IM_COL32(214, 234, 200, 255);
+    p.split[1] = IM_COL32(200, 224, 248, 255);
+    p.split[2] = IM_COL32(240, 214, 236, 255);
+    p.testEdge = IM_COL32(240, 120, 0, 255);
+    p.circleFlip = IM_COL32(215, 40, 40, 255);
+    p.circleKeep = IM_COL32(30, 150, 60, 255);
+    p.flipped = IM_COL32(215, 40, 40, 255);
+    p.queue = IM_COL32(240, 150, 20, 255);
+    p.cornerId = IM_COL32(110, 110, 120, 255);
+    p.cornerChanged = IM_COL32(215, 90, 0, 255);
+    p.selected = IM_COL32(240, 120, 0, 255);
+    p.hovered = IM_COL32(30, 110, 230, 255);
+    p.arrow = IM_COL32(150, 40, 190, 255);
+    p.triangleId = IM_COL32(90, 120, 90, 255);
+    p.voronoi = IM_COL32(40, 150, 120, 255);
+    p.circum = IM_COL32(150, 150, 200, 160);
+    return p;
+}
+
+
+// Clips segment ab to the rectangle [lo, hi] (Liang-Barsky); false when nothing is left.
+bool ClipSegment(ImVec2& a, ImVec2& b, ImVec2 lo, ImVec2 hi) {
+    const double dx = static_cast<double>(b.x) - a.x, dy = static_cast<double>(b.y) - a.y;
+    double t0 = 0, t1 = 1;
+    const double p[4] = {-dx, dx, -dy, dy};
+    const double q[4] = {static_cast<double>(a.x) - lo.x, static_cast<double>(hi.x) - a.x, static_cast<double>(a.y) - lo.y,
+                         static_cast<double>(hi.y) - a.y};
+    for (int i = 0; i < 4; ++i) {
+        if (!std::isfinite(p[i]) || !std::isfinite(q[i])) return false;
+        if (p[i] == 0) {
+            if (q[i] < 0) return false;
+            continue;
+        }
+        const double r = q[i] / p[i];
+        if (p[i] < 0) t0 = std::max(t0, r);
+        else t1 = std::min(t1, r);
+        if (t0 > t1) return false;
+    }
+    const ImVec2 a0 = a;
+    a = ImVec2(static_cast<float>(a0.x + t0 * dx), static_cast<float>(a0.y + t0 * dy));
+    b = ImVec2(static_cast<float>(a0.x + t1 * dx), static_cast<float>(a0.y + t1 * dy));
+    return true;
+}
+
+// Dashes only the visible part: an edge to a super-triangle vertex of a huge box can be
+// millions of pixels long on screen (a dash each would exhaust memory).
+void DashedLine(ImDrawList* dl, ImVec2 a, ImVec2 b, ImU32 col, float thickness, float dash = 7, float gap = 5) {
+    if (!ClipSegment(a, b, dl->GetClipRectMin(), dl->GetClipRectMax())) return;
+    const float dx = b.x - a.x, dy = b.y - a.y, len = std::sqrt(dx * dx + dy * dy);
+    if (len < 1e-3f) return;
+    const float ux = dx / len, uy = dy / len;
+    for (float t = 0; t < len; t += dash + gap) {
+        const float e = std::min(len, t + dash);
+        dl->AddLine(ImVec2(a.x + ux * t, a.y + uy * t), ImVec2(a.x + ux * e, a.y + uy * e), col, thickness);
+    }
+}
+
+void Arrow(ImDrawList* dl, ImVec2 a, ImVec2 b, ImU32 col, float thickness) {
+    dl->AddLine(a, b, col, thickness);
+    const float dx = b.x - a.x, dy = b.y - a.y, len = std::sqrt(dx * dx + dy * dy);
+    if (len < 1) return;
+    const float ux = dx / len, uy = dy / len, s = 9 + thickness * 2;
+    dl->AddTriangleFilled(b, ImVec2(b.x - ux * s - uy * s * 0.5f, b.y - uy * s + ux * s * 0.5f),
+                          ImVec2(b.x - ux * s + uy * s * 0.5f, b.y - uy * s - ux * s * 0.5f), col);
+}
+
+void LabelBox(ImDrawList* dl, ImFont* font, float size, ImVec2 centre, ImU32 text, ImU32 box, const char* s) {
+    const ImVec2 ts = font->CalcTextSizeA(size, 1e9f, 0, s);
+    const ImVec2 a(centre.x - ts.x / 2 - 2, centre.y - ts.y / 2), b(centre.x + ts.x / 2 + 2, centre.y + ts.y / 2);
+    if (box) dl->AddRectFilled(a, b, box, 3);
+    dl->AddText(font, size, ImVec2(a.x + 2, a.y), text, s);
+}
+
+// ============================================================================================
+// [SECTION] Corner anchors
+// ============================================================================================
+
+// Everything the overlays need to place things on the screen.
+struct Scene {
+    AppState& st;  // non-const only for frameStats.canvasFull (room())
+    const Engine& e;
+    const Mesh& m;
+    const Inserter& ins;
+    const View& view;
+    ImDrawList* dl;
+    Palette pal;
+    bool running;  // virtual vertices still present
+    bool ghostMode;
+
+    ImVec2 screen(std::int32_t v) const { return toIm(view.toScreen(m.G[v])); }
+    bool virtualTri(std::int32_t t) const { return running && ins.isVirtualTriangle(t); }
+    bool room(unsigned vertices) const { return CanvasHasRoom(st, dl, vertices); }
+    // Labels leave this much room for the points, drawn after them (on top).
+    unsigned pointReserve() const {
+        return kVerticesPerPoint * static_cast<unsigned>(std::min<std::size_t>(e.points().size(), kFewPoints));
+    }
+    bool drawable(std::int32_t t) const { return t >= 0 && t < m.numTriangles() && !(ghostMode && virtualTri(t)); }
+    // The three screen corners of a drawable triangle.
+    void corners(std::int32_t t, ImVec2 out[3]) const {
+        for (int k = 0; k < 3; ++k) out[k] = screen(m.V[3 * t + k]);
+    }
+    // Where corner c's label sits: on the angle bisector at c, a little inside the triangle.
+    // False when the triangle is too small on screen for a label.
+    bool anchor(std::int32_t c, ImVec2& out) const {
+        if (c < 0 || c >= m.numCorners() || !drawable(tri(c))) return false;
+        const ImVec2 a = screen(m.V[c]), b = screen(m.V[next(c)]), d = screen(m.V[prev(c)]);
+        const float e1x = b.x - a.x, e1y = b.y - a.y, e2x = d.x - a.x, e2y = d.y - a.y;
+        const float l1 = std::sqrt(e1x * e1x + e1y * e1y), l2 = std::sqrt(e2x * e2x + e2y * e2y);
+        if (!(l1 > 24 && l2 > 24) || !std::isfinite(l1 + l2)) return false;
+        float bx = e1x / l1 + e2x / l2, by = e1y / l1 + e2y / l2;
+        const float bl = std::sqrt(bx * bx + by * by);
+        if (bl < 1e-4f) return false;
+        bx /= bl;
+        by /= bl;
+        const float dist = std::clamp(0.3f * std::min(l1, l2), 10.0f, 26.0f);
+        out = ImVec2(a.x + bx * dist, a.y + by * dist);
+        return true;
+    }
+    // Whether a screen box [x0, x1] x [y0, y1] (plus a margin) meets the canvas: shapes off it
+    // are not sent to the draw list at all (it holds at most 65536 vertices).
+    bool onCanvas(float x0, float y0, float x1, float y1, float margin = 4) const {
+        return x1 >= view.origin.x - margin && x0 <= view.origin.x + view.size.x + margin && y1 >= view.origin.y - margin &&
+               y0 <= view.origin.y + view.size.y + margin;
+    }
+    bool onCanvas(const ImVec2 (&p)[3]) const {
+        return onCanvas(std::min({p[0].x, p[1].x, p[2].x}), std::min({p[0].y, p[1].y, p[2].y}), std::max({p[0].x, p[1].x, p[2].x}),
+                        std::max({p[0].y, p[1].y, p[2].y}));
+    }
+    void fillTriangle(std::int32_t t, ImU32 col) const {
+        if (!drawable(t)) return;
+        ImVec2 p[3];
+        corners(t, p);
+        if (onCanvas(p)) dl->AddTriangleFilled(p[0], p[1], p[2], col);
+    }
+    void outlineTriangle(std::int32_t t, ImU32 col, float w) const {
+        if (!drawable(t)) return;
+        ImVec2 p[3];
+        corners(t, p);
+        dl->AddTriangle(p[0], p[1], p[2], col, w);
+    }
+    void edge(std::int32_t a, std::int32_t b, ImU32 col, float w, bool dashed = false) const {
+        if (a < 0 || b < 0 || a >= m.numVertices() || b >= m.numVertices()) return;
+        if (ghostMode && running && (ins.isVirtual(a) || ins.isVirtual(b))) return;
+        const ImVec2 pa = screen(a), pb = screen(b);
+        if (!onCanvas(std::min(pa.x, pb.x), std::min(pa.y, pb.y), std::max(pa.x, pb.x), std::max(pa.y, pb.y), w)) return;
+        dashed ? DashedLine(dl, pa, pb, col, w) : dl->AddLine(pa, pb, col, w);
+    }
+    // A circle given in world coordinates (centre, radius), clipped by the canvas.
+    void circle(Vec2 c, double r, ImU32 col, float w) const {
+        const glm::dvec2 s = view.toScreen(c);
+        const double rs = r * view.scale;
+        if (!std::isfinite(rs) || rs > 1e6) return;
+        const float x = static_cast<float>(s.x), y = static_cast<float>(s.y), rf = static_cast<float>(rs);
+        if (!onCanvas(x - rf, y - rf, x + rf, y + rf, w)) return;
+        // Wholly around the canvas: nothing of it shows.
+        const double dx = std::max(std::abs(s.x - view.origin.x), std::abs(s.x - view.origin.x - view.size.x));
+        const double dy = std::max(std::abs(s.y - view.origin.y), std::abs(s.y - view.origin.y - view.size.y));
+        if (dx * dx + dy * dy < (rs - w) * (rs - w)) return;
+        dl->AddCircle(toIm(s), static_cast<float>(rs), col, std::clamp(static_cast<int>(rs / 3), 24, 256), w);
+    }
+};
+
+bool circumcircle(const Mesh& m, std::int32_t t, Vec2& centre, double& radius) {
+    const Vec2 a = m.G[m.V[3 * t]], b = m.G[m.V[3 * t + 1]], c = m.G[m.V[3 * t + 2]];
+    centre = circumcenter(a, b, c);
+    radius = std::hypot(centre.x - a.x, centre.y - a.y);
+    return std::isfinite(centre.x) && std::isfinite(centre.y) && std::isfinite(radius);
+}
+
+// ============================================================================================
+// [SECTION] Highlights of the current operation
+// ============================================================================================
+
+void DrawOpUnderlay(const Scene& s) {
+    const Op* op = s.e.current();
+    if (!op || !s.st.overlays.walk) return;
+    const Mesh& m = s.m;
+    switch (op->type) {
+        case OpType::LocateStep:
+        case OpType::Located: {
+            const std::vector<std::int32_t> path = s.e.walkPath();
+            for (std::int32_t t : path) {
+                if (!s.room(16)) break;
+                s.fillTriangle(t, s.pal.walk);
+            }
+            if (!path.empty()) s.fillTriangle(path.back(), s.pal.walkNow);
+            break;
+        }
+        case OpType::Split:
+            s.fillTriangle(op->a, s.pal.split[0]);
+            s.fillTriangle(op->trianglesBefore, s.pal.split[1]);
+            s.fillTriangle(op->trianglesBefore + 1, s.pal.split[2]);
+            break;
+        case OpType::SplitEdge:
+            s.fillTriangle(tri(op->a), s.pal.split[0]);
+            s.fillTriangle(op->trianglesBefore, s.pal.split[1]);
+            if (op->b != kNone) {
+                s.fillTriangle(tri(op->b), s.pal.split[2]);
+                s.fillTriangle(op->trianglesBefore + 1, s.pal.split[0]);
+            }
+            break;
+        case OpType::Flip:
+            if (op->a >= 0 && op->a < m.numCorners()) s.fillTriangle(tri(op->a), s.pal.split[1]);
+            if (op->b >= 0 && op->b < m.numCorners()) s.fillTriangle(tri(op->b), s.pal.split[2]);
+            break;
+        default: break;
+    }
+}
+
+void DrawOpOverlay(const Scene& s) {
+    const Op* op = s.e.current();
+    const Mesh& m = s.m;
+    const Overlays& ov = s.st.overlays;
+    const float w = s.st.presentation ? 4.0f : 2.5f;
+    // Through the whole insertion: edges flipped so far and edges still to test.
+    if (ov.flipped) {
+        for (const VertexEdge& fe : s.e.flippedEdges()) {
+            if (!s.room(8)) break;
+            s.edge(fe.a, fe.b, s.pal.flipped, w);
+        }
+    }
+    if (ov.flipQueue) {
+        for (const VertexEdge& qe : s.e.pendingTests()) {
+            if (!s.room(200)) break;  // dashes: at most ~2 screen diagonals of them
+            s.edge(qe.a, qe.b, s.pal.queue, w, true);
+        }
+    }
+    if (!op) return;
+    switch (op->type) {
+        case OpType::LocateStep:
+        case OpType::Located: {
+            if (!ov.walk) break;
+            const Control& ctl = s.ins.control();
+            const std::int32_t v = op->vertex;
+            if (v >= 0 && v < m.numVertices() && ctl.straight && ctl.walkSteps > 0) {
+                // The paper's line L from q (inside the start triangle) to the new point.
+                Arrow(s.dl, toIm(s.view.toScreen(ctl.walkOrigin)), s.screen(v), s.pal.lineL, w * 0.7f);
+            }
+            break;
+        }
+        case OpType::InCircleTest: {
+            const std::int32_t a = op->a, b = op->b;
+            if (a < 0 || a >= m.numCorners()) break;
+            s.edge(m.V[next(a)], m.V[prev(a)], s.pal.testEdge, w * 1.4f);
+            if (b == kNone || b >= m.numCorners()) break;
+            const ImU32 col = op->sign > 0 ? s.pal.circleFlip : s.pal.circleKeep;
+            const std::int32_t t = tri(b);
+            if (s.virtualTri(t) && s.ghostMode) {
+                // A ghost triangle's "circle" is the open half-plane beyond its hull edge.
+                const std::int32_t x = m.V[next(a)], y = m.V[prev(a)];
+                const ImVec2 px = s.screen(x), py = s.screen(y);
+                const float dx = py.x - px.x, dy = py.y - px.y;
+                DashedLine(s.dl, ImVec2(px.x - dx * 50, px.y - dy * 50), ImVec2(py.x + dx * 50, py.y + dy * 50), col, w);
+            } else {
+                Vec2 c;
+                double r;
+                if (circumcircle(m, t, c, r)) s.circle(c, r, col, w);
+                s.dl->AddCircleFilled(s.screen(m.V[b]), 6, col);
+            }
+            break;
+        }
+        case OpType::Flip:
+            if (op->a >= 0 && op->b >= 0 && op->a < m.numCorners() && op->b < m.numCorners()) {
+                s.edge(m.V[op->a], m.V[op->b], s.pal.flipped, w * 1.6f);
+            }
+            break;
+        case OpType::Split:
+        case OpType::SplitEdge:
+            if (op->vertex >= 0 && op->vertex < m.numVertices()) {
+                // The new edges at the new vertex.
+                for (std::int32_t t : {tri(op->a), op->trianglesBefore, op->trianglesBefore + 1}) {
+                    if (t < 0 || t >= m.numTriangles()) continue;
+                    for (int k = 0; k < 3; ++k) {
+                        if (m.V[3 * t + k] == op->vertex) {
+                            s.edge(op->vertex, m.V[3 * t + (k + 1) % 3], s.pal.split[0] & 0xFF208020, w);
+                        }
+                    }
+                }
+            }
+            break;
+        default: break;
+    }
+}
+
+// ============================================================================================
+// [SECTION] Labels, points, selection
+// ============================================================================================
+
+void DrawVoronoi(const Scene& s) {
+    const Mesh& m = s.m;
+    if (m.numTriangles() == 0) return;
+    const Vec2 lo = s.view.toWorld({s.view.origin.x, s.view.origin.y + s.view.size.y});
+    const Vec2 hi = s.view.toWorld({s.view.origin.x + s.view.size.x, s.view.origin.y});
+    std::vector<Vec2> cc(static_cast<std::size_t>(m.numTriangles()));
+    for (std::int32_t t = 0; t < m.numTriangles(); ++t) {
+        if (s.virtualTri(t)) continue;
+        double r;
+        circumcircle(m, t, cc[t], r);
+    }
+    const float w = s.st.presentation ? 2.5f : 1.5f;
+    for (std::int32_t c = 0; c < m.numCorners(); ++c) {
+        const std::int32_t t = tri(c);
+        if (s.virtualTri(t)) continue;
+        const std::int32_t o = m.O[c];
+        const bool ray = o == kNone || s.virtualTri(tri(o));
+        if (!ray && o < c) continue;
+        std::optional<std::pair<Vec2, Vec2>> seg;
+        if (ray) {
+            seg = clipToBox(cc[t], edgeNormal(m, c), HUGE_VAL, lo, hi);
+        } else {
+            const Vec2 d{cc[tri(o)].x - cc[t].x, cc[tri(o)].y - cc[t].y};
+            seg = clipToBox(cc[t], d, 1.0, lo, hi);
+        }
+        if (!seg) continue;
+        if (!s.room(8)) return;
+        s.dl->AddLine(toIm(s.view.toScreen(seg->first)), toIm(s.view.toScreen(seg->second)), s.pal.voronoi, w);
+    }
+    for (std::int32_t t = 0; t < m.numTriangles(); ++t) {
+        if (s.virtualTri(t)) continue;
+        const ImVec2 q = toIm(s.view.toScreen(cc[t]));
+        if (q.x < s.view.origin.x || q.y < s.view.origin.y || q.x > s.view.origin.x + s.view.size.x || q.y > s.view.origin.y + s.view.size.y) continue;
+        if (!s.room(32)) return;
+        s.dl->AddCircleFilled(q, 2.5f, s.pal.voronoi);
+    }
+}
+
+void DrawLabels(const Scene& s, std::int32_t& hoveredCorner, ImVec2 mouse, bool mouseInCanvas) {
+    const Mesh& m = s.m;
+    const Overlays& ov = s.st.overlays;
+    ImFont* mono = fonts().mono;
+    const float fs = ImGui::GetFontSize() * (s.st.presentation ? 0.8f : 0.85f);
+    // Cells the current op changed: their corners' labels are drawn in the highlight colour.
+    std::vector<std::int32_t> changed;
+    if (const Op* op = s.e.current(); op && s.e.journal()) {
+        for (std::uint32_t i = 0; i < op->numChanges; ++i) changed.push_back(s.e.journal()->changes()[op->firstChange + i].corner());
+    }
+    const bool fewTriangles = m.numTriangles() <= 20000;
+    float best = 14.0f * 14.0f;
+    hoveredCorner = kNone;
+    char buf[32];
+    for (std::int32_t t = 0; fewTriangles && t < m.numTriangles(); ++t) {
+        if (!s.drawable(t)) continue;
+        ImVec2 p[3];
+        s.corners(t, p);
+        // Cull triangles off the canvas.
+        const float minX = std::min({p[0].x, p[1].x, p[2].x}), maxX = std::max({p[0].x, p[1].x, p[2].x});
+        const float minY = std::min({p[0].y, p[1].y, p[2].y}), maxY = std::max({p[0].y, p[1].y, p[2].y});
+        if (maxX < s.view.origin.x || minX > s.view.origin.x + s.view.size.x || maxY < s.view.origin.y ||
+            minY > s.view.origin.y + s.view.size.y) {
+            continue;
+        }
+        if (ov.triangleIds) {
+            const ImVec2 centre((p[0].x + p[1].x + p[2].x) / 3, (p[0].y + p[1].y + p[2].y) / 3);
+            if (maxX - minX > 40 && maxY - minY > 30 && s.room(48 + s.pointReserve())) {
+                std::snprintf(buf, sizeof buf, "t%d", t);
+                LabelBox(s.dl, mono, fs, centre, s.pal.triangleId, IM_COL32(255, 255, 255, 200), buf);
+            }
+        }
+        for (int k = 0; k < 3; ++k) {
+            const std::int32_t c = 3 * t + k;
+            ImVec2 a;
+            if (!s.anchor(c, a)) continue;
+            if (mouseInCanvas) {
+                const float dx = a.x - mouse.x, dy = a.y - mouse.y;
+                if (dx * dx + dy * dy < best) {
+                    best = dx * dx + dy * dy;
+                    hoveredCorner = c;
+                }
+            }
+            if (!ov.cornerIds || !s.room(48 + s.pointReserve())) continue;
+            const bool isChanged = std::find(changed.begin(), changed.end(), c) != changed.end();
+            std::snprintf(buf, sizeof buf, "%d", c);
+            LabelBox(s.dl, mono, fs, a, isChanged ? IM_COL32(255, 255, 255, 255) : s.pal.cornerId,
+                     isChanged ? s.pal.cornerChanged : 0, buf);
+        }
+    }
+}
+
+void DrawPoints(const Scene& s, std::int32_t draggedPoint, Vec2 dragTo) {
+    const auto& states = s.e.pointStates();
+    const auto& pts = s.e.points();
+    // Many points: the GL renderer draws the inserted and queued ones; here only the point in
+    // progress and (at most 2000) skipped duplicates, so the draw list stays small.
+    const bool few = pts.size() <= kFewPoints;
+    const bool ids = s.st.overlays.vertexIds && few;
+    int skippedDrawn = 0;
+    ImFont* mono = fonts().mono;
+    const float fs = ImGui::GetFontSize() * 0.9f;
+    const float r = s.st.presentation ? 5.5f : 4.0f;
+    char buf[32];
+    for (std::size_t i = 0; i < pts.size(); ++i) {
+        const Engine::PointState st = states[i];
+        const Vec2 p = static_cast<std::int32_t>(i) == draggedPoint ? dragTo : pts[i];
+        const ImVec2 q = toIm(s.view.toScreen(p));
+        if (q.x < s.view.origin.x - 20 || q.x > s.view.origin.x + s.view.size.x + 20 || q.y < s.view.origin.y - 20 ||
+            q.y > s.view.origin.y + s.view.size.y + 20) {
+            continue;
+        }
+        if (!few && (st == Engine::PointState::Inserted || st == Engine::PointState::Pending)) continue;
+        if (!few && st == Engine::PointState::Skipped && ++skippedDrawn > kSkippedDrawn) continue;
+        // The point in progress always; the others while the draw list has room.
+        if (st != Engine::PointState::Current && !s.room(kVerticesPerPoint)) continue;
+        ImU32 idCol = s.pal.vertexId;
+        switch (st) {
+            case Engine::PointState::Inserted:
+                s.dl->AddCircleFilled(q, r, s.pal.vertex);
+                break;
+            case Engine::PointState::Pending:
+                if (!s.st.overlays.pendingPoints) continue;
+                s.dl->AddCircle(q, r + 1, s.pal.pending, 0, 1.5f);
+                idCol = s.pal.pending;
+                break;
+            case Engine::PointState::Current:
+                s.dl->AddCircleFilled(q, r + 1, s.pal.current);
+                s.dl->AddCircle(q, r + 6, s.pal.current, 0, 2.0f);
+                idCol = s.pal.current;
+                break;
+            case Engine::PointState::Skipped:
+                s.dl->AddLine(ImVec2(q.x - r, q.y - r), ImVec2(q.x + r, q.y + r), s.pal.skipped, 2);
+                s.dl->AddLine(ImVec2(q.x - r, q.y + r), ImVec2(q.x + r, q.y - r), s.pal.skipped, 2);
+                idCol = s.pal.skipped;
+                break;
+        }
+        if (ids) {
+            std::snprintf(buf, sizeof buf, "%zu", i);
+            s.dl->AddText(mono, fs, ImVec2(q.x + r + 2, q.y - r - fs), idCol, buf);
+        }
+    }
+}
+
+void DrawSelection(const Scene& s) {
+    const Selection& sel = s.st.selection;
+    const float w = s.st.presentation ? 3.5f : 2.5f;
+    ImVec2 a;
+    if (sel.corner != kNone && sel.corner < s.m.numCorners()) {
+        s.outlineTriangle(tri(sel.corner), s.pal.selected, w);
+        if (s.anchor(sel.corner, a)) {
+            s.dl->AddCircleFilled(a, 11, s.pal.selected);
+            char buf[16];
+            std::snprintf(buf, sizeof buf, "%d", sel.corner);
+            LabelBox(s.dl, fonts().mono, ImGui::GetFontSize() * 0.85f, a, IM_COL32(255, 255, 255, 255), 0, buf);
+        }
+    }
+    for (std::int32_t c : {sel.hoveredRow, sel.hoveredCorner}) {
+        if (c != kNone && s.anchor(c, a)) s.dl->AddCircle(a, 13, s.pal.hovered, 0, 2.5f);
+    }
+    const CornerMove& mv = sel.lastMove;
+    ImVec2 from, to;
+    if (mv.op && s.anchor(mv.from, from) && s.anchor(mv.to, to)) {
+        Arrow(s.dl, from, to, s.pal.arrow, w);
+        char buf[8];
+        std::snprintf(buf, sizeof buf, "%c", mv.op);
+        LabelBox(s.dl, fonts().ui, ImGui::GetFontSize(), ImVec2((from.x + to.x) / 2, (from.y + to.y) / 2 - 12),
+                 IM_COL32(255, 255, 255, 255), s.pal.arrow, buf);
+    }
+}
+
+void DrawGrid(const Scene& s, double step) {
+    const double px = step * s.view.scale;
+    if (!(px >= 6)) return;
+    const Vec2 lo = s.view.toWorld({s.view.origin.x, s.view.origin.y + s.view.size.y});
+    const Vec2 hi = s.view.toWorld({s.view.origin.x + s.view.size.x, s.view.origin.y});
+    // Lines counted, not stepped: far from the origin x + step can round back to x.
+    const double x0 = std::floor(lo.x / step) * step, y0 = std::floor(lo.y / step) * step;
+    const int nx = static_cast<int>(std::min(4096.0, (hi.x - x0) / step)), ny = static_cast<int>(std::min(4096.0, (hi.y - y0) / step));
+    for (int i = 0; i <= nx; ++i) {
+        const float sx = static_cast<float>(s.view.toScreen({x0 + i * step, 0}).x);
+        s.dl->AddLine(ImVec2(sx, s.view.origin.y), ImVec2(sx, s.view.origin.y + s.view.size.y), s.pal.grid);
+    }
+    for (int i = 0; i <= ny; ++i) {
+        const float sy = static_cast<float>(s.view.toScreen({0, y0 + i * step}).y);
+        s.dl->AddLine(ImVec2(s.view.origin.x, sy), ImVec2(s.view.origin.x + s.view.size.x, sy), s.pal.grid);
+    }
+}
+
+// ============================================================================================
+// [SECTION] Input
+// ============================================================================================
+
+// A clicked world position, rounded to the grid (snap) or to a precision that reads well at
+// this zoom (integers at the default zoom of the paper's box).
+Vec2 roundedClick(const AppState& st, Vec2 p) {
+    double step = st.snapToGrid ? st.gridStep : std::pow(10.0, std::floor(std::log10(2.0 / st.view.scale)));
+    if (!(step > 0) || !std::isfinite(step)) return p;
+    return {std::round(p.x / step) * step, std::round(p.y / step) * step};
+}
+
+std::int32_t pendingPointAt(const AppState& st, ImVec2 mouse) {
+    const auto& states = st.engine.pointStates();
+    const auto& pts = st.engine.points();
+    std::int32_t best = kNone;
+    float bestD = 10.0f * 10.0f;
+    for (std::size_t i = 0; i < pts.size(); ++i) {
+        if (states[i] != Engine::PointState::Pending) continue;
+        const ImVec2 q = toIm(st.view.toScreen(pts[i]));
+        const float d = (q.x - mouse.x) * (q.x - mouse.x) + (q.y - mouse.y) * (q.y - mouse.y);
+        if (d < bestD) {
+            bestD = d;
+            best = static_cast<std::int32_t>(i);
+        }
+    }
+    return best;
+}
+
+void HandleInput(AppState& st, CanvasCache& cache, bool hovered) {
+    ImGuiIO& io = ImGui::GetIO();
+    View& view = st.view;
+    const ImVec2 mouse = io.MousePos;
+    if (hovered && io.MouseWheel != 0.0f) view.zoomAt({mouse.x, mouse.y}, std::pow(1.2, io.MouseWheel));
+    // Middle drag pans from anywhere on the canvas.
+    if (hovered && ImGui::IsMouseDragging(ImGuiMouseButton_Middle, 0.0f)) {
+        view.center.x -= io.MouseDelta.x / view.scale;
+        view.center.y += io.MouseDelta.y / view.scale;
+    }
+    if (hovered && ImGui::IsMouseClicked(ImGuiMouseButton_Left)) {
+        cache.pressPos = mouse;
+        cache.moved = false;
+        cache.pressedOnCorner = st.selection.hoveredCorner != kNone;
+        cache.dragPoint = pendingPointAt(st, mouse);
+        cache.drag = cache.dragPoint != kNone ? CanvasCache::Drag::Pending : CanvasCache::Drag::Pan;
+        if (cache.pressedOnCorner && cache.dragPoint == kNone) {
+            st.select(st.selection.hoveredCorner);
+            st.selection.jumpToCorner = st.selection.corner;
+            cache.drag = CanvasCache::Drag::None;
+        }
+    }
+    if (cache.drag != CanvasCache::Drag::None && ImGui::IsMouseDown(ImGuiMouseButton_Left)) {
+        const float dx = mouse.x - cache.pressPos.x, dy = mouse.y - cache.pressPos.y;
+        if (dx * dx + dy * dy > 16) cache.moved = true;
+        if (cache.moved && cache.drag == CanvasCache::Drag::Pan) {
+            view.center.x -= io.MouseDelta.x / view.scale;
+            view.center.y += io.MouseDelta.y / view.scale;
+        }
+    }
+    if (cache.drag != CanvasCache::Drag::None && ImGui::IsMouseReleased(ImGuiMouseButton_Left)) {
+        const Vec2 world = roundedClick(st, view.toWorld({mouse.x, mouse.y}));
+        std::vector<Vec2> pts = st.engine.points();
+        if (cache.drag == CanvasCache::Drag::Pending && cache.moved) {
+            pts[cache.dragPoint] = world;  // a queued point moved
+            st.editPoints(std::move(pts));
+        } else if (!cache.moved) {
+            if (cache.drag == CanvasCache::Drag::Pending) {
+                st.log(Message::Level::Info, "point " + std::to_string(cache.dragPoint) + " is queued: drag it to move it, right-click to remove it");
+            } else if (!st.engine.batch()) {
+                pts.push_back(world);  // a click on empty canvas queues a new point
+                if (st.editPoints(std::move(pts))) {
+                    char buf[96];
+                    std::snprintf(buf, sizeof buf, "added point %zu at (%g, %g)", st.engine.points().size() - 1, world.x, world.y);
+                    st.log(Message::Level::Info, buf);
+                }
+            }
+        }
+        cache.drag = CanvasCache::Drag::None;
+        cache.dragPoint = kNone;
+    }
+    if (hovered && ImGui::IsMouseReleased(ImGuiMouseButton_Right)) {
+        const std::int32_t i = pendingPointAt(st, mouse);
+        if (i != kNone) {
+            std::vector<Vec2> pts = st.engine.points();
+            pts.erase(pts.begin() + i);
+            if (st.editPoints(std::move(pts))) st.log(Message::Level::Info, "removed queued point " + std::to_string(i));
+        }
+    }
+}
+
+}  // namespace
+
+bool CanvasHasRoom(AppState& st, const ImDrawList* dl, unsigned vertices) {
+    // Room is kept for the notice, the timeline below the canvas and the selection on top.
+    constexpr unsigned kBudget = 56000;
+    if (dl->_VtxCurrentIdx + vertices <= kBudget) return true;
+    st.frameStats.canvasFull = true;
+    return false;
+}
+
+void ShowCanvasNotice(AppState& st) {
+    if (!st.frameStats.canvasFull) return;
+    const char* text = "Too many shapes to draw at this zoom: some labels, circles or points are left out. Zoom in.";
+    ImDrawList* dl = ImGui::GetWindowDrawList();
+    const ImVec2 p(static_cast<float>(st.view.origin.x) + 8, static_cast<float>(st.view.origin.y) + 8);
+    const ImVec2 ts = ImGui::CalcTextSize(text);
+    dl->AddRectFilled(ImVec2(p.x - 4, p.y - 2), ImVec2(p.x + ts.x + 4, p.y + ts.y + 2), IM_COL32(255, 244, 214, 235), 3);
+    dl->AddText(p, IM_COL32(120, 70, 0, 255), text);
+}
+
+bool CornerAnchor(const AppState& st, std::int32_t c, float& x, float& y) {
+    const Engine& e = st.engine;
+    // A read-only scene (no draw list: room() is never asked).
+    const Scene scene{const_cast<AppState&>(st), e, e.mesh(), e.inserter(), st.view, nullptr, palette(st.presentation), !e.inserter().done(),
+                      e.options().boundary == Boundary::Exact};
+    ImVec2 a;
+    if (!scene.anchor(c, a)) return false;
+    x = a.x;
+    y = a.y;
+    return true;
+}
+
+// ============================================================================================
+// [SECTION] ShowCanvas
+// ============================================================================================
+
+void ShowCanvas(AppState& st) {
+    if (!st.canvas) st.canvas = std::make_shared<CanvasCache>();
+    CanvasCache& cache = *st.canvas;
+    const float timelineH = ImGui::GetFrameHeightWithSpacing();
+    const ImVec2 p0 = ImGui::GetCursorScreenPos();
+    ImVec2 size = ImGui::GetContentRegionAvail();
+    size.y = std::max(50.0f, size.y - timelineH);
+    size.x = std::max(50.0f, size.x);
+    View& view = st.view;
+    view.origin = {p0.x, p0.y};
+    view.size = {size.x, size.y};
+    if (st.fitPending) {
+        const Bounds b = Bounds::of(st.engine.points());
+        if (st.engine.points().empty()) view.fit({0, 0}, {1600, 1600});
+        else view.fit(b.lo, b.hi);
+        st.fitPending = false;
+    }
+    ImGui::InvisibleButton("##canvas", size, ImGuiButtonFlags_MouseButtonLeft | ImGuiButtonFlags_MouseButtonRight |
+                                                 ImGuiButtonFlags_MouseButtonMiddle);
+    const bool hovered = ImGui::IsItemHovered();
+    RecordItem(st, "canvas");
+    ImDrawList* dl = ImGui::GetWindowDrawList();
+    const ImVec2 p1(p0.x + size.x, p0.y + size.y);
+    dl->PushClipRect(p0, p1, true);
+
+    st.frameStats.canvasFull = false;
+    const Engine& e = st.engine;
+    Scene scene{st, e, e.mesh(), e.inserter(), view, dl, palette(st.presentation), !e.inserter().done(),
+                e.options().boundary == Boundary::Exact};
+    dl->AddRectFilled(p0, p1, scene.pal.background);
+    if (st.snapToGrid) DrawGrid(scene, st.gridStep);
+
+    // The mesh: our GL renderer (any size), then ImDrawList overlays on top.
+    MeshStyle ms;
+    ms.fill = st.overlays.fill ? scene.pal.fill : 0;
+    ms.drawFill = st.overlays.fill;
+    ms.edge = scene.pal.edge;
+    ms.virtualEdge = scene.pal.virtualEdge;
+    ms.point = scene.pal.vertex;
+    ms.pending = scene.pal.pending;
+    ms.edgeWidth = st.presentation ? 2.0f : 1.0f;
+    ms.pointSize = e.points().size() <= 5000 ? 4.0f : 2.0f;
+    ms.drawPoints = e.points().size() > kFewPoints;
+    ms.drawVirtual = st.overlays.virtualTriangles;
+    // Layers: the fill (GL), the current op's fills (ImDrawList), the edges and points (GL),
+    // then lines, labels and the selection (ImDrawList).
+    // At full speed on a mesh whose rebuild is costly, the mesh is rebuilt every other frame (it
+    // shows one frame late): the frame stays interactive on software GL. A moved view always
+    // rebuilds.
+    const bool sameView = view.center == cache.builtView.center && view.scale == cache.builtView.scale &&
+                          view.origin == cache.builtView.origin && view.size == cache.builtView.size;
+    const bool defer = st.run.running && st.run.opsPerSecond >= RunControl::kFullSpeed && cache.rebuiltLastFrame && sameView &&
+                       cache.renderer.lastBuildMs() > 5.0;
+    const bool rebuilt = !defer && cache.renderer.update(e, view, ms);
+    cache.rebuiltLastFrame = rebuilt;
+    if (rebuilt) cache.builtView = view;
+    st.frameStats.meshBuildMs = rebuilt ? cache.renderer.lastBuildMs() : 0.0;
+    st.frameStats.visibleEdges = cache.renderer.visibleEdges();
+    st.frameStats.denseMesh = cache.renderer.dense();
+    if (ms.drawFill) cache.renderer.enqueue(dl, MeshRenderer::Pass::Fill, p0.x, p0.y, p1.x, p1.y);
+    DrawOpUnderlay(scene);
+    cache.renderer.enqueue(dl, MeshRenderer::Pass::Lines, p0.x, p0.y, p1.x, p1.y);
+    if (st.overlays.circumcircles) {
+        for (std::int32_t t = 0; t < e.mesh().numTriangles(); ++t) {
+            Vec2 c;
+            double r;
+            if (scene.virtualTri(t) || !circumcircle(e.mesh(), t, c, r)) continue;
+            if (!scene.room(800)) break;
+            scene.circle(c, r, scene.pal.circum, 1.0f);
+        }
+    }
+    if (st.overlays.voronoi) DrawVoronoi(scene);
+    DrawOpOverlay(scene);
+    std::int32_t hoveredCorner = kNone;
+    DrawLabels(scene, hoveredCorner, ImGui::GetIO().MousePos, hovered);
+    st.selection.hoveredCorner = hoveredCorner;
+    const Vec2 dragTo = roundedClick(st, view.toWorld({ImGui::GetIO().MousePos.x, ImGui::GetIO().MousePos.y}));
+    DrawPoints(scene, cache.drag == CanvasCache::Drag::Pending && cache.moved ? cache.dragPoint : kNone, dragTo);
+    DrawSelection(scene);
+    dl->PopClipRect();
+    HandleInput(st, cache, hovered);
+    if (hovered && hoveredCorner != kNone && cache.drag == CanvasCache::Drag::None) {
+        ImGui::SetTooltip("corner %d (click to select)", hoveredCorner);
+    }
+}
+
+}  // namespace dlab::ui

@@ -1,0 +1,186 @@
+// The corner table: one row per corner c with t, V[c], O[c] and the operators n, p, l, r; the
+// cells the current operation changed are highlighted (hover shows the old value), the rows of
+// the triangles it touched are marked, and a million rows scroll smoothly (ImGuiListClipper).
+// Also the G tab: vertex coordinates.
+#include "ui/gui.h"
+#include "ui/panels/panels.h"
+
+#include <imgui.h>
+
+#include <algorithm>
+#include <cinttypes>
+#include <cstdio>
+#include <unordered_map>
+
+namespace dlab::ui {
+
+namespace {
+
+constexpr ImU32 kChangedCell = IM_COL32(255, 200, 120, 255);
+constexpr ImU32 kTouchedRow = IM_COL32(255, 244, 214, 255);
+constexpr ImU32 kSelectedRow = IM_COL32(255, 214, 170, 255);
+constexpr ImU32 kHoveredRow = IM_COL32(205, 225, 255, 255);
+
+void IdCell(std::int32_t v) {
+    if (v == kNone) ImGui::TextDisabled("-1");
+    else ImGui::Text("%d", v);
+}
+
+}  // namespace
+
+void ShowCornerTable(AppState& st) {
+    const Engine& e = st.engine;
+    const Mesh& m = e.mesh();
+    const Inserter& ins = e.inserter();
+
+    // Jump to a corner.
+    int jump = st.selection.corner == kNone ? 0 : st.selection.corner;
+    ImGui::SetNextItemWidth(110);
+    if (ImGui::InputInt("Go to corner", &jump, 1, 100, ImGuiInputTextFlags_EnterReturnsTrue)) {
+        st.select(std::clamp(jump, 0, std::max(0, m.numCorners() - 1)));
+        st.selection.jumpToCorner = st.selection.corner;
+    }
+    ImGui::SameLine();
+    ImGui::Checkbox("Follow", &st.selection.followOp);
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("Scroll to the cells each operation changes");
+    ImGui::SameLine();
+    ImGui::TextDisabled("%d corners   l(c) = o(n(c)), r(c) = o(p(c))", m.numCorners());
+
+    // What the current op changed: (corner, column) -> value before.
+    std::unordered_map<std::int32_t, std::int32_t> beforeV, beforeO;
+    std::vector<std::int32_t> touched;
+    if (const Op* op = e.current(); op && e.journal()) {
+        const auto& changes = e.journal()->changes();
+        for (std::uint32_t i = 0; i < op->numChanges; ++i) {
+            const CellChange& ch = changes[op->firstChange + i];
+            // The first record of a cell holds its value before the op.
+            (ch.isO() ? beforeO : beforeV).emplace(ch.corner(), ch.before);
+            touched.push_back(tri(ch.corner()));
+        }
+        std::sort(touched.begin(), touched.end());
+        touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
+        // Follow the run: after each step, bring the first changed cell into view.
+        if (st.selection.followOp && e.version() != st.tableVersion && op->numChanges > 0) {
+            st.selection.jumpToCorner = changes[op->firstChange].corner();
+        }
+    }
+    st.tableVersion = e.version();
+
+    const ImGuiTableFlags flags = ImGuiTableFlags_ScrollY | ImGuiTableFlags_RowBg | ImGuiTableFlags_BordersInnerV |
+                                  ImGuiTableFlags_SizingStretchSame | ImGuiTableFlags_Resizable;
+    ImGui::PushFont(fonts().mono);
+    const bool tableOpen = ImGui::BeginTable("##corners", 8, flags);
+    if (tableOpen) {
+        ImGui::TableSetupScrollFreeze(0, 1);
+        for (const char* h : {"c", "t", "V[c]", "O[c]", "n", "p", "l", "r"}) ImGui::TableSetupColumn(h);
+        ImGui::TableHeadersRow();
+        const float rowH = ImGui::GetTextLineHeightWithSpacing();
+        if (st.selection.jumpToCorner != kNone) {
+            const float y = rowH * static_cast<float>(st.selection.jumpToCorner);
+            const float visible = ImGui::GetWindowHeight() - 2 * rowH;
+            if (y < ImGui::GetScrollY() || y > ImGui::GetScrollY() + visible) ImGui::SetScrollY(std::max(0.0f, y - visible / 2));
+            st.selection.jumpToCorner = kNone;
+        }
+        std::int32_t hoveredRow = kNone;
+        ImGuiListClipper clipper;
+        clipper.Begin(m.numCorners(), rowH);
+        while (clipper.Step()) {
+            for (int c = clipper.DisplayStart; c < clipper.DisplayEnd; ++c) {
+                ImGui::TableNextRow(ImGuiTableRowFlags_None, rowH);
+                const std::int32_t t = tri(c);
+                if (c == st.selection.corner) {
+                    ImGui::TableSetBgColor(ImGuiTableBgTarget_RowBg1, kSelectedRow);
+                } else if (c == st.selection.hoveredCorner) {
+                    ImGui::TableSetBgColor(ImGuiTableBgTarget_RowBg1, kHoveredRow);
+                } else if (std::binary_search(touched.begin(), touched.end(), t)) {
+                    ImGui::TableSetBgColor(ImGuiTableBgTarget_RowBg1, kTouchedRow);
+                }
+                ImGui::TableSetColumnIndex(0);
+                char label[24];
+                std::snprintf(label, sizeof label, "%d", c);
+                if (ImGui::Selectable(label, c == st.selection.corner, ImGuiSelectableFlags_SpanAllColumns)) {
+                    st.select(c);
+                }
+                if (ImGui::IsItemHovered()) hoveredRow = c;
+                ImGui::TableSetColumnIndex(1);
+                ImGui::Text("%d", t);
+                const bool virtualVertex = !ins.done() && ins.isVirtual(m.V[c]);
+                auto changedCell = [&](int column, const std::unordered_map<std::int32_t, std::int32_t>& before, std::int32_t value) {
+                    ImGui::TableSetColumnIndex(column);
+                    const auto it = before.find(c);
+                    if (it != before.end()) ImGui::TableSetBgColor(ImGuiTableBgTarget_CellBg, kChangedCell);
+                    if (column == 2 && virtualVertex) {
+                        ImGui::Text(e.options().boundary == Boundary::Exact ? "%d (ghost)" : "%d (super)", value);
+                    } else {
+                        IdCell(value);
+                    }
+                    if (it != before.end() && ImGui::IsItemHovered()) {
+                        ImGui::SetTooltip("%s[%d] was %d, now %d", column == 2 ? "V" : "O", c, it->second, value);
+                    }
+                };
+                changedCell(2, beforeV, m.V[c]);
+                changedCell(3, beforeO, m.O[c]);
+                ImGui::TableSetColumnIndex(4);
+                ImGui::Text("%d", next(c));
+                ImGui::TableSetColumnIndex(5);
+                ImGui::Text("%d", prev(c));
+                ImGui::TableSetColumnIndex(6);
+                IdCell(m.l(c));
+                ImGui::TableSetColumnIndex(7);
+                IdCell(m.r(c));
+            }
+        }
+        st.selection.hoveredRow = hoveredRow;
+        // The scroll position, for tests of the virtualised list.
+        st.itemRects["corner-table-scroll"] = {ImGui::GetScrollY(), ImGui::GetScrollMaxY(), 0, 0};
+        ImGui::EndTable();
+        RecordItem(st, "corner-table");
+    }
+    ImGui::PopFont();
+}
+
+void ShowVertexTable(AppState& st) {
+    const Engine& e = st.engine;
+    const Mesh& m = e.mesh();
+    const auto& states = e.pointStates();
+    ImGui::TextDisabled("%d vertices in G (%zu input points)", m.numVertices(), e.points().size());
+    const ImGuiTableFlags flags = ImGuiTableFlags_ScrollY | ImGuiTableFlags_RowBg | ImGuiTableFlags_BordersInnerV |
+                                  ImGuiTableFlags_SizingStretchProp;
+    ImGui::PushFont(fonts().mono);
+    if (ImGui::BeginTable("##vertices", 4, flags)) {
+        ImGui::TableSetupScrollFreeze(0, 1);
+        ImGui::TableSetupColumn("v", ImGuiTableColumnFlags_WidthStretch, 0.6f);
+        ImGui::TableSetupColumn("x", ImGuiTableColumnFlags_WidthStretch, 1.5f);
+        ImGui::TableSetupColumn("y", ImGuiTableColumnFlags_WidthStretch, 1.5f);
+        ImGui::TableSetupColumn("state", ImGuiTableColumnFlags_WidthStretch, 1.0f);
+        ImGui::TableHeadersRow();
+        ImGuiListClipper clipper;
+        clipper.Begin(m.numVertices());
+        while (clipper.Step()) {
+            for (int v = clipper.DisplayStart; v < clipper.DisplayEnd; ++v) {
+                ImGui::TableNextRow();
+                ImGui::TableSetColumnIndex(0);
+                ImGui::Text("%d", v);
+                const bool virt = v >= static_cast<int>(states.size());
+                const bool ghost = virt && e.options().boundary == Boundary::Exact;
+                ImGui::TableSetColumnIndex(1);
+                if (ghost) ImGui::TextDisabled("-");
+                else ImGui::Text("%.17g", m.G[v].x);
+                ImGui::TableSetColumnIndex(2);
+                if (ghost) ImGui::TextDisabled("-");
+                else ImGui::Text("%.17g", m.G[v].y);
+                ImGui::TableSetColumnIndex(3);
+                if (virt) {
+                    ImGui::TextDisabled(ghost ? "ghost (no coordinates)" : "super-triangle");
+                } else {
+                    static const char* const kNames[] = {"queued", "inserting", "vertex", "duplicate"};
+                    ImGui::TextUnformatted(kNames[static_cast<int>(states[v])]);
+                }
+            }
+        }
+        ImGui::EndTable();
+    }
+    ImGui::PopFont();
+}
+
+}  // namespace dlab::ui

@@ -1,0 +1,159 @@
+// The lesson panel: the stop's text (Markdown-light: bold, code, lists), its question with an
+// answer field and immediate feedback, a hint, and the way between stops. Shown at the top of
+// the side column while a lesson is open.
+#include "ui/gui.h"
+#include "ui/lesson_player.h"
+#include "ui/panels/panels.h"
+
+#include <imgui.h>
+#include <imgui_stdlib.h>
+
+#include <string>
+
+namespace dlab::ui {
+
+namespace {
+
+// Draws one span word by word, wrapping at the panel's right edge.
+void WrappedSpan(const TextSpan& span, float right) {
+    ImFont* font = span.style == TextSpan::Style::Bold   ? fonts().bold
+                   : span.style == TextSpan::Style::Code ? fonts().mono
+                                                         : fonts().ui;
+    ImGui::PushFont(font);
+    const float space = ImGui::CalcTextSize(" ").x;
+    std::size_t i = 0;
+    const std::string& t = span.text;
+    while (i < t.size()) {
+        std::size_t j = t.find(' ', i);
+        if (j == std::string::npos) j = t.size();
+        const std::string word = t.substr(i, j - i);
+        if (word.empty()) {  // a span that starts with a space: the space is already there
+            i = j + 1;
+            continue;
+        }
+        const ImVec2 size = ImGui::CalcTextSize(word.c_str());
+        const float x = ImGui::GetCursorScreenPos().x;
+        if (x + size.x > right && x > ImGui::GetWindowPos().x + ImGui::GetStyle().WindowPadding.x + 40) ImGui::NewLine();
+        if (span.style == TextSpan::Style::Code) {
+            const ImVec2 p = ImGui::GetCursorScreenPos();
+            ImGui::GetWindowDrawList()->AddRectFilled(ImVec2(p.x - 2, p.y), ImVec2(p.x + size.x + 2, p.y + size.y),
+                                                      IM_COL32(232, 234, 240, 255), 3);
+        }
+        ImGui::TextUnformatted(word.c_str());
+        ImGui::SameLine(0, space);
+        i = j + 1;
+    }
+    ImGui::PopFont();
+}
+
+void RichText(const std::string& text) {
+    std::string error;
+    const auto blocks = parseLessonText(text, &error);
+    if (!blocks) {
+        ImGui::TextWrapped("%s", text.c_str());  // the loader checked it; never expected
+        return;
+    }
+    const float right = ImGui::GetWindowPos().x + ImGui::GetWindowContentRegionMax().x;
+    for (const TextBlock& b : *blocks) {
+        if (b.kind == TextBlock::Kind::Bullet) {
+            ImGui::Bullet();
+            ImGui::SameLine();
+        } else if (b.kind == TextBlock::Kind::Numbered) {
+            ImGui::Text("%d.", b.number);
+            ImGui::SameLine();
+        }
+        for (const TextSpan& s : b.spans) WrappedSpan(s, right);
+        ImGui::NewLine();
+        if (b.kind == TextBlock::Kind::Paragraph) ImGui::Spacing();
+    }
+}
+
+}  // namespace
+
+void ShowLesson(AppState& st) {
+    LessonState& L = st.lessonPlayer;
+    if (!L.lesson) return;
+    const Lesson& lesson = *L.lesson;
+    ImGui::PushFont(fonts().caption);
+    ImGui::TextWrapped("%s", lesson.title.c_str());
+    ImGui::PopFont();
+    const std::size_t n = lesson.stops.size();
+    if (n == 0) {
+        ImGui::TextWrapped("%s", lesson.summary.c_str());
+        ImGui::TextDisabled(lesson.assignment ? "An assignment: the points are loaded. Step through them, or compare your own "
+                                                "run with `dtlab diff-trace`."
+                                              : "This lesson has no stops.");
+        if (ImGui::Button("Close lesson")) closeLesson(st);
+        return;
+    }
+    const std::size_t k = std::min(L.progress.stop, n - 1);
+    if (ImGui::Button("< Previous") && k > 0) goToStop(st, k - 1);
+    RecordItem(st, "lesson-previous");
+    ImGui::SameLine();
+    ImGui::Text("Stop %zu of %zu", k + 1, n);
+    ImGui::SameLine();
+    if (ImGui::Button("Next >") && k + 1 < n) goToStop(st, k + 1);
+    RecordItem(st, "lesson-next");
+    ImGui::SameLine();
+    if (lessonStateChanged(st)) {
+        if (ImGui::SmallButton("Back to the lesson")) goToStop(st, k);
+        if (ImGui::IsItemHovered()) ImGui::SetTooltip("You changed the points or the options: this brings the lesson's back (Ctrl+Z, yours)");
+        ImGui::SameLine();
+    } else if (st.engine.position() != L.plan.stops[k].position) {
+        if (ImGui::SmallButton("Back to the stop")) goToStop(st, k);
+        if (ImGui::IsItemHovered()) ImGui::SetTooltip("You stepped away from this stop's operation");
+        ImGui::SameLine();
+    }
+    if (ImGui::SmallButton("Close")) {
+        closeLesson(st);
+        return;
+    }
+    // Progress: one box per stop (green answered right, orange tried, grey seen).
+    {
+        ImDrawList* dl = ImGui::GetWindowDrawList();
+        const ImVec2 p = ImGui::GetCursorScreenPos();
+        const float w = ImGui::GetContentRegionAvail().x / static_cast<float>(n);
+        for (std::size_t i = 0; i < n; ++i) {
+            const std::uint8_t a = i < L.progress.answers.size() ? L.progress.answers[i] : 0;
+            const ImU32 col = i == k ? IM_COL32(240, 120, 0, 255)
+                              : a == 2 ? IM_COL32(60, 170, 80, 255)
+                              : a == 1 ? IM_COL32(235, 170, 60, 255)
+                              : i <= L.progress.furthest ? IM_COL32(170, 175, 190, 255)
+                                                         : IM_COL32(220, 222, 228, 255);
+            dl->AddRectFilled(ImVec2(p.x + i * w + 1, p.y), ImVec2(p.x + (i + 1) * w - 1, p.y + 6), col, 2);
+        }
+        ImGui::Dummy(ImVec2(0, 10));
+    }
+    ImGui::Separator();
+    ImGui::BeginChild("##lessontext", ImVec2(0, 0), false);
+    const LessonStop& stop = lesson.stops[k];
+    RichText(stop.text);
+    if (!stop.question.empty()) {
+        ImGui::Spacing();
+        ImGui::PushFont(fonts().bold);
+        ImGui::TextWrapped("%s", stop.question.c_str());
+        ImGui::PopFont();
+        ImGui::SetNextItemWidth(std::min(260.0f, ImGui::GetContentRegionAvail().x * 0.6f));
+        const bool enter = ImGui::InputText("##answer", &L.typed, ImGuiInputTextFlags_EnterReturnsTrue);
+        RecordItem(st, "lesson-answer");
+        ImGui::SameLine();
+        if (ImGui::Button("Check") || enter) checkAnswer(st);
+        RecordItem(st, "lesson-check");
+        if (!stop.hint.empty()) {
+            ImGui::SameLine();
+            if (ImGui::SmallButton("Hint")) L.showHint = !L.showHint;
+        }
+        if (L.feedback == LessonState::Feedback::Right) {
+            ImGui::TextColored(ImVec4(0.1f, 0.55f, 0.2f, 1), "Right: %s", L.plan.stops[k].answer->display().c_str());
+        } else if (L.feedback == LessonState::Feedback::Wrong) {
+            ImGui::TextColored(ImVec4(0.8f, 0.2f, 0.1f, 1), "Not quite. Look again at the canvas and the tables, and try again.");
+            if (ImGui::SmallButton("Show the answer")) L.feedback = LessonState::Feedback::Shown;
+        }
+        if (L.feedback == LessonState::Feedback::Shown) ImGui::Text("The answer: %s", L.plan.stops[k].answer->display().c_str());
+        if (L.showHint) ImGui::TextWrapped("Hint: %s", stop.hint.c_str());
+    }
+    ImGui::EndChild();
+    RecordItem(st, "lesson-text");
+}
+
+}  // namespace dlab::ui

@@ -1,0 +1,294 @@
+// The predicate inspector: the current in-circle test (or the orientation tests of the current
+// locate step) with its points, the floating-point determinant, the filter's error bound, the
+// naive and the exact sign and the tier that decided; a loud warning where plain floating point
+// would have answered wrong. The user can also type four points and test them.
+#include "core/engine/io_write.h"
+#include "ui/gui.h"
+#include "ui/panels/panels.h"
+
+#include <imgui.h>
+#include <imgui_stdlib.h>
+
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+
+namespace dlab::ui {
+
+namespace {
+
+constexpr ImU32 kWarningFill = IM_COL32(200, 20, 30, 255);
+
+const char* tierName(PredicateTier t) {
+    switch (t) {
+        case PredicateTier::Filter: return "floating-point filter";
+        case PredicateTier::Expansion: return "exact: floating-point expansions";
+        case PredicateTier::BigInteger: return "exact: big integers";
+    }
+    return "?";
+}
+
+const char* signMeaning(bool inCircle, int s) {
+    if (inCircle) return s > 0 ? "inside the circle: flip" : s < 0 ? "outside the circle: keep" : "on the circle: keep";
+    return s > 0 ? "left of the edge (counter-clockwise)" : s < 0 ? "right of the edge (clockwise)" : "on the line (collinear)";
+}
+
+const char* signText(int s) { return s > 0 ? "+1" : s < 0 ? "-1" : " 0"; }
+
+std::string shortest(double x) {
+    std::string s;
+    appendShortest(s, x);
+    return s;
+}
+
+std::string vertexName(std::int32_t v, const char* fallback) {
+    return v == kNone ? std::string(fallback) : "v" + std::to_string(v);
+}
+
+// A red box that cannot be missed; recorded as "predicate-warning" for the tests.
+void WarningBox(AppState& st, const std::string& text) {
+    ImDrawList* dl = ImGui::GetWindowDrawList();
+    const float wrap = ImGui::GetContentRegionAvail().x - 16;
+    const ImVec2 ts = ImGui::CalcTextSize(text.c_str(), nullptr, false, wrap);
+    const ImVec2 p = ImGui::GetCursorScreenPos();
+    const ImVec2 q(p.x + wrap + 16, p.y + ts.y + 12);
+    dl->AddRectFilled(p, q, kWarningFill, 4);
+    dl->AddText(ImGui::GetFont(), ImGui::GetFontSize(), ImVec2(p.x + 8, p.y + 6), IM_COL32(255, 255, 255, 255), text.c_str(),
+                nullptr, wrap);
+    ImGui::Dummy(ImVec2(wrap + 16, ts.y + 12));
+    RecordItem(st, "predicate-warning");
+}
+
+// The verdict: a red box where float is wrong, a note where only the exact tiers could decide.
+void ShowVerdict(AppState& st, const PredicateCall& call) {
+    const PredicateReport& r = call.report;
+    if (r.naiveSign != r.exactSign) {
+        WarningBox(st, std::string("Plain floating point is WRONG here: it gives ") + signText(r.naiveSign) + " (" +
+                           signMeaning(call.inCircle, r.naiveSign) + "), the exact sign is " + signText(r.exactSign) + " (" +
+                           signMeaning(call.inCircle, r.exactSign) + ").");
+    } else if (r.tier != PredicateTier::Filter) {
+        ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(0.7f, 0.4f, 0.0f, 1));
+        ImGui::TextWrapped("Too close for the filter: decided exactly (the float sign happened to be right).");
+        ImGui::PopStyleColor();
+    }
+}
+
+// One call: its verdict first (on a projector the table below may be cut off) unless the caller
+// showed it already, then the numbers.
+void ShowCall(AppState& st, const PredicateCall& call, int index, bool verdict = true) {
+    const PredicateReport& r = call.report;
+    ImGui::PushID(index);
+    ImGui::TextWrapped("%s", call.what.c_str());
+    if (verdict) ShowVerdict(st, call);
+    const int n = call.inCircle ? 4 : 3;
+    static const char* const kNames[] = {"a", "b", "c", "d"};
+    ImGui::PushFont(fonts().mono);
+    if (ImGui::BeginTable("##pred", 2, ImGuiTableFlags_RowBg | ImGuiTableFlags_BordersInnerV)) {
+        ImGui::TableSetupColumn("", ImGuiTableColumnFlags_WidthFixed);
+        ImGui::TableSetupColumn("", ImGuiTableColumnFlags_WidthStretch);
+        auto row = [](const std::string& name, const std::string& value, ImVec4 col = ImVec4(0, 0, 0, 0)) {
+            ImGui::TableNextRow();
+            ImGui::TableSetColumnIndex(0);
+            ImGui::TextUnformatted(name.c_str());
+            ImGui::TableSetColumnIndex(1);
+            if (col.w > 0) ImGui::PushStyleColor(ImGuiCol_Text, col);
+            ImGui::TextWrapped("%s", value.c_str());  // long coordinates wrap in a narrow column
+            if (col.w > 0) ImGui::PopStyleColor();
+        };
+        for (int k = 0; k < n; ++k) {
+            row(std::string(kNames[k]) + " " + vertexName(call.v[k], ""),
+                "(" + shortest(call.p[k].x) + ", " + shortest(call.p[k].y) + ")");
+        }
+        char buf[96];
+        std::snprintf(buf, sizeof buf, "%.17g", r.approx);
+        row("float det", buf);
+        if (std::isfinite(r.errorBound)) std::snprintf(buf, sizeof buf, "%.3e", r.errorBound);
+        else std::snprintf(buf, sizeof buf, "n/a (outside the filter's safe range)");
+        row("error bound", buf);
+        if (std::isfinite(r.errorBound) && r.errorBound > 0) {
+            std::snprintf(buf, sizeof buf, "%.3g %s", std::fabs(r.approx) / r.errorBound,
+                          std::fabs(r.approx) > r.errorBound ? "(> 1: the float sign is certain)" : "(<= 1: too close to call)");
+            row("|det| / bound", buf);
+        }
+        const bool wrong = r.naiveSign != r.exactSign;
+        row("naive sign", std::string(signText(r.naiveSign)) + "  " + signMeaning(call.inCircle, r.naiveSign),
+            wrong ? ImVec4(0.8f, 0.1f, 0.1f, 1) : ImVec4(0, 0, 0, 0));
+        row("exact sign", std::string(signText(r.exactSign)) + "  " + signMeaning(call.inCircle, r.exactSign), ImVec4(0.05f, 0.45f, 0.15f, 1));
+        row("decided by", tierName(r.tier));
+        ImGui::EndTable();
+    }
+    ImGui::PopFont();
+    if (call.v[0] != kNone && ImGui::SmallButton("Copy these points below")) {
+        for (int k = 0; k < 4; ++k) {
+            const Vec2 p = k < n ? call.p[k] : call.p[0];
+            st.predicates.points[k] = shortest(p.x) + ", " + shortest(p.y);
+        }
+    }
+    ImGui::PopID();
+}
+
+PredicateCall makeCall(const Mesh& m, bool inCircle, std::string what, std::initializer_list<std::int32_t> vs, Vec2 extra,
+                       bool extraIsLast) {
+    PredicateCall call;
+    call.inCircle = inCircle;
+    call.what = std::move(what);
+    int k = 0;
+    for (std::int32_t v : vs) {
+        call.v[k] = v;
+        call.p[k] = m.G[v];
+        ++k;
+    }
+    if (extraIsLast) call.p[k] = extra;
+    call.report = inCircle ? incircleReport(call.p[0], call.p[1], call.p[2], call.p[3])
+                           : orient2dReport(call.p[0], call.p[1], call.p[2]);
+    return call;
+}
+
+}  // namespace
+
+bool ParsePointText(std::string_view text, Vec2& out) {
+    // "x, y", "x y" or "(x, y)": two decimal numbers, read exactly as the file readers do.
+    std::string s(text);
+    for (char& ch : s) {
+        if (ch == '(' || ch == ')' || ch == ',' || ch == ';' || ch == '\t') ch = ' ';
+    }
+    double v[2];
+    const char* p = s.data();
+    const char* end = s.data() + s.size();
+    for (double& x : v) {
+        while (p < end && *p == ' ') ++p;
+        if (p < end && *p == '+') ++p;
+        const auto [q, ec] = std::from_chars(p, end, x);
+        if (ec != std::errc() || !std::isfinite(x)) return false;
+        p = q;
+    }
+    while (p < end && *p == ' ') ++p;
+    if (p != end) return false;
+    out = {v[0], v[1]};
+    return true;
+}
+
+std::vector<PredicateCall> CurrentPredicateCalls(const Engine& e) {
+    std::vector<PredicateCall> calls;
+    const Op* op = e.current();
+    if (!op) return calls;
+    const Mesh& m = e.mesh();
+    const Inserter& ins = e.inserter();
+    const bool ghostMode = e.options().boundary == Boundary::Exact && !ins.done();
+    auto isGhost = [&](std::int32_t v) { return ghostMode && ins.isVirtual(v); };
+    if (op->type == OpType::InCircleTest) {
+        const std::int32_t c = op->a, d = op->b;
+        if (c < 0 || c >= m.numCorners() || d < 0 || d >= m.numCorners()) return calls;
+        const std::int32_t P = m.V[c], D = m.V[d], B = m.V[next(d)], A = m.V[prev(d)];
+        if (isGhost(D) || isGhost(B) || isGhost(A)) {
+            // A ghost triangle's circle is the open half-plane beyond its hull edge u-w.
+            std::int32_t u, w;
+            if (isGhost(D)) { u = B; w = A; }
+            else if (isGhost(B)) { u = A; w = D; }
+            else { u = D; w = B; }
+            calls.push_back(makeCall(m, false,
+                                     "Ghost triangle: is P = v" + std::to_string(P) + " beyond the hull edge v" + std::to_string(u) +
+                                         " - v" + std::to_string(w) + "? (orient2d(a, b, c) > 0: flip)",
+                                     {u, w, P}, {}, false));
+        } else {
+            calls.push_back(makeCall(m, true,
+                                     "In-circle: is P = v" + std::to_string(P) + " inside the circle through v" + std::to_string(D) +
+                                         ", v" + std::to_string(B) + ", v" + std::to_string(A) + "?",
+                                     {D, B, A, P}, {}, false));
+        }
+    } else if (op->type == OpType::LocateStep || op->type == OpType::Located) {
+        const std::int32_t t = op->a, v = op->vertex;
+        if (t < 0 || t >= m.numTriangles() || v < 0 || v >= m.numVertices()) return calls;
+        for (int k = 0; k < 3; ++k) {
+            const std::int32_t c = 3 * t + k, from = m.V[next(c)], to = m.V[prev(c)];
+            if (isGhost(from) || isGhost(to)) continue;
+            calls.push_back(makeCall(m, false,
+                                     "Locate in t" + std::to_string(t) + ": P = v" + std::to_string(v) + " against the edge v" +
+                                         std::to_string(from) + " -> v" + std::to_string(to) + " (opposite corner " +
+                                         std::to_string(c) + "; -1 means P lies beyond it)",
+                                     {from, to}, m.G[v], true));
+            calls.back().v[2] = v;
+        }
+    }
+    return calls;
+}
+
+void ShowPredicates(AppState& st) {
+    Engine& e = st.engine;
+    const std::vector<PredicateCall> calls = CurrentPredicateCalls(e);
+    ImGui::TextUnformatted("The current operation");
+    ImGui::SameLine();
+    ImGui::TextDisabled("(?)");
+    if (ImGui::IsItemHovered()) {
+        ImGui::SetTooltip("Every orientation and in-circle decision is exact. A floating-point filter decides most calls:\n"
+                          "when |det| exceeds the error bound, the float sign is certain. Otherwise the determinant is\n"
+                          "evaluated exactly (expansions, or big integers for extreme exponents).");
+    }
+    ImGui::BeginChild("##predbody", ImVec2(0, 0), false);  // scrolls when the column is short
+    if (calls.empty()) {
+        ImGui::TextWrapped("%s", e.current() ? "This operation makes no predicate call. Step to an in-circle test or a locate step."
+                                             : "Nothing has happened yet. Step to an in-circle test or a locate step.");
+    }
+    if (!e.batch() && !e.atEnd()) {
+        if (ImGui::Button("Next in-circle test")) {
+            st.run.running = false;
+            while (e.forward() && e.current()->type != OpType::InCircleTest) {}
+        }
+        RecordItem(st, "predicate-next");
+        ImGui::SameLine();
+        if (ImGui::Button("Next locate step")) {
+            st.run.running = false;
+            while (e.forward() && e.current()->type != OpType::LocateStep && e.current()->type != OpType::Located) {}
+        }
+    }
+    for (std::size_t i = 0; i < calls.size(); ++i) {
+        ImGui::Separator();
+        ShowCall(st, calls[i], static_cast<int>(i));
+    }
+
+    // ---- The user's own four points --------------------------------------------------------
+    ImGui::Separator();
+    ImGui::TextUnformatted("Test your own points");
+    ImGui::TextDisabled("x, y each; read exactly (17 digits round-trip)");
+    static const char* const kLabels[] = {"a", "b", "c", "d"};
+    Vec2 p[4];
+    bool ok = true;
+    ImGui::PushFont(fonts().mono);
+    for (int k = 0; k < 4; ++k) {
+        ImGui::SetNextItemWidth(-30);
+        ImGui::InputText(kLabels[k], &st.predicates.points[k]);
+        RecordItem(st, (std::string("predicate-point-") + kLabels[k]).c_str());
+        if (!ParsePointText(st.predicates.points[k], p[k])) {
+            ok = false;
+            ImGui::SameLine();
+            ImGui::TextColored(ImVec4(0.8f, 0.1f, 0.1f, 1), "?");
+        }
+    }
+    ImGui::PopFont();
+    if (!ok) {
+        ImGui::TextColored(ImVec4(0.8f, 0.1f, 0.1f, 1), "Each point is two finite numbers, e.g. 0.5, 1e-3");
+        ImGui::EndChild();
+        return;
+    }
+    PredicateCall orient;
+    orient.what = "orient2d(a, b, c)";
+    orient.p = {p[0], p[1], p[2], p[3]};
+    orient.report = orient2dReport(p[0], p[1], p[2]);
+    PredicateCall circle;
+    circle.inCircle = true;
+    circle.what = "incircle(a, b, c, d) (for counter-clockwise a, b, c)";
+    circle.p = {p[0], p[1], p[2], p[3]};
+    circle.report = incircleReport(p[0], p[1], p[2], p[3]);
+    // Both verdicts right under the fields, where the user is typing; the numbers below.
+    for (const PredicateCall* call : {&orient, &circle}) {
+        ImGui::TextWrapped("%s: %s %s", call->inCircle ? "incircle" : "orient2d", signText(call->report.exactSign),
+                           signMeaning(call->inCircle, call->report.exactSign));
+        ShowVerdict(st, *call);
+    }
+    ImGui::Separator();
+    ShowCall(st, orient, 100, false);
+    ShowCall(st, circle, 101, false);
+    ImGui::EndChild();
+}
+
+}  // namespace dlab::ui

@@ -1,0 +1,338 @@
+// The statistics panel: points, triangles, flips per insertion and in total, walk steps,
+// in-circle tests, a plot of flips per insertion, frame times, and validate() plus an exact
+// hull check of the current mesh, with every violation drawn on the canvas.
+#include "core/engine/predicates.h"
+#include "ui/gui.h"
+#include "ui/panels/panels.h"
+
+#include <imgui.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <unordered_map>
+
+namespace dlab::ui {
+
+namespace {
+
+constexpr ImU32 kViolationColour = IM_COL32(230, 0, 0, 255);
+// Edges not Delaunay yet while the insertion's flips are still to come: expected, drawn calmer.
+constexpr ImU32 kPendingColour = IM_COL32(250, 170, 60, 255);
+
+bool sameOp(const Op& a, const Op& b) {
+    return a.type == b.type && a.vertex == b.vertex && a.a == b.a && a.b == b.b && a.firstChange == b.firstChange;
+}
+
+void countOps(RunCounts& s, const Engine& e) {
+    const Journal* j = e.journal();
+    if (!j) return;
+    const auto& ops = j->ops();
+    const std::size_t pos = e.position();
+    const bool continues = s.position <= pos && (s.position == 0 || (s.position <= ops.size() && sameOp(ops[s.position - 1], s.last)));
+    if (!continues) s = RunCounts{};
+    for (std::size_t k = s.position; k < pos; ++k) {
+        const Op& op = ops[k];
+        switch (op.type) {
+            case OpType::LocateStep:
+                ++s.walkSteps;
+                ++s.stepsNow;
+                break;
+            case OpType::Located:
+                ++s.locates;
+                s.hits += s.stepsNow == 0;
+                s.stepsNow = 0;
+                break;
+            case OpType::Split: ++s.splits; break;
+            case OpType::SplitEdge: ++s.edgeSplits; break;
+            case OpType::InCircleTest: ++s.inCircleTests; break;
+            case OpType::Flip:
+                ++s.flips;
+                ++s.flipsNow;
+                break;
+            case OpType::Inserted:
+                ++s.inserted;
+                s.flipsPerInsertion.push_back(static_cast<float>(s.flipsNow));
+                s.flipsNow = 0;
+                break;
+            case OpType::SkipDuplicate:
+                ++s.duplicates;
+                s.stepsNow = 0;
+                s.flipsNow = 0;
+                break;
+            default: break;
+        }
+    }
+    s.position = pos;
+    if (pos > 0) s.last = ops[pos - 1];
+}
+
+// The boundary of the real triangles, checked exactly: every boundary vertex turns left or goes
+// straight (a convex hull), and Euler's count T = 2n - h - 2 of a triangulated disc holds.
+// With local Delaunay on every interior edge this makes the mesh the Delaunay triangulation.
+void checkHull(const Engine& e, StatisticsState& s) {
+    s.hullDents.clear();
+    s.hullReport.clear();
+    const Mesh& m = e.mesh();
+    const Inserter& ins = e.inserter();
+    const bool running = !ins.done();
+    auto real = [&](std::int32_t t) { return !running || !ins.isVirtualTriangle(t); };
+    std::unordered_map<std::int32_t, std::int32_t> nextOnHull;  // boundary edge a -> b (interior on the left)
+    std::vector<std::uint8_t> used(static_cast<std::size_t>(m.numVertices()), 0);
+    std::int64_t triangles = 0, boundary = 0;
+    bool pinched = false;
+    for (std::int32_t t = 0; t < m.numTriangles(); ++t) {
+        if (!real(t)) continue;
+        ++triangles;
+        for (std::int32_t c = 3 * t; c < 3 * t + 3; ++c) {
+            used[m.V[c]] = 1;
+            const std::int32_t o = m.O[c];
+            if (o == kNone || !real(tri(o))) {
+                ++boundary;
+                pinched |= !nextOnHull.emplace(m.V[next(c)], m.V[prev(c)]).second;
+            }
+        }
+    }
+    if (triangles == 0) {
+        s.hullReport = "no triangles yet";
+        return;
+    }
+    const std::int64_t n = std::count(used.begin(), used.end(), 1);
+    for (const auto& [a, b] : nextOnHull) {
+        const auto it = nextOnHull.find(b);
+        if (it == nextOnHull.end()) continue;
+        if (orient2d(m.G[a], m.G[b], m.G[it->second]) < 0) s.hullDents.push_back(b);
+    }
+    std::sort(s.hullDents.begin(), s.hullDents.end());
+    const bool euler = triangles == 2 * n - boundary - 2;
+    char buf[256];
+    if (pinched) {
+        std::snprintf(buf, sizeof buf, "boundary touches itself (a vertex with two boundary edges leaving it)");
+    } else if (!s.hullDents.empty()) {
+        std::snprintf(buf, sizeof buf, "hull NOT convex at %zu vertex(es), first v%d%s", s.hullDents.size(), s.hullDents.front(),
+                      e.options().boundary == Boundary::Super ? " - the super-triangle's flaw (try boundary: exact)" : "");
+    } else {
+        std::snprintf(buf, sizeof buf, "hull convex (%lld edges); Euler %s: %lld triangles, %lld vertices", static_cast<long long>(boundary),
+                      euler ? "holds" : "FAILS", static_cast<long long>(triangles), static_cast<long long>(n));
+    }
+    s.hullReport = buf;
+}
+
+void validateNow(AppState& st) {
+    StatisticsState& s = st.statistics;
+    const Engine& e = st.engine;
+    ValidateOptions o;
+    o.maxViolations = 200;
+    if (!e.inserter().done() && e.options().boundary == Boundary::Exact) o.firstVirtual = e.inserter().firstVirtual();
+    s.violations = validate(e.mesh(), o);
+    checkHull(e, s);
+    s.validatedVersion = e.version();
+}
+
+// Between Split and Inserted the new vertex's edges are still being tested: some are not
+// Delaunay yet, and that is expected.
+bool midInsertion(const Engine& e) {
+    const Op* op = e.current();
+    return op && !endsInsertion(op->type) && op->type != OpType::Finalize;
+}
+
+}  // namespace
+
+const RunCounts& UpdateRunCounts(AppState& st) {
+    if (!st.engine.batch()) countOps(st.statistics.counts, st.engine);
+    return st.statistics.counts;
+}
+
+void UpdateStatistics(AppState& st) {
+    StatisticsState& s = st.statistics;
+    s.frameMs.push_back(ImGui::GetIO().DeltaTime * 1000.0f);
+    if (s.frameMs.size() > StatisticsState::kFrames) s.frameMs.erase(s.frameMs.begin());
+    // validate() costs about 40 ns a corner: every frame of a running animation only for small
+    // meshes; larger ones when the run pauses or steps by hand.
+    constexpr std::int32_t kWhileRunning = 60000;
+    const std::int32_t corners = st.engine.mesh().numCorners();
+    if (s.autoValidate && s.validatedVersion != st.engine.version() && corners <= StatisticsState::kAutoValidateCorners &&
+        (corners <= kWhileRunning || !st.run.running)) {
+        validateNow(st);
+    }
+}
+
+void DrawViolationOverlay(AppState& st) {
+    const StatisticsState& s = st.statistics;
+    if (!s.showViolations || s.validatedVersion != st.engine.version()) return;
+    if (s.violations.empty() && s.hullDents.empty()) return;
+    const Mesh& m = st.engine.mesh();
+    const View& view = st.view;
+    ImDrawList* dl = ImGui::GetWindowDrawList();
+    dl->PushClipRect(toIm(view.origin), toIm(view.origin + view.size), true);
+    const bool expected = midInsertion(st.engine) && std::all_of(s.violations.begin(), s.violations.end(), [](const Violation& v) {
+                              return v.kind == Violation::Kind::NotDelaunay;
+                          });
+    const ImU32 col = expected ? kPendingColour : kViolationColour;
+    const float w = (st.presentation ? 7.0f : 5.0f) * (expected ? 0.6f : 1.0f);
+    const Inserter& ins = st.engine.inserter();
+    auto drawable = [&](std::int32_t v) { return v >= 0 && v < m.numVertices() && (ins.done() || !ins.isVirtual(v) || st.engine.options().boundary == Boundary::Super); };
+    for (const Violation& v : s.violations) {
+        const std::int32_t c = v.corner;
+        if (c < 0 || c >= m.numCorners()) continue;
+        if (!CanvasHasRoom(st, dl, 120)) break;
+        const std::int32_t a = m.V[next(c)], b = m.V[prev(c)];
+        if (drawable(a) && drawable(b)) dl->AddLine(toIm(view.toScreen(m.G[a])), toIm(view.toScreen(m.G[b])), col, w);
+        float x = 0, y = 0;
+        if (CornerAnchor(st, c, x, y)) dl->AddCircle(ImVec2(x, y), 14, col, 0, 3);
+    }
+    for (std::int32_t v : s.hullDents) {
+        if (!CanvasHasRoom(st, dl, 100)) break;
+        if (drawable(v)) dl->AddCircle(toIm(view.toScreen(m.G[v])), 12, kViolationColour, 0, 3);
+    }
+    dl->PopClipRect();
+}
+
+namespace {
+
+// validate() and the hull check, with the violations listed (click: select the corner).
+void ShowChecks(AppState& st) {
+    const Engine& e = st.engine;
+    StatisticsState& s = st.statistics;
+    const Mesh& m = e.mesh();
+    // ---- validate() and the hull ------------------------------------------------------------
+    ImGui::TextUnformatted("Checks of the current mesh (exact)");
+    ImGui::Checkbox("after every change", &s.autoValidate);
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("validate() after each step, for meshes up to %d corners", StatisticsState::kAutoValidateCorners);
+    ImGui::SameLine();
+    if (ImGui::Button("Validate now")) validateNow(st);
+    RecordItem(st, "validate-now");
+    ImGui::SameLine();
+    ImGui::Checkbox("show on canvas", &s.showViolations);
+    if (s.validatedVersion != e.version()) {
+        ImGui::TextDisabled("not checked at this step%s", m.numCorners() > StatisticsState::kAutoValidateCorners ? " (large mesh: press Validate now)" : "");
+        return;
+    }
+    const bool expected = midInsertion(e);
+    if (s.violations.empty()) {
+        ImGui::TextColored(ImVec4(0.05f, 0.45f, 0.15f, 1), "validate(): every invariant holds (O symmetric, CCW, local Delaunay)");
+    } else {
+        const bool onlyDelaunay = std::all_of(s.violations.begin(), s.violations.end(),
+                                              [](const Violation& v) { return v.kind == Violation::Kind::NotDelaunay; });
+        const ImVec4 col = expected && onlyDelaunay ? ImVec4(0.7f, 0.4f, 0.0f, 1) : ImVec4(0.8f, 0.1f, 0.1f, 1);
+        ImGui::TextColored(col, "validate(): %zu violation%s%s", s.violations.size(), s.violations.size() == 1 ? "" : "s",
+                           s.violations.size() >= 200 ? " (first 200)" : "");
+        if (expected && onlyDelaunay) {
+            ImGui::PushStyleColor(ImGuiCol_Text, col);
+            ImGui::TextWrapped("expected mid-insertion: these edges are still to be tested and flipped");
+            ImGui::PopStyleColor();
+        }
+    }
+    const bool hullBad = !s.hullDents.empty() || s.hullReport.find("FAILS") != std::string::npos ||
+                         s.hullReport.find("touches") != std::string::npos;
+    ImGui::PushStyleColor(ImGuiCol_Text, hullBad ? ImVec4(0.8f, 0.1f, 0.1f, 1) : ImVec4(0.05f, 0.45f, 0.15f, 1));
+    ImGui::TextWrapped("%s", s.hullReport.c_str());
+    ImGui::PopStyleColor();
+    if (!s.violations.empty()) {
+        const float listH = ImGui::GetTextLineHeightWithSpacing() * static_cast<float>(std::min<std::size_t>(s.violations.size(), 8) + 1);
+        ImGui::BeginChild("##violations", ImVec2(0, listH), true);
+        for (std::size_t i = 0; i < s.violations.size(); ++i) {
+            const Violation& v = s.violations[i];
+            ImGui::PushID(static_cast<int>(i));
+            if (ImGui::Selectable((std::string(toString(v.kind)) + " at corner " + std::to_string(v.corner)).c_str(),
+                                  st.selection.corner == v.corner)) {
+                st.select(v.corner);
+                st.selection.jumpToCorner = v.corner;
+            }
+            if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", v.message.c_str());
+            ImGui::PopID();
+        }
+        ImGui::EndChild();
+    }
+}
+
+}  // namespace
+
+void ShowStatistics(AppState& st) {
+    const Engine& e = st.engine;
+    StatisticsState& s = st.statistics;
+    RunCounts& c = s.counts;
+    const Mesh& m = e.mesh();
+    const Inserter& ins = e.inserter();
+    std::int64_t virtualTriangles = 0;
+    if (!ins.done()) {
+        for (std::int32_t t = 0; t < m.numTriangles(); ++t) virtualTriangles += ins.isVirtualTriangle(t);
+    }
+
+    ImGui::BeginChild("##statsbody", ImVec2(0, 0), false);  // scrolls when the column is short
+    // What a debugging user looks for first: does the mesh hold its invariants at this step.
+    ShowChecks(st);
+    ImGui::Separator();
+    // ---- Counts -----------------------------------------------------------------------------
+    const bool batch = e.batch();
+    UpdateRunCounts(st);
+    const InsertStats& bs = ins.stats();
+    const std::int64_t flips = batch ? bs.flips : c.flips, steps = batch ? bs.walkSteps : c.walkSteps;
+    const std::int64_t tests = batch ? bs.inCircleTests : c.inCircleTests;
+    const std::int64_t inserted = batch ? bs.inserted : c.inserted, dups = batch ? bs.duplicates : c.duplicates;
+    if (ImGui::BeginTable("##counts", 2, ImGuiTableFlags_RowBg | ImGuiTableFlags_BordersInnerV)) {
+        ImGui::TableSetupColumn("", ImGuiTableColumnFlags_WidthFixed);
+        ImGui::TableSetupColumn("", ImGuiTableColumnFlags_WidthStretch);
+        auto row = [](const char* name, const std::string& value) {
+            ImGui::TableNextRow();
+            ImGui::TableSetColumnIndex(0);
+            ImGui::TextUnformatted(name);
+            ImGui::TableSetColumnIndex(1);
+            ImGui::TextUnformatted(value.c_str());
+        };
+        auto num = [](std::int64_t v) { return std::to_string(v); };
+        row("points", num(static_cast<std::int64_t>(e.points().size())) + "  (" + num(inserted) + " inserted, " + num(dups) + " duplicates)");
+        row("triangles", num(m.numTriangles() - virtualTriangles) + (virtualTriangles ? "  (+" + num(virtualTriangles) + " virtual)" : ""));
+        const double perIns = inserted > 0 ? static_cast<double>(flips) / static_cast<double>(inserted) : 0.0;
+        char buf[128];
+        std::snprintf(buf, sizeof buf, "%lld  (%.2f per insertion%s)", static_cast<long long>(flips), perIns,
+                      !batch && c.flipsNow ? (", " + std::to_string(c.flipsNow) + " in this one").c_str() : "");
+        row("flips", buf);
+        std::snprintf(buf, sizeof buf, "%lld  (%.2f per insertion)", static_cast<long long>(steps),
+                      inserted > 0 ? static_cast<double>(steps) / static_cast<double>(inserted + dups) : 0.0);
+        row("walk steps", buf);
+        if (!batch && c.locates > 0) {
+            std::snprintf(buf, sizeof buf, "%lld of %lld (%.0f%%)", static_cast<long long>(c.hits), static_cast<long long>(c.locates),
+                          100.0 * static_cast<double>(c.hits) / static_cast<double>(c.locates));
+            row("0-step locates", buf);
+        }
+        row("in-circle tests", num(tests));
+        if (!batch) row("splits", num(c.splits) + " in triangles, " + num(c.edgeSplits) + " on edges");
+        const PredicateCounters& pc = predicateCounters();
+        row("exact fallbacks", num(static_cast<std::int64_t>(pc.orientExact)) + " orient2d, " +
+                                   num(static_cast<std::int64_t>(pc.incircleExact)) + " incircle");
+        if (ImGui::IsItemHovered()) ImGui::SetTooltip("Predicate calls the floating-point filter could not decide, since the program started");
+        ImGui::EndTable();
+    }
+
+    // ---- Flips per insertion ----------------------------------------------------------------
+    if (!batch && !c.flipsPerInsertion.empty()) {
+        constexpr std::size_t kShown = 400;
+        const std::size_t n = c.flipsPerInsertion.size();
+        const std::size_t first = n > kShown ? n - kShown : 0;
+        const float maxFlips = *std::max_element(c.flipsPerInsertion.begin() + static_cast<std::ptrdiff_t>(first), c.flipsPerInsertion.end());
+        char overlay[96];
+        std::snprintf(overlay, sizeof overlay, "flips per insertion (last %zu of %zu, max %.0f)", n - first, n, maxFlips);
+        ImGui::PlotHistogram("##flips", c.flipsPerInsertion.data() + first, static_cast<int>(n - first), 0, overlay, 0.0f,
+                             std::max(4.0f, maxFlips * 1.15f), ImVec2(ImGui::GetContentRegionAvail().x, 90));
+        RecordItem(st, "flips-plot");
+        if (ImGui::IsItemHovered()) ImGui::SetTooltip("Expected about 3 per insertion on average for random insertion orders (the new vertex gets about 6 edges, 3 from the split).");
+    }
+
+    // ---- Frame times ------------------------------------------------------------------------
+    if (!s.frameMs.empty()) {
+        const float mean = std::accumulate(s.frameMs.begin(), s.frameMs.end(), 0.0f) / static_cast<float>(s.frameMs.size());
+        const float worst = *std::max_element(s.frameMs.begin(), s.frameMs.end());
+        char overlay[128];
+        std::snprintf(overlay, sizeof overlay, "frame ms: mean %.1f, worst %.1f", mean, worst);
+        ImGui::PlotLines("##frames", s.frameMs.data(), static_cast<int>(s.frameMs.size()), 0, overlay, 0.0f, std::max(40.0f, worst * 1.1f),
+                         ImVec2(ImGui::GetContentRegionAvail().x, 60));
+        const FrameStats& fs = st.frameStats;
+        ImGui::TextDisabled("mesh rebuild %.1f ms, %zu edges drawn%s, %zu ops this frame", fs.meshBuildMs, fs.visibleEdges,
+                            fs.denseMesh ? " (dense raster)" : "", fs.opsStepped);
+    }
+
+    ImGui::EndChild();
+}
+
+}  // namespace dlab::ui

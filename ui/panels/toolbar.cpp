@@ -1,0 +1,320 @@
+// The step controls (op / insertion / start / end / run with a speed slider), the engine's
+// modes, the caption of the current operation and the timeline scrubber.
+#include "core/teaching/breakpoint.h"
+#include "core/teaching/describe.h"
+#include "ui/gui.h"
+#include "ui/panels/panels.h"
+
+#include <imgui.h>
+#include <imgui_stdlib.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+
+namespace dlab::ui {
+
+namespace {
+
+bool ToolButton(AppState& state, const char* label, const char* tip, bool enabled = true) {
+    if (!enabled) ImGui::BeginDisabled();
+    const bool clicked = ImGui::Button(label);
+    if (!enabled) ImGui::EndDisabled();
+    // Record under the stable part of the label ("Pause###run" -> "run").
+    const char* id = std::strstr(label, "###");
+    RecordItem(state, id ? id + 3 : label);
+    if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled)) ImGui::SetTooltip("%s", tip);
+    return clicked && enabled;
+}
+
+template <class Enum>
+bool EnumCombo(const char* label, Enum& value, std::initializer_list<Enum> values, float width) {
+    bool changed = false;
+    ImGui::SetNextItemWidth(width);
+    if (ImGui::BeginCombo(label, toString(value))) {
+        for (Enum v : values) {
+            if (ImGui::Selectable(toString(v), v == value)) {
+                changed = v != value;
+                value = v;
+            }
+        }
+        ImGui::EndCombo();
+    }
+    return changed;
+}
+
+ImVec4 opColour(OpType t) {
+    switch (t) {
+        case OpType::LocateStep:
+        case OpType::Located: return ImVec4(0.10f, 0.35f, 0.75f, 1);
+        case OpType::Split:
+        case OpType::SplitEdge: return ImVec4(0.55f, 0.25f, 0.65f, 1);
+        case OpType::InCircleTest: return ImVec4(0.10f, 0.50f, 0.20f, 1);
+        case OpType::Flip: return ImVec4(0.80f, 0.20f, 0.10f, 1);
+        case OpType::SkipDuplicate: return ImVec4(0.75f, 0.45f, 0.0f, 1);
+        default: return ImVec4(0.15f, 0.15f, 0.15f, 1);
+    }
+}
+
+// The breakpoints popup: quick toggles for the common ones, any kind by its text form, and the
+// list of active breakpoints. A running animation stops where one hits.
+void ShowBreakpointsButton(AppState& state) {
+    RunControl& run = state.run;
+    int active = 0;
+    for (const BreakpointEntry& b : run.breakpoints) active += b.enabled;
+    char label[48];
+    std::snprintf(label, sizeof label, "Breakpoints (%d)###breakpoints", active);
+    if (ImGui::Button(label)) ImGui::OpenPopup("##breakpoints");
+    RecordItem(state, "breakpoints");
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("Where Run stops: the next flip, a degenerate case, vertex k, a corner changing...");
+    if (!ImGui::BeginPopup("##breakpoints")) return;
+    auto find = [&](const Breakpoint& bp) {
+        for (std::size_t i = 0; i < run.breakpoints.size(); ++i) {
+            if (run.breakpoints[i].bp == bp) return static_cast<int>(i);
+        }
+        return -1;
+    };
+    auto toggle = [&](const char* text, const Breakpoint& bp) {
+        const int i = find(bp);
+        bool on = i >= 0 && run.breakpoints[i].enabled;
+        if (ImGui::Checkbox(text, &on)) {
+            if (i >= 0) run.breakpoints[i].enabled = on;
+            else run.breakpoints.push_back({bp, true});
+        }
+    };
+    ImGui::TextUnformatted("Stop the run...");
+    toggle("at the next flip", {BreakKind::Flip, std::nullopt});
+    toggle("at a degenerate case (point on an edge or a vertex, cocircular test)", {BreakKind::Degenerate, std::nullopt});
+    toggle("at a duplicate point", {BreakKind::Duplicate, std::nullopt});
+    toggle("after each whole insertion", {BreakKind::Insertion, std::nullopt});
+    ImGui::SetNextItemWidth(90);
+    ImGui::InputInt("##vertex", &state.dialogs.breakVertex);
+    ImGui::SameLine();
+    if (ImGui::Button("before vertex k is inserted")) {
+        run.breakpoints.push_back({{BreakKind::Insert, state.dialogs.breakVertex}, true});
+    }
+    ImGui::SetNextItemWidth(90);
+    if (state.selection.corner != kNone && state.dialogs.breakCorner < 0) state.dialogs.breakCorner = state.selection.corner;
+    ImGui::InputInt("##corner", &state.dialogs.breakCorner);
+    ImGui::SameLine();
+    if (ImGui::Button("when corner c changes (V[c] or O[c])")) {
+        run.breakpoints.push_back({{BreakKind::Corner, state.dialogs.breakCorner}, true});
+    }
+    ImGui::SetNextItemWidth(200);
+    const bool enter = ImGui::InputTextWithHint("##text", "flip, insert:5, corner:17, op:120, incircle:0...",
+                                                &state.dialogs.breakText, ImGuiInputTextFlags_EnterReturnsTrue);
+    ImGui::SameLine();
+    if (ImGui::Button("Add") || enter) {
+        std::string error;
+        if (const auto bp = parseBreakpoint(state.dialogs.breakText, &error)) {
+            run.breakpoints.push_back({*bp, true});
+            state.dialogs.breakText.clear();
+        } else {
+            state.log(Message::Level::Error, error);
+        }
+    }
+    ImGui::Separator();
+    if (run.breakpoints.empty()) ImGui::TextDisabled("no breakpoints: Run goes to the end");
+    for (std::size_t i = 0; i < run.breakpoints.size(); ++i) {
+        ImGui::PushID(static_cast<int>(i));
+        ImGui::Checkbox("##on", &run.breakpoints[i].enabled);
+        ImGui::SameLine();
+        ImGui::Text("%s  (%s)", toString(run.breakpoints[i].bp).c_str(), explain(run.breakpoints[i].bp).c_str());
+        ImGui::SameLine();
+        const bool remove = ImGui::SmallButton("x");
+        ImGui::PopID();
+        if (remove) {
+            run.breakpoints.erase(run.breakpoints.begin() + static_cast<std::ptrdiff_t>(i));
+            break;
+        }
+    }
+    ImGui::EndPopup();
+}
+
+}  // namespace
+
+void ShowToolbar(AppState& state) {
+    Engine& e = state.engine;
+    RunControl& run = state.run;
+    const bool canStep = !e.batch();
+    const bool atStart = e.position() == 0;
+    const bool atEnd = e.atEnd();
+    if (ToolButton(state, "|<", "Back to the start (Home)", canStep && !atStart)) {
+        run.running = false;
+        e.toStart();
+    }
+    ImGui::SameLine();
+    if (ToolButton(state, "<<", "Back one insertion (Shift+Left)", canStep && !atStart)) {
+        run.running = false;
+        e.backInsertion();
+    }
+    ImGui::SameLine();
+    if (ToolButton(state, "<", "Back one operation (Left, Page Up)", canStep && !atStart)) {
+        run.running = false;
+        e.back();
+    }
+    ImGui::SameLine();
+    if (ToolButton(state, ">", "Forward one operation (Right, Page Down)", canStep && !atEnd)) {
+        run.running = false;
+        e.forward();
+    }
+    ImGui::SameLine();
+    if (ToolButton(state, ">>", "Forward one insertion (Shift+Right)", canStep && !atEnd)) {
+        run.running = false;
+        e.forwardInsertion();
+    }
+    ImGui::SameLine();
+    if (ToolButton(state, ">|", "Run to the end at full speed (End)", canStep && !atEnd)) {
+        run.running = true;
+        run.opsPerSecond = RunControl::kFullSpeed;
+    }
+    ImGui::SameLine();
+    if (ToolButton(state, run.running ? "Pause###run" : "Run###run", "Run or pause the animation (Space)", canStep && (run.running || !atEnd))) {
+        run.running = !run.running;
+    }
+    ImGui::SameLine();
+    ImGui::SetNextItemWidth(150);
+    const bool full = run.opsPerSecond >= RunControl::kFullSpeed;
+    ImGui::SliderFloat("##speed", &run.opsPerSecond, 0.5f, RunControl::kFullSpeed, full ? "full speed" : "%.1f ops/s",
+                       ImGuiSliderFlags_Logarithmic);
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("Animation speed in operations per second (right end: as fast as possible)");
+    ImGui::SameLine();
+    ShowBreakpointsButton(state);
+
+    ImGui::SameLine(0, 24);
+    InsertOptions o = e.options();
+    bool changed = EnumCombo("Boundary", o.boundary, {Boundary::Exact, Boundary::Super}, 80);
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("exact: a ghost vertex, the true Delaunay triangulation with its convex hull\nsuper: the paper's finite super-triangle (can lose hull triangles)");
+    ImGui::SameLine();
+    if (e.hasGl()) {  // the GL ID buffer draws on this window's context
+        changed |= EnumCombo("Locate", o.locator, {LocatorKind::Walk, LocatorKind::Naive, LocatorKind::Grid, LocatorKind::IdBufferCpu,
+                                                   LocatorKind::IdBufferGl, LocatorKind::IdBufferGlBatched}, 175);
+    } else {
+        changed |= EnumCombo("Locate", o.locator, {LocatorKind::Walk, LocatorKind::Naive, LocatorKind::Grid, LocatorKind::IdBufferCpu}, 120);
+    }
+    ImGui::SameLine();
+    changed |= EnumCombo("Order", o.order, {OrderKind::Input, OrderKind::Random, OrderKind::Brio}, 80);
+    if (o.order != OrderKind::Input) {
+        ImGui::SameLine();
+        int seed = static_cast<int>(o.seed);
+        ImGui::SetNextItemWidth(90);
+        if (ImGui::InputInt("Seed", &seed) && seed >= 0) {
+            o.seed = static_cast<std::uint64_t>(seed);
+            changed = true;
+        }
+    }
+    if (changed) state.setOptions(o);
+}
+
+void ShowCaption(AppState& state) {
+    const Engine& e = state.engine;
+    ImGui::PushFont(fonts().caption);
+    char prefix[64];
+    if (e.batch()) {
+        ImGui::TextUnformatted(("batch result: " + std::to_string(e.mesh().numTriangles()) + " triangles, " +
+                                std::to_string(e.points().size()) + " points (no stepping above " +
+                                std::to_string(Engine::kHistoryLimit) + " points)")
+                                   .c_str());
+    } else if (const Op* op = e.current()) {
+        std::snprintf(prefix, sizeof prefix, "[%zu] %s: ", e.position() - 1, toString(op->type));
+        ImGui::TextColored(opColour(op->type), "%s", prefix);
+        ImGui::SameLine(0, 0);
+        ImGui::TextUnformatted(describe(*op, e.inserter()).c_str());
+    } else {
+        ImGui::TextDisabled("%zu points ready: press Right (or >) to take the first step. F1 lists every shortcut.",
+                            e.points().size());
+    }
+    ImGui::PopFont();
+    if (!state.run.stopReason.empty() && !state.run.running && state.run.stopPosition == e.position()) {
+        ImGui::SameLine();
+        ImGui::TextDisabled("(stopped: %s)", state.run.stopReason.c_str());
+    }
+}
+
+void ShowTimeline(AppState& state) {
+    Engine& e = state.engine;
+    if (e.batch()) return;
+    const int total = static_cast<int>(e.recorded());
+    int pos = static_cast<int>(e.position());
+    ImGui::SetNextItemWidth(-1);
+    char fmt[96];
+    const bool complete = e.recorded() > 0 && e.journal()->ops().back().type == OpType::Finalize;
+    std::snprintf(fmt, sizeof fmt, "op %%d of %d%s   |   %zu insertions done", total, complete ? "" : "+ (recorded so far)",
+                  e.insertionsDone());
+    if (ImGui::SliderInt("##timeline", &pos, 0, std::max(total, 1), fmt)) {
+        state.run.running = false;
+        e.seek(static_cast<std::size_t>(std::max(0, pos)));
+    }
+    RecordItem(state, "timeline");
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("Timeline: drag to any recorded operation");
+}
+
+void AdvanceRun(AppState& state, double dt) {
+    RunControl& run = state.run;
+    Engine& e = state.engine;
+    const std::size_t startPos = e.position();
+    struct Count {
+        AppState& st;
+        std::size_t from;
+        ~Count() { st.frameStats.opsStepped = st.engine.position() - from; }
+    } count{state, startPos};
+    if (!run.running) {
+        run.lastAdvanceMs = -1;  // a pause is not a slow frame
+        return;
+    }
+    if (e.batch() || e.atEnd()) {
+        run.running = false;
+        run.stopReason = "end of the run";
+        return;
+    }
+    auto stepOnce = [&]() -> bool {
+        if (!e.forward()) {
+            run.running = false;
+            run.stopReason = "end of the run";
+            run.stopPosition = e.position();
+            return false;
+        }
+        for (const BreakpointEntry& b : run.breakpoints) {
+            if (b.enabled && e.hits(b.bp)) {
+                run.running = false;
+                run.stopReason = "breakpoint: " + explain(b.bp);
+                run.stopPosition = e.position();
+                return false;
+            }
+        }
+        return true;
+    };
+    if (run.opsPerSecond >= RunControl::kFullSpeed) {
+        const auto t0 = std::chrono::steady_clock::now();
+        const double nowMs = std::chrono::duration<double, std::milli>(t0.time_since_epoch()).count();
+        // The rest of the last frame: from the previous call to this one, less its stepping.
+        double budget = run.frameBudgetMs;
+        if (run.lastAdvanceMs >= 0) {
+            const double rest = nowMs - run.lastAdvanceMs - run.lastStepMs;
+            if (rest >= 0 && rest < 1000) budget = std::clamp(run.targetFrameMs - rest, 2.0, run.frameBudgetMs);
+        }
+        run.lastAdvanceMs = nowMs;
+        struct Stepped {
+            RunControl& run;
+            std::chrono::steady_clock::time_point t0;
+            ~Stepped() { run.lastStepMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count(); }
+        } stepped{run, t0};
+        // Check the clock every 64 ops: cheap, and a frame stays within its budget.
+        for (int i = 0;; ++i) {
+            if (!stepOnce()) return;
+            if ((i & 63) == 63) {
+                const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+                if (ms > budget) break;
+            }
+        }
+        return;
+    }
+    run.carry += dt * run.opsPerSecond;
+    while (run.carry >= 1.0) {
+        run.carry -= 1.0;
+        if (!stepOnce()) return;
+    }
+}
+
+}  // namespace dlab::ui

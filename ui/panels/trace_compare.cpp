@@ -1,0 +1,213 @@
+// Student trace (issue 6): a student's run, as a trace (JSON Lines), compared with ours on the
+// same points and options. Opens at the first operation where the runs differ, shows both
+// operations and the evidence, steps both runs side by side (one mesh change at a time), and
+// draws the student's triangles that are not ours over the canvas.
+#include "ui/files/files.h"
+#include "ui/panels/panels.h"
+
+#include <imgui.h>
+
+#include <algorithm>
+#include <utility>
+
+namespace dlab::ui {
+
+namespace {
+
+constexpr ImU32 kStudentColour = IM_COL32(200, 0, 160, 255);
+// Our own trace is a whole recorded run: keep it to what the GUI records anyway.
+constexpr std::size_t kMaxComparedPoints = 20000;
+
+bool stale(const AppState& st) {
+    const auto& tc = st.traceCompare;
+    return !tc.student || st.engine.points() != tc.points || !sameRun(st.engine.options(), tc.options);
+}
+
+// The next (dir > 0) or previous mesh-changing op of a trace from op index `from` (exclusive);
+// `none` when there is none.
+std::size_t nextChange(const TraceFile& f, std::size_t from, int dir, std::size_t none) {
+    if (dir > 0) {
+        for (std::size_t k = from == none ? 0 : from + 1; k < f.ops.size(); ++k) {
+            if (f.ops[k].changesMesh()) return k;
+        }
+        return none;
+    }
+    for (std::size_t k = std::min(from, f.ops.size()); k-- > 0;) {
+        if (f.ops[k].changesMesh()) return k;
+    }
+    return none;
+}
+
+// Both runs one mesh change forward or back: ours by the engine (to just after the op), the
+// student's by the number of their ops applied.
+void stepBoth(AppState& st, int dir) {
+    auto& tc = st.traceCompare;
+    const std::size_t none = static_cast<std::size_t>(-1);
+    const std::size_t oursAt = st.engine.position() == 0 ? none : st.engine.position() - 1;
+    const std::size_t studentAt = tc.studentPos == 0 ? none : tc.studentPos - 1;
+    if (dir > 0) {
+        const std::size_t a = nextChange(*tc.ours, oursAt, 1, none), b = nextChange(*tc.student, studentAt, 1, none);
+        if (a != none) st.engine.seek(a + 1);
+        if (b != none) tc.studentPos = b + 1;
+    } else {
+        const std::size_t a = oursAt == none ? none : nextChange(*tc.ours, oursAt, -1, none);
+        const std::size_t b = studentAt == none ? none : nextChange(*tc.student, studentAt, -1, none);
+        st.engine.seek(a == none ? 0 : a + 1);
+        tc.studentPos = b == none ? 0 : b + 1;
+    }
+    st.run.running = false;
+}
+
+void goToDifference(AppState& st) {
+    auto& tc = st.traceCompare;
+    st.run.running = false;
+    st.engine.seek(std::min(tc.diff.refOp + 1, tc.ours->ops.size()));
+    tc.studentPos = std::min(tc.diff.studentOp + 1, tc.student->ops.size());
+}
+
+}  // namespace
+
+bool OpenStudentTrace(AppState& st, const std::string& path) {
+    if (st.engine.points().size() > kMaxComparedPoints) {
+        FileError(st, path + ": comparing a trace in the GUI takes at most " + std::to_string(kMaxComparedPoints) +
+                          " points (dtlab diff-trace takes any number)");
+        return false;
+    }
+    if (st.engine.idBufferGl()) {
+        FileError(st, path + ": choose a CPU locator before comparing a trace (the GL ID buffer's run is not replayed)");
+        return false;
+    }
+    std::shared_ptr<TraceFile> student, ours;
+    try {
+        student = std::make_shared<TraceFile>(readTraceFile(path));
+        Inserter ins(st.engine.points(), st.engine.options());
+        ours = std::make_shared<TraceFile>(traceOfRun(ins, "ours"));
+    } catch (const std::exception& e) {
+        FileError(st, std::string(e.what()) + " (nothing was changed)");
+        return false;
+    }
+    auto& tc = st.traceCompare;
+    tc = {};  // a new comparison: no cache of the last one
+    tc.diff = diffTraces(*ours, *student);
+    tc.ours = std::move(ours);
+    tc.student = std::move(student);
+    tc.points = st.engine.points();
+    tc.options = st.engine.options();
+    tc.selectTab = true;
+    if (tc.diff.equal) {
+        st.engine.seek(tc.ours->ops.size());
+        tc.studentPos = tc.student->ops.size();
+        st.log(Message::Level::Info, path + ": the same run as ours (" + std::to_string(tc.diff.compared) + " operations compared)");
+    } else {
+        goToDifference(st);
+        st.log(Message::Level::Warning, path + ": " + tc.diff.what + " (" + summarize(*tc.student, tc.diff.studentOp) + ")");
+    }
+    return true;
+}
+
+void CloseStudentTrace(AppState& st) { st.traceCompare = {}; }
+
+bool StudentTraceSelectTab(AppState& st) { return std::exchange(st.traceCompare.selectTab, false); }
+
+void ShowTraceCompare(AppState& st) {
+    auto& tc = st.traceCompare;
+    if (!tc.student) {
+        ImGui::TextWrapped("Compare a student's run with ours: open their trace (a .jsonl file, one JSON object per "
+                           "operation, at least \"op\" and \"triangles\") with File > Open or drop it on the window. "
+                           "Load the student's points and options first.");
+        ImGui::TextDisabled("The same comparison on the command line: dtlab diff-trace REF STUDENT");
+        return;
+    }
+    if (stale(st)) {
+        ImGui::TextColored(ImVec4(0.8f, 0.4f, 0.0f, 1), "The points or options changed since the trace was opened.");
+        if (ImGui::Button("Close the comparison")) CloseStudentTrace(st);
+        return;
+    }
+    ImGui::TextWrapped("%s", tc.student->name.c_str());
+    if (tc.diff.equal) {
+        ImGui::TextColored(ImVec4(0.1f, 0.55f, 0.2f, 1), "The same run as ours: %zu operations compared.", tc.diff.compared);
+    } else {
+        ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(0.8f, 0.1f, 0.1f, 1));
+        ImGui::TextWrapped("First difference: %s", tc.diff.what.c_str());
+        ImGui::PopStyleColor();
+        for (const std::string& d : tc.diff.details) ImGui::BulletText("%s", d.c_str());
+    }
+    if (ImGui::Button("< Both back")) stepBoth(st, -1);
+    RecordItem(st, "trace-back");
+    ImGui::SameLine();
+    if (ImGui::Button("Both forward >")) stepBoth(st, 1);
+    RecordItem(st, "trace-forward");
+    ImGui::SameLine();
+    if (!tc.diff.equal && ImGui::Button("The difference")) goToDifference(st);
+    RecordItem(st, "trace-difference");
+    ImGui::SameLine();
+    if (ImGui::SmallButton("Close")) {
+        CloseStudentTrace(st);
+        return;
+    }
+    ImGui::Separator();
+    // Side by side: the last op of each run, and what comes next.
+    const std::size_t ours = st.engine.position();
+    if (ImGui::BeginTable("##sidebyside", 2, ImGuiTableFlags_BordersInnerV | ImGuiTableFlags_SizingStretchSame)) {
+        ImGui::TableSetupColumn("Ours");
+        ImGui::TableSetupColumn("The student's");
+        ImGui::TableHeadersRow();
+        auto cell = [](const TraceFile& f, std::size_t done, std::size_t diffAt, bool different) {
+            ImGui::PushTextWrapPos(0);
+            if (done == 0) ImGui::TextDisabled("(the start)");
+            for (std::size_t k = done >= 3 ? done - 3 : 0; k < std::min(done + 2, f.ops.size()); ++k) {
+                const bool last = k + 1 == done;
+                const bool bad = different && k == diffAt;
+                if (bad) ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(0.8f, 0.1f, 0.1f, 1));
+                else if (!last) ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
+                ImGui::TextWrapped("%s%s", last ? "> " : "  ", summarize(f, k).c_str());
+                if (bad || !last) ImGui::PopStyleColor();
+            }
+            ImGui::PopTextWrapPos();
+        };
+        ImGui::TableNextRow();
+        ImGui::TableSetColumnIndex(0);
+        cell(*tc.ours, ours, tc.diff.refOp, !tc.diff.equal);
+        ImGui::TableSetColumnIndex(1);
+        cell(*tc.student, tc.studentPos, tc.diff.studentOp, !tc.diff.equal);
+        ImGui::EndTable();
+    }
+    ImGui::TextDisabled("On the canvas: the student's triangles that are not ours, in magenta.");
+}
+
+void DrawTraceCompareOverlay(AppState& st) {
+    auto& tc = st.traceCompare;
+    if (!tc.student || stale(st)) return;
+    const Mesh& m = st.engine.mesh();
+    // The student's mesh after their ops so far, replayed when their position changes.
+    if (tc.studentTrianglesAt != tc.studentPos) {
+        TraceReplay replay;
+        for (std::size_t k = 0; k < tc.studentPos && k < tc.student->ops.size(); ++k) replay.apply(tc.student->ops[k]);
+        tc.studentTriangles = replay.triangles();
+        tc.studentTrianglesAt = tc.studentPos;
+    }
+    if (tc.ourTrianglesVersion != st.engine.version()) {
+        tc.ourTriangles.clear();
+        for (std::int32_t t = 0; t < m.numTriangles(); ++t) tc.ourTriangles.push_back(canonical(m.V[3 * t], m.V[3 * t + 1], m.V[3 * t + 2]));
+        std::sort(tc.ourTriangles.begin(), tc.ourTriangles.end());
+        tc.ourTrianglesVersion = st.engine.version();
+    }
+    ImDrawList* dl = ImGui::GetWindowDrawList();
+    const View& view = st.view;
+    dl->PushClipRect(toIm(view.origin), toIm(view.origin + view.size), true);
+    const float w = st.presentation ? 4.0f : 2.5f;
+    for (const Triple& t : tc.studentTriangles) {
+        if (std::binary_search(tc.ourTriangles.begin(), tc.ourTriangles.end(), t)) continue;
+        bool ok = true;
+        ImVec2 p[3];
+        for (int k = 0; k < 3; ++k) {
+            ok &= t[k] >= 0 && t[k] < m.numVertices() && static_cast<std::size_t>(t[k]) < st.engine.points().size();
+            if (ok) p[k] = toIm(view.toScreen(m.G[t[k]]));
+        }
+        if (!ok || !CanvasHasRoom(st, dl, 40)) continue;
+        dl->AddTriangle(p[0], p[1], p[2], kStudentColour, w);
+    }
+    dl->PopClipRect();
+}
+
+}  // namespace dlab::ui

@@ -1,0 +1,91 @@
+// The windowed platform: GLFW with a GL compatibility context, ImGui's GLFW backend for input.
+#include "ui/platform/platform.h"
+
+#include <GLFW/glfw3.h>
+#include <backends/imgui_impl_glfw.h>
+#include <imgui.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <utility>
+
+namespace dlab::ui {
+
+namespace {
+
+std::string g_glfwError;
+
+class GlfwPlatform final : public Platform {
+public:
+    explicit GlfwPlatform(GLFWwindow* window) : m_window(window) {
+        glfwSetWindowUserPointer(window, this);
+        glfwSetDropCallback(window, [](GLFWwindow* w, int count, const char** paths) {
+            auto* self = static_cast<GlfwPlatform*>(glfwGetWindowUserPointer(w));
+            for (int i = 0; i < count; ++i) self->m_dropped.emplace_back(paths[i]);
+        });
+    }
+    ~GlfwPlatform() override {
+        glfwDestroyWindow(m_window);
+        glfwTerminate();
+    }
+    const char* name() const override { return "glfw"; }
+    bool headless() const override { return false; }
+    GlProc procAddress(const char* name) override { return glfwGetProcAddress(name); }
+    void framebufferSize(int& width, int& height) const override { glfwGetFramebufferSize(m_window, &width, &height); }
+    void initImGui() override { ImGui_ImplGlfw_InitForOpenGL(m_window, true); }
+    void shutdownImGui() override { ImGui_ImplGlfw_Shutdown(); }
+    bool newFrame() override {
+        glfwPollEvents();
+        ImGui_ImplGlfw_NewFrame();
+        return !glfwWindowShouldClose(m_window);
+    }
+    void present() override { glfwSwapBuffers(m_window); }
+    void waitForEvents(double seconds) override { glfwWaitEventsTimeout(seconds); }
+    std::vector<std::string> takeDroppedFiles() override { return std::exchange(m_dropped, {}); }
+    void setTitle(const std::string& title) override { glfwSetWindowTitle(m_window, title.c_str()); }
+    GLFWwindow* window() const { return m_window; }
+
+private:
+    GLFWwindow* m_window;
+    std::vector<std::string> m_dropped;
+};
+
+}  // namespace
+
+std::unique_ptr<Platform> makeGlfwPlatform(const WindowOptions& options, std::string& error) {
+    glfwSetErrorCallback([](int code, const char* text) { g_glfwError = "GLFW error " + std::to_string(code) + ": " + text; });
+    const char* display = std::getenv("DISPLAY");
+    const char* wayland = std::getenv("WAYLAND_DISPLAY");
+    if ((!display || !*display) && (!wayland || !*wayland)) {
+        error = "no display (DISPLAY and WAYLAND_DISPLAY are unset)";
+        return nullptr;
+    }
+    if (!glfwInit()) {
+        error = g_glfwError.empty() ? "GLFW could not initialise" : g_glfwError;
+        return nullptr;
+    }
+    glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 2);
+    glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 1);
+    glfwWindowHint(GLFW_MAXIMIZED, options.maximized ? GLFW_TRUE : GLFW_FALSE);
+    GLFWwindow* window = glfwCreateWindow(options.width, options.height, options.title.c_str(), nullptr, nullptr);
+    if (!window) {
+        error = g_glfwError.empty() ? "GLFW could not open a window" : g_glfwError;
+        glfwTerminate();
+        return nullptr;
+    }
+    if (options.x >= 0 && options.y >= 0) glfwSetWindowPos(window, options.x, options.y);
+    glfwMakeContextCurrent(window);
+    glfwSwapInterval(1);
+    return std::make_unique<GlfwPlatform>(window);
+}
+
+bool windowPlacement(const Platform& platform, WindowOptions& out) {
+    const auto* p = dynamic_cast<const GlfwPlatform*>(&platform);
+    if (!p) return false;
+    glfwGetWindowPos(p->window(), &out.x, &out.y);
+    glfwGetWindowSize(p->window(), &out.width, &out.height);
+    out.maximized = glfwGetWindowAttrib(p->window(), GLFW_MAXIMIZED) != 0;
+    return true;
+}
+
+}  // namespace dlab::ui
