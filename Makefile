@@ -10,6 +10,7 @@
 #   make asan    deps, configure build-asan/ (Debug, ASan + UBSan), build, ctest
 #   make fuzz    deps, build the libFuzzer targets (clang, build-fuzz/), fuzz each FUZZ_SECONDS
 #   make bench   build, then dtlab vs CGAL on 2^20 uniform points, and dtlab's peak memory
+#   make format  clang-format every C++ source (make test checks the format: Style.Format)
 #   make clean   remove build/, build-asan/, build-release/, build-fuzz/
 #
 # Variables: JOBS (build parallelism, default nproc), CTEST_JOBS (default 2), DLAB_SKIP_DEPS=1
@@ -39,7 +40,7 @@ DEB_PACKAGES := \
 	build-essential cmake pkg-config \
 	libimgui-dev libglfw3-dev libglm-dev libosmesa6-dev libstb-dev libgif-dev \
 	libcli11-dev libtomlplusplus-dev nlohmann-json3-dev libgmp-dev \
-	libgtest-dev libbenchmark-dev \
+	libgtest-dev libbenchmark-dev clang-format \
 	xvfb xauth fonts-dejavu-core \
 	libcgal-dev time jq
 
@@ -48,7 +49,7 @@ DEB_PACKAGES := \
 # without them `make test` says that fuzzing was skipped and why, and passes.
 FUZZ_DEB_PACKAGES := clang-14 libclang-rt-14-dev
 
-.PHONY: all run test build configure deps asan fuzz bench clean help
+.PHONY: all run test build configure deps asan fuzz bench format clean help
 
 all: build
 
@@ -102,6 +103,9 @@ fuzz: deps
 
 bench: build
 	bash .ci/bench_compare.sh $(BUILD_DIR)
+
+format:
+	git ls-files '*.cpp' '*.h' | grep -v '/corpus/' | xargs clang-format -i
 
 clean:
 	rm -rf $(BUILD_DIR) $(ASAN_DIR) build-release $(FUZZ_DIR)

@@ -3,9 +3,9 @@
 // one GL provider per executable).
 #include "core/engine/generators.h"
 #include "ui/files/files.h"
+#include "ui/files/settings.h"
 #include "ui/gui.h"
 #include "ui/panels/panels.h"
-#include "ui/files/settings.h"
 
 #include <CLI/CLI.hpp>
 
@@ -25,8 +25,8 @@ int renderHeadless(const std::string& input, const std::string& png, const std::
     const std::filesystem::path self = std::filesystem::read_symlink("/proc/self/exe", ec);
     const std::string dtlab = (ec ? std::filesystem::path(".") : self.parent_path()) / "dtlab";
     std::cerr << "delaunay-lab: " << reason << "\n"
-              << "delaunay-lab: rendering " << (input.empty() ? "the built-in demo" : input) << " headlessly to " << png
-              << " instead (" << dtlab << " render)\n";
+              << "delaunay-lab: rendering " << (input.empty() ? "the built-in demo" : input)
+              << " headlessly to " << png << " instead (" << dtlab << " render)\n";
     std::vector<std::string> args = {dtlab, "render"};
     if (!input.empty()) args.push_back(input);
     args.insert(args.end(), {"--steps", "40", "-o", png});
@@ -45,12 +45,18 @@ int main(int argc, char** argv) {
     std::string input, screenshot, fallbackPng = "delaunay-lab.png";
     int frames = 0;
     bool noSettings = false, noAutosave = false;
-    cli.add_option("input", input, "Point file (.node, .csv, .xy, .pts) or session (.json); the built-in demo when absent");
-    cli.add_option("--screenshot", screenshot, "Save a PNG of the window after --frames frames, then quit");
-    cli.add_option("--frames", frames, "Quit after this many frames (0: run until closed)")->check(CLI::NonNegativeNumber);
-    cli.add_option("--headless-png", fallbackPng, "Where to render when there is no display")->capture_default_str();
+    cli.add_option(
+        "input", input,
+        "Point file (.node, .csv, .xy, .pts) or session (.json); the built-in demo when absent");
+    cli.add_option("--screenshot", screenshot,
+                   "Save a PNG of the window after --frames frames, then quit");
+    cli.add_option("--frames", frames, "Quit after this many frames (0: run until closed)")
+        ->check(CLI::NonNegativeNumber);
+    cli.add_option("--headless-png", fallbackPng, "Where to render when there is no display")
+        ->capture_default_str();
     cli.add_flag("--no-settings", noSettings, "Neither read nor write the remembered settings");
-    cli.add_flag("--no-autosave", noAutosave, "Neither autosave the points nor offer to recover a crashed session's");
+    cli.add_flag("--no-autosave", noAutosave,
+                 "Neither autosave the points nor offer to recover a crashed session's");
     CLI11_PARSE(cli, argc, argv);
 
     dlab::ui::AppState state;
@@ -74,12 +80,14 @@ int main(int argc, char** argv) {
     }
     // The user's points are autosaved after every change; a session that did not exit cleanly
     // left its autosave behind, and the first frame offers it.
-    const std::string autosaveFolder = noAutosave ? std::string() : dlab::ui::DefaultAutosaveFolder();
+    const std::string autosaveFolder =
+        noAutosave ? std::string() : dlab::ui::DefaultAutosaveFolder();
     dlab::ui::OfferRecovery(state, autosaveFolder);
     dlab::ui::EnableAutosave(state, autosaveFolder);
     gui.captureFrames(!screenshot.empty());
     for (int frame = 1;; ++frame) {
-        for (const std::string& dropped : platform->takeDroppedFiles()) dlab::ui::OpenFile(state, dropped);
+        for (const std::string& dropped : platform->takeDroppedFiles())
+            dlab::ui::OpenFile(state, dropped);
         platform->setTitle("Delaunay Lab - " + state.source);
         if (!gui.frame()) break;
         dlab::ui::ServiceCaptures(gui);  // F12 screenshots, GIF exports
@@ -97,6 +105,7 @@ int main(int argc, char** argv) {
     }
     dlab::ui::RemoveAutosave(state);  // a clean exit: nothing to recover
     dlab::ui::windowPlacement(*platform, window);
-    if (!dlab::ui::saveSettings(settingsPath, state, window, error)) std::cerr << "delaunay-lab: " << error << "\n";
+    if (!dlab::ui::saveSettings(settingsPath, state, window, error))
+        std::cerr << "delaunay-lab: " << error << "\n";
     return status;
 }

@@ -27,21 +27,24 @@ void runBench(const BenchArgs& args) {
     std::int32_t triangles = 0;
     LocatorStats locStats;
     for (int r = 0; r < args.warmup + args.repeat; ++r) {  // the first `warmup` runs are not timed
-        std::vector<Vec2> pts = loaded.points;  // copied outside the timed region
+        std::vector<Vec2> pts = loaded.points;             // copied outside the timed region
         const auto t0 = std::chrono::steady_clock::now();
         const auto made = args.engine.makeInserter(std::move(pts));  // GL locators need a context
         Inserter& ins = *made;
         ins.run();
         const auto t1 = std::chrono::steady_clock::now();
-        if (r >= args.warmup) ms.push_back(std::chrono::duration<double, std::milli>(t1 - t0).count());
+        if (r >= args.warmup)
+            ms.push_back(std::chrono::duration<double, std::milli>(t1 - t0).count());
         stats = ins.stats();
         triangles = ins.mesh().numTriangles();
         locStats = ins.locator()->stats();
     }
     std::sort(ms.begin(), ms.end());
-    const double median = ms.size() % 2 ? ms[ms.size() / 2] : (ms[ms.size() / 2 - 1] + ms[ms.size() / 2]) / 2;
+    const double median =
+        ms.size() % 2 ? ms[ms.size() / 2] : (ms[ms.size() / 2 - 1] + ms[ms.size() / 2]) / 2;
     const double pn = std::max<double>(1.0, static_cast<double>(n));
-    const double hitRate = locStats.queries ? static_cast<double>(locStats.hits) / locStats.queries : 0.0;
+    const double hitRate =
+        locStats.queries ? static_cast<double>(locStats.hits) / locStats.queries : 0.0;
     if (args.json) {
         nlohmann::ordered_json j;
         j["tool"] = "dtlab";
@@ -64,14 +67,17 @@ void runBench(const BenchArgs& args) {
         j["triangles"] = triangles;
         std::cout << j.dump() << "\n";
     } else {
-        std::printf("%s: n=%zu locate=%s order=%s boundary=%s\n", args.input.c_str(), n, args.engine.locate.c_str(),
-                    args.engine.order.c_str(), args.engine.boundary.c_str());
-        std::printf("  median %.2f ms (min %.2f, max %.2f, %d runs after %d warm-up run(s))\n", median, ms.front(),
-                    ms.back(), args.repeat, args.warmup);
-        std::printf("  %.1f ns/point, %.3f flips/point, %.3f in-circle tests/point, %.3f walk steps/point\n",
-                    median * 1e6 / pn, stats.flips / pn, stats.inCircleTests / pn, stats.walkSteps / pn);
-        std::printf("  locator hint hit rate %.3f, %lld duplicates skipped, %d triangles\n", hitRate,
-                    static_cast<long long>(stats.duplicates), triangles);
+        std::printf("%s: n=%zu locate=%s order=%s boundary=%s\n", args.input.c_str(), n,
+                    args.engine.locate.c_str(), args.engine.order.c_str(),
+                    args.engine.boundary.c_str());
+        std::printf("  median %.2f ms (min %.2f, max %.2f, %d runs after %d warm-up run(s))\n",
+                    median, ms.front(), ms.back(), args.repeat, args.warmup);
+        std::printf(
+            "  %.1f ns/point, %.3f flips/point, %.3f in-circle tests/point, %.3f walk "
+            "steps/point\n",
+            median * 1e6 / pn, stats.flips / pn, stats.inCircleTests / pn, stats.walkSteps / pn);
+        std::printf("  locator hint hit rate %.3f, %lld duplicates skipped, %d triangles\n",
+                    hitRate, static_cast<long long>(stats.duplicates), triangles);
     }
 }
 
@@ -79,10 +85,16 @@ void runBench(const BenchArgs& args) {
 
 void addBench(CLI::App& app) {
     auto args = std::make_shared<BenchArgs>();
-    CLI::App* cmd = app.add_subcommand("bench", "Time the triangulation of a point file (median of repeats)");
-    cmd->add_option("--input,input", args->input, "Point file (.node, .csv, .xy, .pts)")->required();
-    cmd->add_option("--repeat", args->repeat, "Timed runs after the warm-up")->check(CLI::Range(1, 1000))->capture_default_str();
-    cmd->add_option("--warmup", args->warmup, "Untimed runs first (0 for slow settings)")->check(CLI::Range(0, 100))->capture_default_str();
+    CLI::App* cmd =
+        app.add_subcommand("bench", "Time the triangulation of a point file (median of repeats)");
+    cmd->add_option("--input,input", args->input, "Point file (.node, .csv, .xy, .pts)")
+        ->required();
+    cmd->add_option("--repeat", args->repeat, "Timed runs after the warm-up")
+        ->check(CLI::Range(1, 1000))
+        ->capture_default_str();
+    cmd->add_option("--warmup", args->warmup, "Untimed runs first (0 for slow settings)")
+        ->check(CLI::Range(0, 100))
+        ->capture_default_str();
     cmd->add_flag("--json", args->json, "Print one JSON object");
     args->engine.add(*cmd);
     cmd->callback([args] { guarded([&] { runBench(*args); }); });

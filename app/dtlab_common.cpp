@@ -13,16 +13,19 @@ int g_exitCode = 0;
 }
 
 void EngineFlags::add(CLI::App& cmd) {
-    cmd.add_option("--locate", locate,
-                   "Point location: naive | walk | grid | idbuffer-cpu | idbuffer-gl | idbuffer-gl-batched "
-                   "(the GL ones on a headless OSMesa context)")
-        ->check(CLI::IsMember({"naive", "walk", "grid", "idbuffer-cpu", "idbuffer-gl", "idbuffer-gl-batched"}))
+    cmd.add_option(
+           "--locate", locate,
+           "Point location: naive | walk | grid | idbuffer-cpu | idbuffer-gl | idbuffer-gl-batched "
+           "(the GL ones on a headless OSMesa context)")
+        ->check(CLI::IsMember(
+            {"naive", "walk", "grid", "idbuffer-cpu", "idbuffer-gl", "idbuffer-gl-batched"}))
         ->capture_default_str();
     cmd.add_option("--order", order, "Insertion order: input | random | brio")
         ->check(CLI::IsMember({"input", "random", "brio"}))
         ->capture_default_str();
     cmd.add_option("--boundary", boundary,
-                   "exact: true Delaunay with convex hull (ghost vertex); super: the paper's finite super-triangle")
+                   "exact: true Delaunay with convex hull (ghost vertex); super: the paper's "
+                   "finite super-triangle")
         ->check(CLI::IsMember({"exact", "super"}))
         ->capture_default_str();
     cmd.add_option("--seed", seed, "Seed of the random and brio orders")->capture_default_str();
@@ -30,7 +33,8 @@ void EngineFlags::add(CLI::App& cmd) {
         ->check(CLI::Range(1, 16384))
         ->capture_default_str();
     cmd.add_option("--readback", readback,
-                   "GL ID buffer readback: one (a pixel per insertion, the paper) | batched (the pixels of the "
+                   "GL ID buffer readback: one (a pixel per insertion, the paper) | batched (the "
+                   "pixels of the "
                    "next --batch points in one read) | pipelined (batched, read one batch ahead)")
         ->check(CLI::IsMember({"one", "batched", "pipelined"}));
     cmd.add_option("--batch", batch, "GL ID buffer, batched readback: points per read")

@@ -60,6 +60,6 @@ void addBench(CLI::App& app);
 void addLesson(CLI::App& app);     // dtlab_lesson.cpp
 void addDiffTrace(CLI::App& app);  // dtlab_diff_trace.cpp
 void addRender(CLI::App& app);
-void addTable1(CLI::App& app);     // dtlab_table1.cpp
+void addTable1(CLI::App& app);  // dtlab_table1.cpp
 
 }  // namespace dlab::cli

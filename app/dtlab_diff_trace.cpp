@@ -51,18 +51,23 @@ void runDiff(const DiffArgs& args) {
 
 void addDiffTrace(CLI::App& app) {
     auto args = std::make_shared<DiffArgs>();
-    CLI::App* cmd = app.add_subcommand(
-        "diff-trace",
-        "Compare a student's trace with ours: the first operation where the runs differ (exit 0 same, 1 differ, 2 bad input)");
-    cmd->add_option("reference", args->reference,
-                    "Our trace (.jsonl from dtlab trace), or a lesson/assignment (.toml) to run and trace")
+    CLI::App* cmd =
+        app.add_subcommand("diff-trace",
+                           "Compare a student's trace with ours: the first operation where the "
+                           "runs differ (exit 0 same, 1 differ, 2 bad input)");
+    cmd->add_option(
+           "reference", args->reference,
+           "Our trace (.jsonl from dtlab trace), or a lesson/assignment (.toml) to run and trace")
         ->required();
     cmd->add_option("student", args->student, "The student's trace (.jsonl)")->required();
     cmd->add_flag("--all-ops", args->options.allOps,
-                  "Compare every operation one to one (walk steps and tests too), not only those that change the mesh");
+                  "Compare every operation one to one (walk steps and tests too), not only those "
+                  "that change the mesh");
     cmd->add_flag("--corners", args->options.corners,
-                  "The student follows the paper's corner-reuse convention: compare V (and O) corner by corner");
-    cmd->add_option("--context", args->options.context, "Operations of context shown before the difference")
+                  "The student follows the paper's corner-reuse convention: compare V (and O) "
+                  "corner by corner");
+    cmd->add_option("--context", args->options.context,
+                    "Operations of context shown before the difference")
         ->check(CLI::Range(0, 100))
         ->capture_default_str();
     cmd->callback([args] { guarded([&] { runDiff(*args); }); });

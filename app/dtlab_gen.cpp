@@ -49,15 +49,16 @@ void runGen(const GenArgs& args) {
             writeNode(os, pts, 0);
         }
     });
-    std::cout << "wrote " << pts.size() << " points (" << toString(*kind) << ", seed " << args.seed << ") to "
-              << args.output << "\n";
+    std::cout << "wrote " << pts.size() << " points (" << toString(*kind) << ", seed " << args.seed
+              << ") to " << args.output << "\n";
 }
 
 }  // namespace
 
 void addGen(CLI::App& app) {
     auto args = std::make_shared<GenArgs>();
-    CLI::App* cmd = app.add_subcommand("gen", "Write a built-in point set (.node; .csv/.xy/.pts by extension)");
+    CLI::App* cmd =
+        app.add_subcommand("gen", "Write a built-in point set (.node; .csv/.xy/.pts by extension)");
     cmd->add_option("kind", args->kind, "Point set: " + generatorNames())->required();
     cmd->add_option("n", args->n, "Number of points")->required();
     cmd->add_option("--seed", args->seed, "Random seed")->capture_default_str();

@@ -23,7 +23,12 @@ void printTables(const Inserter& ins) {
         std::cout << "  t " << t << " (corners " << 3 * t << ".." << 3 * t + 2 << "): V";
         for (int k = 0; k < 3; ++k) {
             const std::int32_t v = m.V[3 * t + k];
-            std::cout << ' ' << (ins.isVirtual(v) && !ins.done() ? (ins.options().boundary == Boundary::Exact ? "g" : "s" + std::to_string(v - ins.numInput())) : std::to_string(v));
+            std::cout << ' '
+                      << (ins.isVirtual(v) && !ins.done()
+                              ? (ins.options().boundary == Boundary::Exact
+                                     ? "g"
+                                     : "s" + std::to_string(v - ins.numInput()))
+                              : std::to_string(v));
         }
         std::cout << " | O";
         for (int k = 0; k < 3; ++k) std::cout << ' ' << m.O[3 * t + k];
@@ -43,8 +48,9 @@ void runCheck(const LessonArgs& args) {
         try {
             const Lesson lesson = loadLesson(path);
             const LessonPlan plan = planLesson(lesson);
-            std::cout << path << ": ok: \"" << lesson.title << "\" (" << (lesson.assignment ? "assignment, " : "")
-                      << lesson.points.size() << " points, " << lesson.stops.size() << " stops, " << questions(lesson)
+            std::cout << path << ": ok: \"" << lesson.title << "\" ("
+                      << (lesson.assignment ? "assignment, " : "") << lesson.points.size()
+                      << " points, " << lesson.stops.size() << " stops, " << questions(lesson)
                       << " questions, " << plan.totalOps << " operations)\n";
         } catch (const LessonError& e) {
             std::cerr << "dtlab: error: " << e.what() << "\n";
@@ -52,7 +58,9 @@ void runCheck(const LessonArgs& args) {
         }
     }
     std::cout.flush();
-    if (failed) fail(std::to_string(failed) + " of " + std::to_string(args.files.size()) + " lessons failed");
+    if (failed)
+        fail(std::to_string(failed) + " of " + std::to_string(args.files.size()) +
+             " lessons failed");
 }
 
 void runShow(const LessonArgs& args) {
@@ -61,17 +69,20 @@ void runShow(const LessonArgs& args) {
         const LessonPlan plan = planLesson(lesson);
         auto ins = makeInserter(lesson);
         Journal journal(*ins);
-        std::cout << "# " << lesson.title << "\n" << lesson.summary << "\n"
+        std::cout << "# " << lesson.title << "\n"
+                  << lesson.summary << "\n"
                   << "options: boundary " << toString(lesson.options.boundary) << ", locator "
-                  << toString(lesson.options.locator) << ", order " << toString(lesson.options.order) << ", seed "
-                  << lesson.options.seed << "; " << lesson.points.size() << " points"
-                  << (lesson.pointsFile.empty() ? "" : " from " + lesson.pointsFile) << "; " << plan.totalOps
-                  << " operations\n";
+                  << toString(lesson.options.locator) << ", order "
+                  << toString(lesson.options.order) << ", seed " << lesson.options.seed << "; "
+                  << lesson.points.size() << " points"
+                  << (lesson.pointsFile.empty() ? "" : " from " + lesson.pointsFile) << "; "
+                  << plan.totalOps << " operations\n";
         for (std::size_t k = 0; k < lesson.stops.size(); ++k) {
             const LessonStop& s = lesson.stops[k];
             const StopState& st = plan.stops[k];
             std::cout << "\n## stop " << k + 1 << " (line " << s.line << "): "
-                      << (s.runTo ? "run_to " + toString(*s.runTo) + (s.count > 1 ? " x" + std::to_string(s.count) : "")
+                      << (s.runTo ? "run_to " + toString(*s.runTo) +
+                                        (s.count > 1 ? " x" + std::to_string(s.count) : "")
                                   : std::string("stay"))
                       << " -> op " << st.position << "\n";
             if (!st.caption.empty()) std::cout << "caption: " << st.caption << "\n";
@@ -82,7 +93,8 @@ void runShow(const LessonArgs& args) {
             if (st.selected != kNone) std::cout << "selected corner: " << st.selected << "\n";
             if (!s.text.empty()) std::cout << s.text << (s.text.back() == '\n' ? "" : "\n");
             if (!s.question.empty()) {
-                std::cout << "Q: " << s.question << "\nA: " << st.answer->display() << "   (" << s.answer << ")\n";
+                std::cout << "Q: " << s.question << "\nA: " << st.answer->display() << "   ("
+                          << s.answer << ")\n";
             }
         }
     } catch (const LessonError& e) {
@@ -96,13 +108,16 @@ void addLesson(CLI::App& app) {
     auto args = std::make_shared<LessonArgs>();
     CLI::App* cmd = app.add_subcommand("lesson", "Check lessons, or print a lesson's answer key");
     cmd->require_subcommand(1);
-    CLI::App* check = cmd->add_subcommand(
-        "check", "Run every lesson to its end headlessly: each stop reached in order, each answer computable");
+    CLI::App* check = cmd->add_subcommand("check",
+                                          "Run every lesson to its end headlessly: each stop "
+                                          "reached in order, each answer computable");
     check->add_option("lessons", args->files, "Lesson files (.toml)")->required();
     check->callback([args] { guarded([&] { runCheck(*args); }); });
-    CLI::App* show = cmd->add_subcommand("show", "Print a lesson stop by stop with the engine's answers");
+    CLI::App* show =
+        cmd->add_subcommand("show", "Print a lesson stop by stop with the engine's answers");
     show->add_option("lesson", args->file, "Lesson file (.toml)")->required();
-    show->add_flag("--tables", args->tables, "Also print the corner table (V and O per triangle) at each stop");
+    show->add_flag("--tables", args->tables,
+                   "Also print the corner table (V and O per triangle) at each stop");
     show->callback([args] { guarded([&] { runShow(*args); }); });
 }
 

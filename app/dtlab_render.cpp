@@ -55,8 +55,9 @@ void benchFrames(ui::Gui& gui, ui::AppState& state, int frames) {
         return std::pair{total / std::max(1, n), worst};
     };
     const auto idle = timeFrames(frames, [](int) {});
-    std::printf("frame ms, idle:       mean %.1f, worst %.1f (%zu points, %d triangles)\n", idle.first, idle.second,
-                state.engine.points().size(), state.engine.mesh().numTriangles());
+    std::printf("frame ms, idle:       mean %.1f, worst %.1f (%zu points, %d triangles)\n",
+                idle.first, idle.second, state.engine.points().size(),
+                state.engine.mesh().numTriangles());
     if (!state.engine.batch() && !state.engine.atEnd()) {
         state.run.running = true;
         state.run.opsPerSecond = ui::RunControl::kFullSpeed;
@@ -69,10 +70,12 @@ void benchFrames(ui::Gui& gui, ui::AppState& state, int frames) {
         int timed = 0;
         const auto running = timeFrames(frames, [&](int) { timed += state.run.running ? 1 : 0; });
         const int n = std::max(1, timed);
-        std::printf("frame ms, full speed: mean %.1f, worst %.1f over %d running frames (%.0f operations and %.1f ms of "
-                    "mesh rebuild per frame; the first frame, with shader compilation: %.0f ms)\n",
-                    running.first * frames / n, running.second, timed, static_cast<double>(state.engine.position() - p0) / n,
-                    buildMs / n, warmMs);
+        std::printf(
+            "frame ms, full speed: mean %.1f, worst %.1f over %d running frames (%.0f operations "
+            "and %.1f ms of "
+            "mesh rebuild per frame; the first frame, with shader compilation: %.0f ms)\n",
+            running.first * frames / n, running.second, timed,
+            static_cast<double>(state.engine.position() - p0) / n, buildMs / n, warmMs);
         state.run.running = false;
     }
     ImGuiIO& io = ImGui::GetIO();
@@ -80,15 +83,16 @@ void benchFrames(ui::Gui& gui, ui::AppState& state, int frames) {
     io.MousePos = ImVec2((r[0] + r[2]) / 2, (r[1] + r[3]) / 2);
     const auto scrolling = timeFrames(frames, [&](int) { io.MouseWheel = -3; });
     io.MouseWheel = 0;
-    std::printf("frame ms, scrolling the corner table (%d rows): mean %.1f, worst %.1f\n", state.engine.mesh().numCorners(),
-                scrolling.first, scrolling.second);
+    std::printf("frame ms, scrolling the corner table (%d rows): mean %.1f, worst %.1f\n",
+                state.engine.mesh().numCorners(), scrolling.first, scrolling.second);
 }
 
 void runRender(const RenderArgs& args) {
     int width = 0, height = 0;
-    if (std::sscanf(args.size.c_str(), "%dx%d", &width, &height) != 2 || width < 320 || height < 240 || width > 8192 ||
-        height > 8192) {
-        fail("--size must be WIDTHxHEIGHT between 320x240 and 8192x8192, not \"" + args.size + "\"", 2);
+    if (std::sscanf(args.size.c_str(), "%dx%d", &width, &height) != 2 || width < 320 ||
+        height < 240 || width > 8192 || height > 8192) {
+        fail("--size must be WIDTHxHEIGHT between 320x240 and 8192x8192, not \"" + args.size + "\"",
+             2);
     }
     ui::AppState state;
     std::string error;
@@ -96,8 +100,10 @@ void runRender(const RenderArgs& args) {
     if (!platform) fail(error);
     ui::Gui gui(*platform, state);
     state.presentation = args.presentation;
-    if (args.engineGiven) state.setOptions(args.engine.options());
-    else state.setOptions(ui::demoOptions());
+    if (args.engineGiven)
+        state.setOptions(args.engine.options());
+    else
+        state.setOptions(ui::demoOptions());
     if (!args.lesson.empty()) {
         if (!ui::openLesson(state, args.lesson)) fail(state.messages.back().text, 2);
         const std::size_t stops = state.lessonPlayer.lesson->stops.size();
@@ -115,24 +121,35 @@ void runRender(const RenderArgs& args) {
             std::cout << "wrote " << stops << " slides to " << args.slides << "\n";
             return;
         }
-        if (args.stop < 1 || static_cast<std::size_t>(args.stop) > std::max<std::size_t>(stops, 1)) {
-            fail("--stop must be between 1 and " + std::to_string(stops) + " for " + args.lesson, 2);
+        if (args.stop < 1 ||
+            static_cast<std::size_t>(args.stop) > std::max<std::size_t>(stops, 1)) {
+            fail("--stop must be between 1 and " + std::to_string(stops) + " for " + args.lesson,
+                 2);
         }
         ui::goToStop(state, static_cast<std::size_t>(args.stop - 1));
     } else if (args.input.empty()) {
         state.loadPoints(demoPoints(), "built-in demo");
     } else {
         LoadedPoints loaded = loadPoints(args.input);
-        if (!state.loadPoints(std::move(loaded.points), args.input)) fail(state.messages.back().text);
+        if (!state.loadPoints(std::move(loaded.points), args.input))
+            fail(state.messages.back().text);
     }
     for (const std::string& o : args.overlays) {
         ui::Overlays& ov = state.overlays;
-        if (o == "voronoi") ov.voronoi = true;
-        else if (o == "circumcircles") ov.circumcircles = true;
-        else if (o == "triangle-ids") ov.triangleIds = true;
-        else if (o == "no-corner-ids") ov.cornerIds = false;
-        else if (o == "no-fill") ov.fill = false;
-        else fail("unknown --overlay \"" + o + "\" (voronoi, circumcircles, triangle-ids, no-corner-ids, no-fill)", 2);
+        if (o == "voronoi")
+            ov.voronoi = true;
+        else if (o == "circumcircles")
+            ov.circumcircles = true;
+        else if (o == "triangle-ids")
+            ov.triangleIds = true;
+        else if (o == "no-corner-ids")
+            ov.cornerIds = false;
+        else if (o == "no-fill")
+            ov.fill = false;
+        else
+            fail("unknown --overlay \"" + o +
+                     "\" (voronoi, circumcircles, triangle-ids, no-corner-ids, no-fill)",
+                 2);
     }
     if (!args.lesson.empty()) {
         // The lesson decided the position and the selection.
@@ -141,38 +158,51 @@ void runRender(const RenderArgs& args) {
     } else if (args.steps >= 0) {
         state.engine.seek(static_cast<std::size_t>(args.steps));
     }
-    if (args.select >= 0 && args.lesson.empty()) state.select(static_cast<std::int32_t>(args.select));
+    if (args.select >= 0 && args.lesson.empty())
+        state.select(static_cast<std::int32_t>(args.select));
     state.pendingTab = args.tab;
     // ImGui lays out in the first frames (tables measure their columns): render a few.
     for (int i = 0; i < 3; ++i) gui.frame();
     if (args.benchFrames > 0) benchFrames(gui, state, args.benchFrames);
     if (!gui.saveScreenshot(args.output, error)) fail(error);
-    std::cout << "wrote " << args.output << " (" << width << "x" << height << ", operation " << state.engine.position()
-              << " of " << state.engine.recorded() << ", " << state.engine.mesh().numTriangles() << " triangles)\n";
+    std::cout << "wrote " << args.output << " (" << width << "x" << height << ", operation "
+              << state.engine.position() << " of " << state.engine.recorded() << ", "
+              << state.engine.mesh().numTriangles() << " triangles)\n";
 }
 
 }  // namespace
 
 void addRender(CLI::App& app) {
     auto args = std::make_shared<RenderArgs>();
-    CLI::App* cmd = app.add_subcommand("render", "Screenshot of the whole GUI after K operations (headless, OSMesa)");
-    cmd->add_option("input", args->input, "Point file (.node, .csv, .xy, .pts); the built-in demo when absent");
+    CLI::App* cmd = app.add_subcommand(
+        "render", "Screenshot of the whole GUI after K operations (headless, OSMesa)");
+    cmd->add_option("input", args->input,
+                    "Point file (.node, .csv, .xy, .pts); the built-in demo when absent");
     cmd->add_option("-o,--output", args->output, "PNG file to write")->required();
-    auto* steps = cmd->add_option("--steps,--step", args->steps, "Operations to perform before the screenshot");
+    auto* steps = cmd->add_option("--steps,--step", args->steps,
+                                  "Operations to perform before the screenshot");
     cmd->add_flag("--to-end", args->toEnd, "Run to the end before the screenshot")->excludes(steps);
     cmd->add_option("--size", args->size, "Window size WIDTHxHEIGHT")->capture_default_str();
     cmd->add_option("--select", args->select, "Select this corner (inspector, highlights)");
-    cmd->add_flag("--presentation", args->presentation, "Presentation mode (large fonts, high contrast)");
+    cmd->add_flag("--presentation", args->presentation,
+                  "Presentation mode (large fonts, high contrast)");
     cmd->add_option("--lesson", args->lesson, "A lesson (.toml): render one of its stops");
-    cmd->add_option("--stop", args->stop, "The lesson's stop to render (1-based)")->capture_default_str();
-    cmd->add_option("--slides", args->slides, "Render every stop of the lesson to DIR/01.png, DIR/02.png, ...");
-    cmd->add_option("--bench-frames", args->benchFrames, "Also time this many frames idle, running and scrolling");
+    cmd->add_option("--stop", args->stop, "The lesson's stop to render (1-based)")
+        ->capture_default_str();
+    cmd->add_option("--slides", args->slides,
+                    "Render every stop of the lesson to DIR/01.png, DIR/02.png, ...");
+    cmd->add_option("--bench-frames", args->benchFrames,
+                    "Also time this many frames idle, running and scrolling");
     cmd->add_option("--tab", args->tab, "The side tab to show")
-        ->check(CLI::IsMember({"corner-table", "vertex-table", "expressions", "predicates", "idbuffer", "statistics", "trace-compare"}));
-    cmd->add_option("--overlay", args->overlays, "voronoi, circumcircles, triangle-ids, no-corner-ids, no-fill (repeatable)");
+        ->check(CLI::IsMember({"corner-table", "vertex-table", "expressions", "predicates",
+                               "idbuffer", "statistics", "trace-compare"}));
+    cmd->add_option("--overlay", args->overlays,
+                    "voronoi, circumcircles, triangle-ids, no-corner-ids, no-fill (repeatable)");
     args->engine.add(*cmd);
     cmd->callback([args, cmd] {
-        args->engineGiven = cmd->count("--locate") + cmd->count("--order") + cmd->count("--boundary") + cmd->count("--seed") > 0;
+        args->engineGiven = cmd->count("--locate") + cmd->count("--order") +
+                                cmd->count("--boundary") + cmd->count("--seed") >
+                            0;
         guarded([&] { runRender(*args); });
     });
 }

@@ -4,8 +4,8 @@
 #include "app/dtlab_common.h"
 
 #include "core/engine/generators.h"
-#include "ui/gui.h"
 #include "ui/gl/idbuffer_gl.h"
+#include "ui/gui.h"
 
 #include <backends/imgui_impl_opengl2.h>
 #include <imgui.h>
@@ -48,8 +48,8 @@ constexpr int kNumMethods = static_cast<int>(std::size(kMethods));
 
 // Table 1 of the paper (Core 2 Duo 1.6 GHz, GeForce 8400M), ms; see shared/docs/PAPER-NOTES.md.
 const std::map<std::size_t, std::pair<double, double>> kPaper = {
-    {1024, {18, 67}},       {2048, {47, 125}},     {4096, {65, 219}},       {8192, {516, 453}},
-    {16384, {1515, 953}},   {32768, {4531, 1959}}, {65536, {13063, 3422}},  {131072, {36766, 7469}},
+    {1024, {18, 67}},     {2048, {47, 125}},     {4096, {65, 219}},      {8192, {516, 453}},
+    {16384, {1515, 953}}, {32768, {4531, 1959}}, {65536, {13063, 3422}}, {131072, {36766, 7469}},
 };
 
 struct Table1Args {
@@ -125,7 +125,8 @@ double median(std::vector<double> v) {
 const Run& medianRun(const std::vector<Run>& runs) {
     std::vector<std::size_t> idx(runs.size());
     for (std::size_t i = 0; i < idx.size(); ++i) idx[i] = i;
-    std::sort(idx.begin(), idx.end(), [&](std::size_t x, std::size_t y) { return runs[x].ms < runs[y].ms; });
+    std::sort(idx.begin(), idx.end(),
+              [&](std::size_t x, std::size_t y) { return runs[x].ms < runs[y].ms; });
     return runs[idx[(idx.size() - 1) / 2]];
 }
 
@@ -164,7 +165,7 @@ std::string fmtMs(double ms) {
 struct Series {
     std::string name;
     ImU32 colour;
-    bool paper;  // dashed, hollow markers
+    bool paper;                                     // dashed, hollow markers
     std::vector<std::pair<double, double>> points;  // (n, ms)
 };
 
@@ -178,8 +179,9 @@ void dashedLine(ImDrawList* dl, ImVec2 a, ImVec2 b, ImU32 c, float width) {
     }
 }
 
-void drawPlot(ImDrawList* dl, ImFont* font, ImFont* small, float W, float H, const std::vector<Series>& series,
-              const std::string& title, const std::string& subtitle) {
+void drawPlot(ImDrawList* dl, ImFont* font, ImFont* small, float W, float H,
+              const std::vector<Series>& series, const std::string& title,
+              const std::string& subtitle) {
     dl->AddRectFilled(ImVec2(0, 0), ImVec2(W, H), IM_COL32(255, 255, 255, 255));
     const float left = 110, right = W - 40, top = 90, bottom = H - 90;
     double xmin = 1e300, xmax = 0, ymin = 1e300, ymax = 0;
@@ -193,9 +195,14 @@ void drawPlot(ImDrawList* dl, ImFont* font, ImFont* small, float W, float H, con
     }
     const double lx0 = std::floor(std::log2(xmin)) - 0.25, lx1 = std::ceil(std::log2(xmax)) + 0.25;
     const double ly0 = std::floor(std::log10(ymin)), ly1 = std::ceil(std::log10(ymax));
-    auto X = [&](double n) { return static_cast<float>(left + (std::log2(n) - lx0) / (lx1 - lx0) * (right - left)); };
-    auto Y = [&](double ms) { return static_cast<float>(bottom - (std::log10(ms) - ly0) / (ly1 - ly0) * (bottom - top)); };
-    const ImU32 ink = IM_COL32(30, 30, 30, 255), grid = IM_COL32(225, 225, 225, 255), fine = IM_COL32(242, 242, 242, 255);
+    auto X = [&](double n) {
+        return static_cast<float>(left + (std::log2(n) - lx0) / (lx1 - lx0) * (right - left));
+    };
+    auto Y = [&](double ms) {
+        return static_cast<float>(bottom - (std::log10(ms) - ly0) / (ly1 - ly0) * (bottom - top));
+    };
+    const ImU32 ink = IM_COL32(30, 30, 30, 255), grid = IM_COL32(225, 225, 225, 255),
+                fine = IM_COL32(242, 242, 242, 255);
     // Title.
     dl->AddText(font, 26, ImVec2(left, 18), ink, title.c_str());
     dl->AddText(small, 17, ImVec2(left, 52), IM_COL32(90, 90, 90, 255), subtitle.c_str());
@@ -209,8 +216,10 @@ void drawPlot(ImDrawList* dl, ImFont* font, ImFont* small, float W, float H, con
         const float y = Y(std::pow(10.0, d));
         dl->AddLine(ImVec2(left, y), ImVec2(right, y), grid);
         dl->AddLine(ImVec2(left - 6, y), ImVec2(left, y), ink);
-        if (d >= 0) std::snprintf(label, sizeof label, "%.0f", std::pow(10.0, d));
-        else std::snprintf(label, sizeof label, "%g", std::pow(10.0, d));
+        if (d >= 0)
+            std::snprintf(label, sizeof label, "%.0f", std::pow(10.0, d));
+        else
+            std::snprintf(label, sizeof label, "%g", std::pow(10.0, d));
         const ImVec2 ts = small->CalcTextSizeA(17, 1e9f, 0, label);
         dl->AddText(small, 17, ImVec2(left - 10 - ts.x, y - ts.y / 2), ink, label);
     }
@@ -248,22 +257,30 @@ void drawPlot(ImDrawList* dl, ImFont* font, ImFont* small, float W, float H, con
         for (std::size_t i = 0; i + 1 < s.points.size(); ++i) {
             const ImVec2 a(X(s.points[i].first), Y(s.points[i].second));
             const ImVec2 b(X(s.points[i + 1].first), Y(s.points[i + 1].second));
-            if (s.paper) dashedLine(dl, a, b, s.colour, 2.5f);
-            else dl->AddLine(a, b, s.colour, 2.5f);
+            if (s.paper)
+                dashedLine(dl, a, b, s.colour, 2.5f);
+            else
+                dl->AddLine(a, b, s.colour, 2.5f);
         }
         for (auto [n, ms] : s.points) {
             const ImVec2 c(X(n), Y(ms));
-            if (s.paper) dl->AddRect(ImVec2(c.x - 5, c.y - 5), ImVec2(c.x + 5, c.y + 5), s.colour, 0, 0, 2.0f);
-            else dl->AddCircleFilled(c, 5, s.colour);
+            if (s.paper)
+                dl->AddRect(ImVec2(c.x - 5, c.y - 5), ImVec2(c.x + 5, c.y + 5), s.colour, 0, 0,
+                            2.0f);
+            else
+                dl->AddCircleFilled(c, 5, s.colour);
         }
     }
     dl->PopClipRect();
     // Legend, top left inside the plot (the curves start low on the left).
     float w = 0;
-    for (const Series& s : series) w = std::max(w, small->CalcTextSizeA(17, 1e9f, 0, s.name.c_str()).x);
+    for (const Series& s : series)
+        w = std::max(w, small->CalcTextSizeA(17, 1e9f, 0, s.name.c_str()).x);
     const float lx = left + 16, ly = top + 14, row = 25;
-    dl->AddRectFilled(ImVec2(lx, ly), ImVec2(lx + w + 74, ly + row * series.size() + 12), IM_COL32(255, 255, 255, 235));
-    dl->AddRect(ImVec2(lx, ly), ImVec2(lx + w + 74, ly + row * series.size() + 12), IM_COL32(160, 160, 160, 255));
+    dl->AddRectFilled(ImVec2(lx, ly), ImVec2(lx + w + 74, ly + row * series.size() + 12),
+                      IM_COL32(255, 255, 255, 235));
+    dl->AddRect(ImVec2(lx, ly), ImVec2(lx + w + 74, ly + row * series.size() + 12),
+                IM_COL32(160, 160, 160, 255));
     for (std::size_t i = 0; i < series.size(); ++i) {
         const Series& s = series[i];
         const float y = ly + 8 + row * i + row / 2;
@@ -336,7 +353,8 @@ void writePlot(const std::string& path, const std::vector<Series>& series, const
 
     const std::size_t row = static_cast<std::size_t>(W) * 4;  // GL rows start at the bottom
     for (int y = 0; y < H / 2; ++y) {
-        std::swap_ranges(rgba.begin() + y * row, rgba.begin() + (y + 1) * row, rgba.begin() + (H - 1 - y) * row);
+        std::swap_ranges(rgba.begin() + y * row, rgba.begin() + (y + 1) * row,
+                         rgba.begin() + (H - 1 - y) * row);
     }
     std::string error;
     if (!ui::writePng(path, rgba, W, H, error)) fail(error);
@@ -350,7 +368,9 @@ void runTable1(const Table1Args& args) {
     const std::vector<std::size_t> sizes = parseSizes(args.sizes);
     std::vector<int> sweep;
     if (!args.sweep.empty()) {
-        for (std::size_t k : parseSizes(args.sweep)) sweep.push_back(static_cast<int>(std::min<std::size_t>(k, ui::IdBufferGlOptions::kMaxBatch)));
+        for (std::size_t k : parseSizes(args.sweep))
+            sweep.push_back(
+                static_cast<int>(std::min<std::size_t>(k, ui::IdBufferGlOptions::kMaxBatch)));
     }
     std::array<bool, kNumMethods> on{};
     {
@@ -358,7 +378,10 @@ void runTable1(const Table1Args& args) {
         for (std::string name; std::getline(ss, name, ',');) {
             int found = -1;
             for (int m = 0; m < kNumMethods; ++m) found = name == kMethods[m].name ? m : found;
-            if (found < 0) fail("--methods: no method \"" + name + "\" (naive, idbuffer-gl, idbuffer-gl-batched, idbuffer-cpu, walk, best)", 2);
+            if (found < 0)
+                fail("--methods: no method \"" + name +
+                         "\" (naive, idbuffer-gl, idbuffer-gl-batched, idbuffer-cpu, walk, best)",
+                     2);
             on[found] = true;
         }
     }
@@ -369,13 +392,16 @@ void runTable1(const Table1Args& args) {
         if (on[m] || (m == 2 && !sweep.empty())) runOnce(warm, kMethods[m], args, args.batch);
     }
 
-    std::printf("Table 1: uniform random points in the 1600 x 1600 box (seed %llu), exact boundary, %dx%d ID buffer,\n"
-                "batched readback \"%s\" with K = %d; median of %d runs, ms. The paper: Core 2 Duo 1.6 GHz, GeForce "
-                "8400M;\nhere: llvmpipe (OSMesa), 2 cores.\n\n",
-                static_cast<unsigned long long>(args.seed), args.idBufferSize, args.idBufferSize, args.readback.c_str(),
-                args.batch, args.repeat);
-    std::printf("%8s | %11s %11s | %9s %12s %20s %13s %9s %9s\n", "n", "paper naive", "paper IDbuf", "naive",
-                "idbuffer-gl", "idbuffer-gl-batched", "idbuffer-cpu", "walk", "best");
+    std::printf(
+        "Table 1: uniform random points in the 1600 x 1600 box (seed %llu), exact boundary, %dx%d "
+        "ID buffer,\n"
+        "batched readback \"%s\" with K = %d; median of %d runs, ms. The paper: Core 2 Duo 1.6 "
+        "GHz, GeForce "
+        "8400M;\nhere: llvmpipe (OSMesa), 2 cores.\n\n",
+        static_cast<unsigned long long>(args.seed), args.idBufferSize, args.idBufferSize,
+        args.readback.c_str(), args.batch, args.repeat);
+    std::printf("%8s | %11s %11s | %9s %12s %20s %13s %9s %9s\n", "n", "paper naive", "paper IDbuf",
+                "naive", "idbuffer-gl", "idbuffer-gl-batched", "idbuffer-cpu", "walk", "best");
     std::vector<std::array<double, kNumMethods>> table;
     std::vector<std::array<Run, kNumMethods>> detail;
     for (const std::size_t n : sizes) {
@@ -399,26 +425,30 @@ void runTable1(const Table1Args& args) {
         const auto paper = kPaper.find(n);
         const std::string pn = paper != kPaper.end() ? fmtMs(paper->second.first) : "-";
         const std::string pi = paper != kPaper.end() ? fmtMs(paper->second.second) : "-";
-        std::printf("%8zu | %11s %11s | %9s %12s %20s %13s %9s %9s\n", n, pn.c_str(), pi.c_str(), fmtMs(row[0]).c_str(),
-                    fmtMs(row[1]).c_str(), fmtMs(row[2]).c_str(), fmtMs(row[3]).c_str(), fmtMs(row[4]).c_str(),
-                    fmtMs(row[5]).c_str());
+        std::printf("%8zu | %11s %11s | %9s %12s %20s %13s %9s %9s\n", n, pn.c_str(), pi.c_str(),
+                    fmtMs(row[0]).c_str(), fmtMs(row[1]).c_str(), fmtMs(row[2]).c_str(),
+                    fmtMs(row[3]).c_str(), fmtMs(row[4]).c_str(), fmtMs(row[5]).c_str());
         std::fflush(stdout);
     }
 
     // Where the time goes, and how good the pixels are.
-    std::printf("\nLocator statistics (the median run of each size):\n"
-                "  hits    the pixel's triangle contained the point (no walk step)\n"
-                "  walk    mean walk steps after a miss (including the points with no triangle under them)\n"
-                "  none    points with no triangle under their pixel (outside the hull the pixels show)\n"
-                "  stale   points whose id was read before earlier insertions changed the mesh (batched);\n"
-                "          s.hits: such ids still right; steps: mean walk steps from such an id\n"
-                "  read    share of the run's time in glReadPixels / gather / fence / map, including the wait\n"
-                "          for the drawing that a read forces (as the paper measured readback)\n"
-                "  draw    GL state, vertex arrays and draw calls; other: the rest (walk, split, flips)\n"
-                "  painted triangles drawn into the buffer over the run, and their area in millions of\n"
-                "          pixels (the buffer has 2.56 Mpx at 1600 x 1600)\n\n");
-    std::printf("%8s  %-20s %7s %7s %6s %7s %7s %6s %6s %6s %6s %9s %7s\n", "n", "method", "hits", "walk", "none",
-                "stale", "s.hits", "steps", "read", "draw", "other", "painted", "Mpx");
+    std::printf(
+        "\nLocator statistics (the median run of each size):\n"
+        "  hits    the pixel's triangle contained the point (no walk step)\n"
+        "  walk    mean walk steps after a miss (including the points with no triangle under "
+        "them)\n"
+        "  none    points with no triangle under their pixel (outside the hull the pixels show)\n"
+        "  stale   points whose id was read before earlier insertions changed the mesh (batched);\n"
+        "          s.hits: such ids still right; steps: mean walk steps from such an id\n"
+        "  read    share of the run's time in glReadPixels / gather / fence / map, including the "
+        "wait\n"
+        "          for the drawing that a read forces (as the paper measured readback)\n"
+        "  draw    GL state, vertex arrays and draw calls; other: the rest (walk, split, flips)\n"
+        "  painted triangles drawn into the buffer over the run, and their area in millions of\n"
+        "          pixels (the buffer has 2.56 Mpx at 1600 x 1600)\n\n");
+    std::printf("%8s  %-20s %7s %7s %6s %7s %7s %6s %6s %6s %6s %9s %7s\n", "n", "method", "hits",
+                "walk", "none", "stale", "s.hits", "steps", "read", "draw", "other", "painted",
+                "Mpx");
     auto pct = [](double part, double whole) { return whole > 0 ? 100.0 * part / whole : 0.0; };
     for (std::size_t k = 0; k < sizes.size(); ++k) {
         for (int m = 1; m <= 3; ++m) {
@@ -428,14 +458,18 @@ void runTable1(const Table1Args& args) {
             const LocatorStats& l = r.loc;
             const bool gl = m != 3;
             const double hits = l.queries ? 100.0 * l.hits / l.queries : 0.0;
-            const double walk = l.queries > l.hits ? static_cast<double>(l.missSteps) / (l.queries - l.hits) : 0.0;
+            const double walk =
+                l.queries > l.hits ? static_cast<double>(l.missSteps) / (l.queries - l.hits) : 0.0;
             std::printf("%8zu  %-20s %6.1f%% %7.2f", sizes[k], kMethods[m].name, hits, walk);
             if (gl) {
-                std::printf(" %5.1f%% %6.1f%% %6.1f%% %6.2f %5.1f%% %5.1f%% %5.1f%% %9llu %7.1f\n", pct(g.noPixel, l.queries),
-                            pct(g.staleQueries, l.queries), g.staleQueries ? 100.0 * g.staleHits / g.staleQueries : 0.0,
-                            g.staleQueries ? static_cast<double>(g.staleSteps) / g.staleQueries : 0.0,
-                            pct(g.readbackMs, r.ms), pct(g.paintMs, r.ms), pct(r.ms - g.readbackMs - g.paintMs, r.ms),
-                            static_cast<unsigned long long>(g.trianglesPainted), g.pixelsPainted / 1e6);
+                std::printf(
+                    " %5.1f%% %6.1f%% %6.1f%% %6.2f %5.1f%% %5.1f%% %5.1f%% %9llu %7.1f\n",
+                    pct(g.noPixel, l.queries), pct(g.staleQueries, l.queries),
+                    g.staleQueries ? 100.0 * g.staleHits / g.staleQueries : 0.0,
+                    g.staleQueries ? static_cast<double>(g.staleSteps) / g.staleQueries : 0.0,
+                    pct(g.readbackMs, r.ms), pct(g.paintMs, r.ms),
+                    pct(r.ms - g.readbackMs - g.paintMs, r.ms),
+                    static_cast<unsigned long long>(g.trianglesPainted), g.pixelsPainted / 1e6);
             } else {
                 std::printf("\n");
             }
@@ -444,25 +478,34 @@ void runTable1(const Table1Args& args) {
 
     const std::size_t last = sizes.size() - 1;
     const std::array<double, kNumMethods>& big = table[last];
-    if (on[0] && on[1] && on[2]) std::printf("\nAt n = %zu: idbuffer-gl-batched is %.1fx faster than naive and %.1fx faster than idbuffer-gl "
-                "(one pixel per insertion);\nidbuffer-gl spends %.0f%% of its time in readback (the paper: > 90%%).\n",
-                sizes[last], big[0] / big[2], big[1] / big[2], pct(detail[last][1].gl.readbackMs, detail[last][1].ms));
+    if (on[0] && on[1] && on[2])
+        std::printf(
+            "\nAt n = %zu: idbuffer-gl-batched is %.1fx faster than naive and %.1fx faster than "
+            "idbuffer-gl "
+            "(one pixel per insertion);\nidbuffer-gl spends %.0f%% of its time in readback (the "
+            "paper: > 90%%).\n",
+            sizes[last], big[0] / big[2], big[1] / big[2],
+            pct(detail[last][1].gl.readbackMs, detail[last][1].ms));
 
     if (!sweep.empty()) {
         const std::size_t n = sizes[last];
         const std::vector<Vec2> points = generatePoints(Generator::Uniform, n, args.seed);
-        std::printf("\nBatch size K for idbuffer-gl-batched (\"%s\") at n = %zu, median of %d runs:\n", args.readback.c_str(),
-                    n, args.repeat);
-        std::printf("%8s %10s %8s %9s %10s %8s\n", "K", "ms", "reads", "readback", "stale hit", "steps");
+        std::printf(
+            "\nBatch size K for idbuffer-gl-batched (\"%s\") at n = %zu, median of %d runs:\n",
+            args.readback.c_str(), n, args.repeat);
+        std::printf("%8s %10s %8s %9s %10s %8s\n", "K", "ms", "reads", "readback", "stale hit",
+                    "steps");
         double bestMs = 1e300;
         int bestK = 0;
         for (const int K : sweep) {
             std::vector<Run> runs;
-            for (int r = 0; r < args.repeat; ++r) runs.push_back(runOnce(points, kMethods[2], args, K));
+            for (int r = 0; r < args.repeat; ++r)
+                runs.push_back(runOnce(points, kMethods[2], args, K));
             const Run& med = medianRun(runs);
             const ui::IdBufferGlStats& b = med.gl;
-            std::printf("%8d %10.1f %8llu %8.1f%% %9.1f%% %8.2f\n", K, med.ms, static_cast<unsigned long long>(b.reads),
-                        pct(b.readbackMs, med.ms), b.staleQueries ? 100.0 * b.staleHits / b.staleQueries : 0.0,
+            std::printf("%8d %10.1f %8llu %8.1f%% %9.1f%% %8.2f\n", K, med.ms,
+                        static_cast<unsigned long long>(b.reads), pct(b.readbackMs, med.ms),
+                        b.staleQueries ? 100.0 * b.staleHits / b.staleQueries : 0.0,
                         b.staleQueries ? static_cast<double>(b.staleSteps) / b.staleQueries : 0.0);
             if (med.ms < bestMs) {
                 bestMs = med.ms;
@@ -495,20 +538,22 @@ void runTable1(const Table1Args& args) {
         std::printf("\nwrote %s\n", args.csv.c_str());
     }
     if (!args.png.empty()) {
-        const ImU32 colours[kNumMethods] = {IM_COL32(200, 40, 40, 255), IM_COL32(230, 140, 20, 255),
-                                            IM_COL32(30, 110, 200, 255), IM_COL32(120, 70, 170, 255),
-                                            IM_COL32(40, 150, 70, 255),  IM_COL32(20, 20, 20, 255)};
+        const ImU32 colours[kNumMethods] = {
+            IM_COL32(200, 40, 40, 255),  IM_COL32(230, 140, 20, 255), IM_COL32(30, 110, 200, 255),
+            IM_COL32(120, 70, 170, 255), IM_COL32(40, 150, 70, 255),  IM_COL32(20, 20, 20, 255)};
         std::vector<Series> series;
         for (int m = 0; m < kNumMethods; ++m) {
             if (!on[m]) continue;
             Series s{kMethods[m].name, colours[m], false, {}};
             if (std::string(kMethods[m].name) == "best") s.name = "best (brio + walk)";
             if (std::string(kMethods[m].name) == "naive") s.name = "naive (walk from triangle 0)";
-            if (std::string(kMethods[m].name) == "idbuffer-gl") s.name = "idbuffer-gl (one pixel per insertion)";
+            if (std::string(kMethods[m].name) == "idbuffer-gl")
+                s.name = "idbuffer-gl (one pixel per insertion)";
             if (std::string(kMethods[m].name) == "idbuffer-gl-batched") {
                 s.name = "idbuffer-gl-batched (K = " + std::to_string(args.batch) + ")";
             }
-            for (std::size_t k = 0; k < sizes.size(); ++k) s.points.push_back({static_cast<double>(sizes[k]), table[k][m]});
+            for (std::size_t k = 0; k < sizes.size(); ++k)
+                s.points.push_back({static_cast<double>(sizes[k]), table[k][m]});
             series.push_back(std::move(s));
         }
         Series pn{"paper: naive walk (2008)", IM_COL32(200, 40, 40, 255), true, {}};
@@ -519,9 +564,11 @@ void runTable1(const Table1Args& args) {
         }
         series.push_back(std::move(pn));
         series.push_back(std::move(pi));
-        writePlot(args.png, series, "Incremental Delaunay: point location (the paper's Table 1 / Figure 8)",
-                  "uniform random points in the 1600 x 1600 box; ours: median of " + std::to_string(args.repeat) +
-                      (args.repeat == 1 ? " run" : " runs") + " on llvmpipe (OSMesa, 2 cores); dashed: the paper's numbers (2008)");
+        writePlot(args.png, series,
+                  "Incremental Delaunay: point location (the paper's Table 1 / Figure 8)",
+                  "uniform random points in the 1600 x 1600 box; ours: median of " +
+                      std::to_string(args.repeat) + (args.repeat == 1 ? " run" : " runs") +
+                      " on llvmpipe (OSMesa, 2 cores); dashed: the paper's numbers (2008)");
         std::printf("wrote %s\n", args.png.c_str());
     }
 }
@@ -531,23 +578,32 @@ void runTable1(const Table1Args& args) {
 void addTable1(CLI::App& app) {
     auto args = std::make_shared<Table1Args>();
     CLI::App* cmd = app.add_subcommand(
-        "table1", "The paper's Table 1 (naive walk vs colour-ID buffer) with our locators, on OSMesa");
-    cmd->add_option("--sizes", args->sizes, "Point counts, comma-separated (3 .. 1048576)")->capture_default_str();
-    cmd->add_option("--repeat", args->repeat, "Timed runs per size and method (the median is reported)")
+        "table1",
+        "The paper's Table 1 (naive walk vs colour-ID buffer) with our locators, on OSMesa");
+    cmd->add_option("--sizes", args->sizes, "Point counts, comma-separated (3 .. 1048576)")
+        ->capture_default_str();
+    cmd->add_option("--repeat", args->repeat,
+                    "Timed runs per size and method (the median is reported)")
         ->check(CLI::Range(1, 100))
         ->capture_default_str();
     cmd->add_option("--csv", args->csv, "Write n and one column per method (ms) to this CSV file");
-    cmd->add_option("--png", args->png, "Write a log-log plot (the paper's Figure 8) to this PNG file");
+    cmd->add_option("--png", args->png,
+                    "Write a log-log plot (the paper's Figure 8) to this PNG file");
     cmd->add_option("--batch", args->batch, "idbuffer-gl-batched: points per readback (K)")
         ->check(CLI::Range(1, ui::IdBufferGlOptions::kMaxBatch))
         ->capture_default_str();
-    cmd->add_option("--readback", args->readback, "idbuffer-gl-batched: batched | pipelined (read one batch ahead)")
+    cmd->add_option("--readback", args->readback,
+                    "idbuffer-gl-batched: batched | pipelined (read one batch ahead)")
         ->check(CLI::IsMember({"batched", "pipelined"}))
         ->capture_default_str();
-    cmd->add_option("--methods", args->methods, "Methods to time, comma-separated (the CSV has their columns)")
+    cmd->add_option("--methods", args->methods,
+                    "Methods to time, comma-separated (the CSV has their columns)")
         ->capture_default_str();
-    cmd->add_option("--sweep", args->sweep, "Also time idbuffer-gl-batched at the largest size for these K (comma-separated)");
-    cmd->add_option("--idbuffer-size", args->idBufferSize, "Width and height of the ID buffers in pixels")
+    cmd->add_option(
+        "--sweep", args->sweep,
+        "Also time idbuffer-gl-batched at the largest size for these K (comma-separated)");
+    cmd->add_option("--idbuffer-size", args->idBufferSize,
+                    "Width and height of the ID buffers in pixels")
         ->check(CLI::Range(1, 16384))
         ->capture_default_str();
     cmd->add_option("--seed", args->seed, "Seed of the random points")->capture_default_str();

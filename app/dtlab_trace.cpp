@@ -19,7 +19,8 @@ struct TraceArgs {
 
 void runTrace(const TraceArgs& args) {
     LoadedPoints loaded = loadPoints(args.input);
-    const auto made = args.engine.makeInserter(std::move(loaded.points));  // GL locators need a context
+    const auto made =
+        args.engine.makeInserter(std::move(loaded.points));  // GL locators need a context
     Inserter& ins = *made;
     Journal journal(ins);
     std::ofstream out(args.output, std::ios::binary);

@@ -24,7 +24,8 @@ struct TriangulateArgs {
 
 std::string idList(const std::vector<std::int32_t>& ids, int base, std::size_t most) {
     std::string s;
-    for (std::size_t i = 0; i < ids.size() && i < most; ++i) s += (i ? ", " : "") + std::to_string(ids[i] + base);
+    for (std::size_t i = 0; i < ids.size() && i < most; ++i)
+        s += (i ? ", " : "") + std::to_string(ids[i] + base);
     if (ids.size() > most) s += ", ...";
     return s;
 }
@@ -34,17 +35,21 @@ void runTriangulate(const TriangulateArgs& args) {
     const int base = loaded.indexBase;
     const std::size_t n = loaded.points.size();
     const auto t0 = std::chrono::steady_clock::now();
-    const auto made = args.engine.makeInserter(std::move(loaded.points));  // GL locators need a context
+    const auto made =
+        args.engine.makeInserter(std::move(loaded.points));  // GL locators need a context
     Inserter& ins = *made;
     ins.run();
-    const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    const double ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     const Mesh& m = ins.mesh();
 
     if (args.check) {
         ValidateOptions vo;
         vo.delaunay = ins.options().boundary == Boundary::Exact;  // super mode does not promise it
         const auto bad = validate(m, vo);
-        if (!bad.empty()) fail("result failed validation at corner " + std::to_string(bad[0].corner) + ": " + bad[0].message);
+        if (!bad.empty())
+            fail("result failed validation at corner " + std::to_string(bad[0].corner) + ": " +
+                 bad[0].message);
     }
 
     writeTextFile(args.base + ".node", [&](std::ostream& os) { writeNode(os, m.G, base); });
@@ -65,41 +70,52 @@ void runTriangulate(const TriangulateArgs& args) {
     }
     if (!args.voronoiBase.empty()) {
         const VoronoiDiagram vd = buildVoronoi(m);
-        writeTextFile(args.voronoiBase + ".v.node", [&](std::ostream& os) { writeVoronoiNode(os, vd, base); });
-        writeTextFile(args.voronoiBase + ".v.edge", [&](std::ostream& os) { writeVoronoiEdge(os, vd, base); });
+        writeTextFile(args.voronoiBase + ".v.node",
+                      [&](std::ostream& os) { writeVoronoiNode(os, vd, base); });
+        writeTextFile(args.voronoiBase + ".v.edge",
+                      [&](std::ostream& os) { writeVoronoiEdge(os, vd, base); });
     }
 
     if (args.quiet) return;
     const InsertStats& st = ins.stats();
-    std::cout << args.input << ": " << n << " points, " << m.numTriangles() << " triangles in " << ms
-              << " ms (locate " << args.engine.locate << ", order " << args.engine.order << ", boundary "
-              << args.engine.boundary << ")\n";
+    std::cout << args.input << ": " << n << " points, " << m.numTriangles() << " triangles in "
+              << ms << " ms (locate " << args.engine.locate << ", order " << args.engine.order
+              << ", boundary " << args.engine.boundary << ")\n";
     if (!ins.skipped().empty()) {
-        std::cout << "  " << ins.skipped().size() << " duplicate point(s) skipped, the first occurrence kept: "
+        std::cout << "  " << ins.skipped().size()
+                  << " duplicate point(s) skipped, the first occurrence kept: "
                   << idList(ins.skipped(), base, 10) << "\n";
     }
-    if (m.numTriangles() == 0 && n > 0) std::cout << "  all points are collinear: no triangle exists\n";
+    if (m.numTriangles() == 0 && n > 0)
+        std::cout << "  all points are collinear: no triangle exists\n";
     if (ins.options().boundary == Boundary::Super) {
-        std::cout << "  boundary=super: triangles near the hull may be missing or non-Delaunay (the paper's "
+        std::cout << "  boundary=super: triangles near the hull may be missing or non-Delaunay "
+                     "(the paper's "
                      "finite super-triangle)\n";
     }
-    std::cout << "  " << st.flips << " flips, " << st.inCircleTests << " in-circle tests, " << st.walkSteps
-              << " walk steps; wrote " << args.base << ".node/.ele/.neigh\n";
+    std::cout << "  " << st.flips << " flips, " << st.inCircleTests << " in-circle tests, "
+              << st.walkSteps << " walk steps; wrote " << args.base << ".node/.ele/.neigh\n";
 }
 
 }  // namespace
 
 void addTriangulate(CLI::App& app) {
     auto args = std::make_shared<TriangulateArgs>();
-    CLI::App* cmd = app.add_subcommand("triangulate", "Delaunay-triangulate a point file; write BASE.node/.ele/.neigh");
+    CLI::App* cmd = app.add_subcommand(
+        "triangulate", "Delaunay-triangulate a point file; write BASE.node/.ele/.neigh");
     cmd->add_option("input", args->input, "Point file (.node, .csv, .xy, .pts)")->required();
-    cmd->add_option("-o,--output", args->base, "Output base name (writes BASE.node, BASE.ele, BASE.neigh)")->required();
-    cmd->add_option("--voronoi-svg", args->voronoiSvg, "Also write an SVG of the mesh and its Voronoi diagram");
+    cmd->add_option("-o,--output", args->base,
+                    "Output base name (writes BASE.node, BASE.ele, BASE.neigh)")
+        ->required();
+    cmd->add_option("--voronoi-svg", args->voronoiSvg,
+                    "Also write an SVG of the mesh and its Voronoi diagram");
     cmd->add_option("--svg", args->svg, "Also write an SVG of the mesh");
-    cmd->add_option("--voronoi", args->voronoiBase, "Also write Triangle's BASE.v.node / BASE.v.edge");
+    cmd->add_option("--voronoi", args->voronoiBase,
+                    "Also write Triangle's BASE.v.node / BASE.v.edge");
     cmd->add_option("--off", args->off, "Also write the mesh as OFF");
     cmd->add_option("--obj", args->obj, "Also write the mesh as OBJ");
-    cmd->add_flag("--check", args->check, "Validate the result (corner table, orientation, Delaunay) before writing");
+    cmd->add_flag("--check", args->check,
+                  "Validate the result (corner table, orientation, Delaunay) before writing");
     cmd->add_flag("-q,--quiet", args->quiet, "Print nothing on success");
     args->engine.add(*cmd);
     cmd->callback([args] { guarded([&] { runTriangulate(*args); }); });

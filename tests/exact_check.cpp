@@ -13,15 +13,19 @@ using dlab::Vec2;
 
 int orientGmp(Vec2 a, Vec2 b, Vec2 c) {
     const mpq_class ax(a.x), ay(a.y);
-    const mpq_class d = (mpq_class(b.x) - ax) * (mpq_class(c.y) - ay) - (mpq_class(b.y) - ay) * (mpq_class(c.x) - ax);
+    const mpq_class d = (mpq_class(b.x) - ax) * (mpq_class(c.y) - ay) -
+                        (mpq_class(b.y) - ay) * (mpq_class(c.x) - ax);
     return sgn(d);
 }
 
 int incircleGmp(Vec2 a, Vec2 b, Vec2 c, Vec2 d) {
     const mpq_class dx(d.x), dy(d.y);
-    const mpq_class adx = a.x - dx, ady = a.y - dy, bdx = b.x - dx, bdy = b.y - dy, cdx = c.x - dx, cdy = c.y - dy;
-    const mpq_class al = adx * adx + ady * ady, bl = bdx * bdx + bdy * bdy, cl = cdx * cdx + cdy * cdy;
-    const mpq_class det = al * (bdx * cdy - cdx * bdy) + bl * (cdx * ady - adx * cdy) + cl * (adx * bdy - bdx * ady);
+    const mpq_class adx = a.x - dx, ady = a.y - dy, bdx = b.x - dx, bdy = b.y - dy, cdx = c.x - dx,
+                    cdy = c.y - dy;
+    const mpq_class al = adx * adx + ady * ady, bl = bdx * bdx + bdy * bdy,
+                    cl = cdx * cdx + cdy * cdy;
+    const mpq_class det =
+        al * (bdx * cdy - cdx * bdy) + bl * (cdx * ady - adx * cdy) + cl * (adx * bdy - bdx * ady);
     return sgn(det);
 }
 
@@ -47,7 +51,8 @@ bool allCollinearExact(const std::vector<Vec2>& points) {
 std::string checkDelaunayExact(const Mesh& m, const std::vector<std::int32_t>* expectedVertices) {
     std::ostringstream err;
     const std::int32_t nc = m.numCorners();
-    if (m.V.size() != m.O.size() || nc % 3 != 0) return "V and O sizes differ or are not a multiple of 3";
+    if (m.V.size() != m.O.size() || nc % 3 != 0)
+        return "V and O sizes differ or are not a multiple of 3";
     const std::int32_t nt = nc / 3;
     auto vtx = [&](std::int32_t c) { return m.V[c]; };
     auto nx = [](std::int32_t c) { return c % 3 == 2 ? c - 2 : c + 1; };
@@ -57,7 +62,8 @@ std::string checkDelaunayExact(const Mesh& m, const std::vector<std::int32_t>* e
     std::map<std::pair<std::int32_t, std::int32_t>, std::int32_t> edges;
     std::set<std::int32_t> used;
     for (std::int32_t c = 0; c < nc; ++c) {
-        if (vtx(c) < 0 || vtx(c) >= m.numVertices()) return "corner " + std::to_string(c) + ": vertex out of range";
+        if (vtx(c) < 0 || vtx(c) >= m.numVertices())
+            return "corner " + std::to_string(c) + ": vertex out of range";
         used.insert(vtx(c));
         if (!edges.emplace(std::make_pair(vtx(nx(c)), vtx(pv(c))), c).second) {
             err << "directed edge " << vtx(nx(c)) << "->" << vtx(pv(c)) << " used twice";
@@ -66,8 +72,8 @@ std::string checkDelaunayExact(const Mesh& m, const std::vector<std::int32_t>* e
     }
     for (std::int32_t t = 0; t < nt; ++t) {
         if (orientGmp(m.G[vtx(3 * t)], m.G[vtx(3 * t + 1)], m.G[vtx(3 * t + 2)]) <= 0) {
-            err << "triangle " << t << " (" << vtx(3 * t) << "," << vtx(3 * t + 1) << "," << vtx(3 * t + 2)
-                << ") is not strictly counter-clockwise";
+            err << "triangle " << t << " (" << vtx(3 * t) << "," << vtx(3 * t + 1) << ","
+                << vtx(3 * t + 2) << ") is not strictly counter-clockwise";
             return err.str();
         }
     }
@@ -95,19 +101,23 @@ std::string checkDelaunayExact(const Mesh& m, const std::vector<std::int32_t>* e
         do {
             const std::int32_t b = hullNext.at(a);
             const auto it = hullNext.find(b);
-            if (it == hullNext.end()) return "boundary is not closed at vertex " + std::to_string(b);
+            if (it == hullNext.end())
+                return "boundary is not closed at vertex " + std::to_string(b);
             if (orientGmp(m.G[a], m.G[b], m.G[it->second]) < 0) {
                 err << "boundary turns right at vertex " << b << " (the hull is not convex)";
                 return err.str();
             }
             a = b;
-            if (++steps > static_cast<std::int32_t>(hullNext.size())) return "boundary loop does not close";
+            if (++steps > static_cast<std::int32_t>(hullNext.size()))
+                return "boundary loop does not close";
         } while (a != start);
-        if (steps != static_cast<std::int32_t>(hullNext.size())) return "boundary has more than one loop";
-        const std::int64_t expectT = 2 * static_cast<std::int64_t>(used.size()) - static_cast<std::int64_t>(hullNext.size()) - 2;
+        if (steps != static_cast<std::int32_t>(hullNext.size()))
+            return "boundary has more than one loop";
+        const std::int64_t expectT = 2 * static_cast<std::int64_t>(used.size()) -
+                                     static_cast<std::int64_t>(hullNext.size()) - 2;
         if (nt != expectT) {
-            err << nt << " triangles, Euler for " << used.size() << " vertices and " << hullNext.size()
-                << " hull vertices needs " << expectT;
+            err << nt << " triangles, Euler for " << used.size() << " vertices and "
+                << hullNext.size() << " hull vertices needs " << expectT;
             return err.str();
         }
     }
@@ -115,9 +125,10 @@ std::string checkDelaunayExact(const Mesh& m, const std::vector<std::int32_t>* e
         const std::int32_t o = m.O[c];
         if (o < 0 || o < c) continue;
         const std::int32_t t = c / 3;
-        if (incircleGmp(m.G[vtx(3 * t)], m.G[vtx(3 * t + 1)], m.G[vtx(3 * t + 2)], m.G[vtx(o)]) > 0) {
-            err << "edge " << vtx(nx(c)) << "-" << vtx(pv(c)) << " is not Delaunay: vertex " << vtx(o)
-                << " is inside the circle of triangle " << t;
+        if (incircleGmp(m.G[vtx(3 * t)], m.G[vtx(3 * t + 1)], m.G[vtx(3 * t + 2)], m.G[vtx(o)]) >
+            0) {
+            err << "edge " << vtx(nx(c)) << "-" << vtx(pv(c)) << " is not Delaunay: vertex "
+                << vtx(o) << " is inside the circle of triangle " << t;
             return err.str();
         }
     }

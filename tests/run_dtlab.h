@@ -2,9 +2,9 @@
 // (stdout and stderr together): the end-to-end checks of lesson check and diff-trace use it.
 #pragma once
 
+#include <sys/wait.h>
 #include <cstdio>
 #include <string>
-#include <sys/wait.h>
 
 namespace dlab::testutil {
 

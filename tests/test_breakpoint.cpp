@@ -1,7 +1,7 @@
 // Breakpoints: text round trips, every kind stops exactly where its definition says (checked
 // against the recorded ops and against mesh snapshots), budgets, and running back restores state.
-#include "core/teaching/breakpoint.h"
 #include "core/engine/generators.h"
+#include "core/teaching/breakpoint.h"
 
 #include <gtest/gtest.h>
 
@@ -91,12 +91,17 @@ TEST(Breakpoint, TextRoundTripsForEveryKind) {
 }
 
 TEST(Breakpoint, ParseErrorsSayWhy) {
-    struct Case { const char* text; const char* says; };
-    for (const Case& c : {Case{"flop", "unknown breakpoint \"flop\""}, Case{"", "unknown breakpoint"},
-                          Case{"op", "needs a number"}, Case{"corner", "needs a number"},
-                          Case{"flip:3", "takes no number"}, Case{"insert:-2", "cannot be negative"},
-                          Case{"op:12x", "not a whole number"}, Case{"op:", "not a whole number"},
-                          Case{"incircle:2", "1, 0 or -1"}, Case{"op:99999999999999999999", "not a whole number"}}) {
+    struct Case {
+        const char* text;
+        const char* says;
+    };
+    for (const Case& c :
+         {Case{"flop", "unknown breakpoint \"flop\""}, Case{"", "unknown breakpoint"},
+          Case{"op", "needs a number"}, Case{"corner", "needs a number"},
+          Case{"flip:3", "takes no number"}, Case{"insert:-2", "cannot be negative"},
+          Case{"op:12x", "not a whole number"}, Case{"op:", "not a whole number"},
+          Case{"incircle:2", "1, 0 or -1"},
+          Case{"op:99999999999999999999", "not a whole number"}}) {
         std::string error;
         EXPECT_FALSE(parseBreakpoint(c.text, &error)) << c.text;
         EXPECT_NE(error.find(c.says), std::string::npos) << c.text << " -> " << error;
@@ -130,10 +135,12 @@ TEST(Breakpoint, OpTypeKindsStopExactlyAtTheirOps) {
         EXPECT_FALSE(of(OpType::SplitEdge).empty());
         EXPECT_FALSE(of(OpType::SkipDuplicate).empty());
         // Sign-filtered in-circle tests partition the tests.
-        const auto pos = stopsForward(ins, j, bp("incircle:1")), zero = stopsForward(ins, j, bp("incircle:0")),
+        const auto pos = stopsForward(ins, j, bp("incircle:1")),
+                   zero = stopsForward(ins, j, bp("incircle:0")),
                    neg = stopsForward(ins, j, bp("incircle:-1"));
         EXPECT_EQ(pos.size() + zero.size() + neg.size(), of(OpType::InCircleTest).size());
-        for (std::size_t p : pos) EXPECT_EQ(j.ops()[p].type, OpType::Flip) << "a positive test is followed by its flip";
+        for (std::size_t p : pos)
+            EXPECT_EQ(j.ops()[p].type, OpType::Flip) << "a positive test is followed by its flip";
         EXPECT_EQ(pos.size(), of(OpType::Flip).size());
     }
 }
@@ -161,8 +168,8 @@ TEST(Breakpoint, DegenerateStopsOnEdgePointsDuplicatesAndCocircularTests) {
     }
     EXPECT_EQ(static_cast<std::int64_t>(onEdge), ins.stats().edgeSplits);
     EXPECT_EQ(static_cast<std::int64_t>(onVertex), ins.stats().duplicates);
-    EXPECT_EQ(onVertex, 1u);  // 11 duplicates 4
-    EXPECT_GE(onEdge, 1u);    // 2 lies on 0-1
+    EXPECT_EQ(onVertex, 1u);    // 11 duplicates 4
+    EXPECT_GE(onEdge, 1u);      // 2 lies on 0-1
     EXPECT_GE(cocircular, 1u);  // the square 12..15
 }
 
@@ -185,7 +192,9 @@ TEST(Breakpoint, InsertStopsJustBeforeTheVertexFirstOpAndInsertedWhenItAppears) 
             ASSERT_EQ(in.size(), 1u);
             const Op& last = j.ops()[in[0] - 1];
             const OpType t = last.type;
-            const auto inV = [&](std::size_t p) { return std::count(rec.at[p].V.begin(), rec.at[p].V.end(), v) > 0; };
+            const auto inV = [&](std::size_t p) {
+                return std::count(rec.at[p].V.begin(), rec.at[p].V.end(), v) > 0;
+            };
             if (t == OpType::Start) {
                 EXPECT_EQ(b, Boundary::Exact);
                 EXPECT_EQ(in[0], 1u);
@@ -250,9 +259,11 @@ TEST(Breakpoint, CornerStopsExactlyWhereItsCellsChange) {
     for (std::int32_t c = 0; c < maxCorner; ++c) {
         std::vector<std::size_t> expected;
         for (std::size_t p = 1; p < rec.at.size(); ++p) {
-            if (rec.at[p].v(c) != rec.at[p - 1].v(c) || rec.at[p].o(c) != rec.at[p - 1].o(c)) expected.push_back(p);
+            if (rec.at[p].v(c) != rec.at[p - 1].v(c) || rec.at[p].o(c) != rec.at[p - 1].o(c))
+                expected.push_back(p);
         }
-        EXPECT_EQ(stopsForward(ins, j, Breakpoint{BreakKind::Corner, c}), expected) << "corner " << c;
+        EXPECT_EQ(stopsForward(ins, j, Breakpoint{BreakKind::Corner, c}), expected)
+            << "corner " << c;
     }
 }
 
@@ -274,7 +285,8 @@ TEST(Breakpoint, RunningBackRestoresTheStateOfEachStop) {
             if (r.reason == StopReason::Start) break;
             ASSERT_EQ(r.reason, StopReason::Hit);
             ASSERT_EQ(j.current()->type, OpType::Flip);
-            EXPECT_TRUE((Cells{ins.mesh().V, ins.mesh().O} == rec.at[j.position()])) << j.position();
+            EXPECT_TRUE((Cells{ins.mesh().V, ins.mesh().O} == rec.at[j.position()]))
+                << j.position();
             ++stops;
         }
         Inserter batch(pts, opt);
@@ -341,7 +353,8 @@ TEST(Breakpoint, WholeInsertionsForwardAndBack) {
         if (r.reason == StopReason::End) break;
         ASSERT_EQ(r.reason, StopReason::Hit);
         const OpType t = j.current()->type;
-        EXPECT_TRUE(t == OpType::Start || t == OpType::Inserted || t == OpType::SkipDuplicate || t == OpType::Finalize);
+        EXPECT_TRUE(t == OpType::Start || t == OpType::Inserted || t == OpType::SkipDuplicate ||
+                    t == OpType::Finalize);
         // Every op of the insertion just stepped over belongs to one vertex.
         for (std::size_t p = boundaries.back() + 1; p + 1 < j.position(); ++p) {
             EXPECT_EQ(j.ops()[p].vertex, j.ops()[boundaries.back()].vertex);

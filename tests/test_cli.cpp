@@ -83,7 +83,8 @@ TEST(Cli, TriangulateWritesAValidDelaunayTriangulationForEveryLocator) {
     for (const char* loc : {"naive", "walk", "grid", "idbuffer-cpu"}) {
         SCOPED_TRACE(loc);
         const std::string base = (dir / (std::string("out_") + loc)).string();
-        const Result r = dtlab("triangulate " + in + " -o " + base + " --locate " + loc + " --order random");
+        const Result r =
+            dtlab("triangulate " + in + " -o " + base + " --locate " + loc + " --order random");
         ASSERT_EQ(r.status, 0) << r.out;
         const dlab::Mesh m = readTriangleOutput(base);
         EXPECT_GT(m.numTriangles(), 5000);
@@ -136,7 +137,8 @@ TEST(Cli, BenchJsonHasTheAdvertisedFields) {
     const Result r = dtlab("bench --input " + in + " --repeat 2 --json");
     ASSERT_EQ(r.status, 0) << r.out;
     const auto j = nlohmann::json::parse(r.out);
-    for (const char* key : {"median_ms", "n", "ns_per_point", "flips_per_point", "walk_steps_per_point"}) {
+    for (const char* key :
+         {"median_ms", "n", "ns_per_point", "flips_per_point", "walk_steps_per_point"}) {
         EXPECT_TRUE(j.contains(key)) << key;
     }
     EXPECT_EQ(j.at("n").get<int>(), 2000);
@@ -155,7 +157,11 @@ TEST(Cli, BadInputGivesOneLineNamingTheFileAndLine) {
         {"short.node", "3 2 0 0\n0 0 0\n1 1 0\n", "short.node"},
         {"absurd.node", "999999999999 2 0 0\n0 0 0\n", "absurd.node:1"},
         {"empty.csv", "", "empty.csv"},
-        {"binary.xy", std::string("\x7f" "ELF\0\0\x01\x02\x03", 9), "binary.xy"},
+        {"binary.xy",
+         std::string("\x7f"
+                     "ELF\0\0\x01\x02\x03",
+                     9),
+         "binary.xy"},
     };
     for (const Case& c : cases) {
         SCOPED_TRACE(c.name);
@@ -166,7 +172,8 @@ TEST(Cli, BadInputGivesOneLineNamingTheFileAndLine) {
         EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '\n'), 1) << r.out;
         EXPECT_NE(r.out.find("dtlab: error: "), std::string::npos) << r.out;
     }
-    const Result missing = dtlab("triangulate " + (dir / "nope.node").string() + " -o " + (dir / "x").string());
+    const Result missing =
+        dtlab("triangulate " + (dir / "nope.node").string() + " -o " + (dir / "x").string());
     EXPECT_NE(missing.status, 0);
     EXPECT_NE(missing.out.find("nope.node"), std::string::npos) << missing.out;
     EXPECT_FALSE(fs::exists(dir / "never.ele"));

@@ -1,9 +1,9 @@
 // Corner expressions: both notations agree with core/engine/mesh.h's operators, paths are recorded,
 // every kind of error is precise, watches find the first broken corner, and random strings or a
 // corrupted mesh never crash the parser or the evaluator.
-#include "core/teaching/corner_expr.h"
 #include "core/engine/generators.h"
 #include "core/engine/inserter.h"
+#include "core/teaching/corner_expr.h"
 
 #include <gtest/gtest.h>
 
@@ -73,7 +73,9 @@ TEST(CornerExpr, BothNotationsAgreeWithTheMeshOperators) {
             ASSERT_TRUE(b.ok());
             EXPECT_EQ(a.value->i, apply(m, op, c)) << op << "(" << c << ")";
             EXPECT_EQ(b.value->i, a.value->i);
-            EXPECT_EQ(a.value->kind, op == 't' ? ValueKind::Triangle : op == 'v' ? ValueKind::Vertex : ValueKind::Corner);
+            EXPECT_EQ(a.value->kind, op == 't'   ? ValueKind::Triangle
+                                     : op == 'v' ? ValueKind::Vertex
+                                                 : ValueKind::Corner);
             ASSERT_EQ(a.path.size(), 1u);
             EXPECT_EQ(a.path[0].op, op);
             EXPECT_EQ(a.path[0].from, c);
@@ -95,7 +97,8 @@ TEST(CornerExpr, NestedAndChainedFormsGiveTheSameValueAndPath) {
     const Mesh m = finishedMesh(generatePoints(Generator::Uniform, 60, 4));
     std::int32_t interior = kNone;
     for (std::int32_t c = 0; c < m.numCorners() && interior == kNone; ++c) {
-        if (m.O[next(c)] != kNone && m.O[prev(m.O[next(c)])] != kNone && m.O[prev(c)] != kNone) interior = c;
+        if (m.O[next(c)] != kNone && m.O[prev(m.O[next(c)])] != kNone && m.O[prev(c)] != kNone)
+            interior = c;
     }
     ASSERT_NE(interior, kNone);
     const std::string k = std::to_string(interior);
@@ -105,8 +108,8 @@ TEST(CornerExpr, NestedAndChainedFormsGiveTheSameValueAndPath) {
         if (x == kNone || m.O[prev(x)] == kNone) continue;
         const std::int32_t expect = m.r(m.o(m.n(c)));
         const std::string s = std::to_string(c);
-        const ExprResult a = parse("r(o(n(" + s + ")))").evaluate(m), b = parse(s + ".n.o.r").evaluate(m),
-                         d = parse("c.n.o.r").evaluateAt(m, c);
+        const ExprResult a = parse("r(o(n(" + s + ")))").evaluate(m),
+                         b = parse(s + ".n.o.r").evaluate(m), d = parse("c.n.o.r").evaluateAt(m, c);
         ASSERT_TRUE(a.ok() && b.ok() && d.ok());
         EXPECT_EQ(a.value->i, expect);
         EXPECT_EQ(b.value->i, expect);
@@ -150,7 +153,8 @@ TEST(CornerExpr, ComparisonsAndIdentities) {
     EXPECT_TRUE(s.value->truth);
     EXPECT_EQ(s.path.back().side, 1);
     EXPECT_FALSE(parse("c.n != n(c)").evaluateAt(m, 4).value->truth);
-    EXPECT_TRUE(parse("o(c) == -1").evaluateAt(m, next(inner)).value->truth) << "the hull corners face nothing";
+    EXPECT_TRUE(parse("o(c) == -1").evaluateAt(m, next(inner)).value->truth)
+        << "the hull corners face nothing";
     EXPECT_TRUE(parse("G[V[c]] == G[V[c.n.p]]").evaluateAt(m, 2).value->truth);
     EXPECT_TRUE(parse("t(c) == 1").evaluateAt(m, 4).value->truth);
     // A bare integer keeps its number kind and prints as such.
@@ -188,11 +192,13 @@ TEST(CornerExpr, BoundaryRangeAndTypeErrorsArePrecise) {
     e = evalError(m, "x.n");
     EXPECT_EQ(e.kind, ExprError::Kind::Range);
     EXPECT_NE(e.message.find("unknown name 'x'"), std::string::npos);
-    EXPECT_NE(parse("c").evaluate(m).error.message.find("no corner is selected"), std::string::npos);
+    EXPECT_NE(parse("c").evaluate(m).error.message.find("no corner is selected"),
+              std::string::npos);
 
     e = evalError(m, "V[c].n");
     EXPECT_EQ(e.kind, ExprError::Kind::Type);
-    EXPECT_NE(e.message.find("n needs a corner, but V[c] is a vertex"), std::string::npos) << e.message;
+    EXPECT_NE(e.message.find("n needs a corner, but V[c] is a vertex"), std::string::npos)
+        << e.message;
     e = evalError(m, "G[c]", 1);
     EXPECT_NE(e.message.find("use G[V[c]]"), std::string::npos) << e.message;
     e = evalError(m, "c == V[c]");
@@ -224,12 +230,15 @@ TEST(CornerExpr, SyntaxErrorsNameTheColumn) {
     EXPECT_NE(syntaxError("7)").message.find("unmatched ')'"), std::string::npos);
     EXPECT_NE(syntaxError("7.5").message.find("whole numbers"), std::string::npos);
     EXPECT_NE(syntaxError("7n").message.find("cannot run into"), std::string::npos);
-    EXPECT_NE(syntaxError("n(7 == 7)").message.find("comparison cannot be the argument"), std::string::npos);
+    EXPECT_NE(syntaxError("n(7 == 7)").message.find("comparison cannot be the argument"),
+              std::string::npos);
     EXPECT_NE(syntaxError("99999999999").message.find("too large"), std::string::npos);
     EXPECT_NE(syntaxError("7 ==").message.find("nothing to compare"), std::string::npos);
     EXPECT_NE(syntaxError("c.n\x01").message.find("control"), std::string::npos);
     EXPECT_NE(syntaxError("c.n \xc3\xa9").message.find("ASCII"), std::string::npos);
-    EXPECT_NE(syntaxError(std::string(200, '(') + "7" + std::string(200, ')')).message.find("nested"), std::string::npos);
+    EXPECT_NE(
+        syntaxError(std::string(200, '(') + "7" + std::string(200, ')')).message.find("nested"),
+        std::string::npos);
     EXPECT_NE(syntaxError(std::string(2000, ' ')).message.find("too long"), std::string::npos);
     // The longest chains that fit evaluate fine (no deep recursion trouble).
     std::string chain = "c";
@@ -249,7 +258,8 @@ TEST(CornerExpr, StandardWatchesHoldOnEveryMeshTheInserterMakes) {
         const ExprContext ctx{ins.firstVirtual(), b == Boundary::Exact};
         std::size_t k = 0;
         while (j.forward()) {
-            if (++k % 37 != 0 && !ins.done()) continue;  // mid-run meshes, ghosts included, and the end
+            if (++k % 37 != 0 && !ins.done())
+                continue;  // mid-run meshes, ghosts included, and the end
             for (const char* w : standardWatches()) {
                 const WatchReport r = checkWatch(parse(w), ins.mesh(), ctx);
                 ASSERT_TRUE(r.ok) << w << " after op " << j.position() << ": " << r.message;
@@ -275,7 +285,8 @@ TEST(CornerExpr, WatchReportsTheFirstBrokenCorner) {
     const WatchReport r = checkWatch(parse("o(o(c)) == c"), m);
     EXPECT_FALSE(r.ok);
     EXPECT_LE(r.corner, std::min(a, next(b)));
-    EXPECT_NE(r.message.find("fails at c = " + std::to_string(r.corner)), std::string::npos) << r.message;
+    EXPECT_NE(r.message.find("fails at c = " + std::to_string(r.corner)), std::string::npos)
+        << r.message;
     EXPECT_TRUE(r.failure.ok());
     EXPECT_FALSE(r.failure.value->truth);
     EXPECT_FALSE(r.failure.path.empty());
@@ -288,7 +299,9 @@ TEST(CornerExpr, WatchReportsTheFirstBrokenCorner) {
     m.O[a] = 100000;
     const WatchReport bad = checkWatchAt(parse("o(o(c)) == c"), m, a);
     EXPECT_FALSE(bad.ok);
-    EXPECT_NE(bad.message.find("O[" + std::to_string(a) + "] = 100000 is out of range"), std::string::npos) << bad.message;
+    EXPECT_NE(bad.message.find("O[" + std::to_string(a) + "] = 100000 is out of range"),
+              std::string::npos)
+        << bad.message;
     // Not a comparison: refused with a hint.
     EXPECT_NE(checkWatch(parse("c.n"), m).message.find("must be a comparison"), std::string::npos);
 }
@@ -309,10 +322,14 @@ TEST(CornerExpr, RandomStringsNeverCrash) {
     std::mt19937_64 rng(12345);
     for (std::int32_t& o : corrupt.O) {
         const int pick = static_cast<int>(rng() % 6);
-        if (pick == 0) o = INT_MIN;
-        else if (pick == 1) o = INT_MAX;
-        else if (pick == 2) o = -7;
-        else if (pick == 3) o = static_cast<std::int32_t>(rng() % 1000);
+        if (pick == 0)
+            o = INT_MIN;
+        else if (pick == 1)
+            o = INT_MAX;
+        else if (pick == 2)
+            o = -7;
+        else if (pick == 3)
+            o = static_cast<std::int32_t>(rng() % 1000);
     }
     for (std::int32_t& v : corrupt.V) {
         if (rng() % 4 == 0) v = static_cast<std::int32_t>(rng() % 200) - 100;
@@ -334,7 +351,8 @@ TEST(CornerExpr, RandomStringsNeverCrash) {
             continue;
         }
         ++parsed;
-        for (const Mesh* mesh : {static_cast<const Mesh*>(&m), static_cast<const Mesh*>(&corrupt)}) {
+        for (const Mesh* mesh :
+             {static_cast<const Mesh*>(&m), static_cast<const Mesh*>(&corrupt)}) {
             const std::int32_t c = static_cast<std::int32_t>(rng() % 120) - 10;
             const ExprResult r = x->evaluateAt(*mesh, c);
             if (r.ok()) {

@@ -1,7 +1,7 @@
 // Input limits and the bugs that fuzzing found in the readers, each pinned by a test named after
 // it (the inputs themselves are replayed from tests/fuzz/corpus/ by the FuzzReplay.* tests).
-#include "core/teaching/corner_expr.h"
 #include "core/engine/io_read.h"
+#include "core/teaching/corner_expr.h"
 #include "core/teaching/lesson.h"
 #include "core/teaching/trace.h"
 

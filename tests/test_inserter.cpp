@@ -25,15 +25,15 @@ struct Snapshot {
     std::vector<std::int32_t> V, O;
     bool operator==(const Snapshot& s) const {
         return V == s.V && O == s.O && G.size() == s.G.size() &&
-               std::equal(G.begin(), G.end(), s.G.begin(), [](Vec2 a, Vec2 b) {
-                   return std::memcmp(&a, &b, sizeof a) == 0;
-               });
+               std::equal(G.begin(), G.end(), s.G.begin(),
+                          [](Vec2 a, Vec2 b) { return std::memcmp(&a, &b, sizeof a) == 0; });
     }
 };
 Snapshot snap(const Mesh& m) { return {m.G, m.V, m.O}; }
 
 // Triangulates in batch and checks everything the exact mode promises.
-void expectExactDelaunay(const std::vector<Vec2>& pts, const InsertOptions& opt, const std::string& label) {
+void expectExactDelaunay(const std::vector<Vec2>& pts, const InsertOptions& opt,
+                         const std::string& label) {
     SCOPED_TRACE(label);
     Inserter ins(pts, opt);
     ins.run();
@@ -57,9 +57,10 @@ void expectExactDelaunay(const std::vector<Vec2>& pts, const InsertOptions& opt,
 
 std::vector<std::pair<std::string, std::vector<Vec2>>> degenerateSets() {
     std::vector<std::pair<std::string, std::vector<Vec2>>> sets;
-    for (Generator g : {Generator::Uniform, Generator::Clusters, Generator::Grid, Generator::RotatedGrid,
-                        Generator::Ngon, Generator::Circle, Generator::Collinear, Generator::NearDuplicates,
-                        Generator::HugeTinyBox, Generator::AllCollinear}) {
+    for (Generator g :
+         {Generator::Uniform, Generator::Clusters, Generator::Grid, Generator::RotatedGrid,
+          Generator::Ngon, Generator::Circle, Generator::Collinear, Generator::NearDuplicates,
+          Generator::HugeTinyBox, Generator::AllCollinear}) {
         sets.emplace_back(toString(g), generatePoints(g, 300, 7));
     }
     sets.emplace_back("demo", demoPoints());
@@ -68,17 +69,24 @@ std::vector<std::pair<std::string, std::vector<Vec2>>> degenerateSets() {
     sets.emplace_back("two", std::vector<Vec2>{{1, 2}, {3, 4}});
     sets.emplace_back("same-point", std::vector<Vec2>(20, Vec2{5, 5}));
     sets.emplace_back("triangle", std::vector<Vec2>{{0, 0}, {1, 0}, {0, 1}});
-    sets.emplace_back("collinear-then-off", std::vector<Vec2>{{0, 0}, {1, 1}, {2, 2}, {3, 3}, {0, 0}, {5, 0}});
+    sets.emplace_back("collinear-then-off",
+                      std::vector<Vec2>{{0, 0}, {1, 1}, {2, 2}, {3, 3}, {0, 0}, {5, 0}});
     // Rescaled fixtures: the same grid from 1e-9 to 1e9 and at the extremes of double.
     for (double scale : {1e-300, 1e-200, 1e-9, 1.0, 1e9, 1e200, 1e300}) {
         auto g = generatePoints(Generator::Grid, 100, 1);
-        for (Vec2& p : g) { p.x *= scale; p.y *= scale; }
+        for (Vec2& p : g) {
+            p.x *= scale;
+            p.y *= scale;
+        }
         std::ostringstream name;
         name << "grid*" << scale;
         sets.emplace_back(name.str(), g);
     }
     auto offset = generatePoints(Generator::Uniform, 200, 3);
-    for (Vec2& p : offset) { p.x = 1e9 + p.x * 1e-6; p.y = 1e9 + p.y * 1e-6; }
+    for (Vec2& p : offset) {
+        p.x = 1e9 + p.x * 1e-6;
+        p.y = 1e9 + p.y * 1e-6;
+    }
     sets.emplace_back("offset-1e9", offset);
     return sets;
 }
@@ -87,7 +95,8 @@ std::vector<std::pair<std::string, std::vector<Vec2>>> degenerateSets() {
 
 TEST(Inserter, ExactModeIsDelaunayOnDegenerateSetsForEveryLocatorAndOrder) {
     for (const auto& [name, pts] : degenerateSets()) {
-        for (LocatorKind loc : {LocatorKind::Naive, LocatorKind::Walk, LocatorKind::Grid, LocatorKind::IdBufferCpu}) {
+        for (LocatorKind loc :
+             {LocatorKind::Naive, LocatorKind::Walk, LocatorKind::Grid, LocatorKind::IdBufferCpu}) {
             for (OrderKind order : {OrderKind::Input, OrderKind::Random, OrderKind::Brio}) {
                 InsertOptions opt;
                 opt.locator = loc;
@@ -152,7 +161,8 @@ TEST(Inserter, SuperModeFlawNearTheHullIsDocumented) {
     EXPECT_EQ(e.mesh().numTriangles(), 3);
     EXPECT_EQ(checkDelaunayExact(e.mesh()), "");
     EXPECT_EQ(s.mesh().numTriangles(), 2);
-    EXPECT_NE(checkDelaunayExact(s.mesh()).find("not convex"), std::string::npos) << checkDelaunayExact(s.mesh());
+    EXPECT_NE(checkDelaunayExact(s.mesh()).find("not convex"), std::string::npos)
+        << checkDelaunayExact(s.mesh());
     EXPECT_TRUE(validate(s.mesh()).empty());  // still a valid, locally Delaunay corner table
 }
 
@@ -190,7 +200,8 @@ TEST(Journal, RunFinishesAStepByStepRunFromAnyPointAsABatchWould) {
     for (const auto& [name, pts] : degenerateSets()) {
         for (Boundary b : {Boundary::Exact, Boundary::Super}) {
             for (OrderKind order : {OrderKind::Random, OrderKind::Input, OrderKind::Brio}) {
-                SCOPED_TRACE(name + "/" + toString(b) + "/" + std::to_string(static_cast<int>(order)));
+                SCOPED_TRACE(name + "/" + toString(b) + "/" +
+                             std::to_string(static_cast<int>(order)));
                 InsertOptions opt;
                 opt.boundary = b;
                 opt.order = order;
@@ -199,13 +210,15 @@ TEST(Journal, RunFinishesAStepByStepRunFromAnyPointAsABatchWould) {
                 Inserter probe(pts, opt);
                 Journal all(probe);
                 while (all.forward()) {}
-                for (const std::size_t stop : {std::size_t{1}, all.recorded() / 3, all.recorded() / 2 + 1, all.recorded() - 1}) {
+                for (const std::size_t stop : {std::size_t{1}, all.recorded() / 3,
+                                               all.recorded() / 2 + 1, all.recorded() - 1}) {
                     Inserter stepped(pts, opt);
                     Journal journal(stepped);
                     journal.seek(stop);
                     stepped.run();
                     ASSERT_TRUE(stepped.done()) << "stopped at " << stop;
-                    EXPECT_TRUE(snap(batch.mesh()) == snap(stepped.mesh())) << "stopped at " << stop;
+                    EXPECT_TRUE(snap(batch.mesh()) == snap(stepped.mesh()))
+                        << "stopped at " << stop;
                     EXPECT_EQ(batch.stats().inserted, stepped.stats().inserted);
                     EXPECT_EQ(batch.stats().duplicates, stepped.stats().duplicates);
                     EXPECT_EQ(batch.stats().flips, stepped.stats().flips);
@@ -293,21 +306,28 @@ TEST(Journal, EveryOpRecordsTheCellsItChanged) {
         const Snapshot after = snap(ins.mesh());
         // Apply the recorded changes to the old state: must give the new state exactly.
         Snapshot rebuilt = before;
-        const std::size_t n = 3 * static_cast<std::size_t>(std::max(op->trianglesBefore, op->trianglesAfter));
+        const std::size_t n =
+            3 * static_cast<std::size_t>(std::max(op->trianglesBefore, op->trianglesAfter));
         rebuilt.V.resize(n, kNone);
         rebuilt.O.resize(n, kNone);
         for (std::uint32_t i = 0; i < op->numChanges; ++i) {
             const CellChange& c = journal.changes()[op->firstChange + i];
             auto& table = c.isO() ? rebuilt.O : rebuilt.V;
-            if (c.corner() < op->trianglesBefore * 3) { ASSERT_EQ(table[c.corner()], c.before); }
+            if (c.corner() < op->trianglesBefore * 3) {
+                ASSERT_EQ(table[c.corner()], c.before);
+            }
             table[c.corner()] = c.after;
         }
         rebuilt.V.resize(3 * op->trianglesAfter);
         rebuilt.O.resize(3 * op->trianglesAfter);
         rebuilt.G = after.G;
         ASSERT_TRUE(rebuilt == after) << toString(op->type) << " at " << journal.position();
-        if (op->type == OpType::Flip) { EXPECT_LE(op->numChanges, 8u); }  // 6 corners + 2 back-pointers
-        if (op->type == OpType::Split) { EXPECT_EQ(op->trianglesAfter, op->trianglesBefore + 2); }
+        if (op->type == OpType::Flip) {
+            EXPECT_LE(op->numChanges, 8u);
+        }  // 6 corners + 2 back-pointers
+        if (op->type == OpType::Split) {
+            EXPECT_EQ(op->trianglesAfter, op->trianglesBefore + 2);
+        }
         before = after;
     }
     EXPECT_GT(seen[OpType::Flip], 0);
@@ -347,7 +367,8 @@ TEST(Trace, RoundTripsThroughJsonLines) {
     std::istringstream in(text);
     const auto back = readTrace(in, "mem.jsonl");
     ASSERT_EQ(back.size(), records.size());
-    for (std::size_t i = 0; i < back.size(); ++i) ASSERT_TRUE(back[i] == records[i]) << "record " << i;
+    for (std::size_t i = 0; i < back.size(); ++i)
+        ASSERT_TRUE(back[i] == records[i]) << "record " << i;
     std::istringstream bad("{\"i\":0,\"op\":\"Teleport\"}\n");
     try {
         readTrace(bad, "bad.jsonl");

@@ -9,12 +9,12 @@
 
 #include <gtest/gtest.h>
 
+#include <unistd.h>
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <unistd.h>
 
 using namespace dlab;
 namespace fs = std::filesystem;
@@ -105,10 +105,12 @@ TEST_P(EveryLesson, RunsToItsEndWithEveryAnswerComputed) {
     for (std::size_t k = 0; k < plan.stops.size(); ++k) {
         EXPECT_GE(plan.stops[k].position, previous) << "stop " << k + 1;
         previous = plan.stops[k].position;
-        EXPECT_EQ(plan.stops[k].answer.has_value(), !lesson.stops[k].question.empty()) << "stop " << k + 1;
+        EXPECT_EQ(plan.stops[k].answer.has_value(), !lesson.stops[k].question.empty())
+            << "stop " << k + 1;
         if (plan.stops[k].answer) {
             // The student who types the engine's answer is right.
-            EXPECT_TRUE(acceptsAnswer(*plan.stops[k].answer, plan.stops[k].answer->display())) << "stop " << k + 1;
+            EXPECT_TRUE(acceptsAnswer(*plan.stops[k].answer, plan.stops[k].answer->display()))
+                << "stop " << k + 1;
         }
     }
     EXPECT_LE(previous, plan.totalOps);
@@ -129,7 +131,8 @@ TEST(Lessons, TheNineLessonsOfIssue6AreThere) {
     std::size_t withQuestions = 0;
     for (const std::string& f : files) {
         const Lesson l = loadLesson(f);
-        withQuestions += std::any_of(l.stops.begin(), l.stops.end(), [](const LessonStop& s) { return !s.question.empty(); });
+        withQuestions += std::any_of(l.stops.begin(), l.stops.end(),
+                                     [](const LessonStop& s) { return !s.question.empty(); });
     }
     EXPECT_GE(withQuestions, 9u);
 }
@@ -139,9 +142,14 @@ TEST(Lessons, DtlabLessonCheckPassesOnTheLessonsAndFailsOnABrokenOne) {
     for (const std::string& f : lessonFiles()) all += " " + f;
     const Result ok = dtlab("lesson check" + all);
     EXPECT_EQ(ok.status, 0) << ok.out;
-    EXPECT_EQ(static_cast<std::size_t>(std::count(ok.out.begin(), ok.out.end(), '\n')), lessonFiles().size()) << ok.out;
-    const std::string bad = write(scratchDir() / "lessons" / "bad.toml",
-                                  kHead + "[[stop]]\nrun_to = \"flip\"\ntext = \"a\"\n\n[[stop]]\nrun_to = \"inserted:99\"\ntext = \"b\"\n");
+    EXPECT_EQ(static_cast<std::size_t>(std::count(ok.out.begin(), ok.out.end(), '\n')),
+              lessonFiles().size())
+        << ok.out;
+    const std::string bad =
+        write(scratchDir() / "lessons" / "bad.toml",
+              kHead +
+                  "[[stop]]\nrun_to = \"flip\"\ntext = \"a\"\n\n[[stop]]\nrun_to = "
+                  "\"inserted:99\"\ntext = \"b\"\n");
     const Result r = dtlab("lesson check " + lessonFiles().front() + " " + bad);
     EXPECT_EQ(r.status, 1);
     EXPECT_NE(r.out.find(bad + ":7: stop 2: run_to \"inserted:99\""), std::string::npos) << r.out;
@@ -151,7 +159,7 @@ TEST(Lessons, DtlabLessonCheckPassesOnTheLessonsAndFailsOnABrokenOne) {
     EXPECT_NE(show.out.find("## stop 1"), std::string::npos);
 }
 
-// ---- Loading errors name file, line and stop ------------------------------------------------------
+// ---- Loading errors name file, line and stop ----------------------------------------------------
 
 TEST(LessonErrors, BadTomlNamesTheLine) {
     const LessonError e = errorOf("title = \"t\"\n\npoints = [[0, 0]\n");
@@ -175,23 +183,30 @@ TEST(LessonErrors, StructureAndNames) {
         {kHead + "[options]\nseed = -1\n" + stop, 4, 0, "\"seed\" must be between"},
         {kHead + "[options]\nlocator = \"gpu\"\n" + stop, 4, 0, "locator must be"},
         {"title = \"t\"\npoints = [[0, 0], [1, 2, 3]]\n" + stop, 2, 0, "point 1 must be [x, y]"},
-        {"title = \"t\"\npoints = [[0, 0], [\"a\", 2]]\n" + stop, 2, 0, "coordinates must be numbers"},
+        {"title = \"t\"\npoints = [[0, 0], [\"a\", 2]]\n" + stop, 2, 0,
+         "coordinates must be numbers"},
         {"title = \"t\"\npoints = [[0, 0], [nan, 2]]\n" + stop, 2, 0, "must be finite"},
         {kHead + "points_file = \"p.csv\"\n" + stop, 2, 0, "either \"points\" or \"points_file\""},
-        {kHead + stop + "[[stop]]\ntext = \"y\"\npanels = [\"canvas\", \"tables\"]\n", 7, 2, "unknown panel \"tables\""},
-        {kHead + stop + "[[stop]]\ntext = \"y\"\noverlays = [\"sparkles\"]\n", 7, 2, "unknown overlay \"sparkles\""},
-        {kHead + "[[stop]]\nrun_to = \"flop\"\ntext = \"y\"\n", 4, 1, "unknown breakpoint \"flop\""},
-        {kHead + "[[stop]]\nrun_to = \"op:3\"\ncount = 2\ntext = \"y\"\n", 5, 1, "\"count\" makes no sense"},
+        {kHead + stop + "[[stop]]\ntext = \"y\"\npanels = [\"canvas\", \"tables\"]\n", 7, 2,
+         "unknown panel \"tables\""},
+        {kHead + stop + "[[stop]]\ntext = \"y\"\noverlays = [\"sparkles\"]\n", 7, 2,
+         "unknown overlay \"sparkles\""},
+        {kHead + "[[stop]]\nrun_to = \"flop\"\ntext = \"y\"\n", 4, 1,
+         "unknown breakpoint \"flop\""},
+        {kHead + "[[stop]]\nrun_to = \"op:3\"\ncount = 2\ntext = \"y\"\n", 5, 1,
+         "\"count\" makes no sense"},
         {kHead + "[[stop]]\ncount = 2\ntext = \"y\"\n", 4, 1, "\"count\" needs a \"run_to\""},
         {kHead + "[[stop]]\nrun_to = \"flip\"\n", 3, 1, "needs a \"text\" or a \"question\""},
         {kHead + "[[stop]]\nquestion = \"How many?\"\n", 3, 1, "has no \"answer\""},
         {kHead + "[[stop]]\ntext = \"y\"\nanswer = \"triangles\"\n", 5, 1, "needs a \"question\""},
         {kHead + "[[stop]]\nquestion = \"q\"\nanswer = \"V[[c]\"\n", 5, 1, "neither a quantity"},
-        {kHead + "[[stop]]\nquestion = \"q\"\nanswer = \"triangels\"\n", 5, 1, "neither a quantity (triangles,"},
+        {kHead + "[[stop]]\nquestion = \"q\"\nanswer = \"triangels\"\n", 5, 1,
+         "neither a quantity (triangles,"},
         {kHead + "[[stop]]\nquestion = \"q\"\nanswer = \"x.n\"\n", 5, 1, "unknown name 'x'"},
         {kHead + "[[stop]]\ntext = \"y\"\nselect = \"d.o\"\n", 5, 1, "unknown name 'd'"},
         {kHead + "[[stop]]\ntext = \"y\"\nselect = \"c.q\"\n", 5, 1, "unknown operator 'q'"},
-        {kHead + "[[stop]]\ntext = \"\"\"\nfine\n**not closed\n\"\"\"\n", 4, 1, "line 2 of the text: unclosed **"},
+        {kHead + "[[stop]]\ntext = \"\"\"\nfine\n**not closed\n\"\"\"\n", 4, 1,
+         "line 2 of the text: unclosed **"},
         {kHead + "[[stop]]\ntext = \"a `b\"\n", 4, 1, "unclosed `"},
         {kHead + "kind = \"quiz\"\n" + stop, 3, 0, "kind must be"},
         {kHead + "stop = 3\n", 3, 0, "[[stop]] tables"},
@@ -200,7 +215,8 @@ TEST(LessonErrors, StructureAndNames) {
         const LessonError e = errorOf(c.text);
         EXPECT_EQ(e.line(), c.line) << e.what();
         EXPECT_EQ(e.stop(), c.stop) << e.what();
-        EXPECT_NE(e.message().find(c.says), std::string::npos) << e.what() << "\n  wanted: " << c.says;
+        EXPECT_NE(e.message().find(c.says), std::string::npos)
+            << e.what() << "\n  wanted: " << c.says;
     }
 }
 
@@ -211,40 +227,52 @@ TEST(LessonErrors, StopsThatCannotBeReachedOrAnswered) {
         const char* says;
     };
     const Case cases[] = {
-        {kHead + "[[stop]]\nrun_to = \"inserted:99\"\ntext = \"y\"\n", 3, 1, "\"inserted:99\" (vertex 99 is in) is not reached"},
-        {kHead + "[[stop]]\nrun_to = \"flip\"\ncount = 50\ntext = \"y\"\n", 3, 1, "not reached 50 times (only"},
-        {kHead + "[[stop]]\nrun_to = \"op:9\"\ntext = \"y\"\n[[stop]]\nrun_to = \"op:4\"\ntext = \"z\"\n", 6, 2,
-         "op:4 is before the previous stop (op 9)"},
-        {kHead + "[[stop]]\nrun_to = \"op:100000\"\ntext = \"y\"\n", 3, 1, "past the end of the run"},
-        {kHead + "[[stop]]\nrun_to = \"end\"\nselect = \"99\"\ntext = \"y\"\n", 3, 1, "not a corner of the mesh (0..11)"},
-        {kHead + "[[stop]]\nrun_to = \"end\"\nselect = \"V[0]\"\ntext = \"y\"\n", 3, 1, "not a corner"},
-        {kHead + "[[stop]]\nrun_to = \"end\"\nquestion = \"q\"\nanswer = \"O[c]\"\n", 6, 1, "no corner is selected"},
+        {kHead + "[[stop]]\nrun_to = \"inserted:99\"\ntext = \"y\"\n", 3, 1,
+         "\"inserted:99\" (vertex 99 is in) is not reached"},
+        {kHead + "[[stop]]\nrun_to = \"flip\"\ncount = 50\ntext = \"y\"\n", 3, 1,
+         "not reached 50 times (only"},
+        {kHead + "[[stop]]\nrun_to = \"op:9\"\ntext = \"y\"\n[[stop]]\nrun_to = \"op:4\"\ntext = "
+                 "\"z\"\n",
+         6, 2, "op:4 is before the previous stop (op 9)"},
+        {kHead + "[[stop]]\nrun_to = \"op:100000\"\ntext = \"y\"\n", 3, 1,
+         "past the end of the run"},
+        {kHead + "[[stop]]\nrun_to = \"end\"\nselect = \"99\"\ntext = \"y\"\n", 3, 1,
+         "not a corner of the mesh (0..11)"},
+        {kHead + "[[stop]]\nrun_to = \"end\"\nselect = \"V[0]\"\ntext = \"y\"\n", 3, 1,
+         "not a corner"},
+        {kHead + "[[stop]]\nrun_to = \"end\"\nquestion = \"q\"\nanswer = \"O[c]\"\n", 6, 1,
+         "no corner is selected"},
         {kHead + "[[stop]]\nrun_to = \"op:1\"\nquestion = \"q\"\nanswer = \"flipped_edge\"\n", 6, 1,
          "flipped_edge is not available here: no flip yet"},
-        {kHead + "[[stop]]\nrun_to = \"end\"\nquestion = \"q\"\nanswer = \"next_op\"\n", 6, 1, "the run is finished"},
-        {kHead + "[[stop]]\nrun_to = \"end\"\nquestion = \"q\"\nanswer = \"pixel\"\n", 6, 1, "needs locator = \"idbuffer-cpu\""},
+        {kHead + "[[stop]]\nrun_to = \"end\"\nquestion = \"q\"\nanswer = \"next_op\"\n", 6, 1,
+         "the run is finished"},
+        {kHead + "[[stop]]\nrun_to = \"end\"\nquestion = \"q\"\nanswer = \"pixel\"\n", 6, 1,
+         "needs locator = \"idbuffer-cpu\""},
     };
     for (const Case& c : cases) {
         const LessonError e = errorOf(c.text);
         EXPECT_EQ(e.line(), c.line) << e.what();
         EXPECT_EQ(e.stop(), c.stop) << e.what();
-        EXPECT_NE(e.message().find(c.says), std::string::npos) << e.what() << "\n  wanted: " << c.says;
+        EXPECT_NE(e.message().find(c.says), std::string::npos)
+            << e.what() << "\n  wanted: " << c.says;
     }
     // An unbuildable run (super mode cannot enclose these coordinates) is an error, not a crash.
     const LessonError huge = errorOf(
-        "title = \"t\"\npoints = [[-1.7e308, 0], [1.7e308, 0], [0, 1.7e308]]\n[options]\nboundary = \"super\"\n"
+        "title = \"t\"\npoints = [[-1.7e308, 0], [1.7e308, 0], [0, 1.7e308]]\n[options]\nboundary "
+        "= \"super\"\n"
         "[[stop]]\ntext = \"y\"\n");
     EXPECT_NE(huge.message().find("cannot start the run"), std::string::npos) << huge.what();
 }
 
-// ---- Points files stay inside the lesson's folder --------------------------------------------------
+// ---- Points files stay inside the lesson's folder -----------------------------------------------
 
 TEST(LessonPointsFile, ReadsAFileBesideTheLessonAndRefusesEscapes) {
     const fs::path root = scratchDir() / "pf";
     fs::create_directories(root / "lessons" / "sets");
     write(root / "lessons" / "sets" / "four.csv", "x,y\n0,0\n6,0\n5,4\n1,3\n");
     write(root / "secret.csv", "0,0\n1,0\n0,1\n");
-    const std::string stop = "[[stop]]\nrun_to = \"end\"\nquestion = \"q\"\nanswer = \"triangles\"\n";
+    const std::string stop =
+        "[[stop]]\nrun_to = \"end\"\nquestion = \"q\"\nanswer = \"triangles\"\n";
     const fs::path lessonPath = root / "lessons" / "l.toml";
     auto load = [&](const std::string& file) {
         write(lessonPath, "title = \"t\"\npoints_file = \"" + file + "\"\n" + stop);
@@ -293,7 +321,7 @@ TEST(LessonPointsFile, ReadsAFileBesideTheLessonAndRefusesEscapes) {
     }
 }
 
-// ---- Answers ---------------------------------------------------------------------------------------
+// ---- Answers ------------------------------------------------------------------------------------
 
 TEST(LessonAnswers, QuantitiesFollowTheRecordedOps) {
     InsertOptions opt;
@@ -327,7 +355,8 @@ TEST(LessonAnswers, QuantitiesFollowTheRecordedOps) {
     const Answer made = answer(r, "new_edge");
     const Op& flip = *j.current();
     const std::int32_t P = r.ins->mesh().V[flip.a], D = r.ins->mesh().V[flip.b];
-    EXPECT_EQ(made.display(), std::to_string(std::min(P, D)) + "-" + std::to_string(std::max(P, D)));
+    EXPECT_EQ(made.display(),
+              std::to_string(std::min(P, D)) + "-" + std::to_string(std::max(P, D)));
     EXPECT_EQ(answer(r, "flips").a, 1);
     EXPECT_EQ(answer(r, "insertion_flips").a, 1);
     EXPECT_EQ(answer(r, "vertex").a, flip.vertex);
@@ -373,7 +402,9 @@ TEST(LessonAnswers, LocateHintStepsAndWhere) {
 TEST(LessonAnswers, DegreePixelAndConvexity) {
     // Degree: the fan around the centre of a hexagon has 6 triangles.
     std::vector<Vec2> hex{{0, 0}};
-    for (int k = 0; k < 6; ++k) hex.push_back({10 * std::cos(k * 1.0471975511965976), 10 * std::sin(k * 1.0471975511965976)});
+    for (int k = 0; k < 6; ++k)
+        hex.push_back(
+            {10 * std::cos(k * 1.0471975511965976), 10 * std::sin(k * 1.0471975511965976)});
     LiveRun h = start(hex);
     h.journal->seek(1u << 30);
     std::int32_t atCentre = kNone;
@@ -456,12 +487,14 @@ TEST(LessonAnswers, StudentsTypeAnswersTheirWay) {
     e.kind = Answer::Kind::Edge;
     e.a = 4;
     e.b = 9;
-    for (const char* s : {"4-9", "9-4", "4 9", "(9, 4)", "edge 4-9", "4–9"}) EXPECT_TRUE(acceptsAnswer(e, s)) << s;
+    for (const char* s : {"4-9", "9-4", "4 9", "(9, 4)", "edge 4-9", "4–9"})
+        EXPECT_TRUE(acceptsAnswer(e, s)) << s;
     for (const char* s : {"4", "4-9-1", "4-8", "49"}) EXPECT_FALSE(acceptsAnswer(e, s)) << s;
     Answer t;
     t.kind = Answer::Kind::Text;
     t.text = "SplitEdge";
-    for (const char* s : {"SplitEdge", "split edge", "split-edge", " SPLIT_EDGE "}) EXPECT_TRUE(acceptsAnswer(t, s)) << s;
+    for (const char* s : {"SplitEdge", "split edge", "split-edge", " SPLIT_EDGE "})
+        EXPECT_TRUE(acceptsAnswer(t, s)) << s;
     EXPECT_FALSE(acceptsAnswer(t, "split"));
     Answer y;
     y.kind = Answer::Kind::Truth;
@@ -480,12 +513,13 @@ TEST(LessonAnswers, StudentsTypeAnswersTheirWay) {
     EXPECT_EQ(y.display(), "no");
 }
 
-// ---- Markdown-light --------------------------------------------------------------------------------
+// ---- Markdown-light -----------------------------------------------------------------------------
 
 TEST(LessonText, ParagraphsListsBoldAndCode) {
     std::string why;
     const auto blocks = parseLessonText(
-        "A **corner** is `3t + i`.\nSecond line joins.\n\n- first item\n- second **bold** item\n  continues\n\n"
+        "A **corner** is `3t + i`.\nSecond line joins.\n\n- first item\n- second **bold** item\n  "
+        "continues\n\n"
         "1. one\n2. two `n(c)`\n",
         &why);
     ASSERT_TRUE(blocks) << why;
@@ -508,7 +542,7 @@ TEST(LessonText, ParagraphsListsBoldAndCode) {
     EXPECT_TRUE(parseLessonText("", &why)->empty());
 }
 
-// ---- Facts the lessons state in their text (kept true by these checks) ----------------------------
+// ---- Facts the lessons state in their text (kept true by these checks) --------------------------
 
 TEST(LessonFacts, LocatingLessonWalkLocatorTakesElevenSteps) {
     Lesson lesson = loadLesson(std::string(DLAB_SOURCE_DIR) + "/lessons/03_locating.toml");

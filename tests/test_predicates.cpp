@@ -22,7 +22,8 @@ namespace {
 
 // Walks x by k ulps (k may be negative).
 double ulps(double x, int k) {
-    const double dir = k < 0 ? -std::numeric_limits<double>::infinity() : std::numeric_limits<double>::infinity();
+    const double dir =
+        k < 0 ? -std::numeric_limits<double>::infinity() : std::numeric_limits<double>::infinity();
     for (int i = 0; i < std::abs(k); ++i) x = std::nextafter(x, dir);
     return x;
 }
@@ -30,7 +31,8 @@ double ulps(double x, int k) {
 // Checks both predicates on every permutation that should keep or flip the sign.
 void expectOrient(Vec2 a, Vec2 b, Vec2 c) {
     const int expected = orientGmp(a, b, c);
-    ASSERT_EQ(orient2d(a, b, c), expected) << a.x << "," << a.y << " " << b.x << "," << b.y << " " << c.x << "," << c.y;
+    ASSERT_EQ(orient2d(a, b, c), expected)
+        << a.x << "," << a.y << " " << b.x << "," << b.y << " " << c.x << "," << c.y;
     ASSERT_EQ(orient2d(b, c, a), expected);
     ASSERT_EQ(orient2d(b, a, c), -expected);
     const auto r = orient2dReport(a, b, c);
@@ -40,7 +42,8 @@ void expectOrient(Vec2 a, Vec2 b, Vec2 c) {
 void expectIncircle(Vec2 a, Vec2 b, Vec2 c, Vec2 d) {
     const int expected = incircleGmp(a, b, c, d);
     ASSERT_EQ(incircle(a, b, c, d), expected)
-        << a.x << "," << a.y << " " << b.x << "," << b.y << " " << c.x << "," << c.y << " " << d.x << "," << d.y;
+        << a.x << "," << a.y << " " << b.x << "," << b.y << " " << c.x << "," << c.y << " " << d.x
+        << "," << d.y;
     ASSERT_EQ(incircle(b, c, a, d), expected);
     ASSERT_EQ(incircle(b, a, c, d), -expected);
     const auto r = incircleReport(a, b, c, d);
@@ -139,13 +142,16 @@ TEST(Predicates, LargeOffsetsMatchGmp) {
     std::uniform_real_distribution<double> tiny(-1.0, 1.0);
     for (double offset : {1e9, -1e9, 1e15, 3e17}) {
         for (int i = 0; i < 3000; ++i) {
-            auto pt = [&] { return Vec2{offset + tiny(rng) * std::fabs(offset) * 1e-12, offset + tiny(rng)}; };
+            auto pt = [&] {
+                return Vec2{offset + tiny(rng) * std::fabs(offset) * 1e-12, offset + tiny(rng)};
+            };
             const Vec2 a = pt(), b = pt(), c = pt(), d = pt();
             expectOrient(a, b, c);
             expectIncircle(a, b, c, d);
         }
         // Exactly collinear on a large offset: a grid of spacing 1 at 1e9 + i.
-        const Vec2 a{offset, offset}, b{offset + 1024, offset + 1024}, c{offset + 4096, offset + 4096};
+        const Vec2 a{offset, offset}, b{offset + 1024, offset + 1024},
+            c{offset + 4096, offset + 4096};
         expectOrient(a, b, c);
     }
 }
@@ -154,7 +160,8 @@ TEST(Predicates, HugeAndTinyMagnitudesNeverGiveAWrongSign) {
     std::mt19937_64 rng(5);
     std::uniform_real_distribution<double> u(-1.0, 1.0);
     std::uniform_int_distribution<int> k(-2, 2);
-    const double mags[] = {1e-300, 1e-200, 1e-160, 1e-100, 1.0, 1e100, 1e160, 1e200, 1e300, 5e-324, 1.7e308};
+    const double mags[] = {1e-300, 1e-200, 1e-160, 1e-100, 1.0,    1e100,
+                           1e160,  1e200,  1e300,  5e-324, 1.7e308};
     for (double m : mags) {
         for (int i = 0; i < 500; ++i) {
             auto pt = [&] { return Vec2{u(rng) * m, u(rng) * m}; };
@@ -171,7 +178,8 @@ TEST(Predicates, HugeAndTinyMagnitudesNeverGiveAWrongSign) {
     // Mixed magnitudes in one call: expansions cannot hold these, big integers must.
     for (int i = 0; i < 500; ++i) {
         const double s = mags[i % 11], t = mags[(i * 7 + 3) % 11];
-        const Vec2 a{u(rng) * s, u(rng) * t}, b{u(rng) * t, u(rng) * s}, c{u(rng) * s, u(rng) * s}, d{u(rng) * t, u(rng) * t};
+        const Vec2 a{u(rng) * s, u(rng) * t}, b{u(rng) * t, u(rng) * s}, c{u(rng) * s, u(rng) * s},
+            d{u(rng) * t, u(rng) * t};
         expectOrient(a, b, c);
         expectIncircle(a, b, c, d);
     }
@@ -189,7 +197,8 @@ TEST(Predicates, ExtremeExponentSpansUseBigIntegers) {
     const Vec2 w{1e200, 0}, x{0, 1e200}, y{1e200, 1e200}, z{5e-324, 5e-324};
     expectIncircle(w, x, y, z);
     EXPECT_EQ(incircleReport(w, x, y, z).tier, PredicateTier::BigInteger);
-    EXPECT_EQ(incircle(w, y, x, z), 1);  // counter-clockwise; (tiny, tiny) is just inside the circle through 0
+    EXPECT_EQ(incircle(w, y, x, z),
+              1);  // counter-clockwise; (tiny, tiny) is just inside the circle through 0
 }
 
 TEST(Predicates, FilterDecidesOrdinaryCallsAndCountsTheRest) {

@@ -61,8 +61,18 @@ TEST(Regression, ExactlyCocircularPointsNeverFlipForever) {
     // Integer lattice and the 8 lattice points on a circle of radius 5 (3-4-5 triangles): every
     // in-circle test of a cocircular quadruple returns 0, which must not flip.
     std::vector<Vec2> circle;
-    for (auto [x, y] : {std::pair{5, 0}, {4, 3}, {3, 4}, {0, 5}, {-3, 4}, {-4, 3}, {-5, 0}, {-4, -3}, {-3, -4},
-                        {0, -5}, {3, -4}, {4, -3}}) {
+    for (auto [x, y] : {std::pair{5, 0},
+                        {4, 3},
+                        {3, 4},
+                        {0, 5},
+                        {-3, 4},
+                        {-4, 3},
+                        {-5, 0},
+                        {-4, -3},
+                        {-3, -4},
+                        {0, -5},
+                        {3, -4},
+                        {4, -3}}) {
         circle.push_back({double(x), double(y)});
     }
     for (const auto& pts : {circle, generatePoints(Generator::Grid, 4096, 1)}) {
@@ -157,13 +167,23 @@ TEST(Regression, IdBufferScaleStaysFiniteForASubnormalExtent) {
 // end at -3e12 pixels; converting that to int was undefined (on x86 INT_MIN: a loop over
 // billions of pixels, writing outside the row wherever the huge triangle covers them).
 TEST(Regression, IdBufferSpanOfANearlyFlatEdgeIsClampedBeforeConversion) {
-    const std::vector<Vec2> pts{
-        {-0x1p+1, -0x1.0000000002p+40}, {-0x1p+1, -0x1p+40},  {-0x1p+1, -0x1.fffffffffcp+39},
-        {-0x1p+0, -0x1.0000000002p+40}, {-0x1p+0, -0x1p+40},  {-0x1p+0, -0x1.fffffffffcp+39},
-        {0x0p+0, -0x1.0000000002p+40},  {0x0p+0, -0x1p+40},   {0x0p+0, -0x1.fffffffffcp+39},
-        {0x1p+0, -0x1.0000000002p+40},  {0x1p+0, -0x1.fffffffffcp+39}, {-0x1.8p+0, -0x1.0000000001p+40},
-        {-0x1p+0, -0x1.0000000001p+40}, {0x0p+0, -0x1.0000000008p+40}, {0x1p+1, -0x1.0000000008p+40},
-        {0x1p+1, -0x1.0000000008p+40},  {0x0.0000000080ap-1022, 0x0.00a0a000fp-1022}};
+    const std::vector<Vec2> pts{{-0x1p+1, -0x1.0000000002p+40},
+                                {-0x1p+1, -0x1p+40},
+                                {-0x1p+1, -0x1.fffffffffcp+39},
+                                {-0x1p+0, -0x1.0000000002p+40},
+                                {-0x1p+0, -0x1p+40},
+                                {-0x1p+0, -0x1.fffffffffcp+39},
+                                {0x0p+0, -0x1.0000000002p+40},
+                                {0x0p+0, -0x1p+40},
+                                {0x0p+0, -0x1.fffffffffcp+39},
+                                {0x1p+0, -0x1.0000000002p+40},
+                                {0x1p+0, -0x1.fffffffffcp+39},
+                                {-0x1.8p+0, -0x1.0000000001p+40},
+                                {-0x1p+0, -0x1.0000000001p+40},
+                                {0x0p+0, -0x1.0000000008p+40},
+                                {0x1p+1, -0x1.0000000008p+40},
+                                {0x1p+1, -0x1.0000000008p+40},
+                                {0x0.0000000080ap-1022, 0x0.00a0a000fp-1022}};
     for (Boundary boundary : {Boundary::Super, Boundary::Exact}) {
         SCOPED_TRACE(toString(boundary));
         InsertOptions opt;

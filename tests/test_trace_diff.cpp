@@ -13,18 +13,19 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <unistd.h>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
-#include <unistd.h>
 
 using namespace dlab;
 namespace fs = std::filesystem;
 
 namespace {
 
-TraceFile ourTrace(const std::vector<Vec2>& pts, InsertOptions opt = {}, const std::string& name = "ref.jsonl") {
+TraceFile ourTrace(const std::vector<Vec2>& pts, InsertOptions opt = {},
+                   const std::string& name = "ref.jsonl") {
     Inserter ins(pts, opt);
     return traceOfRun(ins, name);
 }
@@ -135,7 +136,8 @@ TEST(TraceDiff, MinimalStudentTraceIsEnough) {
     // Given as triangles with the student's own ids, V is known too: corners compare as well.
     DiffOptions corners;
     corners.corners = true;
-    EXPECT_TRUE(diffTraces(ref, student, corners).equal) << formatDiff(diffTraces(ref, student, corners), ref, student);
+    EXPECT_TRUE(diffTraces(ref, student, corners).equal)
+        << formatDiff(diffTraces(ref, student, corners), ref, student);
     // Op names in other spellings are accepted.
     const TraceFile lower = parse(minimalText(ref, [](std::size_t, nlohmann::json& j) {
         std::string op = j["op"];
@@ -159,11 +161,16 @@ TEST(TraceDiff, FirstWrongTriangleIsFoundAtItsOp) {
         ASSERT_FALSE(d.equal) << toString(type);
         EXPECT_EQ(d.refOp, meshOpIndex(ref, k)) << toString(type);
         EXPECT_EQ(d.studentOp, k);
-        EXPECT_NE(d.what.find(std::string("the triangles differ after ") + toString(type)), std::string::npos) << d.what;
+        EXPECT_NE(d.what.find(std::string("the triangles differ after ") + toString(type)),
+                  std::string::npos)
+            << d.what;
         const std::string report = formatDiff(d, ref, student);
         EXPECT_NE(report.find("triangles only in the reference"), std::string::npos) << report;
-        EXPECT_NE(report.find("> ref.jsonl:" + std::to_string(ref.ops[d.refOp].line)), std::string::npos) << report;
-        EXPECT_NE(report.find("> student.jsonl:" + std::to_string(k + 1)), std::string::npos) << report;
+        EXPECT_NE(report.find("> ref.jsonl:" + std::to_string(ref.ops[d.refOp].line)),
+                  std::string::npos)
+            << report;
+        EXPECT_NE(report.find("> student.jsonl:" + std::to_string(k + 1)), std::string::npos)
+            << report;
         if (type == OpType::Flip) {
             EXPECT_NE(report.find("reference: flipped edge"), std::string::npos) << report;
         }
@@ -174,8 +181,10 @@ TEST(TraceDiff, MissingFlipShowsAsTheWrongOperation) {
     const TraceFile ref = ourTrace(testPoints());
     // A flip that ends its cascade: without it, the student's next operation is no flip.
     std::size_t k = firstOfType(ref, OpType::Flip, 10);
-    while (ref.ops[meshOpIndex(ref, k + 1)].type == OpType::Flip) k = firstOfType(ref, OpType::Flip, k + 1);
-    const TraceFile student = parse(minimalText(ref, [&](std::size_t m, nlohmann::json&) { return m != k; }));
+    while (ref.ops[meshOpIndex(ref, k + 1)].type == OpType::Flip)
+        k = firstOfType(ref, OpType::Flip, k + 1);
+    const TraceFile student =
+        parse(minimalText(ref, [&](std::size_t m, nlohmann::json&) { return m != k; }));
     const TraceDiff d = diffTraces(ref, student);
     ASSERT_FALSE(d.equal);
     EXPECT_EQ(d.refOp, meshOpIndex(ref, k));
@@ -184,7 +193,8 @@ TEST(TraceDiff, MissingFlipShowsAsTheWrongOperation) {
 
 TEST(TraceDiff, TruncatedAndOverlongStudentTraces) {
     const TraceFile ref = ourTrace(testPoints());
-    const TraceFile cut = parse(minimalText(ref, [](std::size_t m, nlohmann::json&) { return m < 40; }));
+    const TraceFile cut =
+        parse(minimalText(ref, [](std::size_t m, nlohmann::json&) { return m < 40; }));
     TraceDiff d = diffTraces(ref, cut);
     ASSERT_FALSE(d.equal);
     EXPECT_EQ(d.refOp, meshOpIndex(ref, 40));
@@ -223,7 +233,8 @@ TEST(TraceDiff, CornerLayoutAndOrientation) {
     const TraceDiff c = diffTraces(ref, clockwise);
     ASSERT_FALSE(c.equal);
     EXPECT_EQ(c.studentOp, 7u);
-    EXPECT_NE(formatDiff(c, ref, clockwise).find("other orientation (clockwise)"), std::string::npos);
+    EXPECT_NE(formatDiff(c, ref, clockwise).find("other orientation (clockwise)"),
+              std::string::npos);
 }
 
 TEST(TraceDiff, LocatorsDifferOnlyInTheWalk) {
@@ -231,7 +242,8 @@ TEST(TraceDiff, LocatorsDifferOnlyInTheWalk) {
     // the same triangle, so the mesh operations are the same. (Points outside the hull or on an
     // edge can be placed through different triangles.)
     std::vector<Vec2> pts{{-1000, -1000}, {3000, -1000}, {800, 3000}};
-    for (const Vec2& p : generatePoints(Generator::Uniform, 150, 4)) pts.push_back({p.x / 2 + 200, p.y / 2 + 200});
+    for (const Vec2& p : generatePoints(Generator::Uniform, 150, 4))
+        pts.push_back({p.x / 2 + 200, p.y / 2 + 200});
     InsertOptions walk, naive;
     walk.order = naive.order = OrderKind::Input;
     naive.locator = LocatorKind::Naive;
@@ -241,27 +253,41 @@ TEST(TraceDiff, LocatorsDifferOnlyInTheWalk) {
     all.allOps = true;
     const TraceDiff d = diffTraces(ref, other, all);
     EXPECT_FALSE(d.equal);
-    EXPECT_TRUE(ref.ops[d.refOp].type == OpType::LocateStep || other.ops[d.studentOp].type == OpType::LocateStep ||
+    EXPECT_TRUE(ref.ops[d.refOp].type == OpType::LocateStep ||
+                other.ops[d.studentOp].type == OpType::LocateStep ||
                 ref.ops[d.refOp].type == OpType::Located)
         << d.what;
 }
 
 TEST(TraceDiff, BadTracesFailWithFileAndLine) {
     const std::string ok = "{\"op\": \"Start\", \"triangles\": [[0, 0, 1, 2]]}\n";
-    EXPECT_EQ(inputError(ok + "{\"op\": \"Start\"\n"), "s.jsonl:2: not a JSON object (each line of a trace is one {...})");
-    EXPECT_EQ(inputError(ok + "\n[1, 2]\n"), "s.jsonl:3: not a JSON object (each line of a trace is one {...})");
+    EXPECT_EQ(inputError(ok + "{\"op\": \"Start\"\n"),
+              "s.jsonl:2: not a JSON object (each line of a trace is one {...})");
+    EXPECT_EQ(inputError(ok + "\n[1, 2]\n"),
+              "s.jsonl:3: not a JSON object (each line of a trace is one {...})");
     EXPECT_EQ(inputError("{\"i\": 0}\n"), "s.jsonl:1: missing \"op\" (e.g. \"op\": \"Flip\")");
     EXPECT_EQ(inputError("{\"op\": \"Flop\"}\n"), "s.jsonl:1: unknown op \"Flop\"");
     EXPECT_EQ(inputError("{\"op\": 3}\n"), "s.jsonl:1: \"op\" must be a string");
-    EXPECT_NE(inputError("{\"op\": \"Split\", \"triangles\": [[0, 1, 2]]}\n").find("s.jsonl:1: a triangle is [t, v0, v1, v2]"),
+    EXPECT_NE(inputError("{\"op\": \"Split\", \"triangles\": [[0, 1, 2]]}\n")
+                  .find("s.jsonl:1: a triangle is [t, v0, v1, v2]"),
               std::string::npos);
-    EXPECT_NE(inputError("{\"op\": \"Split\", \"triangles\": [[99999999999, 1, 2, 3]]}\n").find("out of range"), std::string::npos);
-    EXPECT_NE(inputError("{\"op\": \"Split\", \"triangles\": [[0, 1.5, 2, 3]]}\n").find("must be an integer"), std::string::npos);
-    EXPECT_NE(inputError("{\"op\": \"Flip\", \"changes\": [[\"X\", 1, 2, 3]]}\n").find("a change is"), std::string::npos);
-    EXPECT_NE(inputError("{\"op\": \"Flip\", \"changes\": [[\"V\", 1000000000, 2, 3]]}\n").find("out of range"), std::string::npos);
-    EXPECT_NE(inputError("{\"op\": \"Flip\", \"vertex\": -5}\n").find("vertex -5 is out of range"), std::string::npos);
+    EXPECT_NE(inputError("{\"op\": \"Split\", \"triangles\": [[99999999999, 1, 2, 3]]}\n")
+                  .find("out of range"),
+              std::string::npos);
+    EXPECT_NE(inputError("{\"op\": \"Split\", \"triangles\": [[0, 1.5, 2, 3]]}\n")
+                  .find("must be an integer"),
+              std::string::npos);
+    EXPECT_NE(
+        inputError("{\"op\": \"Flip\", \"changes\": [[\"X\", 1, 2, 3]]}\n").find("a change is"),
+        std::string::npos);
+    EXPECT_NE(inputError("{\"op\": \"Flip\", \"changes\": [[\"V\", 1000000000, 2, 3]]}\n")
+                  .find("out of range"),
+              std::string::npos);
+    EXPECT_NE(inputError("{\"op\": \"Flip\", \"vertex\": -5}\n").find("vertex -5 is out of range"),
+              std::string::npos);
     EXPECT_EQ(inputError("\n\n"), "s.jsonl: no operations: the trace is empty");
-    EXPECT_EQ(inputError(std::string("\x89PNG\r\n\x1a\n", 8)), "s.jsonl:1: not a JSON object (each line of a trace is one {...})");
+    EXPECT_EQ(inputError(std::string("\x89PNG\r\n\x1a\n", 8)),
+              "s.jsonl:1: not a JSON object (each line of a trace is one {...})");
     // Fields of the wrong kind that the comparison does not need are ignored; others are errors.
     EXPECT_NO_THROW(parse("{\"op\": \"Start\", \"where\": 5, \"comment\": \"mine\"}\n"));
 }
@@ -271,7 +297,8 @@ TEST(TraceDiff, DtlabDiffTraceExitCodes) {
     const std::string pts = (dir / "p.csv").string();
     {
         std::ofstream out(pts);
-        for (const Vec2& p : generatePoints(Generator::Uniform, 60, 3)) out << p.x << "," << p.y << "\n";
+        for (const Vec2& p : generatePoints(Generator::Uniform, 60, 3))
+            out << p.x << "," << p.y << "\n";
     }
     const std::string ref = (dir / "ref.jsonl").string(), again = (dir / "again.jsonl").string();
     ASSERT_EQ(dtlab("trace " + pts + " -o " + ref).status, 0);

@@ -121,7 +121,8 @@ TEST(Circumcenter, AccurateOnRandomTrianglesAtAnyScaleAndOffset) {
         for (const double offset : offsets) {
             for (int trial = 0; trial < 300; ++trial) {
                 const Vec2 ua{u(rng), u(rng)}, ub{u(rng), u(rng)}, uc{u(rng), u(rng)};
-                // Keep reasonably shaped triangles: twice the area against the longest side squared.
+                // Keep reasonably shaped triangles: twice the area against the longest side
+                // squared.
                 const double area2 =
                     std::fabs((ub.x - ua.x) * (uc.y - ua.y) - (ub.y - ua.y) * (uc.x - ua.x));
                 const double l2 = std::max({std::hypot(ub.x - ua.x, ub.y - ua.y),

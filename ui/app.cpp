@@ -2,9 +2,9 @@
 // display, with a menu bar, the toolbar and caption, the canvas in the middle, the tables and
 // inspector in a side column, messages below; splitters between them, remembered in Layout.
 #include "ui/gui.h"
-#include "ui/platform/keys.h"
 #include "ui/lesson_player.h"
 #include "ui/panels/panels.h"
+#include "ui/platform/keys.h"
 
 #include <imgui.h>
 
@@ -31,7 +31,9 @@ float Splitter(const char* id, bool vertical, float thickness, float length) {
     if (ImGui::IsItemHovered() || active) {
         ImGui::SetMouseCursor(vertical ? ImGuiMouseCursor_ResizeEW : ImGuiMouseCursor_ResizeNS);
         const ImVec2 a = ImGui::GetItemRectMin(), b = ImGui::GetItemRectMax();
-        ImGui::GetWindowDrawList()->AddRectFilled(a, b, ImGui::GetColorU32(active ? ImGuiCol_SeparatorActive : ImGuiCol_SeparatorHovered));
+        ImGui::GetWindowDrawList()->AddRectFilled(
+            a, b,
+            ImGui::GetColorU32(active ? ImGuiCol_SeparatorActive : ImGuiCol_SeparatorHovered));
     }
     if (!active) return 0.0f;
     return vertical ? ImGui::GetIO().MouseDelta.x : ImGui::GetIO().MouseDelta.y;
@@ -54,7 +56,8 @@ void ShowApplication(AppState& state) {
     ImGui::SetNextWindowSize(vp->WorkSize);
     const ImGuiWindowFlags hostFlags = ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_NoMove |
                                        ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_MenuBar |
-                                       ImGuiWindowFlags_NoBringToFrontOnFocus | ImGuiWindowFlags_NoScrollWithMouse;
+                                       ImGuiWindowFlags_NoBringToFrontOnFocus |
+                                       ImGuiWindowFlags_NoScrollWithMouse;
     ImGui::PushStyleVar(ImGuiStyleVar_WindowPadding, ImVec2(6, 4));
     ImGui::Begin("Delaunay Lab", nullptr, hostFlags);
     ImGui::PopStyleVar();
@@ -67,12 +70,14 @@ void ShowApplication(AppState& state) {
     const ImVec2 avail = ImGui::GetContentRegionAvail();
     const float bottomH = std::clamp(L.bottomHeight * avail.y, 40.0f, avail.y * 0.6f);
     const float mainH = std::max(100.0f, avail.y - bottomH - kBar);
-    const float sideW = state.presentation ? std::clamp(L.rightWidth * avail.x, 0.0f, avail.x * 0.7f)
-                                           : std::clamp(L.rightWidth * avail.x, 220.0f, avail.x * 0.7f);
+    const float sideW = state.presentation
+                            ? std::clamp(L.rightWidth * avail.x, 0.0f, avail.x * 0.7f)
+                            : std::clamp(L.rightWidth * avail.x, 220.0f, avail.x * 0.7f);
     const float canvasW = std::max(100.0f, avail.x - sideW - kBar);
 
     // ---- Left: canvas and timeline -------------------------------------------------------------
-    ImGui::BeginChild("##left", ImVec2(canvasW, mainH), false, ImGuiWindowFlags_NoScrollbar | ImGuiWindowFlags_NoScrollWithMouse);
+    ImGui::BeginChild("##left", ImVec2(canvasW, mainH), false,
+                      ImGuiWindowFlags_NoScrollbar | ImGuiWindowFlags_NoScrollWithMouse);
     ShowCanvas(state);
     DrawDebugOverlays(state);
     ShowCanvasNotice(state);
@@ -103,17 +108,23 @@ void ShowApplication(AppState& state) {
         if (!firstWanted && tab.id && lessonWantsPanel(state, tab.id)) firstWanted = &tab;
     }
     const bool showInspector = lessonWantsPanel(state, "inspector");
-    const float inspH = !showInspector ? 0.0f : firstWanted ? std::clamp(L.inspectorHeight * sideH, 80.0f, std::max(80.0f, sideH - 80.0f)) : sideH;
+    const float inspH =
+        !showInspector ? 0.0f
+        : firstWanted ? std::clamp(L.inspectorHeight * sideH, 80.0f, std::max(80.0f, sideH - 80.0f))
+                      : sideH;
     if (firstWanted) {
-        ImGui::BeginChild("##tabs", ImVec2(0, showInspector ? sideH - inspH - kBar : sideH), false, ImGuiWindowFlags_NoScrollbar);
+        ImGui::BeginChild("##tabs", ImVec2(0, showInspector ? sideH - inspH - kBar : sideH), false,
+                          ImGuiWindowFlags_NoScrollbar);
         if (ImGui::BeginTabBar("##sidetabs")) {
             const bool traceOpened = StudentTraceSelectTab(state);
             for (const SideTab& tab : kSideTabs) {
                 if (tab.id && !lessonWantsPanel(state, tab.id)) continue;
-                const bool select = (state.lessonPlayer.pendingTabSelect && &tab == firstWanted) ||
-                                    (traceOpened && tab.id && std::string_view(tab.id) == "trace-compare") ||
-                                    (tab.id && state.pendingTab == tab.id);
-                const bool open = ImGui::BeginTabItem(tab.name, nullptr, select ? ImGuiTabItemFlags_SetSelected : 0);
+                const bool select =
+                    (state.lessonPlayer.pendingTabSelect && &tab == firstWanted) ||
+                    (traceOpened && tab.id && std::string_view(tab.id) == "trace-compare") ||
+                    (tab.id && state.pendingTab == tab.id);
+                const bool open = ImGui::BeginTabItem(tab.name, nullptr,
+                                                      select ? ImGuiTabItemFlags_SetSelected : 0);
                 RecordItem(state, tab.name);
                 if (open) {
                     tab.show(state);
@@ -128,7 +139,8 @@ void ShowApplication(AppState& state) {
     state.pendingTab.clear();
     if (showInspector && firstWanted) {
         if (const float d = Splitter("##isplit", false, kBar, sideW); d != 0) {
-            L.inspectorHeight = std::clamp(L.inspectorHeight - d / std::max(1.0f, sideH), 0.1f, 0.9f);
+            L.inspectorHeight =
+                std::clamp(L.inspectorHeight - d / std::max(1.0f, sideH), 0.1f, 0.9f);
         }
     }
     if (showInspector) {
@@ -154,9 +166,11 @@ void ShowApplication(AppState& state) {
 void RecordItem(AppState& state, const char* name) {
     // Only the part a user can see and click: an item scrolled out of its window (or clipped by
     // it) is recorded clipped, or not at all.
-    const ImVec2 clipMin = ImGui::GetWindowDrawList()->GetClipRectMin(), clipMax = ImGui::GetWindowDrawList()->GetClipRectMax();
+    const ImVec2 clipMin = ImGui::GetWindowDrawList()->GetClipRectMin(),
+                 clipMax = ImGui::GetWindowDrawList()->GetClipRectMax();
     const ImVec2 lo = ImGui::GetItemRectMin(), hi = ImGui::GetItemRectMax();
-    const ImVec2 a(std::max(lo.x, clipMin.x), std::max(lo.y, clipMin.y)), b(std::min(hi.x, clipMax.x), std::min(hi.y, clipMax.y));
+    const ImVec2 a(std::max(lo.x, clipMin.x), std::max(lo.y, clipMin.y)),
+        b(std::min(hi.x, clipMax.x), std::min(hi.y, clipMax.y));
     if (a.x >= b.x || a.y >= b.y) {
         state.itemRects.erase(name);
         return;
@@ -175,8 +189,10 @@ void HandleShortcuts(AppState& state) {
     if (once(key::kF1)) state.showHelp = !state.showHelp;
     if (once(key::kF12)) state.files.screenshotRequested = true;  // ServiceCaptures writes it
     if (once(key::kEscape)) {
-        if (state.showHelp) state.showHelp = false;
-        else state.select(kNone);
+        if (state.showHelp)
+            state.showHelp = false;
+        else
+            state.select(kNone);
     }
     if (ctrl) {
         if (once(key::letter('Z'))) shift ? state.redoEdit() : state.undoEdit();
@@ -220,8 +236,10 @@ void HandleShortcuts(AppState& state) {
     if (once(key::letter('V'))) state.overlays.voronoi = !state.overlays.voronoi;
     if (once(key::letter('C'))) state.overlays.circumcircles = !state.overlays.circumcircles;
     if (once(key::letter('G'))) state.snapToGrid = !state.snapToGrid;
-    if (pressed(key::kEqual) || pressed(key::kKpAdd)) state.view.zoomAt(state.view.origin + state.view.size * 0.5, 1.25);
-    if (pressed(key::kMinus) || pressed(key::kKpSubtract)) state.view.zoomAt(state.view.origin + state.view.size * 0.5, 0.8);
+    if (pressed(key::kEqual) || pressed(key::kKpAdd))
+        state.view.zoomAt(state.view.origin + state.view.size * 0.5, 1.25);
+    if (pressed(key::kMinus) || pressed(key::kKpSubtract))
+        state.view.zoomAt(state.view.origin + state.view.size * 0.5, 0.8);
 }
 
 }  // namespace dlab::ui

@@ -78,7 +78,8 @@ bool AppState::editPoints(std::vector<Vec2> points) {
 namespace {
 
 // Undo and redo: the points on top of `from` come back; the points now go onto `to`.
-bool swapPoints(Engine& engine, std::vector<std::vector<Vec2>>& from, std::vector<std::vector<Vec2>>& to) {
+bool swapPoints(Engine& engine, std::vector<std::vector<Vec2>>& from,
+                std::vector<std::vector<Vec2>>& to) {
     if (from.empty()) return false;
     std::string error;
     std::vector<Vec2> now = engine.points();
@@ -110,8 +111,9 @@ bool AppState::setOptions(const InsertOptions& options) {
     }
     selection = {};
     run.running = false;
-    log(Message::Level::Info, std::string("restarted: boundary ") + toString(options.boundary) + ", locate " +
-                                  toString(options.locator) + ", order " + toString(options.order));
+    log(Message::Level::Info, std::string("restarted: boundary ") + toString(options.boundary) +
+                                  ", locate " + toString(options.locator) + ", order " +
+                                  toString(options.order));
     return true;
 }
 
@@ -125,7 +127,8 @@ bool AppState::moveSelection(char op) {
     const Mesh& m = engine.mesh();
     const std::int32_t c = selection.corner;
     if (c < 0 || c >= m.numCorners()) {
-        log(Message::Level::Info, "select a corner first (click near one, or a row of the corner table)");
+        log(Message::Level::Info,
+            "select a corner first (click near one, or a row of the corner table)");
         return false;
     }
     std::int32_t to = kNone;
@@ -140,8 +143,9 @@ bool AppState::moveSelection(char op) {
         default: return false;
     }
     if (to == kNone) {
-        log(Message::Level::Info, std::string("c.") + op + " of corner " + std::to_string(c) +
-                                      " crosses the boundary (no neighbour there): the selection stays");
+        log(Message::Level::Info,
+            std::string("c.") + op + " of corner " + std::to_string(c) +
+                " crosses the boundary (no neighbour there): the selection stays");
         return false;
     }
     selection.corner = to;

@@ -4,8 +4,8 @@
 // through the Engine (that is, through the Inserter and its Journal).
 #pragma once
 
-#include "core/teaching/corner_expr.h"
 #include "core/engine/locator.h"
+#include "core/teaching/corner_expr.h"
 #include "core/teaching/trace_diff.h"
 #include "ui/engine.h"
 #include "ui/lesson_player.h"
@@ -33,10 +33,12 @@ struct View {
     glm::dvec2 size{1, 1};        // canvas size in pixels
 
     glm::dvec2 toScreen(Vec2 p) const {
-        return {origin.x + size.x / 2 + (p.x - center.x) * scale, origin.y + size.y / 2 - (p.y - center.y) * scale};
+        return {origin.x + size.x / 2 + (p.x - center.x) * scale,
+                origin.y + size.y / 2 - (p.y - center.y) * scale};
     }
     Vec2 toWorld(glm::dvec2 s) const {
-        return {center.x + (s.x - origin.x - size.x / 2) / scale, center.y - (s.y - origin.y - size.y / 2) / scale};
+        return {center.x + (s.x - origin.x - size.x / 2) / scale,
+                center.y - (s.y - origin.y - size.y / 2) / scale};
     }
     // Shows the box [lo, hi] whole, with a margin; a degenerate box gets a sensible zoom.
     void fit(Vec2 lo, Vec2 hi);
@@ -45,16 +47,16 @@ struct View {
 };
 
 struct Overlays {
-    bool fill = true;            // light fill of the triangles
+    bool fill = true;  // light fill of the triangles
     bool vertexIds = true;
-    bool cornerIds = true;       // corner ids inside their corners (when zoomed in enough)
+    bool cornerIds = true;  // corner ids inside their corners (when zoomed in enough)
     bool triangleIds = false;
     bool walk = true;            // the current locate's path and the line L
     bool flipQueue = true;       // edges still to test
     bool flipped = true;         // edges flipped by the current insertion
     bool circumcircles = false;  // every triangle's circumcircle
     bool voronoi = false;
-    bool pendingPoints = true;   // points not inserted yet
+    bool pendingPoints = true;     // points not inserted yet
     bool virtualTriangles = true;  // super-triangle (super mode) while the run is in progress
 };
 
@@ -89,19 +91,19 @@ struct RunControl {
     // At full speed the stepping gets what is left of this frame time after the rest of the
     // last frame (drawing, the mesh rebuild, the GL render): large meshes stay interactive.
     double targetFrameMs = 24;
-    double lastStepMs = 0;      // the stepping part of the last frame
-    double lastAdvanceMs = -1;  // when AdvanceRun last ran (steady clock ms), -1: not yet
-    std::string stopReason;     // why the last run stopped ("end", "breakpoint: next flip", ...)
+    double lastStepMs = 0;         // the stepping part of the last frame
+    double lastAdvanceMs = -1;     // when AdvanceRun last ran (steady clock ms), -1: not yet
+    std::string stopReason;        // why the last run stopped ("end", "breakpoint: next flip", ...)
     std::size_t stopPosition = 0;  // where it stopped (the caption shows the reason only there)
 };
 
 // What the last frame cost (the statistics panel and `dtlab render --bench-frames` show it).
 struct FrameStats {
-    double meshBuildMs = 0;        // the canvas' mesh rebuild (0 when nothing changed)
+    double meshBuildMs = 0;  // the canvas' mesh rebuild (0 when nothing changed)
     std::size_t visibleEdges = 0;
-    bool denseMesh = false;        // drawn as a CPU raster
-    std::size_t opsStepped = 0;    // operations the run advanced this frame
-    bool canvasFull = false;       // some overlay shapes were left out (CanvasHasRoom)
+    bool denseMesh = false;      // drawn as a CPU raster
+    std::size_t opsStepped = 0;  // operations the run advanced this frame
+    bool canvasFull = false;     // some overlay shapes were left out (CanvasHasRoom)
 };
 
 struct Message {
@@ -111,8 +113,8 @@ struct Message {
 };
 
 struct Layout {
-    float rightWidth = 0.36f;  // the side column, as a fraction of the window width
-    float bottomHeight = 0.2f; // the message strip, as a fraction of the window height
+    float rightWidth = 0.36f;       // the side column, as a fraction of the window width
+    float bottomHeight = 0.2f;      // the message strip, as a fraction of the window height
     float inspectorHeight = 0.42f;  // the inspector, as a fraction of the side column
     float lessonHeight = 0.5f;      // the lesson panel, as a fraction of the side column
 };
@@ -132,7 +134,7 @@ struct DialogState {
 // One line of the expression console: what was typed and what it gave.
 struct ExprLine {
     std::string text;
-    std::string answer;           // "= 17 (corner)", or the error
+    std::string answer;  // "= 17 (corner)", or the error
     bool ok = false;
     std::size_t errorColumn = 0;  // where the error starts in `text`
 };
@@ -143,26 +145,27 @@ struct WatchEntry {
     bool enabled = true;
     std::shared_ptr<const CornerExpr> expr;  // parsed once; null when the text does not parse
     bool failing = false;
-    std::string status;                      // "holds for 36 corners" / "fails at c = 7: ..."
+    std::string status;  // "holds for 36 corners" / "fails at c = 7: ..."
 };
 
 struct ExpressionState {
-    std::string input;               // the console's input line
-    std::vector<ExprLine> history;   // newest last
-    std::string live;                // the expression shown on the canvas, re-evaluated each step
-    std::vector<PathStep> path;      // its moves, drawn on the canvas as arrows between corners
+    std::string input;              // the console's input line
+    std::vector<ExprLine> history;  // newest last
+    std::string live;               // the expression shown on the canvas, re-evaluated each step
+    std::vector<PathStep> path;     // its moves, drawn on the canvas as arrows between corners
     std::optional<ExprValue> result;
-    std::uint64_t liveVersion = ~std::uint64_t{0};   // engine version `path` was computed at
-    std::int32_t liveCorner = kNone;                 // the c it was computed with
+    std::uint64_t liveVersion = ~std::uint64_t{0};  // engine version `path` was computed at
+    std::int32_t liveCorner = kNone;                // the c it was computed with
     std::vector<WatchEntry> watches;
     std::string watchInput;
-    bool pauseOnFailure = true;                      // a failing watch pauses a running animation
+    bool pauseOnFailure = true;                        // a failing watch pauses a running animation
     std::uint64_t watchedVersion = ~std::uint64_t{0};  // engine version the watches last saw
-    std::size_t watchedPosition = 0;                 // and its position (for the replay on failure)
+    std::size_t watchedPosition = 0;  // and its position (for the replay on failure)
 };
 
 struct PredicateState {
-    std::array<std::string, 4> points{"0, 0", "1, 0", "0, 1", "1, 1"};  // the user's a, b, c, d as "x, y"
+    std::array<std::string, 4> points{"0, 0", "1, 0", "0, 1",
+                                      "1, 1"};  // the user's a, b, c, d as "x, y"
 };
 
 struct IdBufferView;  // idbuffer.cpp: the texture and the ids it was made from
@@ -188,19 +191,21 @@ struct RunCounts {
     Op last{};  // ops[position - 1] when counted: tells a continuation from a new run
     std::vector<float> flipsPerInsertion;  // finished insertions, in order
     std::int64_t flipsNow = 0;             // flips of the insertion in progress
-    std::int64_t flips = 0, walkSteps = 0, inCircleTests = 0, inserted = 0, duplicates = 0, splits = 0, edgeSplits = 0;
+    std::int64_t flips = 0, walkSteps = 0, inCircleTests = 0, inserted = 0, duplicates = 0,
+                 splits = 0, edgeSplits = 0;
     std::int64_t locates = 0, hits = 0, stepsNow = 0;
 };
 
 struct StatisticsState {
     static constexpr std::size_t kFrames = 240;
     std::vector<float> frameMs;  // the last kFrames frame times, oldest first
-    bool autoValidate = true;    // validate() after every change (meshes up to kAutoValidateCorners)
+    bool autoValidate = true;  // validate() after every change (meshes up to kAutoValidateCorners)
     static constexpr std::int32_t kAutoValidateCorners = 300000;
     std::uint64_t validatedVersion = ~std::uint64_t{0};
     std::vector<Violation> violations;  // drawn on the canvas
-    std::vector<std::int32_t> hullDents;  // boundary vertices where the hull turns right (not convex)
-    std::string hullReport;               // the hull / Euler check in one line
+    std::vector<std::int32_t>
+        hullDents;           // boundary vertices where the hull turns right (not convex)
+    std::string hullReport;  // the hull / Euler check in one line
     bool showViolations = true;
     RunCounts counts;
 };
@@ -210,25 +215,33 @@ struct GifRequest {
     std::size_t from = 0, to = 0;  // journal positions, inclusive
     std::size_t every = 1;         // one frame per this many operations
     int delayMs = 250;
-    bool wholeWindow = false;      // the whole window instead of the canvas
+    bool wholeWindow = false;  // the whole window instead of the canvas
 };
 
 struct FileState {
-    std::string autosavePath;        // empty: no autosave (tests, --no-autosave)
-    std::vector<Vec2> autosaved;     // the points the autosave file holds now
-    bool autosaveTooBig = false;     // said once: too many points to autosave
-    std::string recoveryPath;        // an autosave left by a session that did not exit cleanly
+    std::string autosavePath;     // empty: no autosave (tests, --no-autosave)
+    std::vector<Vec2> autosaved;  // the points the autosave file holds now
+    bool autosaveTooBig = false;  // said once: too many points to autosave
+    std::string recoveryPath;     // an autosave left by a session that did not exit cleanly
     std::size_t recoveryPoints = 0;
     std::string recoverySource;
-    std::string notice;              // a file error, shown over the canvas until dismissed
+    std::string notice;                // a file error, shown over the canvas until dismissed
     bool screenshotRequested = false;  // F12: main loop / tests call ServiceCaptures
     std::string screenshotFolder;      // empty: the current directory
     std::optional<GifRequest> gif;     // a GIF to render (ServiceCaptures)
-    enum class Dialog : std::uint8_t { None, SavePoints, SaveSession, OpenFile, ExportMesh, ExportSvg, ExportGif };
-    Dialog dialog = Dialog::None;    // to open at the next frame
-    std::string dialogPath;          // the path field of the open dialog
-    int meshFormat = 0;              // export dialog: 0 .ele/.neigh, 1 OFF, 2 OBJ
-    GifRequest gifDraft;             // the GIF dialog's fields
+    enum class Dialog : std::uint8_t {
+        None,
+        SavePoints,
+        SaveSession,
+        OpenFile,
+        ExportMesh,
+        ExportSvg,
+        ExportGif
+    };
+    Dialog dialog = Dialog::None;  // to open at the next frame
+    std::string dialogPath;        // the path field of the open dialog
+    int meshFormat = 0;            // export dialog: 0 .ele/.neigh, 1 OFF, 2 OBJ
+    GifRequest gifDraft;           // the GIF dialog's fields
 };
 
 struct AppState {
@@ -249,7 +262,7 @@ struct AppState {
     std::shared_ptr<CanvasCache> canvas;  // created by the canvas on its first frame
     DialogState dialogs;
     FrameStats frameStats;
-    LessonState lessonPlayer;  // the lesson on show, if any (lesson_player.h)
+    LessonState lessonPlayer;        // the lesson on show, if any (lesson_player.h)
     std::uint64_t tableVersion = 0;  // the engine version the corner table last showed
     // Screen rectangles of named widgets from the last frame (x0, y0, x1, y1): how tests and
     // lessons find "the step button" without hard-coding the layout.
@@ -270,7 +283,7 @@ struct AppState {
         std::shared_ptr<const TraceFile> ours, student;  // null: no comparison open
         TraceDiff diff;
         std::size_t studentPos = 0;  // student ops applied so far (0 .. student->ops.size())
-        std::vector<Vec2> points;  // the run they were compared on
+        std::vector<Vec2> points;    // the run they were compared on
         InsertOptions options;
         bool selectTab = false;
         // The overlay's caches: the student's triangles after studentPos ops, and ours (sorted)

@@ -36,10 +36,12 @@ bool Engine::resetAt(std::vector<Vec2> points, const InsertOptions& options, std
         std::unique_ptr<Locator> locator;
         if (needsGl(options.locator)) {
             if (!hasGl()) {
-                error = std::string(toString(options.locator)) + " needs a GL context, and this view has none";
+                error = std::string(toString(options.locator)) +
+                        " needs a GL context, and this view has none";
                 return false;
             }
-            auto made = std::make_unique<IdBufferGl>(m_gl, IdBufferGlOptions::from(options.locator, options.locatorOptions));
+            auto made = std::make_unique<IdBufferGl>(
+                m_gl, IdBufferGlOptions::from(options.locator, options.locatorOptions));
             gl = made.get();
             locator = std::move(made);
         }
@@ -71,13 +73,15 @@ bool Engine::resetAt(std::vector<Vec2> points, const InsertOptions& options, std
 }
 
 void Engine::capHistory() {
-    if (!m_journal || m_journal->recorded() < kOpLimit || m_journal->position() < m_journal->recorded() || m_ins->done()) {
+    if (!m_journal || m_journal->recorded() < kOpLimit ||
+        m_journal->position() < m_journal->recorded() || m_ins->done()) {
         return;
     }
     m_ins->run();
     m_journal.reset();
     m_notice = "the history reached " + std::to_string(kOpLimit) +
-               " operations: the run was finished in one batch and stepping is off (BRIO order walks far less)";
+               " operations: the run was finished in one batch and stepping is off (BRIO order "
+               "walks far less)";
     bump();
 }
 
@@ -96,7 +100,8 @@ bool Engine::back() {
 
 bool Engine::forwardInsertion() {
     if (!m_journal) return false;
-    const std::size_t steps = dlab::forwardInsertion(*m_journal, *m_ins, static_cast<std::size_t>(-1)).steps;
+    const std::size_t steps =
+        dlab::forwardInsertion(*m_journal, *m_ins, static_cast<std::size_t>(-1)).steps;
     capHistory();
     if (steps) bump();
     return steps > 0;
@@ -104,12 +109,15 @@ bool Engine::forwardInsertion() {
 
 bool Engine::backInsertion() {
     if (!m_journal) return false;
-    const std::size_t steps = dlab::backInsertion(*m_journal, *m_ins, static_cast<std::size_t>(-1)).steps;
+    const std::size_t steps =
+        dlab::backInsertion(*m_journal, *m_ins, static_cast<std::size_t>(-1)).steps;
     if (steps) bump();
     return steps > 0;
 }
 
-bool Engine::hits(const Breakpoint& bp) const { return m_journal && dlab::hits(bp, *m_journal, *m_ins); }
+bool Engine::hits(const Breakpoint& bp) const {
+    return m_journal && dlab::hits(bp, *m_journal, *m_ins);
+}
 
 void Engine::toStart() { seek(0); }
 

@@ -3,8 +3,8 @@
 // The Inserter/Journal are the only things that change the mesh; this class only drives them.
 #pragma once
 
-#include "core/teaching/breakpoint.h"
 #include "core/engine/inserter.h"
+#include "core/teaching/breakpoint.h"
 
 #include <cstdint>
 #include <memory>
@@ -45,7 +45,8 @@ public:
     // reason and leaves the engine as it was.
     bool reset(std::vector<Vec2> points, const InsertOptions& options, std::string& error);
     // As reset, then replays to `position` (clamped to the end): the same step after an edit.
-    bool resetAt(std::vector<Vec2> points, const InsertOptions& options, std::size_t position, std::string& error);
+    bool resetAt(std::vector<Vec2> points, const InsertOptions& options, std::size_t position,
+                 std::string& error);
 
     // The GL context that the GL ID-buffer locators draw on (the window's, or OSMesa headless).
     // Without one, idbuffer-gl is refused with a message. The owner of the context detaches it
@@ -68,8 +69,8 @@ public:
     // ---- Stepping. Each returns whether anything moved. -------------------------------------
     bool forward();
     bool back();
-    bool forwardInsertion();   // to just after the next Inserted / SkipDuplicate (or the end)
-    bool backInsertion();      // to just after the previous one (or the start)
+    bool forwardInsertion();  // to just after the next Inserted / SkipDuplicate (or the end)
+    bool backInsertion();     // to just after the previous one (or the start)
     void toStart();
     // Steps forward until the end or until `maxOps` ops were done. True at the end.
     bool toEnd(std::size_t maxOps);
@@ -120,6 +121,5 @@ private:
     mutable std::uint64_t m_statesVersion = ~std::uint64_t{0};
     std::string m_notice;
 };
-
 
 }  // namespace dlab::ui

@@ -18,7 +18,9 @@ namespace {
 Fonts g_fonts;  // the fonts of the Gui that is drawing (one ImGui context per process)
 
 double nowMs() {
-    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now().time_since_epoch()).count();
+    return std::chrono::duration<double, std::milli>(
+               std::chrono::steady_clock::now().time_since_epoch())
+        .count();
 }
 
 const char* firstExisting(std::initializer_list<const char*> paths) {
@@ -41,7 +43,8 @@ Gui::Gui(Platform& platform, AppState& state) : m_platform(platform), m_state(st
     io.ConfigWindowsMoveFromTitleBarOnly = true;
     m_platform.initImGui();
     ImGui_ImplOpenGL2_Init();
-    // The GL ID-buffer locators draw on this context (an old driver without FBOs: they are refused).
+    // The GL ID-buffer locators draw on this context (an old driver without FBOs: they are
+    // refused).
     std::string glError;
     if (auto gl = GlContext::load(m_platform, glError)) m_state.engine.attachGl(std::move(gl));
     loadFonts();
@@ -68,7 +71,8 @@ void Gui::loadFonts() {
     cfg.OversampleH = 2;
     if (sans) {
         // Latin-1 plus the few symbols the captions use (arrows, en dash, ≤, ≥).
-        static const ImWchar ranges[] = {0x0020, 0x00FF, 0x2013, 0x2014, 0x2190, 0x21FF, 0x2264, 0x2265, 0};
+        static const ImWchar ranges[] = {0x0020, 0x00FF, 0x2013, 0x2014, 0x2190,
+                                         0x21FF, 0x2264, 0x2265, 0};
         m_fonts.ui = io.Fonts->AddFontFromFileTTF(sans, base, &cfg, ranges);
         m_fonts.caption = io.Fonts->AddFontFromFileTTF(sans, base * 1.3f, &cfg, ranges);
     }
@@ -79,7 +83,9 @@ void Gui::loadFonts() {
         def.SizePixels = base;
         m_fonts.ui = io.Fonts->AddFontDefault(&def);
         m_fonts.caption = m_fonts.ui;
-        m_state.log(Message::Level::Warning, "DejaVu fonts not found (apt-get install fonts-dejavu-core): using ImGui's built-in font");
+        m_state.log(Message::Level::Warning,
+                    "DejaVu fonts not found (apt-get install fonts-dejavu-core): using ImGui's "
+                    "built-in font");
     }
     if (!m_fonts.mono) m_fonts.mono = m_fonts.ui;
     if (!m_fonts.bold) m_fonts.bold = m_fonts.ui;
@@ -152,7 +158,8 @@ void Gui::readFramebuffer() {
     // GL rows start at the bottom: flip to top-first.
     const std::size_t row = static_cast<std::size_t>(w) * 4;
     for (int y = 0; y < h / 2; ++y) {
-        std::swap_ranges(m_pixels.begin() + y * row, m_pixels.begin() + (y + 1) * row, m_pixels.begin() + (h - 1 - y) * row);
+        std::swap_ranges(m_pixels.begin() + y * row, m_pixels.begin() + (y + 1) * row,
+                         m_pixels.begin() + (h - 1 - y) * row);
     }
     m_pixelsW = w;
     m_pixelsH = h;
@@ -186,7 +193,8 @@ bool writePng(const std::string& path, const std::vector<std::uint8_t>& rgba, in
         return false;
     }
     // Opaque output: the framebuffer's alpha is whatever blending left there.
-    std::vector<std::uint8_t> opaque(rgba.begin(), rgba.begin() + static_cast<std::ptrdiff_t>(width) * height * 4);
+    std::vector<std::uint8_t> opaque(
+        rgba.begin(), rgba.begin() + static_cast<std::ptrdiff_t>(width) * height * 4);
     for (std::size_t i = 3; i < opaque.size(); i += 4) opaque[i] = 255;
     if (!stbi_write_png(path.c_str(), width, height, 4, opaque.data(), width * 4)) {
         error = "cannot write " + path;

@@ -46,16 +46,20 @@ bool openLesson(AppState& st, const std::string& path) {
         return false;
     }
     saveProgress(st);
-    if (!st.setOptions(lesson->options) || !st.loadPoints(lesson->points, lesson->title)) return false;
+    if (!st.setOptions(lesson->options) || !st.loadPoints(lesson->points, lesson->title))
+        return false;
     LessonState& L = st.lessonPlayer;
     L.lesson = lesson;
     L.plan = std::move(plan);
     L.progress = {};
-    if (const auto it = L.saved.find(path); it != L.saved.end() && it->second.title == lesson->title) L.progress = it->second;
+    if (const auto it = L.saved.find(path);
+        it != L.saved.end() && it->second.title == lesson->title)
+        L.progress = it->second;
     L.progress.lesson = path;
     L.progress.title = lesson->title;
     L.progress.answers.resize(lesson->stops.size(), 0);
-    st.log(Message::Level::Info, "lesson: " + lesson->title + " (" + std::to_string(lesson->stops.size()) + " stops)");
+    st.log(Message::Level::Info,
+           "lesson: " + lesson->title + " (" + std::to_string(lesson->stops.size()) + " stops)");
     if (lesson->stops.empty()) {
         st.engine.seek(0);
     } else {
@@ -73,7 +77,8 @@ void closeLesson(AppState& st) {
 bool lessonStateChanged(const AppState& st) {
     const LessonState& L = st.lessonPlayer;
     if (!L.lesson) return false;
-    return !sameRun(st.engine.options(), L.lesson->options) || st.engine.points() != L.lesson->points;
+    return !sameRun(st.engine.options(), L.lesson->options) ||
+           st.engine.points() != L.lesson->points;
 }
 
 void goToStop(AppState& st, std::size_t k) {
@@ -83,8 +88,10 @@ void goToStop(AppState& st, std::size_t k) {
     // The stops are operations of the lesson's own run: after the user changed the points or
     // the options, going to a stop brings the lesson's back (their own stay on the undo stack).
     if (lessonStateChanged(st)) {
-        if (!st.setOptions(L.lesson->options) || !st.loadPoints(L.lesson->points, L.lesson->title)) return;
-        st.log(Message::Level::Info, "lesson: its points and options are back (Ctrl+Z brings your points back)");
+        if (!st.setOptions(L.lesson->options) || !st.loadPoints(L.lesson->points, L.lesson->title))
+            return;
+        st.log(Message::Level::Info,
+               "lesson: its points and options are back (Ctrl+Z brings your points back)");
     }
     const LessonStop& stop = L.lesson->stops[k];
     const StopState& at = L.plan.stops[k];
@@ -95,8 +102,9 @@ void goToStop(AppState& st, std::size_t k) {
     if (!stop.overlays.empty()) {
         // A stop that names overlays shows exactly those.
         Overlays& o = st.overlays;
-        for (bool* b : {&o.fill, &o.vertexIds, &o.cornerIds, &o.triangleIds, &o.walk, &o.flipQueue, &o.flipped,
-                        &o.circumcircles, &o.voronoi, &o.pendingPoints, &o.virtualTriangles}) {
+        for (bool* b :
+             {&o.fill, &o.vertexIds, &o.cornerIds, &o.triangleIds, &o.walk, &o.flipQueue,
+              &o.flipped, &o.circumcircles, &o.voronoi, &o.pendingPoints, &o.virtualTriangles}) {
             *b = false;
         }
         for (const std::string& name : stop.overlays) {
@@ -119,7 +127,8 @@ bool checkAnswer(AppState& st) {
     if (k >= L.plan.stops.size() || !L.plan.stops[k].answer) return false;
     const bool right = acceptsAnswer(*L.plan.stops[k].answer, L.typed);
     L.feedback = right ? LessonState::Feedback::Right : LessonState::Feedback::Wrong;
-    if (k < L.progress.answers.size()) L.progress.answers[k] = std::max<std::uint8_t>(L.progress.answers[k], right ? 2 : 1);
+    if (k < L.progress.answers.size())
+        L.progress.answers[k] = std::max<std::uint8_t>(L.progress.answers[k], right ? 2 : 1);
     saveProgress(st);
     return right;
 }
@@ -127,9 +136,11 @@ bool checkAnswer(AppState& st) {
 bool lessonWantsPanel(const AppState& st, const char* panel) {
     const LessonState& L = st.lessonPlayer;
     if (!L.lesson || L.lesson->stops.empty()) return true;
-    const auto& panels = L.lesson->stops[std::min(L.progress.stop, L.lesson->stops.size() - 1)].panels;
+    const auto& panels =
+        L.lesson->stops[std::min(L.progress.stop, L.lesson->stops.size() - 1)].panels;
     if (panels.empty()) return true;
-    return std::any_of(panels.begin(), panels.end(), [&](const std::string& p) { return p == panel; });
+    return std::any_of(panels.begin(), panels.end(),
+                       [&](const std::string& p) { return p == panel; });
 }
 
 }  // namespace dlab::ui

@@ -9,9 +9,9 @@
 namespace dlab {
 
 namespace {
-constexpr const char* kNames[] = {"uniform", "clusters",        "grid",  "rotated-grid", "ngon",
-                                  "circle",  "collinear",       "near-duplicates", "huge-tiny-box",
-                                  "all-collinear"};
+constexpr const char* kNames[] = {"uniform",       "clusters",     "grid",      "rotated-grid",
+                                  "ngon",          "circle",       "collinear", "near-duplicates",
+                                  "huge-tiny-box", "all-collinear"};
 constexpr int kCount = 10;
 
 double gaussian(SplitMix64& rng) {
@@ -44,12 +44,15 @@ std::vector<Vec2> generatePoints(Generator kind, std::size_t n, std::uint64_t se
     const double box = 1600.0;
     switch (kind) {
         case Generator::Uniform:
-            for (std::size_t i = 0; i < n; ++i) pts.push_back({rng.uniform01() * box, rng.uniform01() * box});
+            for (std::size_t i = 0; i < n; ++i)
+                pts.push_back({rng.uniform01() * box, rng.uniform01() * box});
             break;
         case Generator::Clusters: {
-            const std::size_t k = std::max<std::size_t>(1, static_cast<std::size_t>(std::sqrt(n / 16.0)));
+            const std::size_t k =
+                std::max<std::size_t>(1, static_cast<std::size_t>(std::sqrt(n / 16.0)));
             std::vector<Vec2> centres;
-            for (std::size_t i = 0; i < k; ++i) centres.push_back({rng.uniform01() * box, rng.uniform01() * box});
+            for (std::size_t i = 0; i < k; ++i)
+                centres.push_back({rng.uniform01() * box, rng.uniform01() * box});
             for (std::size_t i = 0; i < n; ++i) {
                 const Vec2 c = centres[rng.below(static_cast<std::uint32_t>(k))];
                 pts.push_back({c.x + gaussian(rng) * 20, c.y + gaussian(rng) * 20});
@@ -58,11 +61,13 @@ std::vector<Vec2> generatePoints(Generator kind, std::size_t n, std::uint64_t se
         }
         case Generator::Grid:
         case Generator::RotatedGrid: {
-            const std::size_t side = std::max<std::size_t>(1, static_cast<std::size_t>(std::ceil(std::sqrt(double(n)))));
+            const std::size_t side =
+                std::max<std::size_t>(1, static_cast<std::size_t>(std::ceil(std::sqrt(double(n)))));
             const double a = kind == Generator::RotatedGrid ? 0.5 : 0.0;  // radians, irrational-ish
             for (std::size_t i = 0; i < n; ++i) {
                 const double x = double(i % side), y = double(i / side);
-                pts.push_back({x * std::cos(a) - y * std::sin(a), x * std::sin(a) + y * std::cos(a)});
+                pts.push_back(
+                    {x * std::cos(a) - y * std::sin(a), x * std::sin(a) + y * std::cos(a)});
             }
             break;
         }
@@ -94,12 +99,14 @@ std::vector<Vec2> generatePoints(Generator kind, std::size_t n, std::uint64_t se
         case Generator::NearDuplicates:
             for (std::size_t i = 0; i < n; ++i) {
                 if (i % 3 == 0 || pts.empty()) {
-                    pts.push_back({std::round(rng.uniform01() * 100), std::round(rng.uniform01() * 100)});
+                    pts.push_back(
+                        {std::round(rng.uniform01() * 100), std::round(rng.uniform01() * 100)});
                 } else {
                     Vec2 p = pts[rng.below(static_cast<std::uint32_t>(pts.size()))];
                     const std::uint32_t ulps = rng.below(5);  // 0: an exact duplicate
                     for (std::uint32_t k = 0; k < ulps; ++k) p.x = std::nextafter(p.x, 1e300);
-                    for (std::uint32_t k = 0; k < rng.below(3); ++k) p.y = std::nextafter(p.y, -1e300);
+                    for (std::uint32_t k = 0; k < rng.below(3); ++k)
+                        p.y = std::nextafter(p.y, -1e300);
                     pts.push_back(p);
                 }
             }
@@ -123,8 +130,8 @@ std::vector<Vec2> generatePoints(Generator kind, std::size_t n, std::uint64_t se
 
 std::vector<Vec2> demoPoints() {
     // Hand-placed: (2) lands on the edge 0-1, (7)-(8) trigger flip cascades, (11) duplicates (4).
-    return {{100, 100}, {700, 120}, {400, 110},  {380, 560}, {220, 330}, {560, 360},
-            {640, 520}, {150, 520}, {420, 300},    {300, 200}, {520, 180}, {220, 330}};
+    return {{100, 100}, {700, 120}, {400, 110}, {380, 560}, {220, 330}, {560, 360},
+            {640, 520}, {150, 520}, {420, 300}, {300, 200}, {520, 180}, {220, 330}};
 }
 
 }  // namespace dlab

@@ -12,16 +12,16 @@
 namespace dlab {
 
 enum class Generator : std::uint8_t {
-    Uniform,        // uniform in the paper's 1600 x 1600 box
-    Clusters,       // Gaussian clusters
-    Grid,           // integer lattice: many cocircular quadruples
-    RotatedGrid,    // a lattice rotated by an irrational angle (near-degenerate, not exact)
-    Ngon,           // regular N-gon: all points cocircular
-    Circle,         // random points on a circle (rounded: nearly cocircular)
-    Collinear,      // several collinear runs, plus a few points off the lines
-    NearDuplicates, // clusters of points 1-4 ulps apart, and exact duplicates
-    HugeTinyBox,    // a 64 x 64 box at coordinates around 1e15 (ulp 0.125: tiny relative extent)
-    AllCollinear,   // every point on one line (no triangle exists)
+    Uniform,         // uniform in the paper's 1600 x 1600 box
+    Clusters,        // Gaussian clusters
+    Grid,            // integer lattice: many cocircular quadruples
+    RotatedGrid,     // a lattice rotated by an irrational angle (near-degenerate, not exact)
+    Ngon,            // regular N-gon: all points cocircular
+    Circle,          // random points on a circle (rounded: nearly cocircular)
+    Collinear,       // several collinear runs, plus a few points off the lines
+    NearDuplicates,  // clusters of points 1-4 ulps apart, and exact duplicates
+    HugeTinyBox,     // a 64 x 64 box at coordinates around 1e15 (ulp 0.125: tiny relative extent)
+    AllCollinear,    // every point on one line (no triangle exists)
 };
 
 const char* toString(Generator g);

@@ -29,9 +29,9 @@ std::optional<Boundary> parseBoundary(std::string_view name) {
 }
 
 namespace {
-constexpr const char* kOpNames[] = {"Start",        "LocateStep", "Located",       "Split",
-                                    "SplitEdge",    "InCircleTest", "Flip",        "SkipDuplicate",
-                                    "Inserted",     "Finalize"};
+constexpr const char* kOpNames[] = {"Start",     "LocateStep",   "Located", "Split",
+                                    "SplitEdge", "InCircleTest", "Flip",    "SkipDuplicate",
+                                    "Inserted",  "Finalize"};
 }
 
 const char* toString(OpType t) { return kOpNames[static_cast<int>(t)]; }
@@ -104,7 +104,8 @@ void forEachCornerAround(const std::vector<std::int32_t>& O, std::int32_t start,
 void adviseHugePages(void* data, std::size_t bytes) {
 #if defined(__linux__) && defined(MADV_HUGEPAGE)
     const std::uintptr_t kHuge = 2u << 20;
-    const std::uintptr_t begin = (reinterpret_cast<std::uintptr_t>(data) + kHuge - 1) & ~(kHuge - 1);
+    const std::uintptr_t begin =
+        (reinterpret_cast<std::uintptr_t>(data) + kHuge - 1) & ~(kHuge - 1);
     const std::uintptr_t end = (reinterpret_cast<std::uintptr_t>(data) + bytes) & ~(kHuge - 1);
     if (end > begin) madvise(reinterpret_cast<void*>(begin), end - begin, MADV_HUGEPAGE);
 #else
@@ -128,7 +129,8 @@ Inserter::Inserter(std::vector<Vec2> points, const InsertOptions& options,
     }
     for (std::size_t i = 0; i < points.size(); ++i) {
         if (!std::isfinite(points[i].x) || !std::isfinite(points[i].y)) {
-            throw std::invalid_argument("point " + std::to_string(i) + " has a non-finite coordinate");
+            throw std::invalid_argument("point " + std::to_string(i) +
+                                        " has a non-finite coordinate");
         }
     }
     if (!m_locator) m_locator = makeLocator(options.locator, options.locatorOptions);
@@ -158,13 +160,16 @@ Inserter::Inserter(std::vector<Vec2> points, const InsertOptions& options,
                 m_order.insert(m_order.begin() + 1, {b, c});
             }
         }
-        m_virtualPoints = {{m_bounds.lo.x / 2 + m_bounds.hi.x / 2, m_bounds.lo.y / 2 + m_bounds.hi.y / 2}};
+        m_virtualPoints = {
+            {m_bounds.lo.x / 2 + m_bounds.hi.x / 2, m_bounds.lo.y / 2 + m_bounds.hi.y / 2}};
     } else {
         // The paper's super-triangle: large, finite, strictly containing every input point
         // (checked exactly, grown until true).
         const double cx = m_bounds.lo.x / 2 + m_bounds.hi.x / 2;
         const double cy = m_bounds.lo.y / 2 + m_bounds.hi.y / 2;
-        double size = std::max(m_bounds.hi.x / 2 - m_bounds.lo.x / 2, m_bounds.hi.y / 2 - m_bounds.lo.y / 2) * 2;
+        double size =
+            std::max(m_bounds.hi.x / 2 - m_bounds.lo.x / 2, m_bounds.hi.y / 2 - m_bounds.lo.y / 2) *
+            2;
         size = std::max({size, std::abs(cx) * 0x1p-40, std::abs(cy) * 0x1p-40, 1e-300});
         for (int attempt = 0;; ++attempt) {
             const Vec2 s0{cx - 30 * size, cy - 20 * size}, s1{cx + 30 * size, cy - 20 * size},
@@ -172,7 +177,8 @@ Inserter::Inserter(std::vector<Vec2> points, const InsertOptions& options,
             bool ok = std::isfinite(s0.x) && std::isfinite(s0.y) && std::isfinite(s1.x) &&
                       std::isfinite(s2.y) && orient2d(s0, s1, s2) > 0;
             for (std::int32_t i = 0; ok && i < m_numInput; ++i) {
-                ok = orient2d(s0, s1, G[i]) > 0 && orient2d(s1, s2, G[i]) > 0 && orient2d(s2, s0, G[i]) > 0;
+                ok = orient2d(s0, s1, G[i]) > 0 && orient2d(s1, s2, G[i]) > 0 &&
+                     orient2d(s2, s0, G[i]) > 0;
             }
             if (ok) {
                 m_virtualPoints = {s0, s1, s2};
@@ -180,7 +186,8 @@ Inserter::Inserter(std::vector<Vec2> points, const InsertOptions& options,
             }
             if (!std::isfinite(size) || attempt > 2000) {
                 throw std::domain_error(
-                    "super mode: no finite super-triangle contains these coordinates; use the exact boundary mode");
+                    "super mode: no finite super-triangle contains these coordinates; use the "
+                    "exact boundary mode");
             }
             size *= 16;
         }
@@ -202,7 +209,8 @@ std::int32_t Inserter::currentVertex() const {
         case Phase::Test:
         case Phase::Flip:
         case Phase::Finish:
-            return m_ctl.cursor < static_cast<std::int32_t>(m_order.size()) ? m_order[m_ctl.cursor] : kNone;
+            return m_ctl.cursor < static_cast<std::int32_t>(m_order.size()) ? m_order[m_ctl.cursor]
+                                                                            : kNone;
         default: return kNone;
     }
 }
@@ -267,13 +275,17 @@ void Inserter::split(Rec& rec, std::int32_t t, std::int32_t v) {
     const std::int32_t t1 = appendTriangles(rec, 2), t2 = t1 + 1;
     const std::int32_t d0 = 3 * t1, e0 = 3 * t2;
     setV(rec, c2, v);  // O[c2] still faces a->b
-    setV(rec, d0, b); setV(rec, d0 + 1, c); setV(rec, d0 + 2, v);
-    setV(rec, e0, c); setV(rec, e0 + 1, a); setV(rec, e0 + 2, v);
-    link(rec, c0, d0 + 1);      // edge b-v
-    link(rec, c1, e0);          // edge v-a
-    link(rec, d0, e0 + 1);      // edge c-v
-    link(rec, d0 + 2, oa);      // old edge b->c
-    link(rec, e0 + 2, ob);      // old edge c->a
+    setV(rec, d0, b);
+    setV(rec, d0 + 1, c);
+    setV(rec, d0 + 2, v);
+    setV(rec, e0, c);
+    setV(rec, e0 + 1, a);
+    setV(rec, e0 + 2, v);
+    link(rec, c0, d0 + 1);  // edge b-v
+    link(rec, c1, e0);      // edge v-a
+    link(rec, d0, e0 + 1);  // edge c-v
+    link(rec, d0 + 2, oa);  // old edge b->c
+    link(rec, e0 + 2, ob);  // old edge c->a
     m_stack.push_back(c2);
     m_stack.push_back(d0 + 2);
     m_stack.push_back(e0 + 2);
@@ -293,7 +305,9 @@ void Inserter::splitEdge(Rec& rec, std::int32_t c, std::int32_t v) {
     const std::int32_t tp = appendTriangles(rec, d == kNone ? 1 : 2);
     const std::int32_t x = 3 * tp;  // t' = (C, v, B)
     setV(rec, cp, v);
-    setV(rec, x, C); setV(rec, x + 1, v); setV(rec, x + 2, B);
+    setV(rec, x, C);
+    setV(rec, x + 1, v);
+    setV(rec, x + 2, B);
     link(rec, cn, x + 2);   // edge v-C
     link(rec, x + 1, ocn);  // old edge B->C
     if (d == kNone) {
@@ -308,9 +322,11 @@ void Inserter::splitEdge(Rec& rec, std::int32_t c, std::int32_t v) {
     const std::int32_t dn = next(d), dp = prev(d);
     const std::int32_t D = m_mesh.V[d], A = m_mesh.V[dp];
     const std::int32_t odn = m_mesh.O[dn];
-    const std::int32_t y = x + 3;   // u' = (D, v, A)
+    const std::int32_t y = x + 3;  // u' = (D, v, A)
     setV(rec, dp, v);
-    setV(rec, y, D); setV(rec, y + 1, v); setV(rec, y + 2, A);
+    setV(rec, y, D);
+    setV(rec, y + 1, v);
+    setV(rec, y + 2, A);
     link(rec, c, y);        // edge A-v
     link(rec, x, d);        // edge v-B
     link(rec, dn, y + 2);   // edge v-D
@@ -376,7 +392,8 @@ std::vector<std::int32_t> Inserter::virtualTriangles() const {
     }
     std::vector<std::int32_t> tris;
     for (const std::int32_t start : cornerOf) {
-        if (start != kNone) forEachCornerAround(m_mesh.O, start, [&](std::int32_t c) { tris.push_back(tri(c)); });
+        if (start != kNone)
+            forEachCornerAround(m_mesh.O, start, [&](std::int32_t c) { tris.push_back(tri(c)); });
     }
     std::sort(tris.begin(), tris.end());
     tris.erase(std::unique(tris.begin(), tris.end()), tris.end());
@@ -409,9 +426,16 @@ bool Inserter::onOpenSegment(Vec2 a, Vec2 b, Vec2 p) const {
     // Ghost triangle (u, w, g): its circle is the open half-plane left of w->u... i.e. the side
     // of the hull edge away from the mesh, plus the open segment u-w itself.
     std::int32_t u, w;
-    if (isVirtual(D)) { u = B; w = A; }
-    else if (isVirtual(B)) { u = A; w = D; }
-    else { u = D; w = B; }
+    if (isVirtual(D)) {
+        u = B;
+        w = A;
+    } else if (isVirtual(B)) {
+        u = A;
+        w = D;
+    } else {
+        u = D;
+        w = B;
+    }
     const int s = orient2d(G[u], G[w], G[P]);
     if (s > 0) return 1;
     if (s == 0 && onOpenSegment(G[u], G[w], G[P])) return 1;
@@ -531,10 +555,14 @@ void Inserter::beginLocate() {
     int side[3];
     for (int k = 0; k < 3; ++k) {
         const std::int32_t c = c0 + k;
-        if (c == entry) { side[k] = 1; continue; }  // we came from there
+        if (c == entry) {
+            side[k] = 1;
+            continue;
+        }  // we came from there
         side[k] = orient2d(G[V[c0 + kNext[k]]], G[V[c0 + kPrev[k]]], p);
     }
-    if (side[0] >= 0 && side[1] >= 0 && side[2] >= 0) return found(c0, side[0], c0 + 1, side[1], c0 + 2, side[2]);
+    if (side[0] >= 0 && side[1] >= 0 && side[2] >= 0)
+        return found(c0, side[0], c0 + 1, side[1], c0 + 2, side[2]);
     if (w.straight) {
         if (qInside) w.origin = q;
         w.straight = false;  // needle triangle or a degenerate case: walk by visibility
@@ -587,10 +615,19 @@ void Inserter::classify() {
         const auto [k, x, y] = hullEdgeOf(c0);
         const std::int32_t g = c0 + k;
         const int s = sideOf(k, x, y);
-        if (s > 0) { m_ctl.where = Where::Outside; m_ctl.whereCorner = g; }
-        else if (s == 0 && p == x) { m_ctl.where = Where::OnVertex; m_ctl.whereCorner = c0 + kNext[k]; }
-        else if (s == 0 && p == y) { m_ctl.where = Where::OnVertex; m_ctl.whereCorner = c0 + kPrev[k]; }
-        else if (s == 0 && onOpenSegment(x, y, p)) { m_ctl.where = Where::OnEdge; m_ctl.whereCorner = g; }
+        if (s > 0) {
+            m_ctl.where = Where::Outside;
+            m_ctl.whereCorner = g;
+        } else if (s == 0 && p == x) {
+            m_ctl.where = Where::OnVertex;
+            m_ctl.whereCorner = c0 + kNext[k];
+        } else if (s == 0 && p == y) {
+            m_ctl.where = Where::OnVertex;
+            m_ctl.whereCorner = c0 + kPrev[k];
+        } else if (s == 0 && onOpenSegment(x, y, p)) {
+            m_ctl.where = Where::OnEdge;
+            m_ctl.whereCorner = g;
+        }
         return;
     }
     int side[3], zeros = 0;
@@ -620,7 +657,9 @@ void Inserter::doStart(Rec& rec, Op& op) {
     const std::int32_t n = m_numInput;
     if (m_options.boundary == Boundary::Super) {
         appendTriangles(rec, 1);
-        setV(rec, 0, n); setV(rec, 1, n + 1); setV(rec, 2, n + 2);
+        setV(rec, 0, n);
+        setV(rec, 1, n + 1);
+        setV(rec, 2, n + 2);
         m_ctl.cursor = 0;
     } else {
         const auto& G = m_mesh.G;
@@ -640,8 +679,12 @@ void Inserter::doStart(Rec& rec, Op& op) {
         // t0 = (a, b, c); ghosts t1 = (b, a, g), t2 = (c, b, g), t3 = (a, c, g).
         const std::int32_t vs[12] = {a, b, c, b, a, g, c, b, g, a, c, g};
         for (int k = 0; k < 12; ++k) setV(rec, k, vs[k]);
-        link(rec, 2, 5); link(rec, 0, 8); link(rec, 1, 11);  // finite edges <-> ghosts
-        link(rec, 3, 10); link(rec, 4, 6); link(rec, 7, 9);  // ghost edges to g
+        link(rec, 2, 5);
+        link(rec, 0, 8);
+        link(rec, 1, 11);  // finite edges <-> ghosts
+        link(rec, 3, 10);
+        link(rec, 4, 6);
+        link(rec, 7, 9);  // ghost edges to g
         m_ctl.cursor = 3;
         m_stats.inserted += 3;
     }
@@ -784,9 +827,7 @@ Op Inserter::stepImpl(Rec& rec) {
             m_ctl.phase = Phase::Place;
             break;
         }
-        case Phase::Place:
-            doPlace(rec, op);
-            break;
+        case Phase::Place: doPlace(rec, op); break;
         case Phase::Test: {
             const std::int32_t c = m_stack.back();
             m_stack.pop_back();
@@ -832,8 +873,7 @@ Op Inserter::stepImpl(Rec& rec) {
             op.type = OpType::Finalize;
             doFinalize(rec, op);
             break;
-        case Phase::Done:
-            throw std::logic_error("Inserter::step called after the end");
+        case Phase::Done: throw std::logic_error("Inserter::step called after the end");
     }
     op.trianglesAfter = m_mesh.numTriangles();
     op.verticesAfter = m_mesh.numVertices();
@@ -971,7 +1011,8 @@ int pushesOf(const Op& op) {
 }  // namespace
 
 void Inserter::undo(const Op& op, const std::vector<CellChange>& changes) {
-    const std::size_t big = 3 * static_cast<std::size_t>(std::max(op.trianglesBefore, op.trianglesAfter));
+    const std::size_t big =
+        3 * static_cast<std::size_t>(std::max(op.trianglesBefore, op.trianglesAfter));
     m_mesh.V.resize(big, kNone);
     m_mesh.O.resize(big, kNone);
     for (std::uint32_t i = op.numChanges; i-- > 0;) {
@@ -994,7 +1035,10 @@ void Inserter::undo(const Op& op, const std::vector<CellChange>& changes) {
         case OpType::SplitEdge: --m_stats.edgeSplits; break;
         case OpType::InCircleTest: --m_stats.inCircleTests; break;
         case OpType::Flip: --m_stats.flips; break;
-        case OpType::SkipDuplicate: --m_stats.duplicates; m_skipped.pop_back(); break;
+        case OpType::SkipDuplicate:
+            --m_stats.duplicates;
+            m_skipped.pop_back();
+            break;
         case OpType::Inserted: --m_stats.inserted; break;
         default: break;
     }
@@ -1012,7 +1056,8 @@ void Inserter::undo(const Op& op, const std::vector<CellChange>& changes) {
 }
 
 void Inserter::redo(const Op& op, const std::vector<CellChange>& changes, const Control& after) {
-    const std::size_t big = 3 * static_cast<std::size_t>(std::max(op.trianglesBefore, op.trianglesAfter));
+    const std::size_t big =
+        3 * static_cast<std::size_t>(std::max(op.trianglesBefore, op.trianglesAfter));
     m_mesh.V.resize(big, kNone);
     m_mesh.O.resize(big, kNone);
     for (std::uint32_t i = 0; i < op.numChanges; ++i) {
@@ -1065,7 +1110,8 @@ void Inserter::redo(const Op& op, const std::vector<CellChange>& changes, const 
     m_ctl = after;
     if (m_locatorWantsChanges && !m_bulk && op.type != OpType::Finalize) {
         std::vector<std::int32_t> tris;
-        for (std::uint32_t i = 0; i < op.numChanges; ++i) tris.push_back(tri(changes[op.firstChange + i].corner()));
+        for (std::uint32_t i = 0; i < op.numChanges; ++i)
+            tris.push_back(tri(changes[op.firstChange + i].corner()));
         std::sort(tris.begin(), tris.end());
         tris.erase(std::unique(tris.begin(), tris.end()), tris.end());
         notifyChanged(tris.data(), static_cast<int>(tris.size()));

@@ -68,24 +68,24 @@ enum class Phase : std::uint8_t { Start, Locate, Place, Test, Flip, Finish, Fina
 // Everything the state machine needs besides the mesh and the flip stack.
 struct Control {
     Phase phase = Phase::Start;
-    std::int32_t cursor = 0;        // position in the insertion order of the current point
-    std::int32_t walkTri = kNone;   // current triangle of the walk
-    std::int32_t walkEntry = kNone; // corner of walkTri facing the edge we entered through
+    std::int32_t cursor = 0;         // position in the insertion order of the current point
+    std::int32_t walkTri = kNone;    // current triangle of the walk
+    std::int32_t walkEntry = kNone;  // corner of walkTri facing the edge we entered through
     std::int32_t walkSteps = 0;
-    bool straight = true;           // the paper's line walk (false: visibility-walk fallback)
-    Vec2 walkOrigin{};              // q, the start of the line L = q->p of the straight walk
-    Where where = Where::None;      // classification once located
-    std::int32_t whereCorner = kNone; // Located: corner facing the edge / at the vertex
-    std::int32_t flipCorner = kNone;  // the edge (opposite this corner) a positive test flips
-    std::int32_t lastTri = 0;       // a triangle of the last inserted vertex
+    bool straight = true;              // the paper's line walk (false: visibility-walk fallback)
+    Vec2 walkOrigin{};                 // q, the start of the line L = q->p of the straight walk
+    Where where = Where::None;         // classification once located
+    std::int32_t whereCorner = kNone;  // Located: corner facing the edge / at the vertex
+    std::int32_t flipCorner = kNone;   // the edge (opposite this corner) a positive test flips
+    std::int32_t lastTri = 0;          // a triangle of the last inserted vertex
 };
 
 struct Op {
     OpType type = OpType::Start;
     Where where = Where::None;
-    std::int8_t sign = 0;           // InCircleTest: +1 flip, 0 cocircular, -1 Delaunay
-    std::int32_t vertex = kNone;    // input index of the point being inserted
-    std::int32_t a = kNone;         // see OpType
+    std::int8_t sign = 0;         // InCircleTest: +1 flip, 0 cocircular, -1 Delaunay
+    std::int32_t vertex = kNone;  // input index of the point being inserted
+    std::int32_t a = kNone;       // see OpType
     std::int32_t b = kNone;
     std::int32_t trianglesBefore = 0;
     std::int32_t trianglesAfter = 0;
@@ -93,7 +93,7 @@ struct Op {
     std::int32_t verticesAfter = 0;
     std::uint32_t firstChange = 0;  // range in Journal::changes()
     std::uint32_t numChanges = 0;
-    Control before;                 // control state before the op, for exact undo
+    Control before;  // control state before the op, for exact undo
 };
 
 struct InsertOptions {
@@ -107,7 +107,8 @@ struct InsertOptions {
 // Whether two option sets make the same run, op for op (the ID buffer's size only changes how
 // the locator finds triangles, not which triangle it finds).
 inline bool sameRun(const InsertOptions& a, const InsertOptions& b) {
-    return a.boundary == b.boundary && a.locator == b.locator && a.order == b.order && a.seed == b.seed;
+    return a.boundary == b.boundary && a.locator == b.locator && a.order == b.order &&
+           a.seed == b.seed;
 }
 
 struct InsertStats {
@@ -162,26 +163,38 @@ public:
     void redo(const Op& op, const std::vector<CellChange>& changes, const Control& after);
 
 private:
-    template <class Rec> Op stepImpl(Rec& rec);
-    template <class Rec> void doStart(Rec& rec, Op& op);
-    template <class Rec> void doPlace(Rec& rec, Op& op);
-    template <class Rec> void doFinalize(Rec& rec, Op& op);
+    template <class Rec>
+    Op stepImpl(Rec& rec);
+    template <class Rec>
+    void doStart(Rec& rec, Op& op);
+    template <class Rec>
+    void doPlace(Rec& rec, Op& op);
+    template <class Rec>
+    void doFinalize(Rec& rec, Op& op);
 
-    template <class Rec> void setV(Rec& rec, std::int32_t c, std::int32_t v);
-    template <class Rec> void setO(Rec& rec, std::int32_t c, std::int32_t o);
-    template <class Rec> void link(Rec& rec, std::int32_t c, std::int32_t d);  // O[c]=d, O[d]=c
-    template <class Rec> std::int32_t appendTriangles(Rec& rec, int count);
-    template <class Rec> void split(Rec& rec, std::int32_t t, std::int32_t v);
-    template <class Rec> void splitEdge(Rec& rec, std::int32_t c, std::int32_t v);
-    template <class Rec> void flip(Rec& rec, std::int32_t c);
-    template <class Rec> void keepFirstOccurrence(Rec& rec, std::int32_t existing, std::int32_t v);
+    template <class Rec>
+    void setV(Rec& rec, std::int32_t c, std::int32_t v);
+    template <class Rec>
+    void setO(Rec& rec, std::int32_t c, std::int32_t o);
+    template <class Rec>
+    void link(Rec& rec, std::int32_t c, std::int32_t d);  // O[c]=d, O[d]=c
+    template <class Rec>
+    std::int32_t appendTriangles(Rec& rec, int count);
+    template <class Rec>
+    void split(Rec& rec, std::int32_t t, std::int32_t v);
+    template <class Rec>
+    void splitEdge(Rec& rec, std::int32_t c, std::int32_t v);
+    template <class Rec>
+    void flip(Rec& rec, std::int32_t c);
+    template <class Rec>
+    void keepFirstOccurrence(Rec& rec, std::int32_t existing, std::int32_t v);
 
     void collectDuplicatesWithoutMesh();  // all points collinear: report equal points anyway
     std::vector<std::int32_t> virtualTriangles() const;  // sorted ids of triangles to drop
     void beginLocate();
     struct HullEdge {
-        int k;       // index of the ghost vertex's corner in its triangle
-        Vec2 x, y;   // the hull edge opposite it
+        int k;      // index of the ghost vertex's corner in its triangle
+        Vec2 x, y;  // the hull edge opposite it
     };
     HullEdge hullEdgeOf(std::int32_t c0) const;
     // The walk's part of Control, as locals while it runs.
@@ -197,13 +210,17 @@ private:
     bool walkOnce(WalkState& w, Vec2 p);  // one step; true when w.tri contains p
     bool walkStep();      // one step of the walk; true when the walk has found the triangle
     void walkToTarget();  // walkStep() until it returns true, with the state in registers
-    void classify();   // sets where / whereCorner for walkTri
+    void classify();      // sets where / whereCorner for walkTri
     int inCircleSign(std::int32_t c) const;  // is V[c] inside the circle across the edge?
     bool onOpenSegment(Vec2 a, Vec2 b, Vec2 p) const;
     void notifyChanged(const std::int32_t* tris, int count);
     // While run() works on points stored in insertion order, vertex ids are insertion ranks.
-    std::int32_t vertexAt(std::int32_t cursor) const { return m_permuted ? cursor : m_order[cursor]; }
-    std::int32_t inputId(std::int32_t v) const { return m_permuted && v < m_numInput ? m_order[v] : v; }
+    std::int32_t vertexAt(std::int32_t cursor) const {
+        return m_permuted ? cursor : m_order[cursor];
+    }
+    std::int32_t inputId(std::int32_t v) const {
+        return m_permuted && v < m_numInput ? m_order[v] : v;
+    }
     Vec2 currentPoint() const { return m_mesh.G[vertexAt(m_ctl.cursor)]; }
     void permuteForBatch();
     void unpermute();
@@ -229,7 +246,7 @@ private:
         std::array<std::int8_t, 3> side{};
     };
     KnownSides m_known;
-    std::vector<std::int32_t> m_stack;   // flip work-list: corners at the new vertex
+    std::vector<std::int32_t> m_stack;  // flip work-list: corners at the new vertex
     std::vector<std::int32_t> m_skipped;
     InsertStats m_stats;
 };
@@ -240,15 +257,16 @@ public:
     explicit Journal(Inserter& inserter) : m_ins(&inserter) {}
     // Reserves room for this many ops and cell changes up front: a vector doubling at millions
     // of ops (96 bytes each) copies hundreds of megabytes in one step, a visible stall.
-    Journal(Inserter& inserter, std::size_t expectedOps, std::size_t expectedChanges) : m_ins(&inserter) {
+    Journal(Inserter& inserter, std::size_t expectedOps, std::size_t expectedChanges)
+        : m_ins(&inserter) {
         m_ops.reserve(expectedOps);
         m_changes.reserve(expectedChanges);
     }
     // Forward one op: replays a recorded op after an undo, else asks the inserter for a new one.
     // Returns nullptr at the end.
     const Op* forward();
-    const Op* back();                     // undo the op before the cursor; nullptr at the start
-    void seek(std::size_t position);      // forward/back until position (clamped)
+    const Op* back();                 // undo the op before the cursor; nullptr at the start
+    void seek(std::size_t position);  // forward/back until position (clamped)
     std::size_t position() const { return m_pos; }
     std::size_t recorded() const { return m_ops.size(); }
     bool atEnd() const { return m_pos == m_ops.size() && m_ins->done(); }
@@ -259,7 +277,10 @@ public:
     // Used by the inserter while recording.
     void record(const CellChange& c) { m_changes.push_back(c); }
     std::uint32_t changeCount() const { return static_cast<std::uint32_t>(m_changes.size()); }
-    void push(const Op& op) { m_ops.push_back(op); ++m_pos; }
+    void push(const Op& op) {
+        m_ops.push_back(op);
+        ++m_pos;
+    }
 
 private:
     Inserter* m_ins;

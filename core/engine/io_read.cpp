@@ -96,8 +96,10 @@ constexpr std::size_t kBinarySniffBytes = std::size_t{1} << 16;
 LineNo lineOfOffset(std::string_view text, std::size_t offset) {
     LineNo line = 1;
     for (std::size_t i = 0; i < offset && i < text.size(); ++i) {
-        if (text[i] == '\n') ++line;
-        else if (text[i] == '\r' && !(i + 1 < text.size() && text[i + 1] == '\n')) ++line;
+        if (text[i] == '\n')
+            ++line;
+        else if (text[i] == '\r' && !(i + 1 < text.size() && text[i + 1] == '\n'))
+            ++line;
     }
     return line;
 }
@@ -117,16 +119,20 @@ std::size_t countNonTextBytes(std::string_view s) {
             continue;
         }
         std::size_t len = 0;
-        if (c >= 0xC2 && c <= 0xDF) len = 2;
-        else if (c >= 0xE0 && c <= 0xEF) len = 3;
-        else if (c >= 0xF0 && c <= 0xF4) len = 4;
+        if (c >= 0xC2 && c <= 0xDF)
+            len = 2;
+        else if (c >= 0xE0 && c <= 0xEF)
+            len = 3;
+        else if (c >= 0xF0 && c <= 0xF4)
+            len = 4;
         if (len == 0) {
             ++bad;
             ++i;
             continue;
         }
         std::size_t k = 1;
-        while (k < len && i + k < s.size() && (static_cast<unsigned char>(s[i + k]) & 0xC0) == 0x80) ++k;
+        while (k < len && i + k < s.size() && (static_cast<unsigned char>(s[i + k]) & 0xC0) == 0x80)
+            ++k;
         if (k == len || i + k == s.size()) {
             i += k;
         } else {
@@ -143,13 +149,15 @@ void checkNotBinary(std::string_view text, const std::string& name) {
     if (const void* nul = std::memchr(text.data(), 0, text.size())) {
         const auto offset = static_cast<std::size_t>(static_cast<const char*>(nul) - text.data());
         fail(name, lineOfOffset(text, offset),
-             "binary file (NUL byte at offset " + std::to_string(offset) + "); expected a text point file");
+             "binary file (NUL byte at offset " + std::to_string(offset) +
+                 "); expected a text point file");
     }
     const std::string_view sample = text.substr(0, kBinarySniffBytes);
     const std::size_t bad = countNonTextBytes(sample);
     if (bad > 0 && bad * 10 > sample.size()) {
         fail(name, 0,
-             "binary file (" + std::to_string(bad) + " of the first " + std::to_string(sample.size()) +
+             "binary file (" + std::to_string(bad) + " of the first " +
+                 std::to_string(sample.size()) +
                  " bytes are not text); expected a text point file");
     }
 }
@@ -197,7 +205,8 @@ public:
             while (end < m_text.size() && m_text[end] != '\n' && m_text[end] != '\r') ++end;
             m_pos = end;
             if (m_pos < m_text.size()) {
-                const bool crlf = m_text[m_pos] == '\r' && m_pos + 1 < m_text.size() && m_text[m_pos + 1] == '\n';
+                const bool crlf =
+                    m_text[m_pos] == '\r' && m_pos + 1 < m_text.size() && m_text[m_pos + 1] == '\n';
                 m_pos += crlf ? 2 : 1;
             }
             ++m_line;
@@ -237,7 +246,8 @@ const char* sepName(Sep sep) {
 
 // Splits a trimmed line and returns the true field count, but stores at most `keep` fields: a
 // line with a million fields then costs one pass and no million-entry vector.
-std::size_t splitFields(std::string_view line, Sep sep, std::vector<std::string_view>& out, std::size_t keep) {
+std::size_t splitFields(std::string_view line, Sep sep, std::vector<std::string_view>& out,
+                        std::size_t keep) {
     out.clear();
     std::size_t count = 0;
     if (sep == Sep::Blanks) {
@@ -256,7 +266,8 @@ std::size_t splitFields(std::string_view line, Sep sep, std::vector<std::string_
     std::size_t start = 0;
     for (;;) {
         const std::size_t p = line.find(d, start);
-        const std::string_view field = trim(line.substr(start, p == std::string_view::npos ? std::string_view::npos : p - start));
+        const std::string_view field = trim(
+            line.substr(start, p == std::string_view::npos ? std::string_view::npos : p - start));
         if (count < keep) out.push_back(field);
         ++count;
         if (p == std::string_view::npos) break;
@@ -297,15 +308,16 @@ bool startsLikeNumber(std::string_view f) {
 }
 
 bool isUnsignedDigits(std::string_view f) {
-    return !f.empty() && std::all_of(f.begin(), f.end(), [](char c) { return c >= '0' && c <= '9'; });
+    return !f.empty() &&
+           std::all_of(f.begin(), f.end(), [](char c) { return c >= '0' && c <= '9'; });
 }
 
 enum class ValueKind { Coordinate, Attribute };
 
 // Parses one decimal floating-point field exactly (std::from_chars rounds correctly), refusing
 // everything else with a message that names the field.
-double parseReal(std::string_view field, const std::string& name, LineNo line, const std::string& what,
-                 ValueKind kind, Sep sep) {
+double parseReal(std::string_view field, const std::string& name, LineNo line,
+                 const std::string& what, ValueKind kind, Sep sep) {
     if (field.empty()) fail(name, line, "missing " + what + " (empty field)");
     const std::string_view f = dropPlus(field);
     double v = 0.0;
@@ -315,23 +327,29 @@ double parseReal(std::string_view field, const std::string& name, LineNo line, c
     }
     if (r.ptr != f.data() + f.size()) {
         const std::string_view junk = f.substr(static_cast<std::size_t>(r.ptr - f.data()));
-        std::string msg = "trailing junk " + quoted(junk) + " after the number in " + what + " field " + quoted(field);
-        if (sep == Sep::Semicolon && junk.front() == ',') msg += " (decimal commas are not supported; use '.')";
+        std::string msg = "trailing junk " + quoted(junk) + " after the number in " + what +
+                          " field " + quoted(field);
+        if (sep == Sep::Semicolon && junk.front() == ',')
+            msg += " (decimal commas are not supported; use '.')";
         fail(name, line, msg);
     }
     if (r.ec == std::errc::result_out_of_range) {
-        fail(name, line, "number " + quoted(field) + " for " + what + " is out of the range of double (overflow or underflow)");
+        fail(name, line,
+             "number " + quoted(field) + " for " + what +
+                 " is out of the range of double (overflow or underflow)");
     }
     if (!std::isfinite(v)) {
         fail(name, line,
-             std::string(kind == ValueKind::Coordinate ? "non-finite coordinate " : "non-finite value ") +
+             std::string(kind == ValueKind::Coordinate ? "non-finite coordinate "
+                                                       : "non-finite value ") +
                  quoted(field) + " for " + what);
     }
     return v;
 }
 
 // Parses a decimal integer field (indices, markers, counts).
-std::int64_t parseInteger(std::string_view field, const std::string& name, LineNo line, const std::string& what) {
+std::int64_t parseInteger(std::string_view field, const std::string& name, LineNo line,
+                          const std::string& what) {
     if (field.empty()) fail(name, line, "missing " + what + " (empty field)");
     const std::string_view f = dropPlus(field);
     std::int64_t v = 0;
@@ -346,9 +364,11 @@ std::int64_t parseInteger(std::string_view field, const std::string& name, LineN
 }
 
 // Parses a declared point count and refuses absurd ones before anything is allocated.
-std::size_t parseCount(std::string_view field, const std::string& name, LineNo line, const std::string& what) {
+std::size_t parseCount(std::string_view field, const std::string& name, LineNo line,
+                       const std::string& what) {
     const std::string_view f = dropPlus(field);
-    const std::string limit = " exceeds the maximum of " + std::to_string(kMaxPoints) + " points (kMaxPoints)";
+    const std::string limit =
+        " exceeds the maximum of " + std::to_string(kMaxPoints) + " points (kMaxPoints)";
     if (isUnsignedDigits(f)) {
         // Compare digit strings first so that 10^30 says "too many", not "out of range".
         std::string_view digits = f;
@@ -357,7 +377,8 @@ std::size_t parseCount(std::string_view field, const std::string& name, LineNo l
     }
     const std::int64_t n = parseInteger(field, name, line, what);
     if (n < 0) fail(name, line, what + " must not be negative, found " + quoted(field));
-    if (static_cast<std::uint64_t>(n) > kMaxPoints) fail(name, line, what + " " + std::to_string(n) + limit);
+    if (static_cast<std::uint64_t>(n) > kMaxPoints)
+        fail(name, line, what + " " + std::to_string(n) + limit);
     return static_cast<std::size_t>(n);
 }
 
@@ -367,11 +388,13 @@ void checkCountFits(std::size_t count, std::uint64_t minBytesPerLine, std::size_
                     const std::string& name, LineNo line, const std::string& what) {
     if (count == 0) return;
     // count <= 2^25 and minBytesPerLine <= 2^32: the product fits in 64 bits.
-    const std::uint64_t need = static_cast<std::uint64_t>(count) * minBytesPerLine - 1;  // last line may lack its end
+    const std::uint64_t need =
+        static_cast<std::uint64_t>(count) * minBytesPerLine - 1;  // last line may lack its end
     if (need > remaining) {
         fail(name, line,
-             "header declares " + std::to_string(count) + " " + what + " but only " + std::to_string(remaining) +
-                 " bytes follow; that many lines need at least " + std::to_string(need));
+             "header declares " + std::to_string(count) + " " + what + " but only " +
+                 std::to_string(remaining) + " bytes follow; that many lines need at least " +
+                 std::to_string(need));
     }
 }
 
@@ -394,7 +417,8 @@ PointSet parseNode(std::string_view text, const std::string& name) {
     Line line;
     std::vector<std::string_view> f;
 
-    if (!reader.next(line)) fail(name, 0, "no header line: the file holds only blank lines and comments");
+    if (!reader.next(line))
+        fail(name, 0, "no header line: the file holds only blank lines and comments");
     const LineNo headerLine = line.number;
     const std::size_t headerFields = splitFields(line.text, Sep::Blanks, f, 4);
     if (headerFields > 4) {
@@ -405,40 +429,51 @@ PointSet parseNode(std::string_view text, const std::string& name) {
     const std::size_t count = parseCount(f[0], name, headerLine, "vertex count");
     const std::int64_t dim = f.size() > 1 ? parseInteger(f[1], name, headerLine, "dimension") : 2;
     if (dim != 2) fail(name, headerLine, "dimension must be 2, found " + std::to_string(dim));
-    const std::int64_t attributes = f.size() > 2 ? parseInteger(f[2], name, headerLine, "attribute count") : 0;
+    const std::int64_t attributes =
+        f.size() > 2 ? parseInteger(f[2], name, headerLine, "attribute count") : 0;
     // No line within kMaxFileBytes can hold more fields than this; the bound also keeps the
     // field arithmetic below far from overflow.
     constexpr std::int64_t kMaxAttributes = static_cast<std::int64_t>(kMaxFileBytes / 2);
     if (attributes < 0 || attributes > kMaxAttributes) {
-        fail(name, headerLine, "attribute count must be between 0 and " + std::to_string(kMaxAttributes) + ", found " + quoted(f[2]));
+        fail(name, headerLine,
+             "attribute count must be between 0 and " + std::to_string(kMaxAttributes) +
+                 ", found " + quoted(f[2]));
     }
-    const std::int64_t markers = f.size() > 3 ? parseInteger(f[3], name, headerLine, "boundary marker count") : 0;
+    const std::int64_t markers =
+        f.size() > 3 ? parseInteger(f[3], name, headerLine, "boundary marker count") : 0;
     if (markers != 0 && markers != 1) {
-        fail(name, headerLine, "boundary marker count must be 0 or 1, found " + std::to_string(markers));
+        fail(name, headerLine,
+             "boundary marker count must be 0 or 1, found " + std::to_string(markers));
     }
     const auto fieldsPerLine = static_cast<std::size_t>(3 + attributes + markers);
-    checkCountFits(count, 2 * static_cast<std::uint64_t>(fieldsPerLine), reader.remainingBytes(), name, headerLine,
-                   "vertices");
+    checkCountFits(count, 2 * static_cast<std::uint64_t>(fieldsPerLine), reader.remainingBytes(),
+                   name, headerLine, "vertices");
     ps.points.reserve(count);
 
-    const std::string layout = "index, x, y" + (attributes > 0 ? ", " + plural(static_cast<std::size_t>(attributes), "attribute", "attributes") : std::string()) +
+    const std::string layout = "index, x, y" +
+                               (attributes > 0 ? ", " + plural(static_cast<std::size_t>(attributes),
+                                                               "attribute", "attributes")
+                                               : std::string()) +
                                (markers > 0 ? ", boundary marker" : "");
     std::int64_t base = 0;
     while (reader.next(line)) {
         if (ps.points.size() == count) {
             fail(name, line.number,
-                 "extra vertex line: the header on line " + std::to_string(headerLine) + " declares " + plural(count, "vertex", "vertices"));
+                 "extra vertex line: the header on line " + std::to_string(headerLine) +
+                     " declares " + plural(count, "vertex", "vertices"));
         }
         const std::size_t n = splitFields(line.text, Sep::Blanks, f, fieldsPerLine);
         if (n != fieldsPerLine) {
             fail(name, line.number,
-                 std::string(n < fieldsPerLine ? "too few" : "too many") + " fields: expected " + std::to_string(fieldsPerLine) +
-                     " (" + layout + "), found " + std::to_string(n));
+                 std::string(n < fieldsPerLine ? "too few" : "too many") + " fields: expected " +
+                     std::to_string(fieldsPerLine) + " (" + layout + "), found " +
+                     std::to_string(n));
         }
         const std::int64_t index = parseInteger(f[0], name, line.number, "vertex index");
         if (ps.points.empty()) {
             if (index != 0 && index != 1) {
-                fail(name, line.number, "first vertex index must be 0 or 1, found " + std::to_string(index));
+                fail(name, line.number,
+                     "first vertex index must be 0 or 1, found " + std::to_string(index));
             }
             base = index;
         } else if (index != base + static_cast<std::int64_t>(ps.points.size())) {
@@ -447,22 +482,26 @@ PointSet parseNode(std::string_view text, const std::string& name) {
                      std::to_string(base + static_cast<std::int64_t>(ps.points.size())));
         }
         Vec2 p;
-        p.x = parseReal(f[1], name, line.number, "x coordinate", ValueKind::Coordinate, Sep::Blanks);
-        p.y = parseReal(f[2], name, line.number, "y coordinate", ValueKind::Coordinate, Sep::Blanks);
+        p.x =
+            parseReal(f[1], name, line.number, "x coordinate", ValueKind::Coordinate, Sep::Blanks);
+        p.y =
+            parseReal(f[2], name, line.number, "y coordinate", ValueKind::Coordinate, Sep::Blanks);
         for (std::int64_t a = 0; a < attributes; ++a) {
-            parseReal(f[3 + static_cast<std::size_t>(a)], name, line.number, "attribute " + std::to_string(a + 1),
-                      ValueKind::Attribute, Sep::Blanks);
+            parseReal(f[3 + static_cast<std::size_t>(a)], name, line.number,
+                      "attribute " + std::to_string(a + 1), ValueKind::Attribute, Sep::Blanks);
         }
         if (markers > 0) parseInteger(f[fieldsPerLine - 1], name, line.number, "boundary marker");
         ps.points.push_back(p);
     }
     if (ps.points.size() < count) {
         fail(name, reader.linesRead(),
-             "end of file: expected " + plural(count, "vertex", "vertices") + " (header on line " + std::to_string(headerLine) +
-                 "), found " + std::to_string(ps.points.size()));
+             "end of file: expected " + plural(count, "vertex", "vertices") + " (header on line " +
+                 std::to_string(headerLine) + "), found " + std::to_string(ps.points.size()));
     }
     ps.indexBase = static_cast<int>(base);
-    if (count == 0) ps.warnings.push_back("header on line " + std::to_string(headerLine) + " declares 0 vertices");
+    if (count == 0)
+        ps.warnings.push_back("header on line " + std::to_string(headerLine) +
+                              " declares 0 vertices");
     return ps;
 }
 
@@ -513,13 +552,17 @@ PointSet parseXY(std::string_view text, const std::string& name) {
         // drop a row of data (and blame a later line for the decimal commas of the first).
         constexpr std::size_t kMaxHeaderColumns = 4096;
         const std::size_t n = splitFields(line.text, sep, f, kMaxHeaderColumns);
-        const auto numberLike = [](std::string_view field) { return isNumeric(field) || startsLikeNumber(field); };
+        const auto numberLike = [](std::string_view field) {
+            return isNumeric(field) || startsLikeNumber(field);
+        };
         if (std::none_of(f.begin(), f.end(), numberLike) && n <= kMaxHeaderColumns) {
             haveHeader = true;
             headerLine = line.number;
             columns = n;
-            const auto x = std::find_if(f.begin(), f.end(), [](std::string_view s) { return namesColumn(s, 'x'); });
-            const auto y = std::find_if(f.begin(), f.end(), [](std::string_view s) { return namesColumn(s, 'y'); });
+            const auto x = std::find_if(f.begin(), f.end(),
+                                        [](std::string_view s) { return namesColumn(s, 'x'); });
+            const auto y = std::find_if(f.begin(), f.end(),
+                                        [](std::string_view s) { return namesColumn(s, 'y'); });
             if (x != f.end() && y != f.end()) {
                 xCol = static_cast<std::size_t>(x - f.begin());
                 yCol = static_cast<std::size_t>(y - f.begin());
@@ -528,7 +571,8 @@ PointSet parseXY(std::string_view text, const std::string& name) {
                      "header " + quoted(line.text) + " has " + plural(n, "column", "columns") +
                          "; expected two, or columns named 'x' and 'y'");
             }
-            ps.warnings.push_back("skipped header line " + std::to_string(line.number) + ": " + printable(line.text, 80, false));
+            ps.warnings.push_back("skipped header line " + std::to_string(line.number) + ": " +
+                                  printable(line.text, 80, false));
         }
     }
     if (haveHeader && !reader.next(line)) fail(name, headerLine, "no points after the header");
@@ -536,12 +580,16 @@ PointSet parseXY(std::string_view text, const std::string& name) {
     do {
         const std::size_t n = splitFields(line.text, sep, f, columns);
         if (n != columns) {
-            std::string msg = plural(n, "field", "fields") + " separated by " + sepName(sep) + "; expected " + std::to_string(columns);
+            std::string msg = plural(n, "field", "fields") + " separated by " + sepName(sep) +
+                              "; expected " + std::to_string(columns);
             if (haveHeader) {
                 msg += " as in the header on line " + std::to_string(headerLine);
             } else {
                 msg += " (x, y)";
-                if (n == 3) msg += "; for id,x,y or x,y,z columns add a header line naming the 'x' and 'y' columns";
+                if (n == 3)
+                    msg +=
+                        "; for id,x,y or x,y,z columns add a header line naming the 'x' and 'y' "
+                        "columns";
                 if (n == 1 && ps.points.empty() && isUnsignedDigits(f[0])) {
                     msg += "; a point count on the first line suggests Rossignac's .pts format";
                 }
@@ -549,7 +597,8 @@ PointSet parseXY(std::string_view text, const std::string& name) {
             fail(name, line.number, msg);
         }
         if (ps.points.size() == kMaxPoints) {
-            fail(name, line.number, "more than " + std::to_string(kMaxPoints) + " points (kMaxPoints)");
+            fail(name, line.number,
+                 "more than " + std::to_string(kMaxPoints) + " points (kMaxPoints)");
         }
         Vec2 p;
         p.x = parseReal(f[xCol], name, line.number, "x coordinate", ValueKind::Coordinate, sep);
@@ -571,46 +620,55 @@ PointSet parsePts(std::string_view text, const std::string& name) {
     Line line;
     std::vector<std::string_view> f;
 
-    if (!reader.next(line)) fail(name, 0, "no point count: the file holds only blank lines and comments");
+    if (!reader.next(line))
+        fail(name, 0, "no point count: the file holds only blank lines and comments");
     const LineNo countLine = line.number;
-    if (splitFields(line.text, Sep::Blanks, f, 1) != 1 || line.text.find(',') != std::string_view::npos) {
-        fail(name, countLine, "the first line must be the point count alone, found " + quoted(line.text));
+    if (splitFields(line.text, Sep::Blanks, f, 1) != 1 ||
+        line.text.find(',') != std::string_view::npos) {
+        fail(name, countLine,
+             "the first line must be the point count alone, found " + quoted(line.text));
     }
     const std::size_t count = parseCount(f[0], name, countLine, "point count");
-    checkCountFits(count, 4, reader.remainingBytes(), name, countLine, "points");  // "0,0\n" is the shortest line
+    checkCountFits(count, 4, reader.remainingBytes(), name, countLine,
+                   "points");  // "0,0\n" is the shortest line
     ps.points.reserve(count);
 
     bool warnedZ = false;
     while (reader.next(line)) {
         if (ps.points.size() == count) {
             fail(name, line.number,
-                 "extra point line: the count on line " + std::to_string(countLine) + " declares " + plural(count, "point", "points"));
+                 "extra point line: the count on line " + std::to_string(countLine) + " declares " +
+                     plural(count, "point", "points"));
         }
         // savePts writes "x,y" (or "x,y,z"); hand-made files often use blanks instead.
         const Sep sep = line.text.find(',') != std::string_view::npos ? Sep::Comma : Sep::Blanks;
         const std::size_t n = splitFields(line.text, sep, f, 3);
         if (n < 2 || n > 3) {
             fail(name, line.number,
-                 plural(n, "field", "fields") + " separated by " + sepName(sep) + "; expected 2 (x,y) or 3 (x,y,z)");
+                 plural(n, "field", "fields") + " separated by " + sepName(sep) +
+                     "; expected 2 (x,y) or 3 (x,y,z)");
         }
         Vec2 p;
         p.x = parseReal(f[0], name, line.number, "x coordinate", ValueKind::Coordinate, sep);
         p.y = parseReal(f[1], name, line.number, "y coordinate", ValueKind::Coordinate, sep);
         if (n == 3) {
-            const double z = parseReal(f[2], name, line.number, "z coordinate", ValueKind::Coordinate, sep);
+            const double z =
+                parseReal(f[2], name, line.number, "z coordinate", ValueKind::Coordinate, sep);
             if (z != 0.0 && !warnedZ) {
                 warnedZ = true;
-                ps.warnings.push_back("z coordinates ignored (first nonzero z on line " + std::to_string(line.number) + ")");
+                ps.warnings.push_back("z coordinates ignored (first nonzero z on line " +
+                                      std::to_string(line.number) + ")");
             }
         }
         ps.points.push_back(p);
     }
     if (ps.points.size() < count) {
         fail(name, reader.linesRead(),
-             "end of file: expected " + plural(count, "point", "points") + " (count on line " + std::to_string(countLine) +
-                 "), found " + std::to_string(ps.points.size()));
+             "end of file: expected " + plural(count, "point", "points") + " (count on line " +
+                 std::to_string(countLine) + "), found " + std::to_string(ps.points.size()));
     }
-    if (count == 0) ps.warnings.push_back("count on line " + std::to_string(countLine) + " declares 0 points");
+    if (count == 0)
+        ps.warnings.push_back("count on line " + std::to_string(countLine) + " declares 0 points");
     return ps;
 }
 
@@ -639,7 +697,8 @@ Format sniffFormat(std::string_view text) {
                                 isUnsignedDigits(f2[0]);
     const bool allUnsigned = n1 <= 4 && std::all_of(f1.begin(), f1.end(), isUnsignedDigits);
     if (n1 == 1 && allUnsigned) return secondIsVertex ? Format::Node : Format::Pts;
-    if (n1 >= 2 && allUnsigned && f1[1] == "2" && (!hasSecond || secondIsVertex)) return Format::Node;
+    if (n1 >= 2 && allUnsigned && f1[1] == "2" && (!hasSecond || secondIsVertex))
+        return Format::Node;
     return Format::XY;
 }
 
@@ -658,14 +717,15 @@ std::string readFileText(const std::string& path) {
 
     std::error_code ec;
     const auto status = std::filesystem::status(path, ec);
-    if (!ec && std::filesystem::is_directory(status)) fail(path, 0, "cannot read: it is a directory");
+    if (!ec && std::filesystem::is_directory(status))
+        fail(path, 0, "cannot read: it is a directory");
     std::string text;
     if (!ec && std::filesystem::is_regular_file(status)) {
         const std::uintmax_t size = std::filesystem::file_size(path, ec);
         if (!ec && size > kMaxFileBytes) {
             fail(path, 0,
-                 "file is " + std::to_string(size) + " bytes; the maximum is " + std::to_string(kMaxFileBytes) +
-                     " (kMaxFileBytes)");
+                 "file is " + std::to_string(size) + " bytes; the maximum is " +
+                     std::to_string(kMaxFileBytes) + " (kMaxFileBytes)");
         }
         if (!ec) text.reserve(static_cast<std::size_t>(size));
     }
@@ -676,7 +736,9 @@ std::string readFileText(const std::string& path) {
         errno = 0;
         const std::size_t got = std::fread(chunk.data(), 1, chunk.size(), file.get());
         if (text.size() + got > kMaxFileBytes) {
-            fail(path, 0, "file is larger than the maximum of " + std::to_string(kMaxFileBytes) + " bytes (kMaxFileBytes)");
+            fail(path, 0,
+                 "file is larger than the maximum of " + std::to_string(kMaxFileBytes) +
+                     " bytes (kMaxFileBytes)");
         }
         text.append(chunk.data(), got);
         if (first && !text.empty()) {
@@ -684,7 +746,8 @@ std::string readFileText(const std::string& path) {
             first = false;
         }
         if (got < chunk.size()) {
-            if (std::ferror(file.get())) fail(path, 0, "cannot read file: " + errnoText(errno != 0 ? errno : EIO));
+            if (std::ferror(file.get()))
+                fail(path, 0, "cannot read file: " + errnoText(errno != 0 ? errno : EIO));
             break;
         }
     }
@@ -710,9 +773,14 @@ PointSet readPointsFile(const std::string& path) {
 
     checkText(text, path);  // sniff only text that passed the same checks the parsers make
     const Format format = sniffFormat(text);
-    PointSet ps = format == Format::Node ? parseNode(text, path) : format == Format::Pts ? parsePts(text, path) : parseXY(text, path);
-    const char* guess = format == Format::Node ? "Triangle .node" : format == Format::Pts ? "Rossignac .pts" : "XY";
-    const std::string shown = ext.empty() ? "no extension" : "unknown extension '" + printable(ext, 20, false) + "'";
+    PointSet ps = format == Format::Node  ? parseNode(text, path)
+                  : format == Format::Pts ? parsePts(text, path)
+                                          : parseXY(text, path);
+    const char* guess = format == Format::Node  ? "Triangle .node"
+                        : format == Format::Pts ? "Rossignac .pts"
+                                                : "XY";
+    const std::string shown =
+        ext.empty() ? "no extension" : "unknown extension '" + printable(ext, 20, false) + "'";
     ps.warnings.insert(ps.warnings.begin(), shown + ": read as " + guess + " by its content");
     return ps;
 }

@@ -48,8 +48,8 @@ namespace dlab {
 
 struct PointSet {
     std::vector<Vec2> points;
-    int indexBase = 0;                  // 0 or 1: the index of the first vertex in a .node file, else 0
-    std::string path;                   // where it came from (file path or the name given to parse*)
+    int indexBase = 0;  // 0 or 1: the index of the first vertex in a .node file, else 0
+    std::string path;   // where it came from (file path or the name given to parse*)
     std::vector<std::string> warnings;  // non-fatal remarks, e.g. "skipped header line 1: x,y"
 };
 

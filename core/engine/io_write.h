@@ -41,7 +41,8 @@ void writeVoronoiNode(std::ostream& os, const VoronoiDiagram& diagram, int index
 // Triangle .v.edge: "E 0", then "e a b" for a finite edge, "e a -1 dx dy" for a ray.
 void writeVoronoiEdge(std::ostream& os, const VoronoiDiagram& diagram, int indexBase = 0);
 
-// OFF: "OFF", "nv nt 0", "x y 0" per vertex (all of G, duplicates included), "3 a b c" per triangle.
+// OFF: "OFF", "nv nt 0", "x y 0" per vertex (all of G, duplicates included), "3 a b c" per
+// triangle.
 void writeOff(std::ostream& os, const Mesh& mesh);
 // Wavefront OBJ: "v x y 0" per vertex, "f a b c" per triangle (1-based).
 void writeObj(std::ostream& os, const Mesh& mesh);

@@ -40,8 +40,10 @@ Bounds Bounds::of(const std::vector<Vec2>& points) {
     if (points.empty()) return b;
     b.lo = b.hi = points[0];
     for (const Vec2& p : points) {
-        b.lo.x = std::min(b.lo.x, p.x); b.lo.y = std::min(b.lo.y, p.y);
-        b.hi.x = std::max(b.hi.x, p.x); b.hi.y = std::max(b.hi.y, p.y);
+        b.lo.x = std::min(b.lo.x, p.x);
+        b.lo.y = std::min(b.lo.y, p.y);
+        b.hi.x = std::max(b.hi.x, p.x);
+        b.hi.y = std::max(b.hi.y, p.y);
     }
     return b;
 }
@@ -112,7 +114,8 @@ public:
         sizeFor(ctx.expectedPoints);
     }
     void sizeFor(std::size_t points) {
-        m_side = std::clamp(static_cast<int>(std::sqrt(static_cast<double>(points) / 2.0)), 1, 2048);
+        m_side =
+            std::clamp(static_cast<int>(std::sqrt(static_cast<double>(points) / 2.0)), 1, 2048);
         m_cells.assign(static_cast<std::size_t>(m_side) * m_side, kNone);
         m_map.init(m_bounds, m_side, m_side);
     }
@@ -205,8 +208,10 @@ void IdBufferCpu::paintTriangle(std::int32_t t) {
             // e(x) = (px[b]-px[a])(y-py[a]) - (py[b]-py[a])(x-px[a]) = A x + B
             const double A = -(py[b] - py[a]);
             const double B = (px[b] - px[a]) * (y - py[a]) + (py[b] - py[a]) * px[a];
-            if (A > 0) lo = std::max(lo, std::floor(-B / A - 0.5) - 1);
-            else if (A < 0) hi = std::min(hi, std::ceil(-B / A - 0.5) + 1);
+            if (A > 0)
+                lo = std::max(lo, std::floor(-B / A - 0.5) - 1);
+            else if (A < 0)
+                hi = std::min(hi, std::ceil(-B / A - 0.5) + 1);
         }
         // A nearly flat edge puts its root far outside the box (or at +-inf): clamp before the
         // conversion to int, which is undefined out of range (found by fuzz_engine).
@@ -219,7 +224,10 @@ void IdBufferCpu::paintTriangle(std::int32_t t) {
                 const int a = k, b = (k + 1) % 3;
                 inside = (px[b] - px[a]) * (y - py[a]) - (py[b] - py[a]) * (x - px[a]) >= 0;
             }
-            if (inside) { row[i] = t; ++m_painted; }
+            if (inside) {
+                row[i] = t;
+                ++m_painted;
+            }
         }
     }
 }
@@ -233,9 +241,10 @@ std::unique_ptr<Locator> makeLocator(LocatorKind kind, const LocatorOptions& opt
             return std::make_unique<IdBufferCpu>(options.idBufferWidth, options.idBufferHeight);
         case LocatorKind::IdBufferGl:
         case LocatorKind::IdBufferGlBatched:
-            throw std::invalid_argument(std::string("locator ") + toString(kind) +
-                                        " needs a GL context: build it with ui/gl/idbuffer_gl.h on one "
-                                        "(dtlab and the GUI do; core alone cannot)");
+            throw std::invalid_argument(
+                std::string("locator ") + toString(kind) +
+                " needs a GL context: build it with ui/gl/idbuffer_gl.h on one "
+                "(dtlab and the GUI do; core alone cannot)");
     }
     return nullptr;
 }

@@ -16,7 +16,14 @@ namespace dlab {
 
 // IdBufferGl / IdBufferGlBatched live in ui/ (ui/gl/idbuffer_gl.h): they need a GL context, so
 // makeLocator() refuses them and the caller (GUI, dtlab) builds them on its context.
-enum class LocatorKind : std::uint8_t { Naive, Walk, Grid, IdBufferCpu, IdBufferGl, IdBufferGlBatched };
+enum class LocatorKind : std::uint8_t {
+    Naive,
+    Walk,
+    Grid,
+    IdBufferCpu,
+    IdBufferGl,
+    IdBufferGlBatched
+};
 
 const char* toString(LocatorKind kind);
 std::optional<LocatorKind> parseLocatorKind(std::string_view name);
@@ -31,8 +38,8 @@ struct Bounds {
 struct LocatorContext {
     const Mesh* mesh = nullptr;
     std::int32_t firstVirtual = 0;
-    bool ghost = true;              // exact mode: the virtual vertex has no coordinates
-    std::size_t expectedPoints = 0; // points the run will insert (to size spatial indexes)
+    bool ghost = true;               // exact mode: the virtual vertex has no coordinates
+    std::size_t expectedPoints = 0;  // points the run will insert (to size spatial indexes)
     bool isVirtual(std::int32_t v) const { return v >= firstVirtual; }
     bool isVirtualTriangle(std::int32_t t) const {
         const auto& V = mesh->V;
@@ -42,8 +49,8 @@ struct LocatorContext {
 
 struct LocatorStats {
     std::uint64_t queries = 0;
-    std::uint64_t hits = 0;         // the hinted triangle contained the point (walk of length 0)
-    std::uint64_t missSteps = 0;    // walk steps summed over the misses
+    std::uint64_t hits = 0;       // the hinted triangle contained the point (walk of length 0)
+    std::uint64_t missSteps = 0;  // walk steps summed over the misses
 };
 
 class Locator {
@@ -64,7 +71,10 @@ public:
     // A locate ended in triangle `found` after `steps` walk steps from the hint.
     virtual void located(Vec2 /*p*/, std::int32_t /*found*/, std::int32_t steps) {
         ++m_stats.queries;
-        if (steps == 0) ++m_stats.hits; else m_stats.missSteps += steps;
+        if (steps == 0)
+            ++m_stats.hits;
+        else
+            m_stats.missSteps += steps;
     }
     const LocatorStats& stats() const { return m_stats; }
 
@@ -73,9 +83,9 @@ protected:
 };
 
 struct LocatorOptions {
-    int idBufferWidth = 1600;   // the paper's box
+    int idBufferWidth = 1600;  // the paper's box
     int idBufferHeight = 1600;
-    int idBufferBatch = 256;    // idbuffer-gl-batched: points whose pixels one readback fetches
+    int idBufferBatch = 256;  // idbuffer-gl-batched: points whose pixels one readback fetches
 };
 
 bool needsGl(LocatorKind kind);

@@ -57,19 +57,21 @@ private:
         const Mesh& m = m_mesh;
         const std::int32_t v = m.V[c];
         if (v < 0 || v >= m.numVertices()) {
-            add(Violation::Kind::VertexRange, c, cs(c) + ": V = " + std::to_string(v) +
-                                                     " is not a vertex (|G| = " +
-                                                     std::to_string(m.numVertices()) + ")");
+            add(Violation::Kind::VertexRange, c,
+                cs(c) + ": V = " + std::to_string(v) +
+                    " is not a vertex (|G| = " + std::to_string(m.numVertices()) + ")");
             return;
         }
         const std::int32_t o = m.O[c];
         if (o == kNone) return;
         if (o < 0 || o >= m.numCorners()) {
-            add(Violation::Kind::OppositeRange, c, cs(c) + ": O = " + std::to_string(o) + " is not a corner");
+            add(Violation::Kind::OppositeRange, c,
+                cs(c) + ": O = " + std::to_string(o) + " is not a corner");
             return;
         }
         if (tri(o) == tri(c)) {
-            add(Violation::Kind::OppositeSelf, c, cs(c) + ": O = " + std::to_string(o) + " is in the same triangle");
+            add(Violation::Kind::OppositeSelf, c,
+                cs(c) + ": O = " + std::to_string(o) + " is in the same triangle");
             return;
         }
         if (m.O[o] != c) {
@@ -81,9 +83,10 @@ private:
         // The edge opposite c runs n(c)->p(c); seen from o it must run n(o)->p(o) reversed.
         if (m.V[next(c)] != m.V[prev(o)] || m.V[prev(c)] != m.V[next(o)]) {
             add(Violation::Kind::EdgeMismatch, c,
-                cs(c) + ": edge " + std::to_string(m.V[next(c)]) + "-" + std::to_string(m.V[prev(c)]) +
-                    " does not match the reversed edge " + std::to_string(m.V[prev(o)]) + "-" +
-                    std::to_string(m.V[next(o)]) + " across O[c] = " + std::to_string(o));
+                cs(c) + ": edge " + std::to_string(m.V[next(c)]) + "-" +
+                    std::to_string(m.V[prev(c)]) + " does not match the reversed edge " +
+                    std::to_string(m.V[prev(o)]) + "-" + std::to_string(m.V[next(o)]) +
+                    " across O[c] = " + std::to_string(o));
         }
     }
 
@@ -92,14 +95,15 @@ private:
         const std::int32_t c = 3 * t;
         const std::int32_t a = m.V[c], b = m.V[c + 1], d = m.V[c + 2];
         if (a == b || b == d || a == d) {
-            add(Violation::Kind::DegenerateTri, c, "triangle " + std::to_string(t) + " repeats a vertex");
+            add(Violation::Kind::DegenerateTri, c,
+                "triangle " + std::to_string(t) + " repeats a vertex");
             return;
         }
         const bool virt = isVirtual(a) || isVirtual(b) || isVirtual(d);
         if (m_options.geometry && !virt && orient2d(m.G[a], m.G[b], m.G[d]) <= 0) {
             add(Violation::Kind::NotCounterClockwise, c,
-                "triangle " + std::to_string(t) + " (" + std::to_string(a) + ", " + std::to_string(b) +
-                    ", " + std::to_string(d) + ") is not counter-clockwise");
+                "triangle " + std::to_string(t) + " (" + std::to_string(a) + ", " +
+                    std::to_string(b) + ", " + std::to_string(d) + ") is not counter-clockwise");
             return;
         }
         if (!m_options.delaunay || virt) return;

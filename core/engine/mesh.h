@@ -64,15 +64,15 @@ struct Mesh {
 // One broken invariant, named by the corner where it was found.
 struct Violation {
     enum class Kind : std::uint8_t {
-        BadSize,         // V/O sizes differ or are not a multiple of 3
-        VertexRange,     // V[c] outside [0, |G|)
-        OppositeRange,   // O[c] outside [-1, |V|)
-        OppositeSelf,    // O[c] lies in c's own triangle
-        OppositeSymmetry,// O[O[c]] != c
-        EdgeMismatch,    // the edge opposite c is not the reversed edge opposite O[c]
-        DegenerateTri,   // a triangle repeats a vertex
-        NotCounterClockwise, // orient2d of a triangle is <= 0
-        NotDelaunay,     // the vertex O[c] lies strictly inside the circumcircle of t(c)
+        BadSize,              // V/O sizes differ or are not a multiple of 3
+        VertexRange,          // V[c] outside [0, |G|)
+        OppositeRange,        // O[c] outside [-1, |V|)
+        OppositeSelf,         // O[c] lies in c's own triangle
+        OppositeSymmetry,     // O[O[c]] != c
+        EdgeMismatch,         // the edge opposite c is not the reversed edge opposite O[c]
+        DegenerateTri,        // a triangle repeats a vertex
+        NotCounterClockwise,  // orient2d of a triangle is <= 0
+        NotDelaunay,          // the vertex O[c] lies strictly inside the circumcircle of t(c)
     };
     Kind kind;
     std::int32_t corner;
@@ -82,8 +82,8 @@ struct Violation {
 const char* toString(Violation::Kind kind);
 
 struct ValidateOptions {
-    bool geometry = true;     // check counter-clockwise orientation (exact)
-    bool delaunay = true;     // check the local Delaunay property on every interior edge (exact)
+    bool geometry = true;  // check counter-clockwise orientation (exact)
+    bool delaunay = true;  // check the local Delaunay property on every interior edge (exact)
     std::int32_t firstVirtual = -1;  // vertices >= this are ghost/super vertices: skip geometry
     std::size_t maxViolations = 1;   // stop after this many (1: report the first broken invariant)
 };

@@ -33,8 +33,8 @@ void checkTriangles(const Mesh& m) {
         for (std::int32_t v : {a, b, c}) {
             if (v < 0 || v >= nv) {
                 throw std::invalid_argument("computeOpposites: triangle " + std::to_string(t) +
-                                            " uses vertex " + std::to_string(v) +
-                                            ", outside [0, " + std::to_string(nv) + ")");
+                                            " uses vertex " + std::to_string(v) + ", outside [0, " +
+                                            std::to_string(nv) + ")");
             }
         }
         if (a == b || b == c || c == a) {

@@ -71,7 +71,8 @@ constexpr std::array<std::uint16_t, 4 * 256> kHilbertNibbles = [] {
 std::uint32_t hilbertIndex16(std::uint32_t x, std::uint32_t y) {
     std::uint32_t state = 0, d = 0;
     for (int i = 12; i >= 0; i -= 4) {
-        const std::uint32_t e = kHilbertNibbles[(state << 8) | (((x >> i) & 15u) << 4) | ((y >> i) & 15u)];
+        const std::uint32_t e =
+            kHilbertNibbles[(state << 8) | (((x >> i) & 15u) << 4) | ((y >> i) & 15u)];
         d = (d << 8) | (e & 0xFFu);
         state = e >> 8;
     }
@@ -125,7 +126,8 @@ std::vector<std::int32_t> radixSortByKey(std::vector<std::uint64_t>& rec, RadixC
     for (std::uint64_t r : tmp) rec[count[1][radixDigit(r, 1)]++] = r;
     tmp = {};
     std::vector<std::int32_t> order(rec.size());
-    for (std::uint64_t r : rec) order[count[2][radixDigit(r, 2)]++] = static_cast<std::int32_t>(r & 0xFFFFFFFFu);
+    for (std::uint64_t r : rec)
+        order[count[2][radixDigit(r, 2)]++] = static_cast<std::int32_t>(r & 0xFFFFFFFFu);
     return order;
 }
 
@@ -139,8 +141,10 @@ std::vector<std::int32_t> brio(const std::vector<Vec2>& points, SplitMix64& rng)
     }
     double minX = points[0].x, maxX = minX, minY = points[0].y, maxY = minY;
     for (const Vec2& p : points) {
-        minX = std::min(minX, p.x); maxX = std::max(maxX, p.x);
-        minY = std::min(minY, p.y); maxY = std::max(maxY, p.y);
+        minX = std::min(minX, p.x);
+        maxX = std::max(maxX, p.x);
+        minY = std::min(minY, p.y);
+        maxY = std::max(maxY, p.y);
     }
     // Each point draws its round: the last round (15) with probability 1/2, the one before
     // with 1/4, ..., round 0 takes the rest. The sort key is (round, Hilbert index on a
@@ -166,7 +170,8 @@ std::vector<std::int32_t> brio(const std::vector<Vec2>& points, SplitMix64& rng)
         const std::uint64_t r = rng.next();
         const int zeros = r == 0 ? 64 : std::countr_zero(r);
         const std::uint32_t round = 15u - static_cast<std::uint32_t>(std::min(zeros, 15));
-        const std::uint32_t cx = cell((p.x / 2 - minX / 2) * sx), cy = cell((p.y / 2 - minY / 2) * sy);
+        const std::uint32_t cx = cell((p.x / 2 - minX / 2) * sx),
+                            cy = cell((p.y / 2 - minY / 2) * sy);
         const std::uint32_t key = (round << 28) | (hilbertIndex16(cx << 2, cy << 2) >> 4);
         rec[i] = (std::uint64_t{key} << 32) | static_cast<std::uint32_t>(i);
         for (int pass = 0; pass < 3; ++pass) ++count[pass][radixDigit(rec[i], pass)];

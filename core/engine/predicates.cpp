@@ -201,7 +201,8 @@ struct BigInt {
         std::vector<std::uint32_t> r(std::max(a.mag.size(), b.mag.size()) + 1, 0u);
         std::uint64_t carry = 0;
         for (std::size_t i = 0; i < r.size(); ++i) {
-            const std::uint64_t s = carry + (i < a.mag.size() ? a.mag[i] : 0u) + (i < b.mag.size() ? b.mag[i] : 0u);
+            const std::uint64_t s =
+                carry + (i < a.mag.size() ? a.mag[i] : 0u) + (i < b.mag.size() ? b.mag[i] : 0u);
             r[i] = static_cast<std::uint32_t>(s);
             carry = s >> 32;
         }
@@ -212,7 +213,8 @@ struct BigInt {
         std::vector<std::uint32_t> r(a.mag.size(), 0u);
         std::int64_t borrow = 0;
         for (std::size_t i = 0; i < r.size(); ++i) {
-            std::int64_t d = static_cast<std::int64_t>(a.mag[i]) - borrow - (i < b.mag.size() ? b.mag[i] : 0u);
+            std::int64_t d =
+                static_cast<std::int64_t>(a.mag[i]) - borrow - (i < b.mag.size() ? b.mag[i] : 0u);
             borrow = d < 0;
             if (d < 0) d += std::int64_t{1} << 32;
             r[i] = static_cast<std::uint32_t>(d);
@@ -245,7 +247,8 @@ struct BigInt {
         for (std::size_t i = 0; i < a.mag.size(); ++i) {
             std::uint64_t carry = 0;
             for (std::size_t j = 0; j < b.mag.size(); ++j) {
-                const std::uint64_t t = static_cast<std::uint64_t>(a.mag[i]) * b.mag[j] + r.mag[i + j] + carry;
+                const std::uint64_t t =
+                    static_cast<std::uint64_t>(a.mag[i]) * b.mag[j] + r.mag[i + j] + carry;
                 r.mag[i + j] = static_cast<std::uint32_t>(t);
                 carry = t >> 32;
             }
@@ -377,7 +380,8 @@ int incircleExact(Vec2 a, Vec2 b, Vec2 c, Vec2 d, PredicateTier& tier) {
         const int xxn = multiply(dx[i], dxn[i], dx[i], dxn[i], xx);
         const int yyn = multiply(dy[i], dyn[i], dy[i], dyn[i], yy);
         const int liftn = expansionSum(xx, xxn, yy, yyn, lift);
-        const int crossn = crossTerm(dx[j], dxn[j], dy[m], dyn[m], dx[m], dxn[m], dy[j], dyn[j], cross);
+        const int crossn =
+            crossTerm(dx[j], dxn[j], dy[m], dyn[m], dx[m], dxn[m], dy[j], dyn[j], cross);
         terms[i].n = multiply(lift, liftn, cross, crossn, terms[i].e);
     }
     partial.n = expansionSum(terms[0].e, terms[0].n, terms[1].e, terms[1].n, partial.e);
@@ -427,7 +431,8 @@ PredicateReport report(const detail::Filtered& f, Exact exact) {
 }  // namespace
 
 PredicateReport orient2dReport(Vec2 a, Vec2 b, Vec2 c) {
-    return report(detail::orientFilter(a, b, c), [&](PredicateTier& t) { return orient2dExact(a, b, c, t); });
+    return report(detail::orientFilter(a, b, c),
+                  [&](PredicateTier& t) { return orient2dExact(a, b, c, t); });
 }
 
 PredicateReport incircleReport(Vec2 a, Vec2 b, Vec2 c, Vec2 d) {

@@ -101,7 +101,8 @@ inline Filtered incircleFilter(Vec2 a, Vec2 b, Vec2 c, Vec2 d) {
     const double alift = adx * adx + ady * ady;
     const double blift = bdx * bdx + bdy * bdy;
     const double clift = cdx * cdx + cdy * cdy;
-    const double det = alift * (bdxcdy - cdxbdy) + blift * (cdxady - adxcdy) + clift * (adxbdy - bdxady);
+    const double det =
+        alift * (bdxcdy - cdxbdy) + blift * (cdxady - adxcdy) + clift * (adxbdy - bdxady);
     const double sa = std::fabs(bdxcdy) + std::fabs(cdxbdy);
     const double sb = std::fabs(cdxady) + std::fabs(adxcdy);
     const double sc = std::fabs(adxbdy) + std::fabs(bdxady);
@@ -115,13 +116,15 @@ inline Filtered incircleFilter(Vec2 a, Vec2 b, Vec2 c, Vec2 d) {
 
 [[gnu::always_inline]] inline int orient2d(Vec2 a, Vec2 b, Vec2 c) {
     const detail::Filtered f = detail::orientFilter(a, b, c);
-    if (f.decided()) [[likely]] return f.sign();
+    if (f.decided()) [[likely]]
+        return f.sign();
     return detail::orient2dSlow(a, b, c);
 }
 
 [[gnu::always_inline]] inline int incircle(Vec2 a, Vec2 b, Vec2 c, Vec2 d) {
     const detail::Filtered f = detail::incircleFilter(a, b, c, d);
-    if (f.decided()) [[likely]] return f.sign();
+    if (f.decided()) [[likely]]
+        return f.sign();
     return detail::incircleSlow(a, b, c, d);
 }
 

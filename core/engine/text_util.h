@@ -36,9 +36,12 @@ inline std::string escapeControls(std::string_view s) {
     out.reserve(s.size());
     for (char ch : s) {
         const auto u = static_cast<unsigned char>(ch);
-        if (ch == '\n') out += "\\n";
-        else if (ch == '\r') out += "\\r";
-        else if (ch == '\t') out += "\\t";
+        if (ch == '\n')
+            out += "\\n";
+        else if (ch == '\r')
+            out += "\\r";
+        else if (ch == '\t')
+            out += "\\t";
         else if (u < 0x20 || u == 0x7f) {
             static const char* const kHex = "0123456789abcdef";
             out += "\\x";

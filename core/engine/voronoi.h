@@ -100,7 +100,6 @@ std::optional<std::pair<Vec2, Vec2>> clipToBox(Vec2 p, Vec2 d, double tMax, Vec2
 // Every edge of the diagram clipped to the box [lo, hi] (segments to their visible part, rays
 // to where they leave the box); edges with no part inside, or with a non-finite end, are
 // dropped.
-std::vector<std::pair<Vec2, Vec2>> clippedSegments(const VoronoiDiagram& diagram, Vec2 lo,
-                                                   Vec2 hi);
+std::vector<std::pair<Vec2, Vec2>> clippedSegments(const VoronoiDiagram& diagram, Vec2 lo, Vec2 hi);
 
 }  // namespace dlab

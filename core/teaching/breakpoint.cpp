@@ -18,7 +18,8 @@ constexpr BreakKindInfo kKinds[] = {
     {BreakKind::Located, "located", BreakParam::None, "a locate ended"},
     {BreakKind::Split, "split", BreakParam::None, "a triangle split 1->3"},
     {BreakKind::SplitEdge, "split-edge", BreakParam::None, "an edge split 2->4 (1->2 on the hull)"},
-    {BreakKind::InCircle, "incircle", BreakParam::Optional, "an in-circle test (with result S: 1, 0, -1)"},
+    {BreakKind::InCircle, "incircle", BreakParam::Optional,
+     "an in-circle test (with result S: 1, 0, -1)"},
     {BreakKind::Flip, "flip", BreakParam::None, "an edge flipped"},
     {BreakKind::Duplicate, "duplicate", BreakParam::None, "a duplicate point skipped"},
     {BreakKind::Degenerate, "degenerate", BreakParam::None,
@@ -36,7 +37,8 @@ constexpr BreakKindInfo kKinds[] = {
 std::int32_t nextVertexAfter(const Journal& journal, const Inserter& ins, std::size_t p) {
     if (p < journal.recorded()) {
         const Op& next = journal.ops()[p];
-        return next.type == OpType::LocateStep || next.type == OpType::Located ? next.vertex : kNone;
+        return next.type == OpType::LocateStep || next.type == OpType::Located ? next.vertex
+                                                                               : kNone;
     }
     if (journal.position() == p) return ins.currentVertex();
     // The journal sits elsewhere and the next op is not recorded: derive it from the order.
@@ -46,7 +48,9 @@ std::int32_t nextVertexAfter(const Journal& journal, const Inserter& ins, std::s
     if (last.type == OpType::Start) {
         rank = ins.options().boundary == Boundary::Exact ? 3 : 0;
     } else if (last.type == OpType::Inserted || last.type == OpType::SkipDuplicate) {
-        rank = static_cast<std::size_t>(std::find(order.begin(), order.end(), last.vertex) - order.begin()) + 1;
+        rank = static_cast<std::size_t>(std::find(order.begin(), order.end(), last.vertex) -
+                                        order.begin()) +
+               1;
     } else {
         return kNone;
     }
@@ -66,7 +70,8 @@ bool startInserts(const Journal& journal, const Inserter& ins, const Op& start, 
 }  // namespace
 
 bool endsInsertion(OpType t) {
-    return t == OpType::Start || t == OpType::Inserted || t == OpType::SkipDuplicate || t == OpType::Finalize;
+    return t == OpType::Start || t == OpType::Inserted || t == OpType::SkipDuplicate ||
+           t == OpType::Finalize;
 }
 
 std::span<const BreakKindInfo> breakKinds() { return kKinds; }
@@ -87,23 +92,27 @@ std::optional<Breakpoint> parseBreakpoint(std::string_view text, std::string* er
     }
     if (!kind) {
         std::string names;
-        for (const BreakKindInfo& k : kKinds) names += std::string(names.empty() ? "" : ", ") + k.name;
+        for (const BreakKindInfo& k : kKinds)
+            names += std::string(names.empty() ? "" : ", ") + k.name;
         return bad("unknown breakpoint \"" + name + "\" (known: " + names + ")");
     }
     Breakpoint bp{kind->kind, std::nullopt};
     if (colon == std::string::npos) {
         if (kind->param == BreakParam::Required) {
-            return bad(std::string("breakpoint \"") + kind->name + "\" needs a number, e.g. \"" + kind->name + ":5\"");
+            return bad(std::string("breakpoint \"") + kind->name + "\" needs a number, e.g. \"" +
+                       kind->name + ":5\"");
         }
         return bp;
     }
-    if (kind->param == BreakParam::None) return bad(std::string("breakpoint \"") + kind->name + "\" takes no number");
+    if (kind->param == BreakParam::None)
+        return bad(std::string("breakpoint \"") + kind->name + "\" takes no number");
     std::string num = trimmed(std::string_view(whole).substr(colon + 1));
     if (!num.empty() && num[0] == '+') num.erase(0, 1);
     std::int64_t value = 0;
     const auto [end, ec] = std::from_chars(num.data(), num.data() + num.size(), value);
     if (num.empty() || ec != std::errc() || end != num.data() + num.size()) {
-        return bad("\"" + trimmed(std::string_view(whole).substr(colon + 1)) + "\" is not a whole number");
+        return bad("\"" + trimmed(std::string_view(whole).substr(colon + 1)) +
+                   "\" is not a whole number");
     }
     if (bp.kind == BreakKind::InCircle) {
         if (value < -1 || value > 1) return bad("an in-circle result is 1, 0 or -1");
@@ -126,7 +135,7 @@ std::string explain(const Breakpoint& bp) {
         case BreakKind::Op: return "after operation " + k;
         case BreakKind::InCircle:
             if (!bp.param) return "an in-circle test";
-            return *bp.param > 0 ? "an in-circle test that says flip"
+            return *bp.param > 0    ? "an in-circle test that says flip"
                    : *bp.param == 0 ? "an in-circle test on four cocircular points"
                                     : "an in-circle test that finds the edge Delaunay";
         case BreakKind::Insert: return "vertex " + k + " is about to be inserted";
@@ -152,7 +161,8 @@ bool hitsAt(const Breakpoint& bp, const Journal& journal, const Inserter& ins, s
         case BreakKind::Flip: return op.type == OpType::Flip;
         case BreakKind::Duplicate: return op.type == OpType::SkipDuplicate;
         case BreakKind::Degenerate:
-            return (op.type == OpType::Located && (op.where == Where::OnEdge || op.where == Where::OnVertex)) ||
+            return (op.type == OpType::Located &&
+                    (op.where == Where::OnEdge || op.where == Where::OnVertex)) ||
                    (op.type == OpType::InCircleTest && op.sign == 0 && op.b != kNone);
         case BreakKind::Insert:
             return bp.param && op.type != OpType::Finalize && endsInsertion(op.type) &&
@@ -161,7 +171,8 @@ bool hitsAt(const Breakpoint& bp, const Journal& journal, const Inserter& ins, s
             if (op.type == OpType::Inserted || op.type == OpType::SkipDuplicate) {
                 return !bp.param || op.vertex == *bp.param;
             }
-            if (op.type == OpType::Start && op.a != kNone && ins.options().boundary == Boundary::Exact) {
+            if (op.type == OpType::Start && op.a != kNone &&
+                ins.options().boundary == Boundary::Exact) {
                 return !bp.param || startInserts(journal, ins, op, *bp.param);
             }
             return false;

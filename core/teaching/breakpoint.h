@@ -61,9 +61,9 @@ enum class BreakParam : std::uint8_t { None, Optional, Required };
 
 struct BreakKindInfo {
     BreakKind kind;
-    const char* name;    // the text form before ':'
+    const char* name;  // the text form before ':'
     BreakParam param;
-    const char* meaning; // one line for menus and help ("an edge flipped")
+    const char* meaning;  // one line for menus and help ("an edge flipped")
 };
 
 // Every kind, in the order of BreakKind (for GUI menus and help texts).
@@ -79,13 +79,14 @@ struct Breakpoint {
 // "insert:5" -> {Insert, 5}. Case-insensitive, spaces around the parts allowed. On failure
 // returns nullopt and, when `error` is given, says why ("unknown breakpoint \"flop\"...").
 std::optional<Breakpoint> parseBreakpoint(std::string_view text, std::string* error = nullptr);
-std::string toString(const Breakpoint& bp);       // the text form, parseBreakpoint's inverse
-std::string explain(const Breakpoint& bp);        // "vertex 5 is about to be inserted"
+std::string toString(const Breakpoint& bp);  // the text form, parseBreakpoint's inverse
+std::string explain(const Breakpoint& bp);   // "vertex 5 is about to be inserted"
 
 // Whether journal position `position` (0 .. recorded()) matches bp. Reads the recorded ops; the
 // inserter is asked only for what the journal cannot tell (the number of input points, and for
 // insert:K the next vertex when the next op is not recorded yet).
-bool hitsAt(const Breakpoint& bp, const Journal& journal, const Inserter& ins, std::size_t position);
+bool hitsAt(const Breakpoint& bp, const Journal& journal, const Inserter& ins,
+            std::size_t position);
 // The same at the journal's current position.
 inline bool hits(const Breakpoint& bp, const Journal& journal, const Inserter& ins) {
     return hitsAt(bp, journal, ins, journal.position());
@@ -107,8 +108,8 @@ const char* toString(StopReason reason);
 
 struct RunResult {
     StopReason reason = StopReason::Budget;
-    int hit = -1;            // index into the breakpoints when reason == Hit
-    std::size_t steps = 0;   // operations done (forward) or undone (back)
+    int hit = -1;           // index into the breakpoints when reason == Hit
+    std::size_t steps = 0;  // operations done (forward) or undone (back)
 };
 
 // Steps forward at least once (unless already at the end), then until a breakpoint hits, the

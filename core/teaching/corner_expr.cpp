@@ -13,12 +13,14 @@ namespace dlab {
 
 namespace {
 
-constexpr int kMaxDepth = 64;            // nested brackets
-constexpr std::size_t kMaxNodes = 600;   // bounds the evaluator's recursion as well
+constexpr int kMaxDepth = 64;           // nested brackets
+constexpr std::size_t kMaxNodes = 600;  // bounds the evaluator's recursion as well
 
 bool isIdentStart(char ch) { return std::isalpha(static_cast<unsigned char>(ch)) || ch == '_'; }
 bool isIdentChar(char ch) { return std::isalnum(static_cast<unsigned char>(ch)) || ch == '_'; }
-bool isCornerOp(char op) { return std::string_view("nplorsutv").find(op) != std::string_view::npos; }
+bool isCornerOp(char op) {
+    return std::string_view("nplorsutv").find(op) != std::string_view::npos;
+}
 
 // Shortest text that reads back to the same double.
 std::string formatDouble(double x) {
@@ -53,7 +55,8 @@ const char* toString(ExprError::Kind kind) {
 
 std::string formatValue(const ExprValue& v) {
     switch (v.kind) {
-        case ValueKind::Point: return "(" + formatDouble(v.point.x) + ", " + formatDouble(v.point.y) + ")";
+        case ValueKind::Point:
+            return "(" + formatDouble(v.point.x) + ", " + formatDouble(v.point.y) + ")";
         case ValueKind::Truth: return v.truth ? "true" : "false";
         default: return std::to_string(v.i);
     }
@@ -69,12 +72,15 @@ public:
 
     bool run(ExprError* error) {
         if (m_s.size() > CornerExpr::kMaxLength) {
-            return fail(CornerExpr::kMaxLength, "expression too long (at most " +
-                                                    std::to_string(CornerExpr::kMaxLength) + " characters)", error);
+            return fail(CornerExpr::kMaxLength,
+                        "expression too long (at most " + std::to_string(CornerExpr::kMaxLength) +
+                            " characters)",
+                        error);
         }
         for (std::size_t i = 0; i < m_s.size(); ++i) {
             const unsigned char ch = static_cast<unsigned char>(m_s[i]);
-            if (ch < 32 && ch != '\t' && ch != '\n' && ch != '\r') return fail(i, "control character in the expression", error);
+            if (ch < 32 && ch != '\t' && ch != '\n' && ch != '\r')
+                return fail(i, "control character in the expression", error);
             if (ch >= 128) return fail(i, "only ASCII is allowed in an expression", error);
         }
         skip();
@@ -108,7 +114,8 @@ private:
         return false;
     }
     std::int32_t setError(std::size_t column, std::string message) {
-        if (!m_failed) m_error = ExprError{ExprError::Kind::Syntax, column, escapeControls(message)};
+        if (!m_failed)
+            m_error = ExprError{ExprError::Kind::Syntax, column, escapeControls(message)};
         m_failed = true;
         return -1;
     }
@@ -138,12 +145,20 @@ private:
         if (m_failed) return -1;
         skip();
         char op = 0;
-        if (m_s.substr(m_pos, 2) == "==") { op = '='; m_pos += 2; }
-        else if (m_s.substr(m_pos, 2) == "!=") { op = '!'; m_pos += 2; }
-        else if (m_s.substr(m_pos, 1) == "=") { op = '='; m_pos += 1; }
-        else return left;
+        if (m_s.substr(m_pos, 2) == "==") {
+            op = '=';
+            m_pos += 2;
+        } else if (m_s.substr(m_pos, 2) == "!=") {
+            op = '!';
+            m_pos += 2;
+        } else if (m_s.substr(m_pos, 1) == "=") {
+            op = '=';
+            m_pos += 1;
+        } else
+            return left;
         skip();
-        if (m_pos == m_s.size()) return setError(m_pos, "nothing to compare with after the comparison");
+        if (m_pos == m_s.size())
+            return setError(m_pos, "nothing to compare with after the comparison");
         const std::int32_t right = chain();
         if (m_failed) return -1;
         Node n;
@@ -172,7 +187,8 @@ private:
             const std::size_t nameAt = m_pos;
             const std::string_view name = ident();
             if (name.size() != 1 || !isCornerOp(name[0])) {
-                return setError(nameAt, "unknown operator '" + std::string(name) + "' (use n p o l r s u t v)");
+                return setError(
+                    nameAt, "unknown operator '" + std::string(name) + "' (use n p o l r s u t v)");
             }
             Node n;
             n.kind = Node::Kind::Apply;
@@ -185,16 +201,19 @@ private:
         return x;
     }
 
-    std::int32_t bracketed(char open, char close, char op, std::uint32_t begin, std::string_view name) {
+    std::int32_t bracketed(char open, char close, char op, std::uint32_t begin,
+                           std::string_view name) {
         ++m_pos;  // the opening bracket
         if (++m_depth > kMaxDepth) return setError(m_pos - 1, "brackets nested too deeply");
         skip();
-        if (peek(close)) return setError(m_pos, std::string(name) + open + close + " needs an argument inside");
+        if (peek(close))
+            return setError(m_pos, std::string(name) + open + close + " needs an argument inside");
         const std::int32_t inner = expr();
         if (m_failed) return -1;
         if (!peek(close)) {
-            return setError(m_pos, m_pos == m_s.size() ? std::string("missing '") + close + "'"
-                                                       : std::string("expected '") + close + "' here");
+            return setError(m_pos, m_pos == m_s.size()
+                                       ? std::string("missing '") + close + "'"
+                                       : std::string("expected '") + close + "' here");
         }
         ++m_pos;
         --m_depth;
@@ -217,12 +236,15 @@ private:
         if (m_pos == m_s.size()) return setError(m_pos, "expression ends too early");
         const char ch = m_s[m_pos];
         if (std::isdigit(static_cast<unsigned char>(ch)) ||
-            (ch == '-' && m_pos + 1 < m_s.size() && std::isdigit(static_cast<unsigned char>(m_s[m_pos + 1])))) {
+            (ch == '-' && m_pos + 1 < m_s.size() &&
+             std::isdigit(static_cast<unsigned char>(m_s[m_pos + 1])))) {
             const std::size_t start = m_pos;
             if (ch == '-') ++m_pos;
-            while (m_pos < m_s.size() && std::isdigit(static_cast<unsigned char>(m_s[m_pos]))) ++m_pos;
+            while (m_pos < m_s.size() && std::isdigit(static_cast<unsigned char>(m_s[m_pos])))
+                ++m_pos;
             if (m_pos < m_s.size() && isIdentChar(m_s[m_pos])) {
-                return setError(m_pos, "a number cannot run into a name: '" + std::string(m_s.substr(start, m_pos - start + 1)) + "'");
+                return setError(m_pos, "a number cannot run into a name: '" +
+                                           std::string(m_s.substr(start, m_pos - start + 1)) + "'");
             }
             std::int64_t v = 0;
             const auto [end, ec] = std::from_chars(m_s.data() + start, m_s.data() + m_pos, v);
@@ -238,24 +260,34 @@ private:
         }
         if (ch == '(') return bracketed('(', ')', 0, begin, "");
         if (!isIdentStart(ch)) {
-            return setError(m_pos, std::string("expected a corner number, a name or '(' here, not '") + ch + "'");
+            return setError(
+                m_pos,
+                std::string("expected a corner number, a name or '(' here, not '") + ch + "'");
         }
         const std::string_view name = ident();
         const bool op = name.size() == 1 && isCornerOp(name[0]);
         const bool table = name == "V" || name == "O" || name == "G";
         if (op && peek('(')) return bracketed('(', ')', name[0], begin, name);
-        if (table && peek('[')) return bracketed('[', ']', name == "G" ? 'G' : static_cast<char>(name[0] + 32), begin, name);
+        if (table && peek('['))
+            return bracketed('[', ']', name == "G" ? 'G' : static_cast<char>(name[0] + 32), begin,
+                             name);
         if (op && peek('[')) {
             return setError(begin, "use " + std::string(name) + "(...) or " +
-                                       static_cast<char>(name[0] - 32) + "[...] (O and V take square brackets)");
+                                       static_cast<char>(name[0] - 32) +
+                                       "[...] (O and V take square brackets)");
         }
         if (table && peek('(')) {
-            return setError(begin, "use " + std::string(name) + "[...] with square brackets" +
-                                       (name == "G" ? "" : std::string(" or ") + static_cast<char>(name[0] + 32) + "(...)"));
+            return setError(
+                begin, "use " + std::string(name) + "[...] with square brackets" +
+                           (name == "G"
+                                ? ""
+                                : std::string(" or ") + static_cast<char>(name[0] + 32) + "(...)"));
         }
         if (op || table) {
-            return setError(begin, std::string(name) + " needs an argument: " +
-                                       (table ? std::string(name) + "[7]" : std::string(name) + "(7) or 7." + std::string(name)));
+            return setError(begin,
+                            std::string(name) + " needs an argument: " +
+                                (table ? std::string(name) + "[7]"
+                                       : std::string(name) + "(7) or 7." + std::string(name)));
         }
         Node n;
         n.kind = Node::Kind::Var;
@@ -293,7 +325,8 @@ bool CornerExpr::uses(std::string_view name) const {
 std::vector<std::string> CornerExpr::variables() const {
     std::vector<std::string> out;
     for (const Node& n : m_nodes) {
-        if (n.kind == Node::Kind::Var && std::find(out.begin(), out.end(), n.name) == out.end()) out.push_back(n.name);
+        if (n.kind == Node::Kind::Var && std::find(out.begin(), out.end(), n.name) == out.end())
+            out.push_back(n.name);
     }
     return out;
 }
@@ -304,8 +337,8 @@ std::vector<std::string> CornerExpr::variables() const {
 
 class ExprEvaluator {
 public:
-    ExprEvaluator(const CornerExpr& e, const Mesh& m, std::span<const ExprBinding> b, const ExprContext& ctx,
-                  std::vector<PathStep>* path)
+    ExprEvaluator(const CornerExpr& e, const Mesh& m, std::span<const ExprBinding> b,
+                  const ExprContext& ctx, std::vector<PathStep>* path)
         : m_e(e), m_mesh(m), m_bindings(b), m_ctx(ctx), m_path(path) {
         const std::size_t cells = std::min(m.V.size(), m.O.size());
         m_corners = static_cast<std::int64_t>(cells - cells % 3);
@@ -317,7 +350,9 @@ public:
 private:
     using Node = CornerExpr::Node;
 
-    std::string src(const Node& n) const { return escapeControls(m_e.m_text.substr(n.begin, n.end - n.begin)); }
+    std::string src(const Node& n) const {
+        return escapeControls(m_e.m_text.substr(n.begin, n.end - n.begin));
+    }
 
     std::nullopt_t fail(ExprError::Kind kind, const Node& at, std::string message) {
         m_error = ExprError{kind, at.begin, std::move(message)};
@@ -332,8 +367,11 @@ private:
     std::optional<std::int32_t> asCorner(const ExprValue& v, const Node& arg, char op) {
         if (v.kind != ValueKind::Corner && v.kind != ValueKind::Number) {
             return fail(ExprError::Kind::Type, arg,
-                        std::string(1, op) + " needs a corner, but " + src(arg) + " is a " + toString(v.kind) +
-                            (v.kind == ValueKind::Vertex ? " (operators move between corners; V[c] gives c's vertex)" : ""));
+                        std::string(1, op) + " needs a corner, but " + src(arg) + " is a " +
+                            toString(v.kind) +
+                            (v.kind == ValueKind::Vertex
+                                 ? " (operators move between corners; V[c] gives c's vertex)"
+                                 : ""));
         }
         if (v.i == kNone) {
             return fail(ExprError::Kind::Boundary, arg,
@@ -351,13 +389,16 @@ private:
         const std::int32_t x = m_mesh.O[c];
         if (x != kNone && (x < 0 || x >= m_corners)) {
             return fail(ExprError::Kind::Range, at,
-                        "O[" + std::to_string(c) + "] = " + std::to_string(x) + " is out of range (" + cornerRange() + ")");
+                        "O[" + std::to_string(c) + "] = " + std::to_string(x) +
+                            " is out of range (" + cornerRange() + ")");
         }
         return x;
     }
 
     void step(char op, std::int64_t from, std::int64_t to, std::uint8_t side) {
-        if (m_path) m_path->push_back({op, static_cast<std::int32_t>(from), static_cast<std::int32_t>(to), side});
+        if (m_path)
+            m_path->push_back(
+                {op, static_cast<std::int32_t>(from), static_cast<std::int32_t>(to), side});
     }
 
     std::optional<ExprValue> eval(std::int32_t idx, std::uint8_t side) {
@@ -368,9 +409,11 @@ private:
                 for (const ExprBinding& b : m_bindings) {
                     if (b.name == n.name) return b.value;
                 }
-                return fail(ExprError::Kind::Range, n,
-                            "unknown name '" + n.name + "'" +
-                                (n.name == "c" ? ": no corner is selected" : " (corners are numbers; c is the selected corner)"));
+                return fail(
+                    ExprError::Kind::Range, n,
+                    "unknown name '" + n.name + "'" +
+                        (n.name == "c" ? ": no corner is selected"
+                                       : " (corners are numbers; c is the selected corner)"));
             }
             case Node::Kind::Compare: return compare(n);
             case Node::Kind::Apply: break;
@@ -380,19 +423,23 @@ private:
         if (!x) return std::nullopt;
         if (n.op == 'G') {
             if (x->kind != ValueKind::Vertex && x->kind != ValueKind::Number) {
-                return fail(ExprError::Kind::Type, arg,
-                            "G needs a vertex, but " + src(arg) + " is a " + toString(x->kind) +
-                                (x->kind == ValueKind::Corner ? ": use G[V[" + src(arg) + "]]" : ""));
+                return fail(
+                    ExprError::Kind::Type, arg,
+                    "G needs a vertex, but " + src(arg) + " is a " + toString(x->kind) +
+                        (x->kind == ValueKind::Corner ? ": use G[V[" + src(arg) + "]]" : ""));
             }
             if (x->i < 0 || x->i >= m_mesh.numVertices()) {
-                return fail(ExprError::Kind::Range, arg,
-                            "vertex " + std::to_string(x->i) + " out of range (" +
-                                (m_mesh.G.empty() ? std::string("the mesh has no vertices")
-                                                  : "0.." + std::to_string(m_mesh.numVertices() - 1)) + ")");
+                return fail(
+                    ExprError::Kind::Range, arg,
+                    "vertex " + std::to_string(x->i) + " out of range (" +
+                        (m_mesh.G.empty() ? std::string("the mesh has no vertices")
+                                          : "0.." + std::to_string(m_mesh.numVertices() - 1)) +
+                        ")");
             }
             if (m_ctx.ghost && m_ctx.firstVirtual >= 0 && x->i >= m_ctx.firstVirtual) {
                 return fail(ExprError::Kind::Range, arg,
-                            "vertex " + std::to_string(x->i) + " is the ghost vertex: it has no coordinates");
+                            "vertex " + std::to_string(x->i) +
+                                " is the ghost vertex: it has no coordinates");
             }
             step('G', x->i, x->i, side);
             ExprValue out{ValueKind::Point, 0, m_mesh.G[x->i], false};
@@ -440,13 +487,16 @@ private:
         const Node& left = m_e.m_nodes[n.a];
         const Node& right = m_e.m_nodes[n.b];
         const bool aPoint = a->kind == ValueKind::Point;
-        const auto integral = [](ValueKind k) { return k != ValueKind::Point && k != ValueKind::Truth; };
-        const bool compatible = a->kind == b->kind || (integral(a->kind) && integral(b->kind) &&
-                                                       (a->kind == ValueKind::Number || b->kind == ValueKind::Number));
+        const auto integral = [](ValueKind k) {
+            return k != ValueKind::Point && k != ValueKind::Truth;
+        };
+        const bool compatible =
+            a->kind == b->kind || (integral(a->kind) && integral(b->kind) &&
+                                   (a->kind == ValueKind::Number || b->kind == ValueKind::Number));
         if (!compatible) {
             return fail(ExprError::Kind::Type, n,
-                        std::string("cannot compare a ") + toString(a->kind) + " (" + src(left) + ") with a " +
-                            toString(b->kind) + " (" + src(right) + ")");
+                        std::string("cannot compare a ") + toString(a->kind) + " (" + src(left) +
+                            ") with a " + toString(b->kind) + " (" + src(right) + ")");
         }
         bool equal = false;
         if (aPoint) {
@@ -481,7 +531,8 @@ ExprResult CornerExpr::evaluate(const Mesh& mesh, std::span<const ExprBinding> b
     return r;
 }
 
-ExprResult CornerExpr::evaluateAt(const Mesh& mesh, std::int32_t c, const ExprContext& context) const {
+ExprResult CornerExpr::evaluateAt(const Mesh& mesh, std::int32_t c,
+                                  const ExprContext& context) const {
     const ExprBinding b{"c", ExprValue{ValueKind::Corner, c, {}, false}};
     return evaluate(mesh, std::span(&b, 1), context);
 }
@@ -493,12 +544,12 @@ ExprResult CornerExpr::evaluateAt(const Mesh& mesh, std::int32_t c, const ExprCo
 namespace {
 
 constexpr const char* kStandardWatches[] = {
-    "o(o(c)) == c",          // O is symmetric
-    "t(o(c)) != t(c)",       // the opposite corner lies in another triangle
-    "V[n(o(c))] == V[p(c)]", // the shared edge, seen from both sides, has the same ends...
-    "V[p(o(c))] == V[n(c)]", // ...in reverse order
-    "n(n(n(c))) == c",       // three corners per triangle
-    "u(s(c)) == c",          // swing and unswing are inverse
+    "o(o(c)) == c",           // O is symmetric
+    "t(o(c)) != t(c)",        // the opposite corner lies in another triangle
+    "V[n(o(c))] == V[p(c)]",  // the shared edge, seen from both sides, has the same ends...
+    "V[p(o(c))] == V[n(c)]",  // ...in reverse order
+    "n(n(n(c))) == c",        // three corners per triangle
+    "u(s(c)) == c",           // swing and unswing are inverse
 };
 
 // Evaluates the watch at one corner without keeping a path (watches run over every corner after
@@ -512,7 +563,8 @@ int watchOne(const CornerExpr& w, const Mesh& mesh, std::int32_t c, const ExprCo
 }
 
 template <class Corners>
-WatchReport checkWatchOver(const CornerExpr& w, const Mesh& mesh, const Corners& corners, const ExprContext& ctx) {
+WatchReport checkWatchOver(const CornerExpr& w, const Mesh& mesh, const Corners& corners,
+                           const ExprContext& ctx) {
     WatchReport rep;
     if (!w.isComparison()) {
         rep.ok = false;
@@ -531,12 +583,14 @@ WatchReport checkWatchOver(const CornerExpr& w, const Mesh& mesh, const Corners&
             rep.corner = c;
             rep.failure = w.evaluateAt(mesh, c, ctx);  // again, with the path, for the report
             rep.message = "fails at c = " + std::to_string(c) + ": " + escapeControls(w.text()) +
-                          (rep.failure.ok() ? " is false" : " cannot be evaluated: " + rep.failure.error.message);
+                          (rep.failure.ok() ? " is false"
+                                            : " cannot be evaluated: " + rep.failure.error.message);
             return rep;
         }
     }
-    rep.message = "holds for " + std::to_string(rep.checked) + " corner" + (rep.checked == 1 ? "" : "s") +
-                  (rep.skipped ? " (" + std::to_string(rep.skipped) + " on the boundary skipped)" : "");
+    rep.message =
+        "holds for " + std::to_string(rep.checked) + " corner" + (rep.checked == 1 ? "" : "s") +
+        (rep.skipped ? " (" + std::to_string(rep.skipped) + " on the boundary skipped)" : "");
     return rep;
 }
 
@@ -545,7 +599,10 @@ struct CornerRange {
     struct It {
         std::int32_t c;
         std::int32_t operator*() const { return c; }
-        It& operator++() { ++c; return *this; }
+        It& operator++() {
+            ++c;
+            return *this;
+        }
         bool operator!=(const It& o) const { return c != o.c; }
     };
     It begin() const { return {0}; }
@@ -558,13 +615,14 @@ WatchReport checkWatch(const CornerExpr& watch, const Mesh& mesh, const ExprCont
     return checkWatchOver(watch, mesh, CornerRange{mesh.numCorners()}, context);
 }
 
-WatchReport checkWatchAt(const CornerExpr& watch, const Mesh& mesh, std::int32_t c, const ExprContext& context) {
+WatchReport checkWatchAt(const CornerExpr& watch, const Mesh& mesh, std::int32_t c,
+                         const ExprContext& context) {
     const std::int32_t one[1] = {c};
     return checkWatchOver(watch, mesh, std::span<const std::int32_t>(one), context);
 }
 
-WatchReport checkWatchOn(const CornerExpr& watch, const Mesh& mesh, std::span<const std::int32_t> corners,
-                         const ExprContext& context) {
+WatchReport checkWatchOn(const CornerExpr& watch, const Mesh& mesh,
+                         std::span<const std::int32_t> corners, const ExprContext& context) {
     return checkWatchOver(watch, mesh, corners, context);
 }
 

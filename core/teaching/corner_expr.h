@@ -7,7 +7,8 @@
 //   chain    := primary { "." op }
 //   primary  := integer | "-1" | variable | op "(" expr ")" | table "[" expr "]" | "(" expr ")"
 //   op       := n p o l r s u t v               (Rossignac's operators, as in core/engine/mesh.h:
-//                                                l = o(n(c)), r = o(p(c)), s = n(l(c)), u = p(r(c)))
+//                                                l = o(n(c)), r = o(p(c)), s = n(l(c)),
+//                                                u = p(r(c)))
 //   table    := V (= v) | O (= o) | G (coordinates of a vertex)
 //   variable := a name bound by the caller, e.g. c (the selected corner)
 //
@@ -37,9 +38,9 @@ const char* toString(ValueKind kind);
 
 struct ExprValue {
     ValueKind kind = ValueKind::Number;
-    std::int64_t i = 0;   // Number, Corner, Vertex, Triangle (kNone = -1 allowed for a corner)
-    Vec2 point{};         // Point
-    bool truth = false;   // Truth
+    std::int64_t i = 0;  // Number, Corner, Vertex, Triangle (kNone = -1 allowed for a corner)
+    Vec2 point{};        // Point
+    bool truth = false;  // Truth
 };
 // "17", "-1", "(100, 200)", "true".
 std::string formatValue(const ExprValue& value);
@@ -110,10 +111,10 @@ public:
     struct Node {
         enum class Kind : std::uint8_t { Number, Var, Apply, Compare };
         Kind kind = Kind::Number;
-        char op = 0;              // Apply: n p o l r s u t v G; Compare: '=' or '!'
-        std::int64_t number = 0;  // Number
-        std::string name;         // Var
-        std::int32_t a = -1, b = -1;  // children (node indices)
+        char op = 0;                       // Apply: n p o l r s u t v G; Compare: '=' or '!'
+        std::int64_t number = 0;           // Number
+        std::string name;                  // Var
+        std::int32_t a = -1, b = -1;       // children (node indices)
         std::uint32_t begin = 0, end = 0;  // source span
     };
 
@@ -141,8 +142,8 @@ WatchReport checkWatch(const CornerExpr& watch, const Mesh& mesh, const ExprCont
 WatchReport checkWatchAt(const CornerExpr& watch, const Mesh& mesh, std::int32_t c,
                          const ExprContext& context = {});
 // Only these corners (e.g. those of the triangles the last operation changed), in this order.
-WatchReport checkWatchOn(const CornerExpr& watch, const Mesh& mesh, std::span<const std::int32_t> corners,
-                         const ExprContext& context = {});
+WatchReport checkWatchOn(const CornerExpr& watch, const Mesh& mesh,
+                         std::span<const std::int32_t> corners, const ExprContext& context = {});
 
 // The identities every corner table satisfies (for the GUI's watch list and the lessons).
 std::span<const char* const> standardWatches();

@@ -10,16 +10,18 @@ namespace {
 std::string vname(const Inserter& ins, std::int32_t v) {
     if (v == kNone) return "-";
     if (ins.isVirtual(v) && !ins.done()) {
-        return ins.options().boundary == Boundary::Exact ? "ghost" : "s" + std::to_string(v - ins.numInput());
+        return ins.options().boundary == Boundary::Exact ? "ghost"
+                                                         : "s" + std::to_string(v - ins.numInput());
     }
     return std::to_string(v);
 }
 
 std::string triName(const Inserter& ins, std::int32_t t) {
     const auto& V = ins.mesh().V;
-    if (t < 0 || 3 * t + 2 >= static_cast<std::int32_t>(V.size())) return "triangle " + std::to_string(t);
-    return "triangle " + std::to_string(t) + " (" + vname(ins, V[3 * t]) + ", " + vname(ins, V[3 * t + 1]) +
-           ", " + vname(ins, V[3 * t + 2]) + ")";
+    if (t < 0 || 3 * t + 2 >= static_cast<std::int32_t>(V.size()))
+        return "triangle " + std::to_string(t);
+    return "triangle " + std::to_string(t) + " (" + vname(ins, V[3 * t]) + ", " +
+           vname(ins, V[3 * t + 1]) + ", " + vname(ins, V[3 * t + 2]) + ")";
 }
 
 std::string edgeName(const Inserter& ins, std::int32_t a, std::int32_t b) {
@@ -33,45 +35,59 @@ std::string describe(const Op& op, const Inserter& ins) {
     const std::string p = "vertex " + vname(ins, op.vertex);
     switch (op.type) {
         case OpType::Start:
-            if (op.a == kNone) return "start: fewer than three points not on one line, so there is no triangle";
+            if (op.a == kNone)
+                return "start: fewer than three points not on one line, so there is no triangle";
             return ins.options().boundary == Boundary::Super
                        ? "start: the super-triangle " + triName(ins, 0) + " holds every point"
-                       : "start: first triangle " + triName(ins, 0) + " and three ghost triangles around its hull";
+                       : "start: first triangle " + triName(ins, 0) +
+                             " and three ghost triangles around its hull";
         case OpType::LocateStep:
-            return "locate " + p + ": leave triangle " + std::to_string(op.a) + " for " + triName(ins, op.b);
+            return "locate " + p + ": leave triangle " + std::to_string(op.a) + " for " +
+                   triName(ins, op.b);
         case OpType::Located: {
-            const std::string where = op.where == Where::OnEdge     ? "on the edge opposite corner " + std::to_string(op.b)
-                                      : op.where == Where::OnVertex ? "on vertex " + vname(ins, V[op.b])
-                                      : op.where == Where::Outside  ? "outside the hull, beyond ghost " + triName(ins, op.a)
-                                                                    : "inside " + triName(ins, op.a);
+            const std::string where =
+                op.where == Where::OnEdge ? "on the edge opposite corner " + std::to_string(op.b)
+                : op.where == Where::OnVertex ? "on vertex " + vname(ins, V[op.b])
+                : op.where == Where::Outside
+                    ? "outside the hull, beyond ghost " + triName(ins, op.a)
+                    : "inside " + triName(ins, op.a);
             return p + " found " + where;
         }
         case OpType::Split:
-            return "split triangle " + std::to_string(op.a) + " into three around " + p + " (corners " +
-                   std::to_string(3 * op.a) + ".." + std::to_string(3 * op.a + 2) + " reused, triangles " +
-                   std::to_string(op.trianglesBefore) + " and " + std::to_string(op.trianglesBefore + 1) + " appended)";
+            return "split triangle " + std::to_string(op.a) + " into three around " + p +
+                   " (corners " + std::to_string(3 * op.a) + ".." + std::to_string(3 * op.a + 2) +
+                   " reused, triangles " + std::to_string(op.trianglesBefore) + " and " +
+                   std::to_string(op.trianglesBefore + 1) + " appended)";
         case OpType::SplitEdge:
-            return op.b == kNone ? "split the boundary edge opposite corner " + std::to_string(op.a) + " at " + p + " (1 -> 2)"
-                                 : "split the edge opposite corner " + std::to_string(op.a) + " at " + p + " (2 -> 4)";
+            return op.b == kNone ? "split the boundary edge opposite corner " +
+                                       std::to_string(op.a) + " at " + p + " (1 -> 2)"
+                                 : "split the edge opposite corner " + std::to_string(op.a) +
+                                       " at " + p + " (2 -> 4)";
         case OpType::InCircleTest: {
             const std::int32_t a = V[next(op.a)], b = V[prev(op.a)];
-            if (op.b == kNone) return "edge " + edgeName(ins, a, b) + " is on the boundary: nothing to test";
-            const std::string q = "is " + p + " inside the circle of triangle " + std::to_string(tri(op.b)) + "? ";
+            if (op.b == kNone)
+                return "edge " + edgeName(ins, a, b) + " is on the boundary: nothing to test";
+            const std::string q =
+                "is " + p + " inside the circle of triangle " + std::to_string(tri(op.b)) + "? ";
             if (op.sign > 0) return q + "yes: edge " + edgeName(ins, a, b) + " must flip";
-            if (op.sign == 0) return q + "on it (cocircular): edge " + edgeName(ins, a, b) + " stays";
+            if (op.sign == 0)
+                return q + "on it (cocircular): edge " + edgeName(ins, a, b) + " stays";
             return q + "no: edge " + edgeName(ins, a, b) + " is Delaunay";
         }
         case OpType::Flip:
-            return "flip edge " + edgeName(ins, V[next(op.a)], V[next(op.b)]) + " to " + edgeName(ins, V[op.a], V[op.b]);
+            return "flip edge " + edgeName(ins, V[next(op.a)], V[next(op.b)]) + " to " +
+                   edgeName(ins, V[op.a], V[op.b]);
         case OpType::SkipDuplicate:
             return p + " duplicates vertex " + vname(ins, op.b) + ": skipped (vertex " +
                    std::to_string(std::min(op.vertex, op.b)) + ", the first occurrence, is kept)";
-        case OpType::Inserted:
-            return p + " inserted; every edge around it is Delaunay";
+        case OpType::Inserted: return p + " inserted; every edge around it is Delaunay";
         case OpType::Finalize:
             return "finalize: " + std::to_string(op.a) +
-                   (ins.options().boundary == Boundary::Super ? " triangles touching the super-triangle" : " ghost triangles") +
-                   " removed, V and O compacted to " + std::to_string(op.trianglesAfter) + " triangles";
+                   (ins.options().boundary == Boundary::Super
+                        ? " triangles touching the super-triangle"
+                        : " ghost triangles") +
+                   " removed, V and O compacted to " + std::to_string(op.trianglesAfter) +
+                   " triangles";
     }
     return "?";
 }

@@ -2,12 +2,12 @@
 // computed from the live state, the headless planner, and Markdown-light text.
 #include "core/teaching/lesson.h"
 
-#include "core/teaching/corner_expr.h"
-#include "core/teaching/describe.h"
 #include "core/engine/io_read.h"
 #include "core/engine/predicates.h"
 #include "core/engine/text_util.h"
 #include "core/engine/voronoi.h"
+#include "core/teaching/corner_expr.h"
+#include "core/teaching/describe.h"
 
 #include <toml++/toml.h>
 
@@ -32,7 +32,8 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::string composeMessage(const std::string& file, int line, int stop, const std::string& message) {
+std::string composeMessage(const std::string& file, int line, int stop,
+                           const std::string& message) {
     std::string s = file;
     if (line > 0) s += ":" + std::to_string(line);
     s += ": ";
@@ -64,7 +65,8 @@ namespace {
 
 // Splits one block's text into spans. On an unclosed marker returns false with `why` and the
 // marker's offset in `raw`.
-bool parseInline(std::string_view raw, std::vector<TextSpan>& spans, std::string& why, std::size_t& at) {
+bool parseInline(std::string_view raw, std::vector<TextSpan>& spans, std::string& why,
+                 std::size_t& at) {
     TextSpan::Style style = TextSpan::Style::Plain;
     std::size_t boldAt = 0;
     std::string cur;
@@ -108,7 +110,8 @@ std::optional<std::vector<TextBlock>> parseLessonText(std::string_view text, std
         TextBlock::Kind kind;
         int number;
         std::string raw;
-        std::vector<std::pair<std::size_t, int>> lines;  // (offset in raw, line number) per joined line
+        std::vector<std::pair<std::size_t, int>>
+            lines;  // (offset in raw, line number) per joined line
     };
     std::vector<RawBlock> raws;
     bool open = false;
@@ -116,7 +119,8 @@ std::optional<std::vector<TextBlock>> parseLessonText(std::string_view text, std
     std::size_t pos = 0;
     while (pos <= text.size()) {
         const std::size_t nl = text.find('\n', pos);
-        std::string_view line = text.substr(pos, nl == std::string_view::npos ? std::string_view::npos : nl - pos);
+        std::string_view line =
+            text.substr(pos, nl == std::string_view::npos ? std::string_view::npos : nl - pos);
         pos = nl == std::string_view::npos ? text.size() + 1 : nl + 1;
         ++lineNo;
         if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
@@ -128,11 +132,17 @@ std::optional<std::vector<TextBlock>> parseLessonText(std::string_view text, std
         std::size_t digits = 0;
         while (digits < t.size() && std::isdigit(static_cast<unsigned char>(t[digits]))) ++digits;
         if ((t[0] == '-' || t[0] == '*') && t.size() > 1 && t[1] == ' ') {
-            raws.push_back({TextBlock::Kind::Bullet, 0, trimmed(std::string_view(t).substr(2)), {{0, lineNo}}});
+            raws.push_back({TextBlock::Kind::Bullet,
+                            0,
+                            trimmed(std::string_view(t).substr(2)),
+                            {{0, lineNo}}});
             open = true;
-        } else if (digits > 0 && digits < 6 && digits + 1 < t.size() && t[digits] == '.' && t[digits + 1] == ' ') {
-            raws.push_back({TextBlock::Kind::Numbered, std::atoi(t.substr(0, digits).c_str()),
-                            trimmed(std::string_view(t).substr(digits + 2)), {{0, lineNo}}});
+        } else if (digits > 0 && digits < 6 && digits + 1 < t.size() && t[digits] == '.' &&
+                   t[digits + 1] == ' ') {
+            raws.push_back({TextBlock::Kind::Numbered,
+                            std::atoi(t.substr(0, digits).c_str()),
+                            trimmed(std::string_view(t).substr(digits + 2)),
+                            {{0, lineNo}}});
             open = true;
         } else if (open) {
             raws.back().raw += " ";
@@ -225,7 +235,8 @@ bool acceptsAnswer(const Answer& expected, std::string_view typedIn) {
     if (typed.empty()) return false;
     switch (expected.kind) {
         case Answer::Kind::Integer: {
-            if (expected.corner && expected.a == kNone && (typed == "none" || typed == "boundary")) return true;
+            if (expected.corner && expected.a == kNone && (typed == "none" || typed == "boundary"))
+                return true;
             std::string t;
             for (char ch : typed) {
                 if (ch != ' ') t += ch;
@@ -237,7 +248,8 @@ bool acceptsAnswer(const Answer& expected, std::string_view typedIn) {
         }
         case Answer::Kind::Edge: {
             const auto v = digitRuns(typed);
-            return v.size() == 2 && ((v[0] == expected.a && v[1] == expected.b) || (v[0] == expected.b && v[1] == expected.a));
+            return v.size() == 2 && ((v[0] == expected.a && v[1] == expected.b) ||
+                                     (v[0] == expected.b && v[1] == expected.a));
         }
         case Answer::Kind::Text: return looseName(typed) == looseName(expected.text);
         case Answer::Kind::Truth: {
@@ -247,7 +259,9 @@ bool acceptsAnswer(const Answer& expected, std::string_view typedIn) {
         }
         case Answer::Kind::Point: {
             const auto v = realRuns(typed);
-            const auto close = [](double x, double want) { return std::abs(x - want) <= 1e-9 * std::max(1.0, std::abs(want)); };
+            const auto close = [](double x, double want) {
+                return std::abs(x - want) <= 1e-9 * std::max(1.0, std::abs(want));
+            };
             return v.size() == 2 && close(v[0], expected.point.x) && close(v[1], expected.point.y);
         }
     }
@@ -273,7 +287,8 @@ constexpr QuantityInfo kQuantities[] = {
     {"flips", "flips so far"},
     {"tests", "in-circle tests so far"},
     {"insertion_flips", "flips of the insertion in progress (or the one that just ended)"},
-    {"insertion_tests", "in-circle tests of the insertion in progress (or the one that just ended)"},
+    {"insertion_tests",
+     "in-circle tests of the insertion in progress (or the one that just ended)"},
     {"queue", "edges waiting for their in-circle test (the flip queue)"},
     {"walk_steps", "walk steps so far, all locates together"},
     {"hint", "the triangle the latest locate started from (the locator's hint)"},
@@ -341,7 +356,8 @@ Answer truth(bool t) {
 
 class Quantities {
 public:
-    Quantities(Inserter& ins, Journal& j, std::int32_t selected) : m_ins(ins), m_j(j), m_sel(selected) {}
+    Quantities(Inserter& ins, Journal& j, std::int32_t selected)
+        : m_ins(ins), m_j(j), m_sel(selected) {}
 
     Answer get(std::string_view name) {
         const Mesh& m = m_ins.mesh();
@@ -370,7 +386,8 @@ public:
             const std::size_t q = latestIndex(OpType::InCircleTest, "no in-circle test yet");
             const Op& op = m_j.ops()[q];
             if (name == "test_result") return integer(op.sign);
-            return atPosition(q + 1, [&] { return edge(mesh().V[next(op.a)], mesh().V[prev(op.a)]); });
+            return atPosition(q + 1,
+                              [&] { return edge(mesh().V[next(op.a)], mesh().V[prev(op.a)]); });
         }
         if (name == "flipped_edge" || name == "new_edge") {
             const std::size_t q = latestIndex(OpType::Flip, "no flip yet");
@@ -397,7 +414,8 @@ private:
     const Mesh& mesh() const { return m_ins.mesh(); }
     bool virtualTri(std::int32_t t) const {
         const auto& V = mesh().V;
-        return m_ins.isVirtual(V[3 * t]) || m_ins.isVirtual(V[3 * t + 1]) || m_ins.isVirtual(V[3 * t + 2]);
+        return m_ins.isVirtual(V[3 * t]) || m_ins.isVirtual(V[3 * t + 1]) ||
+               m_ins.isVirtual(V[3 * t + 2]);
     }
     std::int64_t realTriangles() const {
         std::int64_t n = 0;
@@ -430,7 +448,9 @@ private:
         }
         throw Unavailable{none};
     }
-    const Op& latest(OpType type, const char* none) const { return m_j.ops()[latestIndex(type, none)]; }
+    const Op& latest(OpType type, const char* none) const {
+        return m_j.ops()[latestIndex(type, none)];
+    }
     template <class F>
     Answer atPosition(std::size_t p, F&& f) {
         PositionGuard g(m_j);
@@ -446,11 +466,15 @@ private:
     }
     Answer latestLocate(bool wantHint) const {
         std::size_t q = m_j.position();
-        while (q > 0 && m_j.ops()[q - 1].type != OpType::LocateStep && m_j.ops()[q - 1].type != OpType::Located) --q;
+        while (q > 0 && m_j.ops()[q - 1].type != OpType::LocateStep &&
+               m_j.ops()[q - 1].type != OpType::Located)
+            --q;
         if (q == 0) throw Unavailable{"no locate yet"};
         std::size_t first = q - 1;
         const std::int32_t v = m_j.ops()[first].vertex;
-        while (first > 0 && m_j.ops()[first - 1].type == OpType::LocateStep && m_j.ops()[first - 1].vertex == v) --first;
+        while (first > 0 && m_j.ops()[first - 1].type == OpType::LocateStep &&
+               m_j.ops()[first - 1].vertex == v)
+            --first;
         if (wantHint) return integer(m_j.ops()[first].a);
         std::int64_t steps = 0;
         for (std::size_t i = first; i < q; ++i) steps += m_j.ops()[i].type == OpType::LocateStep;
@@ -474,7 +498,8 @@ private:
     }
     std::int64_t hullEdges() const {
         std::int64_t n = 0;
-        for (std::int32_t c = 0; c < mesh().numCorners(); ++c) n += !virtualTri(tri(c)) && hullCorner(c);
+        for (std::int32_t c = 0; c < mesh().numCorners(); ++c)
+            n += !virtualTri(tri(c)) && hullCorner(c);
         return n;
     }
     bool convex() const {
@@ -507,7 +532,8 @@ private:
     }
     std::int64_t degree() const {
         const Mesh& m = mesh();
-        if (m_sel < 0 || m_sel >= m.numCorners()) throw Unavailable{"degree needs a selected corner"};
+        if (m_sel < 0 || m_sel >= m.numCorners())
+            throw Unavailable{"degree needs a selected corner"};
         std::int64_t n = 1;
         std::int32_t c = m.s(m_sel);
         for (; c != kNone && c != m_sel && n <= m.numCorners(); c = m.s(c)) ++n;
@@ -518,9 +544,11 @@ private:
     }
     Answer circumcenterOfSelection() const {
         const Mesh& m = mesh();
-        if (m_sel < 0 || m_sel >= m.numCorners()) throw Unavailable{"circumcenter needs a selected corner"};
+        if (m_sel < 0 || m_sel >= m.numCorners())
+            throw Unavailable{"circumcenter needs a selected corner"};
         const std::int32_t t = tri(m_sel);
-        if (virtualTri(t)) throw Unavailable{"the selected corner's triangle is a ghost or super triangle"};
+        if (virtualTri(t))
+            throw Unavailable{"the selected corner's triangle is a ghost or super triangle"};
         Answer a;
         a.kind = Answer::Kind::Point;
         a.point = circumcenter(m.G[m.V[3 * t]], m.G[m.V[3 * t + 1]], m.G[m.V[3 * t + 2]]);
@@ -555,7 +583,8 @@ std::string quantityNames() {
 }
 
 ExprContext exprContext(const Inserter& ins) {
-    return ExprContext{ins.firstVirtual(), ins.options().boundary == Boundary::Exact && !ins.done()};
+    return ExprContext{ins.firstVirtual(),
+                       ins.options().boundary == Boundary::Exact && !ins.done()};
 }
 
 std::vector<ExprBinding> selectionBinding(std::int32_t selected) {
@@ -585,7 +614,8 @@ std::optional<Answer> computeAnswer(std::string_view specIn, Inserter& ins, Jour
     const auto expr = CornerExpr::parse(spec, &perr);
     if (!expr) {
         return fail("\"" + spec + "\" is neither a quantity (" + quantityNames() +
-                    ") nor a corner expression (column " + std::to_string(perr.column + 1) + ": " + perr.message + ")");
+                    ") nor a corner expression (column " + std::to_string(perr.column + 1) + ": " +
+                    perr.message + ")");
     }
     const auto bindings = selectionBinding(selected);
     const ExprResult r = expr->evaluate(ins.mesh(), bindings, exprContext(ins));
@@ -607,16 +637,23 @@ std::optional<Answer> computeAnswer(std::string_view specIn, Inserter& ins, Jour
 // [SECTION] Loading
 // ============================================================================================
 
-std::string resolveLessonFile(const std::string& lessonPath, const std::string& relative, int line) {
-    auto fail = [&](const std::string& why) -> LessonError { return LessonError(lessonPath, line, 0, why); };
+std::string resolveLessonFile(const std::string& lessonPath, const std::string& relative,
+                              int line) {
+    auto fail = [&](const std::string& why) -> LessonError {
+        return LessonError(lessonPath, line, 0, why);
+    };
     if (relative.empty()) throw fail("points_file is empty");
-    if (relative.find('\0') != std::string::npos) throw fail("points_file contains a NUL character");
+    if (relative.find('\0') != std::string::npos)
+        throw fail("points_file contains a NUL character");
     const fs::path rel(relative);
     if (rel.is_absolute() || relative[0] == '/' || relative[0] == '\\' || rel.has_root_name()) {
-        throw fail("points_file \"" + relative + "\" must be relative to the lesson's folder, not absolute");
+        throw fail("points_file \"" + relative +
+                   "\" must be relative to the lesson's folder, not absolute");
     }
     for (const fs::path& part : rel) {
-        if (part == "..") throw fail("points_file \"" + relative + "\" must stay inside the lesson's folder (no \"..\")");
+        if (part == "..")
+            throw fail("points_file \"" + relative +
+                       "\" must stay inside the lesson's folder (no \"..\")");
     }
     std::error_code ec;
     fs::path base = fs::path(lessonPath).parent_path();
@@ -624,15 +661,19 @@ std::string resolveLessonFile(const std::string& lessonPath, const std::string& 
     const fs::path folder = fs::canonical(base, ec);
     if (ec) throw fail("cannot resolve the lesson's folder: " + ec.message());
     const fs::path target = fs::canonical(folder / rel, ec);
-    if (ec) throw fail("points_file \"" + relative + "\" not found beside the lesson (" + ec.message() + ")");
+    if (ec)
+        throw fail("points_file \"" + relative + "\" not found beside the lesson (" + ec.message() +
+                   ")");
     // Compare component by component: /a/lessons-evil is not inside /a/lessons.
     auto t = target.begin();
     for (auto f = folder.begin(); f != folder.end(); ++f, ++t) {
         if (t == target.end() || *t != *f) {
-            throw fail("points_file \"" + relative + "\" leads outside the lesson's folder (through a symbolic link)");
+            throw fail("points_file \"" + relative +
+                       "\" leads outside the lesson's folder (through a symbolic link)");
         }
     }
-    if (!fs::is_regular_file(target, ec)) throw fail("points_file \"" + relative + "\" is not a regular file");
+    if (!fs::is_regular_file(target, ec))
+        throw fail("points_file \"" + relative + "\" is not a regular file");
     return target.string();
 }
 
@@ -660,14 +701,17 @@ public:
         throw LessonError(m_file, line, m_stop, message);
     }
 
-    void checkKeys(const toml::table& t, std::initializer_list<const char*> known, const char* where) {
+    void checkKeys(const toml::table& t, std::initializer_list<const char*> known,
+                   const char* where) {
         for (auto&& [key, value] : t) {
             // A plain copy for the lambda: clang 14 cannot capture a structured binding.
             const std::string_view name = key.str();
-            const bool ok = std::any_of(known.begin(), known.end(), [&](const char* k) { return name == k; });
+            const bool ok =
+                std::any_of(known.begin(), known.end(), [&](const char* k) { return name == k; });
             if (!ok) {
                 fail(static_cast<int>(key.source().begin.line),
-                     "unknown key \"" + std::string(key.str()) + "\" " + where + " (known: " + joinNames(known) + ")");
+                     "unknown key \"" + std::string(key.str()) + "\" " + where +
+                         " (known: " + joinNames(known) + ")");
             }
         }
     }
@@ -679,28 +723,37 @@ public:
         return n->as_string()->get();
     }
 
-    std::optional<std::int64_t> integer(const toml::table& t, const char* key, std::int64_t lo, std::int64_t hi) {
+    std::optional<std::int64_t> integer(const toml::table& t, const char* key, std::int64_t lo,
+                                        std::int64_t hi) {
         const toml::node* n = t.get(key);
         if (!n) return std::nullopt;
-        if (!n->is_integer()) fail(lineOf(*n), std::string("\"") + key + "\" must be a whole number");
+        if (!n->is_integer())
+            fail(lineOf(*n), std::string("\"") + key + "\" must be a whole number");
         const std::int64_t v = n->as_integer()->get();
         if (v < lo || v > hi) {
-            fail(lineOf(*n), std::string("\"") + key + "\" must be between " + std::to_string(lo) + " and " + std::to_string(hi));
+            fail(lineOf(*n), std::string("\"") + key + "\" must be between " + std::to_string(lo) +
+                                 " and " + std::to_string(hi));
         }
         return v;
     }
 
-    std::vector<std::string> names(const toml::table& t, const char* key, std::span<const char* const> known) {
+    std::vector<std::string> names(const toml::table& t, const char* key,
+                                   std::span<const char* const> known) {
         std::vector<std::string> out;
         const toml::node* n = t.get(key);
         if (!n) return out;
         const toml::array* a = n->as_array();
-        if (!a) fail(lineOf(*n), std::string("\"") + key + "\" must be a list of names, e.g. [\"" + known[0] + "\"]");
+        if (!a)
+            fail(lineOf(*n), std::string("\"") + key + "\" must be a list of names, e.g. [\"" +
+                                 known[0] + "\"]");
         for (const toml::node& e : *a) {
-            if (!e.is_string()) fail(lineOf(e), std::string("\"") + key + "\" must hold names (strings)");
+            if (!e.is_string())
+                fail(lineOf(e), std::string("\"") + key + "\" must hold names (strings)");
             const std::string name = e.as_string()->get();
-            if (std::none_of(known.begin(), known.end(), [&](const char* k) { return name == k; })) {
-                fail(lineOf(e), std::string("unknown ") + (std::string(key) == "panels" ? "panel" : "overlay") + " \"" +
+            if (std::none_of(known.begin(), known.end(),
+                             [&](const char* k) { return name == k; })) {
+                fail(lineOf(e), std::string("unknown ") +
+                                    (std::string(key) == "panels" ? "panel" : "overlay") + " \"" +
                                     name + "\" (known: " + joinNames(known) + ")");
             }
             out.push_back(name);
@@ -717,20 +770,27 @@ public:
         checkKeys(t, {"boundary", "locator", "order", "seed", "idbuffer_size"}, "in [options]");
         if (auto s = string(t, "boundary")) {
             const auto b = parseBoundary(*s);
-            if (!b) fail(lineOf(*t.get("boundary")), "boundary must be \"exact\" or \"super\", not \"" + *s + "\"");
+            if (!b)
+                fail(lineOf(*t.get("boundary")),
+                     "boundary must be \"exact\" or \"super\", not \"" + *s + "\"");
             o.boundary = *b;
         }
         if (auto s = string(t, "locator")) {
             const auto k = parseLocatorKind(*s);
-            if (!k) fail(lineOf(*t.get("locator")), "locator must be naive, walk, grid or idbuffer-cpu, not \"" + *s + "\"");
+            if (!k)
+                fail(lineOf(*t.get("locator")),
+                     "locator must be naive, walk, grid or idbuffer-cpu, not \"" + *s + "\"");
             o.locator = *k;
         }
         if (auto s = string(t, "order")) {
             const auto k = parseOrderKind(*s);
-            if (!k) fail(lineOf(*t.get("order")), "order must be input, random or brio, not \"" + *s + "\"");
+            if (!k)
+                fail(lineOf(*t.get("order")),
+                     "order must be input, random or brio, not \"" + *s + "\"");
             o.order = *k;
         }
-        if (auto v = integer(t, "seed", 0, std::numeric_limits<std::int64_t>::max())) o.seed = static_cast<std::uint64_t>(*v);
+        if (auto v = integer(t, "seed", 0, std::numeric_limits<std::int64_t>::max()))
+            o.seed = static_cast<std::uint64_t>(*v);
         if (auto v = integer(t, "idbuffer_size", 1, 4096)) {
             o.locatorOptions.idBufferWidth = o.locatorOptions.idBufferHeight = static_cast<int>(*v);
         }
@@ -740,12 +800,14 @@ public:
         const toml::array* a = n.as_array();
         if (!a) fail(lineOf(n), "\"points\" must be a list of [x, y] pairs");
         if (a->size() > kMaxLessonPoints) {
-            fail(lineOf(n), "too many points for a lesson (at most " + std::to_string(kMaxLessonPoints) + ")");
+            fail(lineOf(n),
+                 "too many points for a lesson (at most " + std::to_string(kMaxLessonPoints) + ")");
         }
         std::vector<Vec2> out;
         for (const toml::node& p : *a) {
             const toml::array* xy = p.as_array();
-            if (!xy || xy->size() != 2) fail(lineOf(p), "point " + std::to_string(out.size()) + " must be [x, y]");
+            if (!xy || xy->size() != 2)
+                fail(lineOf(p), "point " + std::to_string(out.size()) + " must be [x, y]");
             double c[2];
             for (int k = 0; k < 2; ++k) {
                 const toml::node& e = *xy->get(static_cast<std::size_t>(k));
@@ -754,9 +816,12 @@ public:
                 } else if (e.is_floating_point()) {
                     c[k] = e.as_floating_point()->get();
                 } else {
-                    fail(lineOf(e), "point " + std::to_string(out.size()) + ": coordinates must be numbers");
+                    fail(lineOf(e),
+                         "point " + std::to_string(out.size()) + ": coordinates must be numbers");
                 }
-                if (!std::isfinite(c[k])) fail(lineOf(e), "point " + std::to_string(out.size()) + ": coordinates must be finite");
+                if (!std::isfinite(c[k]))
+                    fail(lineOf(e),
+                         "point " + std::to_string(out.size()) + ": coordinates must be finite");
             }
             out.push_back({c[0], c[1]});
         }
@@ -766,7 +831,10 @@ public:
     LessonStop stop(const toml::table& t) {
         LessonStop s;
         s.line = lineOf(t);
-        checkKeys(t, {"run_to", "count", "panels", "overlays", "select", "text", "question", "answer", "hint"}, "in a [[stop]]");
+        checkKeys(t,
+                  {"run_to", "count", "panels", "overlays", "select", "text", "question", "answer",
+                   "hint"},
+                  "in a [[stop]]");
         if (auto r = string(t, "run_to")) {
             std::string why;
             s.runTo = parseBreakpoint(*r, &why);
@@ -774,7 +842,8 @@ public:
         }
         if (auto c = integer(t, "count", 1, 1000000)) {
             if (!s.runTo) fail(lineOf(*t.get("count")), "\"count\" needs a \"run_to\"");
-            if (s.runTo->kind == BreakKind::Op && *c != 1) fail(lineOf(*t.get("count")), "\"count\" makes no sense with op:N");
+            if (s.runTo->kind == BreakKind::Op && *c != 1)
+                fail(lineOf(*t.get("count")), "\"count\" makes no sense with op:N");
             s.count = static_cast<int>(*c);
         }
         s.panels = names(t, "panels", kPanelNames);
@@ -794,17 +863,21 @@ public:
             s.answer = trimmed(*a);
             s.answerLine = lineOf(*t.get("answer"));
         }
-        if (!s.question.empty() && s.answer.empty()) fail(s.line, "the question has no \"answer\" (a quantity or a corner expression)");
-        if (s.question.empty() && !s.answer.empty()) fail(s.answerLine, "an \"answer\" needs a \"question\"");
-        if (!s.hint.empty() && s.question.empty()) fail(lineOf(*t.get("hint")), "a \"hint\" needs a \"question\"");
+        if (!s.question.empty() && s.answer.empty())
+            fail(s.line, "the question has no \"answer\" (a quantity or a corner expression)");
+        if (s.question.empty() && !s.answer.empty())
+            fail(s.answerLine, "an \"answer\" needs a \"question\"");
+        if (!s.hint.empty() && s.question.empty())
+            fail(lineOf(*t.get("hint")), "a \"hint\" needs a \"question\"");
         if (!s.answer.empty() && !findQuantity(s.answer)) {
             const std::string why = expressionProblem(s.answer);
             if (!why.empty()) {
-                fail(s.answerLine, "answer \"" + s.answer + "\" is neither a quantity (" + quantityNames() +
-                                       ") nor a corner expression (" + why + ")");
+                fail(s.answerLine, "answer \"" + s.answer + "\" is neither a quantity (" +
+                                       quantityNames() + ") nor a corner expression (" + why + ")");
             }
         }
-        if (s.text.empty() && s.question.empty()) fail(s.line, "a stop needs a \"text\" or a \"question\"");
+        if (s.text.empty() && s.question.empty())
+            fail(s.line, "a stop needs a \"text\" or a \"question\"");
         return s;
     }
 
@@ -817,14 +890,18 @@ public:
         try {
             root = toml::parse(source, path);
         } catch (const toml::parse_error& e) {
-            fail(static_cast<int>(e.source().begin.line), "not valid TOML: " + std::string(e.description()));
+            fail(static_cast<int>(e.source().begin.line),
+                 "not valid TOML: " + std::string(e.description()));
         }
-        checkKeys(root, {"title", "summary", "kind", "text", "points", "points_file", "options", "stop"}, "at the top level");
+        checkKeys(root,
+                  {"title", "summary", "kind", "text", "points", "points_file", "options", "stop"},
+                  "at the top level");
         L.title = string(root, "title").value_or("");
         if (trimmed(L.title).empty()) fail(1, "the lesson needs a \"title\"");
         L.summary = string(root, "summary").value_or("");
         if (auto k = string(root, "kind")) {
-            if (*k != "lesson" && *k != "assignment") fail(lineOf(*root.get("kind")), "kind must be \"lesson\" or \"assignment\"");
+            if (*k != "lesson" && *k != "assignment")
+                fail(lineOf(*root.get("kind")), "kind must be \"lesson\" or \"assignment\"");
             L.assignment = *k == "assignment";
         }
         if (auto x = string(root, "text")) text(*x, lineOf(*root.get("text")));
@@ -835,7 +912,8 @@ public:
         const toml::node* inl = root.get("points");
         const auto file = string(root, "points_file");
         if (inl && file) fail(lineOf(*inl), "give either \"points\" or \"points_file\", not both");
-        if (!inl && !file) fail(1, "the lesson needs \"points\" (a list of [x, y]) or \"points_file\"");
+        if (!inl && !file)
+            fail(1, "the lesson needs \"points\" (a list of [x, y]) or \"points_file\"");
         if (inl) {
             L.points = points(*inl);
         } else {
@@ -848,20 +926,25 @@ public:
                 fail(line, "cannot read points_file: " + std::string(e.what()));
             }
             if (L.points.size() > kMaxLessonPoints) {
-                fail(line, "too many points for a lesson (at most " + std::to_string(kMaxLessonPoints) + ")");
+                fail(line, "too many points for a lesson (at most " +
+                               std::to_string(kMaxLessonPoints) + ")");
             }
         }
         if (const toml::node* st = root.get("stop")) {
             const toml::array* a = st->as_array();
-            if (!a || !a->is_array_of_tables()) fail(lineOf(*st), "stops are written as [[stop]] tables");
-            if (a->size() > kMaxLessonStops) fail(lineOf(*st), "too many stops (at most " + std::to_string(kMaxLessonStops) + ")");
+            if (!a || !a->is_array_of_tables())
+                fail(lineOf(*st), "stops are written as [[stop]] tables");
+            if (a->size() > kMaxLessonStops)
+                fail(lineOf(*st),
+                     "too many stops (at most " + std::to_string(kMaxLessonStops) + ")");
             for (const toml::node& n : *a) {
                 m_stop = static_cast<int>(L.stops.size()) + 1;
                 L.stops.push_back(stop(*n.as_table()));
             }
             m_stop = 0;
         }
-        if (L.stops.empty() && !L.assignment) fail(1, "a lesson needs at least one [[stop]] (or kind = \"assignment\")");
+        if (L.stops.empty() && !L.assignment)
+            fail(1, "a lesson needs at least one [[stop]] (or kind = \"assignment\")");
         return L;
     }
 
@@ -872,13 +955,16 @@ private:
 
 }  // namespace
 
-Lesson parseLesson(std::string_view text, const std::string& path) { return LessonReader(path).lesson(text, path); }
+Lesson parseLesson(std::string_view text, const std::string& path) {
+    return LessonReader(path).lesson(text, path);
+}
 
 Lesson loadLesson(const std::string& path) {
     std::error_code ec;
     if (!fs::is_regular_file(path, ec)) throw LessonError(path, 0, 0, "no such lesson file");
     const auto size = fs::file_size(path, ec);
-    if (ec || size > kMaxLessonFileBytes) throw LessonError(path, 0, 0, "lesson file unreadable or too large (at most 1 MiB)");
+    if (ec || size > kMaxLessonFileBytes)
+        throw LessonError(path, 0, 0, "lesson file unreadable or too large (at most 1 MiB)");
     std::ifstream in(path, std::ios::binary);
     std::stringstream ss;
     ss << in.rdbuf();
@@ -906,27 +992,37 @@ LessonPlan planLesson(const Lesson& lesson) {
     for (std::size_t k = 0; k < lesson.stops.size(); ++k) {
         const LessonStop& s = lesson.stops[k];
         const int stopNo = static_cast<int>(k) + 1;
-        auto fail = [&](int line, const std::string& why) { throw LessonError(lesson.file, line, stopNo, why); };
+        auto fail = [&](int line, const std::string& why) {
+            throw LessonError(lesson.file, line, stopNo, why);
+        };
         if (s.runTo) {
             const Breakpoint& bp = *s.runTo;
             if (bp.kind == BreakKind::Op) {
                 const auto target = static_cast<std::size_t>(*bp.param);
                 if (target < journal.position()) {
-                    fail(s.line, "run_to op:" + std::to_string(target) + " is before the previous stop (op " +
+                    fail(s.line, "run_to op:" + std::to_string(target) +
+                                     " is before the previous stop (op " +
                                      std::to_string(journal.position()) + ")");
                 }
                 journal.seek(target);
                 if (journal.position() != target) {
-                    fail(s.line, "run_to op:" + std::to_string(target) + " is past the end of the run (" +
+                    fail(s.line, "run_to op:" + std::to_string(target) +
+                                     " is past the end of the run (" +
                                      std::to_string(journal.position()) + " operations)");
                 }
             } else {
                 for (int i = 0; i < s.count; ++i) {
-                    const RunResult r = runUntil(journal, *ins, std::span(&bp, 1), std::numeric_limits<std::size_t>::max());
+                    const RunResult r = runUntil(journal, *ins, std::span(&bp, 1),
+                                                 std::numeric_limits<std::size_t>::max());
                     if (r.reason != StopReason::Hit) {
-                        fail(s.line, "run_to \"" + toString(bp) + "\" (" + explain(bp) + ") is not reached" +
-                                         (s.count > 1 ? " " + std::to_string(s.count) + " times (only " + std::to_string(i) + ")" : "") +
-                                         ": the run ends after " + std::to_string(journal.position()) + " operations");
+                        fail(s.line,
+                             "run_to \"" + toString(bp) + "\" (" + explain(bp) +
+                                 ") is not reached" +
+                                 (s.count > 1 ? " " + std::to_string(s.count) + " times (only " +
+                                                    std::to_string(i) + ")"
+                                              : "") +
+                                 ": the run ends after " + std::to_string(journal.position()) +
+                                 " operations");
                     }
                 }
             }
@@ -938,8 +1034,10 @@ LessonPlan planLesson(const Lesson& lesson) {
             const ExprResult r = expr->evaluate(ins->mesh(), bindings, exprContext(*ins));
             if (!r.ok()) fail(s.line, "select \"" + s.select + "\": " + r.error.message);
             const ExprValue& v = *r.value;
-            if ((v.kind != ValueKind::Corner && v.kind != ValueKind::Number) || v.i < 0 || v.i >= ins->mesh().numCorners()) {
-                fail(s.line, "select \"" + s.select + "\" is " + formatValue(v) + ", not a corner of the mesh (0.." +
+            if ((v.kind != ValueKind::Corner && v.kind != ValueKind::Number) || v.i < 0 ||
+                v.i >= ins->mesh().numCorners()) {
+                fail(s.line, "select \"" + s.select + "\" is " + formatValue(v) +
+                                 ", not a corner of the mesh (0.." +
                                  std::to_string(ins->mesh().numCorners() - 1) + ")");
             }
             selected = static_cast<std::int32_t>(v.i);

@@ -12,12 +12,12 @@
 //   [options]                       # all optional
 //   boundary = "exact"              # exact | super
 //   locator = "walk"                # naive | walk | grid | idbuffer-cpu
-//   order = "input"                 # input | random | brio   (default: input, lessons are read in order)
+//   order = "input"                 # input | random | brio   (default: input: read in order)
 //   seed = 1
 //   idbuffer_size = 64              # pixels per side of the CPU ID buffer
 //
 //   [[stop]]
-//   run_to = "inserted:3"           # a breakpoint (core/teaching/breakpoint.h); omitted: stay where we are
+//   run_to = "inserted:3"           # a breakpoint (teaching/breakpoint.h); omitted: stay put
 //   count = 1                       # the count-th hit after the previous stop
 //   panels = ["canvas", "corner-table"]          # names from kPanelNames
 //   overlays = ["corner-ids", "vertex-ids"]      # names from kOverlayNames
@@ -30,8 +30,8 @@
 // The answer is computed by the engine at the stop, never typed into the file.
 #pragma once
 
-#include "core/teaching/breakpoint.h"
 #include "core/engine/inserter.h"
+#include "core/teaching/breakpoint.h"
 
 #include <cstddef>
 #include <cstdint>
@@ -51,8 +51,9 @@ inline constexpr const char* kPanelNames[] = {
     "expressions", "predicates",   "idbuffer",     "statistics", "lesson",
 };
 inline constexpr const char* kOverlayNames[] = {
-    "fill",          "vertex-ids", "corner-ids",     "triangle-ids",      "walk",    "flip-queue",
-    "flipped",       "circumcircles", "voronoi",     "pending-points",    "virtual-triangles", "idbuffer",
+    "fill",    "vertex-ids",     "corner-ids",        "triangle-ids",
+    "walk",    "flip-queue",     "flipped",           "circumcircles",
+    "voronoi", "pending-points", "virtual-triangles", "idbuffer",
 };
 
 // A bad lesson file. what() is "FILE:LINE: stop K: message" (parts left out when unknown).
@@ -60,8 +61,8 @@ class LessonError : public std::runtime_error {
 public:
     LessonError(std::string file, int line, int stop, std::string message);
     const std::string& file() const noexcept { return m_file; }
-    int line() const noexcept { return m_line; }   // 0: no line
-    int stop() const noexcept { return m_stop; }   // 1-based; 0: not about one stop
+    int line() const noexcept { return m_line; }  // 0: no line
+    int stop() const noexcept { return m_stop; }  // 1-based; 0: not about one stop
     const std::string& message() const noexcept { return m_message; }
 
 private:
@@ -72,23 +73,23 @@ private:
 };
 
 struct LessonStop {
-    int line = 0;                    // line of its [[stop]] header
-    std::optional<Breakpoint> runTo; // nullopt: stay at the previous stop's position
+    int line = 0;                     // line of its [[stop]] header
+    std::optional<Breakpoint> runTo;  // nullopt: stay at the previous stop's position
     int count = 1;
     std::vector<std::string> panels, overlays;
-    std::string select;              // corner expression, empty: keep the previous selection
+    std::string select;  // corner expression, empty: keep the previous selection
     std::string text;
     std::string question, answer, hint;
     int answerLine = 0;
 };
 
 struct Lesson {
-    std::string file;                // as given to loadLesson
+    std::string file;  // as given to loadLesson
     std::string title, summary;
     bool assignment = false;
     InsertOptions options;
     std::vector<Vec2> points;
-    std::string pointsFile;          // resolved path of points_file, empty for inline points
+    std::string pointsFile;  // resolved path of points_file, empty for inline points
     std::vector<LessonStop> stops;
 };
 
@@ -113,11 +114,11 @@ std::string resolveLessonFile(const std::string& lessonPath, const std::string& 
 struct Answer {
     enum class Kind : std::uint8_t { Integer, Edge, Text, Truth, Point };
     Kind kind = Kind::Integer;
-    std::int64_t a = 0, b = 0;  // Integer: a; Edge: the two vertices
-    bool corner = false;        // Integer that is a corner: -1 reads "none" too
-    std::string text;           // Text
-    bool truth = false;         // Truth
-    Vec2 point{};               // Point
+    std::int64_t a = 0, b = 0;    // Integer: a; Edge: the two vertices
+    bool corner = false;          // Integer that is a corner: -1 reads "none" too
+    std::string text;             // Text
+    bool truth = false;           // Truth
+    Vec2 point{};                 // Point
     std::string display() const;  // "17", "4-9", "Flip", "yes", "(1, 2)"
 };
 // Whether what a student typed means the same as `expected` (edges in either order, numbers
@@ -140,15 +141,15 @@ std::optional<Answer> computeAnswer(std::string_view spec, Inserter& ins, Journa
 // ---- Planning: what each stop shows, computed headlessly ---------------------------------------
 
 struct StopState {
-    std::size_t position = 0;         // journal position of the stop
-    std::int32_t selected = kNone;    // the selected corner there
-    std::optional<Answer> answer;     // when the stop has a question
-    std::string caption;              // describe() of the last op ("" at position 0)
+    std::size_t position = 0;       // journal position of the stop
+    std::int32_t selected = kNone;  // the selected corner there
+    std::optional<Answer> answer;   // when the stop has a question
+    std::string caption;            // describe() of the last op ("" at position 0)
 };
 
 struct LessonPlan {
     std::vector<StopState> stops;
-    std::size_t totalOps = 0;         // operations of the whole run
+    std::size_t totalOps = 0;  // operations of the whole run
 };
 
 // A fresh engine with the lesson's points and options.
@@ -167,15 +168,16 @@ struct TextSpan {
 struct TextBlock {
     enum class Kind : std::uint8_t { Paragraph, Bullet, Numbered };
     Kind kind = Kind::Paragraph;
-    int number = 0;                   // Numbered: the number written
+    int number = 0;  // Numbered: the number written
     std::vector<TextSpan> spans;
 };
 // Paragraphs (separated by blank lines; lines join with a space), "- " / "* " bullets, "1. "
 // numbered items, **bold** and `code` inside. Unclosed ** or ` is an error: nullopt and, in
 // `error`, "line N: ...", N counted from 1 within the text.
-std::optional<std::vector<TextBlock>> parseLessonText(std::string_view text, std::string* error = nullptr);
+std::optional<std::vector<TextBlock>> parseLessonText(std::string_view text,
+                                                      std::string* error = nullptr);
 
-// ---- Progress (the GUI persists it) ----------------------------------------------------------------
+// ---- Progress (the GUI persists it) -------------------------------------------------------------
 
 struct LessonProgress {
     std::string lesson;                 // the lesson file as opened

@@ -16,17 +16,19 @@ namespace dlab {
 
 bool operator==(const TraceRecord& x, const TraceRecord& y) {
     auto sameChanges = [](const std::vector<CellChange>& p, const std::vector<CellChange>& q) {
-        return std::equal(p.begin(), p.end(), q.begin(), q.end(), [](const CellChange& u, const CellChange& v) {
-            return u.slot == v.slot && u.before == v.before && u.after == v.after;
-        });
+        return std::equal(p.begin(), p.end(), q.begin(), q.end(),
+                          [](const CellChange& u, const CellChange& v) {
+                              return u.slot == v.slot && u.before == v.before && u.after == v.after;
+                          });
     };
-    auto sameTris = [](const std::vector<TraceRecord::Tri>& p, const std::vector<TraceRecord::Tri>& q) {
+    auto sameTris = [](const std::vector<TraceRecord::Tri>& p,
+                       const std::vector<TraceRecord::Tri>& q) {
         return std::equal(p.begin(), p.end(), q.begin(), q.end(), [](const auto& u, const auto& v) {
             return u.t == v.t && u.v0 == v.v0 && u.v1 == v.v1 && u.v2 == v.v2;
         });
     };
-    return x.index == y.index && x.type == y.type && x.vertex == y.vertex && x.a == y.a && x.b == y.b &&
-           x.where == y.where && x.sign == y.sign && x.hasSign == y.hasSign &&
+    return x.index == y.index && x.type == y.type && x.vertex == y.vertex && x.a == y.a &&
+           x.b == y.b && x.where == y.where && x.sign == y.sign && x.hasSign == y.hasSign &&
            x.trianglesBefore == y.trianglesBefore && x.trianglesAfter == y.trianglesAfter &&
            sameChanges(x.changes, y.changes) && sameTris(x.triangles, y.triangles);
 }
@@ -77,7 +79,8 @@ std::string toJsonLine(const TraceRecord& r) {
     j["triangles_after"] = r.trianglesAfter;
     auto changes = nlohmann::json::array();
     for (const CellChange& c : r.changes) {
-        changes.push_back(nlohmann::json::array({c.isO() ? "O" : "V", c.corner(), c.before, c.after}));
+        changes.push_back(
+            nlohmann::json::array({c.isO() ? "O" : "V", c.corner(), c.before, c.after}));
     }
     j["changes"] = std::move(changes);
     auto tris = nlohmann::json::array();
@@ -91,12 +94,14 @@ namespace {
 // Integer fields are read exactly: a float ("1e300", "2.5") or a value outside the field's range
 // is an error. nlohmann's get<int>() would convert or truncate silently, and converting an
 // out-of-range float to an integer is undefined behaviour.
-std::int64_t integerField(const nlohmann::json& v, const std::string& what, std::int64_t lo, std::int64_t hi,
+std::int64_t integerField(const nlohmann::json& v, const std::string& what, std::int64_t lo,
+                          std::int64_t hi,
                           const std::function<InputError(const std::string&)>& fail) {
     if (!v.is_number_integer()) throw fail(what + " must be an integer, found " + v.dump());
     if (v.is_number_unsigned()) {
         const auto u = v.get<std::uint64_t>();
-        if (u > static_cast<std::uint64_t>(hi)) throw fail(what + " " + std::to_string(u) + " is out of range");
+        if (u > static_cast<std::uint64_t>(hi))
+            throw fail(what + " " + std::to_string(u) + " is out of range");
         return static_cast<std::int64_t>(u);
     }
     const auto s = v.get<std::int64_t>();
@@ -112,7 +117,8 @@ TraceRecord parseTraceLine(const std::string& line, const std::string& name, int
     };
     constexpr std::int64_t kMaxI32 = std::numeric_limits<std::int32_t>::max();
     const auto int32Field = [&](const nlohmann::json& j, const char* key, std::int64_t lo) {
-        return static_cast<std::int32_t>(j.contains(key) ? integerField(j[key], key, lo, kMaxI32, fail) : kNone);
+        return static_cast<std::int32_t>(
+            j.contains(key) ? integerField(j[key], key, lo, kMaxI32, fail) : kNone);
     };
     nlohmann::json j;
     try {
@@ -124,7 +130,8 @@ TraceRecord parseTraceLine(const std::string& line, const std::string& name, int
     try {
         TraceRecord r;
         if (!j.contains("i")) throw fail("missing \"i\" (the op's index)");
-        r.index = static_cast<std::size_t>(integerField(j["i"], "i", 0, std::numeric_limits<std::int64_t>::max(), fail));
+        r.index = static_cast<std::size_t>(
+            integerField(j["i"], "i", 0, std::numeric_limits<std::int64_t>::max(), fail));
         const auto type = parseOpType(j.at("op").get<std::string>());
         if (!type) throw fail("unknown op " + j.at("op").dump());
         r.type = *type;
@@ -136,21 +143,27 @@ TraceRecord parseTraceLine(const std::string& line, const std::string& name, int
             r.sign = static_cast<int>(integerField(j["sign"], "sign", -1, 1, fail));
             r.hasSign = true;
         }
-        r.trianglesBefore = j.contains("triangles_before") ? int32Field(j, "triangles_before", 0) : 0;
+        r.trianglesBefore =
+            j.contains("triangles_before") ? int32Field(j, "triangles_before", 0) : 0;
         r.trianglesAfter = j.contains("triangles_after") ? int32Field(j, "triangles_after", 0) : 0;
         for (const auto& c : j.value("changes", nlohmann::json::array())) {
-            if (!c.is_array() || c.size() != 4) throw fail("a change must be [\"V\"|\"O\", corner, before, after]");
+            if (!c.is_array() || c.size() != 4)
+                throw fail("a change must be [\"V\"|\"O\", corner, before, after]");
             const std::string table = c[0].get<std::string>();
-            if (table != "V" && table != "O") throw fail("a change names table V or O, not " + c[0].dump());
-            const auto corner = static_cast<std::int32_t>(integerField(c[1], "corner", 0, 1 << 29, fail));
-            r.changes.push_back({2 * corner + (table == "O" ? 1 : 0),
-                                 static_cast<std::int32_t>(integerField(c[2], "before", kNone, kMaxI32, fail)),
-                                 static_cast<std::int32_t>(integerField(c[3], "after", kNone, kMaxI32, fail))});
+            if (table != "V" && table != "O")
+                throw fail("a change names table V or O, not " + c[0].dump());
+            const auto corner =
+                static_cast<std::int32_t>(integerField(c[1], "corner", 0, 1 << 29, fail));
+            r.changes.push_back(
+                {2 * corner + (table == "O" ? 1 : 0),
+                 static_cast<std::int32_t>(integerField(c[2], "before", kNone, kMaxI32, fail)),
+                 static_cast<std::int32_t>(integerField(c[3], "after", kNone, kMaxI32, fail))});
         }
         for (const auto& t : j.value("triangles", nlohmann::json::array())) {
             if (!t.is_array() || t.size() != 4) throw fail("a triangle must be [t, v0, v1, v2]");
             std::int32_t v[4];
-            for (int k = 0; k < 4; ++k) v[k] = static_cast<std::int32_t>(integerField(t[k], "triangle", 0, kMaxI32, fail));
+            for (int k = 0; k < 4; ++k)
+                v[k] = static_cast<std::int32_t>(integerField(t[k], "triangle", 0, kMaxI32, fail));
             r.triangles.push_back({v[0], v[1], v[2], v[3]});
         }
         return r;

@@ -26,7 +26,9 @@ struct TraceRecord {
     bool hasSign = false;
     std::int32_t trianglesBefore = 0, trianglesAfter = 0;
     std::vector<CellChange> changes;
-    struct Tri { std::int32_t t, v0, v1, v2; };
+    struct Tri {
+        std::int32_t t, v0, v1, v2;
+    };
     std::vector<Tri> triangles;
     friend bool operator==(const TraceRecord& x, const TraceRecord& y);
 };
@@ -35,7 +37,8 @@ struct TraceRecord {
 // journal's current position (call with the journal at `to`... or use traceRecord per step).
 TraceRecord traceRecord(const Journal& journal, std::size_t opIndex, const Mesh& meshAfterOp);
 std::string toJsonLine(const TraceRecord& record);
-// Throws InputError ("NAME:LINE: ...", core/engine/io_read.h) on a malformed line: bad JSON, a missing
+// Throws InputError ("NAME:LINE: ...", core/engine/io_read.h) on a malformed line: bad JSON, a
+// missing
 // or mistyped field, or an integer out of its range (never truncated).
 TraceRecord parseTraceLine(const std::string& line, const std::string& name, int lineNumber);
 std::vector<TraceRecord> readTrace(std::istream& in, const std::string& name);

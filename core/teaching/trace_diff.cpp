@@ -36,18 +36,21 @@ std::optional<OpType> opTypeLenient(const std::string& name) {
     return std::nullopt;
 }
 
-std::int64_t integer(const nlohmann::json& v, const std::string& what, std::int64_t lo, std::int64_t hi,
-                     const std::string& name, int line) {
-    if (!v.is_number_integer()) throw InputError(name, line, what + " must be an integer, not " + v.dump());
+std::int64_t integer(const nlohmann::json& v, const std::string& what, std::int64_t lo,
+                     std::int64_t hi, const std::string& name, int line) {
+    if (!v.is_number_integer())
+        throw InputError(name, line, what + " must be an integer, not " + v.dump());
     std::int64_t x;
     if (v.is_number_unsigned()) {
         const auto u = v.get<std::uint64_t>();
-        if (u > static_cast<std::uint64_t>(hi)) throw InputError(name, line, what + " " + std::to_string(u) + " is out of range");
+        if (u > static_cast<std::uint64_t>(hi))
+            throw InputError(name, line, what + " " + std::to_string(u) + " is out of range");
         x = static_cast<std::int64_t>(u);
     } else {
         x = v.get<std::int64_t>();
     }
-    if (x < lo || x > hi) throw InputError(name, line, what + " " + std::to_string(x) + " is out of range");
+    if (x < lo || x > hi)
+        throw InputError(name, line, what + " " + std::to_string(x) + " is out of range");
     return x;
 }
 
@@ -58,7 +61,8 @@ TraceOp parseLine(const std::string& text, const std::string& name, int line) {
     } catch (const nlohmann::json::exception&) {
         throw InputError(name, line, "not a JSON object (each line of a trace is one {...})");
     }
-    if (!j.is_object()) throw InputError(name, line, "not a JSON object (each line of a trace is one {...})");
+    if (!j.is_object())
+        throw InputError(name, line, "not a JSON object (each line of a trace is one {...})");
     TraceOp op;
     op.line = line;
     if (!j.contains("op")) throw InputError(name, line, "missing \"op\" (e.g. \"op\": \"Flip\")");
@@ -70,35 +74,48 @@ TraceOp parseLine(const std::string& text, const std::string& name, int line) {
         if (!j.contains(key) || j[key].is_null()) return std::nullopt;
         return static_cast<std::int32_t>(integer(j[key], key, kNone, kMaxId, name, line));
     };
-    if (j.contains("i") && !j["i"].is_null()) op.index = integer(j["i"], "i", 0, INT64_MAX, name, line);
+    if (j.contains("i") && !j["i"].is_null())
+        op.index = integer(j["i"], "i", 0, INT64_MAX, name, line);
     op.vertex = id("vertex");
     op.a = id("a");
     op.b = id("b");
-    if (j.contains("sign") && !j["sign"].is_null()) op.sign = static_cast<int>(integer(j["sign"], "sign", -1, 1, name, line));
+    if (j.contains("sign") && !j["sign"].is_null())
+        op.sign = static_cast<int>(integer(j["sign"], "sign", -1, 1, name, line));
     if (j.contains("where") && j["where"].is_string()) op.where = j["where"].get<std::string>();
     if (j.contains("changes")) {
         if (!j["changes"].is_array()) throw InputError(name, line, "\"changes\" must be a list");
         op.hasChanges = true;
         for (const auto& c : j["changes"]) {
-            if (!c.is_array() || c.size() != 4 || !c[0].is_string() || (c[0] != "V" && c[0] != "O")) {
-                throw InputError(name, line, "a change is [\"V\" or \"O\", corner, before, after], not " + c.dump());
+            if (!c.is_array() || c.size() != 4 || !c[0].is_string() ||
+                (c[0] != "V" && c[0] != "O")) {
+                throw InputError(
+                    name, line,
+                    "a change is [\"V\" or \"O\", corner, before, after], not " + c.dump());
             }
-            const auto corner = static_cast<std::int32_t>(integer(c[1], "a corner", 0, kMaxCorners - 1, name, line));
-            const auto before = static_cast<std::int32_t>(integer(c[2], "a cell value", kNone, kMaxId, name, line));
-            const auto after = static_cast<std::int32_t>(integer(c[3], "a cell value", kNone, kMaxId, name, line));
+            const auto corner = static_cast<std::int32_t>(
+                integer(c[1], "a corner", 0, kMaxCorners - 1, name, line));
+            const auto before =
+                static_cast<std::int32_t>(integer(c[2], "a cell value", kNone, kMaxId, name, line));
+            const auto after =
+                static_cast<std::int32_t>(integer(c[3], "a cell value", kNone, kMaxId, name, line));
             op.changes.push_back({2 * corner + (c[0] == "O" ? 1 : 0), before, after});
         }
     }
     if (j.contains("triangles")) {
-        if (!j["triangles"].is_array()) throw InputError(name, line, "\"triangles\" must be a list of [t, v0, v1, v2]");
+        if (!j["triangles"].is_array())
+            throw InputError(name, line, "\"triangles\" must be a list of [t, v0, v1, v2]");
         op.hasTriangles = true;
         for (const auto& t : j["triangles"]) {
             if (!t.is_array() || t.size() != 4) {
-                throw InputError(name, line, "a triangle is [t, v0, v1, v2] (t: your triangle number), not " + t.dump());
+                throw InputError(
+                    name, line,
+                    "a triangle is [t, v0, v1, v2] (t: your triangle number), not " + t.dump());
             }
             std::array<std::int32_t, 4> v{};
-            v[0] = static_cast<std::int32_t>(integer(t[0], "a triangle number", 0, kMaxCorners / 3 - 1, name, line));
-            for (int k = 1; k < 4; ++k) v[k] = static_cast<std::int32_t>(integer(t[k], "a vertex", 0, kMaxId, name, line));
+            v[0] = static_cast<std::int32_t>(
+                integer(t[0], "a triangle number", 0, kMaxCorners / 3 - 1, name, line));
+            for (int k = 1; k < 4; ++k)
+                v[k] = static_cast<std::int32_t>(integer(t[k], "a vertex", 0, kMaxId, name, line));
             op.triangles.push_back(v);
         }
     }
@@ -143,7 +160,8 @@ TraceFile readTraceFile(const std::string& path) {
 TraceFile traceOfRun(Inserter& ins, const std::string& name) {
     Journal journal(ins);
     std::stringstream text;
-    while (journal.forward()) text << toJsonLine(traceRecord(journal, journal.position() - 1, ins.mesh())) << '\n';
+    while (journal.forward())
+        text << toJsonLine(traceRecord(journal, journal.position() - 1, ins.mesh())) << '\n';
     return parseTraceText(text, name);
 }
 
@@ -176,7 +194,8 @@ void TraceReplay::apply(const TraceOp& op) {
         return Triple{m_V[3 * t], m_V[3 * t + 1], m_V[3 * t + 2]};
     };
     if (op.hasChanges) {
-        for (const CellChange& c : op.changes) before.emplace(tri(c.corner()), tripleAt(tri(c.corner())));
+        for (const CellChange& c : op.changes)
+            before.emplace(tri(c.corner()), tripleAt(tri(c.corner())));
     } else if (op.hasTriangles) {
         for (const auto& t : op.triangles) before.emplace(t[0], tripleAt(t[0]));
     }
@@ -202,7 +221,8 @@ void TraceReplay::apply(const TraceOp& op) {
         }
     }
     // Trailing triangles whose cells were all cleared are gone (Finalize shrinks the table).
-    while (m_V.size() >= 3 && m_V[m_V.size() - 1] == kNone && m_V[m_V.size() - 2] == kNone && m_V[m_V.size() - 3] == kNone) {
+    while (m_V.size() >= 3 && m_V[m_V.size() - 1] == kNone && m_V[m_V.size() - 2] == kNone &&
+           m_V[m_V.size() - 3] == kNone) {
         m_V.resize(m_V.size() - 3);
         m_O.resize(m_O.size() - 3);
     }
@@ -210,7 +230,8 @@ void TraceReplay::apply(const TraceOp& op) {
         const Triple now = tripleAt(t);
         const auto was = before.find(t);
         if (was != before.end() && was->second == now) continue;  // only its O cells changed
-        if (now[0] != kNone && now[1] != kNone && now[2] != kNone) m_touched.push_back(canonical(now[0], now[1], now[2]));
+        if (now[0] != kNone && now[1] != kNone && now[2] != kNone)
+            m_touched.push_back(canonical(now[0], now[1], now[2]));
     }
 }
 
@@ -248,7 +269,8 @@ void TraceReplay::dropTrianglesOutside(const std::vector<bool>& keep) {
 namespace {
 
 std::string tripleText(const Triple& t) {
-    return "(" + std::to_string(t[0]) + ", " + std::to_string(t[1]) + ", " + std::to_string(t[2]) + ")";
+    return "(" + std::to_string(t[0]) + ", " + std::to_string(t[1]) + ", " + std::to_string(t[2]) +
+           ")";
 }
 
 std::string listText(const std::vector<Triple>& ts, std::size_t most = 6) {
@@ -263,12 +285,15 @@ std::string listText(const std::vector<Triple>& ts, std::size_t most = 6) {
 std::string flipText(const std::vector<Triple>& two) {
     if (two.size() != 2) return "";
     std::vector<std::int32_t> shared, other;
-    for (std::int32_t v : two[0]) (std::count(two[1].begin(), two[1].end(), v) ? shared : other).push_back(v);
+    for (std::int32_t v : two[0])
+        (std::count(two[1].begin(), two[1].end(), v) ? shared : other).push_back(v);
     for (std::int32_t v : two[1]) {
         if (!std::count(two[0].begin(), two[0].end(), v)) other.push_back(v);
     }
     if (shared.size() != 2 || other.size() != 2) return "";
-    auto edge = [](std::int32_t x, std::int32_t y) { return std::to_string(std::min(x, y)) + "-" + std::to_string(std::max(x, y)); };
+    auto edge = [](std::int32_t x, std::int32_t y) {
+        return std::to_string(std::min(x, y)) + "-" + std::to_string(std::max(x, y));
+    };
     return "flipped edge " + edge(other[0], other[1]) + " to " + edge(shared[0], shared[1]);
 }
 
@@ -314,7 +339,8 @@ public:
         }
         const bool whole = op.type == OpType::Finalize && !op.hasChanges && op.hasTriangles;
         if (whole) {
-            for (std::size_t t = 0; 3 * t + 2 < m_replay.V().size(); ++t) slots.insert(static_cast<std::int32_t>(t));
+            for (std::size_t t = 0; 3 * t + 2 < m_replay.V().size(); ++t)
+                slots.insert(static_cast<std::int32_t>(t));
         }
         for (std::int32_t t : slots) account(t, -1);
         m_replay.apply(op);
@@ -340,7 +366,8 @@ private:
 };
 
 // First corner where two tables differ (kNone when they agree).
-std::int32_t firstCornerDiff(const std::vector<std::int32_t>& a, const std::vector<std::int32_t>& b) {
+std::int32_t firstCornerDiff(const std::vector<std::int32_t>& a,
+                             const std::vector<std::int32_t>& b) {
     const std::size_t n = std::max(a.size(), b.size());
     for (std::size_t c = 0; c < n; ++c) {
         const std::int32_t x = c < a.size() ? a[c] : kNone, y = c < b.size() ? b[c] : kNone;
@@ -367,7 +394,8 @@ TraceDiff diffTraces(const TraceFile& ref, const TraceFile& student, const DiffO
         for (const TraceOp& op : ref.ops) end.apply(op);
         for (const Triple& t : end.triangles()) {
             for (std::int32_t v : t) {
-                if (static_cast<std::size_t>(v) >= realVertices.size()) realVertices.resize(v + 1, false);
+                if (static_cast<std::size_t>(v) >= realVertices.size())
+                    realVertices.resize(v + 1, false);
                 realVertices[v] = true;
             }
         }
@@ -388,7 +416,8 @@ TraceDiff diffTraces(const TraceFile& ref, const TraceFile& student, const DiffO
         if (refDone && stuDone) break;
         if (stuDone) {
             return fail("the student's trace ends early: the reference goes on with " +
-                        std::string(toString(ref.ops[i].type)) + " (" + ref.name + ":" + std::to_string(ref.ops[i].line) + ")");
+                        std::string(toString(ref.ops[i].type)) + " (" + ref.name + ":" +
+                        std::to_string(ref.ops[i].line) + ")");
         }
         if (refDone) {
             return fail("the student's trace goes on after the reference has ended, with " +
@@ -398,56 +427,70 @@ TraceDiff diffTraces(const TraceFile& ref, const TraceFile& student, const DiffO
         const TraceOp& a = ref.ops[i];
         const TraceOp& b = student.ops[j];
         if (a.type != b.type) {
-            return fail(std::string("the reference does ") + toString(a.type) + ", the student " + toString(b.type));
+            return fail(std::string("the reference does ") + toString(a.type) + ", the student " +
+                        toString(b.type));
         }
         if (a.vertex && b.vertex && *a.vertex != *b.vertex) {
-            return fail(std::string(toString(a.type)) + " of vertex " + std::to_string(*a.vertex) + " in the reference, of vertex " +
-                        std::to_string(*b.vertex) + " in the student's run");
+            return fail(std::string(toString(a.type)) + " of vertex " + std::to_string(*a.vertex) +
+                        " in the reference, of vertex " + std::to_string(*b.vertex) +
+                        " in the student's run");
         }
         if (options.allOps && a.sign && b.sign && *a.sign != *b.sign) {
-            return fail("the in-circle test answers " + std::to_string(*a.sign) + " in the reference, " +
-                        std::to_string(*b.sign) + " in the student's run");
+            return fail("the in-circle test answers " + std::to_string(*a.sign) +
+                        " in the reference, " + std::to_string(*b.sign) + " in the student's run");
         }
         r.apply(a);
         s.apply(b);
-        if (b.type == OpType::Finalize && !b.hasChanges && !b.hasTriangles) s.dropOutside(realVertices);
+        if (b.type == OpType::Finalize && !b.hasChanges && !b.hasTriangles)
+            s.dropOutside(realVertices);
         ++d.compared;
         if (!balance.equal()) {
             const auto rt = r.replay().triangles(), st = s.replay().triangles();
             const auto onlyRef = minus(rt, st), onlyStu = minus(st, rt);
-            TraceDiff out = fail(std::string("the triangles differ after ") + toString(a.type) +
-                                 (a.vertex && *a.vertex != kNone ? " (vertex " + std::to_string(*a.vertex) + ")" : ""));
+            TraceDiff out =
+                fail(std::string("the triangles differ after ") + toString(a.type) +
+                     (a.vertex && *a.vertex != kNone ? " (vertex " + std::to_string(*a.vertex) + ")"
+                                                     : ""));
             if (a.type == OpType::Flip) {
-                const std::string fr = flipText(r.replay().touched()), fs = flipText(s.replay().touched());
+                const std::string fr = flipText(r.replay().touched()),
+                                  fs = flipText(s.replay().touched());
                 if (!fr.empty()) out.details.push_back("reference: " + fr);
                 if (!fs.empty()) out.details.push_back("student:   " + fs);
             }
             out.details.push_back("triangles only in the reference: " + listText(onlyRef));
             out.details.push_back("triangles only in the student's: " + listText(onlyStu));
             std::size_t flippedOrientation = 0;
-            for (const Triple& t : onlyStu) flippedOrientation += std::binary_search(onlyRef.begin(), onlyRef.end(), reversed(t));
+            for (const Triple& t : onlyStu)
+                flippedOrientation +=
+                    std::binary_search(onlyRef.begin(), onlyRef.end(), reversed(t));
             if (flippedOrientation) {
-                out.details.push_back(std::to_string(flippedOrientation) +
-                                      " of the student's triangles are reference triangles in the other orientation "
-                                      "(clockwise): list corners counter-clockwise, y up");
+                out.details.push_back(
+                    std::to_string(flippedOrientation) +
+                    " of the student's triangles are reference triangles in the other orientation "
+                    "(clockwise): list corners counter-clockwise, y up");
             }
             return out;
         }
         if (options.corners && !(b.type == OpType::Finalize && !b.hasChanges && !b.hasTriangles)) {
             const std::int32_t cv = firstCornerDiff(r.replay().V(), s.replay().V());
             if (cv != kNone) {
-                TraceDiff out = fail(std::string("same triangles, but the corners differ after ") + toString(a.type) +
-                                     ": V[" + std::to_string(cv) + "] is " + cell(r.replay().V(), cv) + " in the reference, " +
+                TraceDiff out = fail(std::string("same triangles, but the corners differ after ") +
+                                     toString(a.type) + ": V[" + std::to_string(cv) + "] is " +
+                                     cell(r.replay().V(), cv) + " in the reference, " +
                                      cell(s.replay().V(), cv) + " in the student's run");
-                out.details.push_back("the paper's convention: a split keeps the old triangle's corners (it becomes (a, b, v)) "
-                                      "and appends (b, c, v) and (c, a, v); a flip rewrites its two triangles in place");
+                out.details.push_back(
+                    "the paper's convention: a split keeps the old triangle's corners (it becomes "
+                    "(a, b, v)) "
+                    "and appends (b, c, v) and (c, a, v); a flip rewrites its two triangles in "
+                    "place");
                 return out;
             }
             if (s.replay().hasO()) {
                 const std::int32_t co = firstCornerDiff(r.replay().O(), s.replay().O());
                 if (co != kNone) {
-                    return fail(std::string("same triangles and V, but O differs after ") + toString(a.type) + ": O[" +
-                                std::to_string(co) + "] is " + cell(r.replay().O(), co) + " in the reference, " +
+                    return fail(std::string("same triangles and V, but O differs after ") +
+                                toString(a.type) + ": O[" + std::to_string(co) + "] is " +
+                                cell(r.replay().O(), co) + " in the reference, " +
                                 cell(s.replay().O(), co) + " in the student's run");
                 }
             }
@@ -481,22 +524,25 @@ std::string summarize(const TraceFile& f, std::size_t k) {
     return s;
 }
 
-std::string formatDiff(const TraceDiff& d, const TraceFile& ref, const TraceFile& student, const DiffOptions& options) {
+std::string formatDiff(const TraceDiff& d, const TraceFile& ref, const TraceFile& student,
+                       const DiffOptions& options) {
     std::ostringstream out;
     if (d.equal) {
         out << d.what << "\n";
         return out.str();
     }
     auto at = [](const TraceFile& f, std::size_t k) {
-        return k < f.ops.size() ? "op " + std::to_string(k) + " (" + f.name + ":" + std::to_string(f.ops[k].line) + ")"
+        return k < f.ops.size() ? "op " + std::to_string(k) + " (" + f.name + ":" +
+                                      std::to_string(f.ops[k].line) + ")"
                                 : std::string("the end of ") + f.name;
     };
-    out << "first difference at reference " << at(ref, d.refOp) << ", student " << at(student, d.studentOp) << ":\n  "
-        << d.what << "\n";
+    out << "first difference at reference " << at(ref, d.refOp) << ", student "
+        << at(student, d.studentOp) << ":\n  " << d.what << "\n";
     for (const std::string& line : d.details) out << "  " << line << "\n";
     const auto context = [&](const TraceFile& f, std::size_t k, const char* who) {
         out << "context (" << who << "):\n";
-        const std::size_t from = k > static_cast<std::size_t>(options.context) ? k - options.context : 0;
+        const std::size_t from =
+            k > static_cast<std::size_t>(options.context) ? k - options.context : 0;
         for (std::size_t x = from; x <= k + 1 && x < f.ops.size(); ++x) {
             out << (x == k ? "  > " : "    ") << summarize(f, x) << "\n";
         }

@@ -1,4 +1,5 @@
-// Comparing two runs by their traces (JSON Lines, core/teaching/trace.h): ours and a student's. Finds the
+// Comparing two runs by their traces (JSON Lines, core/teaching/trace.h): ours and a student's.
+// Finds the
 // first operation where the student's run differs, by the triangles (vertex triples, up to
 // rotation) and the flips made, and, for a student who follows the paper's corner-reuse
 // convention, corner by corner.
@@ -89,14 +90,15 @@ struct DiffOptions {
 
 struct TraceDiff {
     bool equal = true;
-    std::size_t compared = 0;        // operations compared
+    std::size_t compared = 0;  // operations compared
     // Where the first difference is: indices into ref.ops / student.ops (== size(): past the end).
     std::size_t refOp = 0, studentOp = 0;
-    std::string what;                // one line: "the triangles differ after Flip"
+    std::string what;                  // one line: "the triangles differ after Flip"
     std::vector<std::string> details;  // the evidence, one line each
 };
 
-TraceDiff diffTraces(const TraceFile& ref, const TraceFile& student, const DiffOptions& options = {});
+TraceDiff diffTraces(const TraceFile& ref, const TraceFile& student,
+                     const DiffOptions& options = {});
 // The report dtlab diff-trace prints: the difference, its evidence, the ops around it in both.
 std::string formatDiff(const TraceDiff& diff, const TraceFile& ref, const TraceFile& student,
                        const DiffOptions& options = {});

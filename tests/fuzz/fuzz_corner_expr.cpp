@@ -7,8 +7,8 @@
 // stays inside the mesh unless the mesh is corrupt or c is bound outside it.
 #include "tests/fuzz/fuzz_common.h"
 
-#include "core/teaching/corner_expr.h"
 #include "core/engine/inserter.h"
+#include "core/teaching/corner_expr.h"
 
 #include <climits>
 #include <string>

@@ -31,8 +31,13 @@ struct Fingerprint {
 
 Fingerprint fingerprintOf(const ui::AppState& st) {
     const InsertOptions& o = st.engine.options();
-    return {st.engine.points(), st.engine.position(), ui::MeshFingerprint(st.engine.mesh()), static_cast<int>(o.boundary),
-            static_cast<int>(o.locator), static_cast<int>(o.order), o.seed};
+    return {st.engine.points(),
+            st.engine.position(),
+            ui::MeshFingerprint(st.engine.mesh()),
+            static_cast<int>(o.boundary),
+            static_cast<int>(o.locator),
+            static_cast<int>(o.order),
+            o.seed};
 }
 
 bool oneLine(const std::string& s) {
@@ -51,7 +56,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     std::string error;
     if (!ui::LoadSessionText(st, text, kName, error)) {
         require(!error.empty() && oneLine(error), "a refused session gives one line", error);
-        require(error.find(kName) != std::string::npos, "a refused session's error names the file", error);
+        require(error.find(kName) != std::string::npos, "a refused session's error names the file",
+                error);
         require(fingerprintOf(st) == before, "a refused session leaves the state as it was", error);
         return 0;
     }
@@ -60,13 +66,16 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     vo.delaunay = false;
     vo.firstVirtual = st.engine.inserter().firstVirtual();
     const std::vector<Violation> broken = validate(st.engine.mesh(), vo);
-    require(broken.empty(), "a loaded session's mesh validates", broken.empty() ? "" : broken[0].message);
-    require(st.engine.batch() || st.engine.position() <= st.engine.recorded(), "the step is within the recorded run");
+    require(broken.empty(), "a loaded session's mesh validates",
+            broken.empty() ? "" : broken[0].message);
+    require(st.engine.batch() || st.engine.position() <= st.engine.recorded(),
+            "the step is within the recorded run");
     const Fingerprint loaded = fingerprintOf(st);
     const std::string again = ui::SessionText(st);
     ui::AppState other;
     std::string error2;
-    require(ui::LoadSessionText(other, again, "again.json", error2), "a session written back loads again", error2);
+    require(ui::LoadSessionText(other, again, "again.json", error2),
+            "a session written back loads again", error2);
     require(fingerprintOf(other) == loaded, "a session written back loads to the same state");
     return 0;
 }

@@ -1,4 +1,5 @@
-// Fuzz target: a student's trace read leniently (parseTraceText) and compared with ours (diffTraces).
+// Fuzz target: a student's trace read leniently (parseTraceText) and compared with ours
+// (diffTraces).
 //
 // Byte [0] picks the diff options; the rest is the student's trace. Either outcome is checked: an
 // InputError follows the one-line rules; a trace that reads is replayed (TraceReplay) and diffed

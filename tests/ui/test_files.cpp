@@ -8,9 +8,9 @@
 #include "tests/ui/ui_harness.h"
 #include "ui/files/files.h"
 #include "ui/files/gif_export.h"
-#include "ui/platform/keys.h"
-#include "ui/panels/panels.h"
 #include "ui/files/session.h"
+#include "ui/panels/panels.h"
+#include "ui/platform/keys.h"
 
 #include <gif_lib.h>
 #include <gtest/gtest.h>
@@ -39,13 +39,15 @@ namespace key = dlab::ui::key;
 
 namespace {
 
-constexpr std::array<int, 3> kNoticeRgb = {191, 20, 26};  // the notice's background (0.75, 0.08, 0.10)
+constexpr std::array<int, 3> kNoticeRgb = {191, 20,
+                                           26};  // the notice's background (0.75, 0.08, 0.10)
 
 // A fresh folder per test, removed at the end.
 struct TempDir {
     fs::path path;
     explicit TempDir(const std::string& name) {
-        path = fs::temp_directory_path() / ("dlab_files_" + name + "_" + std::to_string(::getpid()));
+        path =
+            fs::temp_directory_path() / ("dlab_files_" + name + "_" + std::to_string(::getpid()));
         fs::remove_all(path);
         fs::create_directories(path);
     }
@@ -64,7 +66,8 @@ std::string slurp(const std::string& path) {
 }
 
 bool sameBits(const std::vector<Vec2>& a, const std::vector<Vec2>& b) {
-    return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(Vec2)) == 0);
+    return a.size() == b.size() &&
+           (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(Vec2)) == 0);
 }
 
 // Lines of a text file split into whitespace fields, comments ('#') dropped.
@@ -84,8 +87,15 @@ std::vector<std::vector<std::string>> fields(const std::string& path) {
 
 // Points that stress an exact round trip: subnormals, huge and tiny magnitudes, -0, 0.1.
 std::vector<Vec2> awkwardPoints() {
-    return {{0.1, 0.2}, {-0.0, 1e-300}, {5e-324, 3}, {1.7976931348623157e308, -2.5}, {-1e308, 7e-310},
-            {123456789.123456789, -0.3}, {1.0 / 3, 2.0 / 3}, {4, 4}, {4, 4}};
+    return {{0.1, 0.2},
+            {-0.0, 1e-300},
+            {5e-324, 3},
+            {1.7976931348623157e308, -2.5},
+            {-1e308, 7e-310},
+            {123456789.123456789, -0.3},
+            {1.0 / 3, 2.0 / 3},
+            {4, 4},
+            {4, 4}};
 }
 
 }  // namespace
@@ -98,7 +108,8 @@ std::vector<Vec2> awkwardPoints() {
 // real line break (corpus: regression_control_char_in_mode.json).
 TEST(Files, ASessionErrorQuotingAControlCharacterStaysOneLine) {
     dlab::ui::AppState st;
-    const std::string text = R"({"format": "delaunay-lab session", "version": 1, "points": [[0, 0], [1, 0], [0, 1]],
+    const std::string text =
+        R"({"format": "delaunay-lab session", "version": 1, "points": [[0, 0], [1, 0], [0, 1]],
   "options": {"boundary": "sup\nper\r"}})";
     std::string error;
     const auto before = st.engine.points();
@@ -191,7 +202,8 @@ TEST(Files, MeshExportsReadBackAsTheMesh) {
     ASSERT_TRUE(dlab::ui::ExportMesh(st, dir / "mid.off", dlab::ui::MeshFormat::Off));
     const auto mid = fields(dir / "mid.off");
     std::int32_t real = 0;
-    for (std::int32_t t = 0; t < st.engine.mesh().numTriangles(); ++t) real += !st.engine.inserter().isVirtualTriangle(t);
+    for (std::int32_t t = 0; t < st.engine.mesh().numTriangles(); ++t)
+        real += !st.engine.inserter().isVirtualTriangle(t);
     EXPECT_EQ(std::stoi(mid[1][1]), real);
     const dlab::Mesh em = dlab::ui::ExportableMesh(st.engine);
     dlab::ValidateOptions combinatorial;
@@ -204,7 +216,8 @@ TEST(Files, ViewSvgHasEveryVisibleEdgeAndPointWhereTheCanvasDrawsThem) {
     UiHarness h;
     auto& st = h.state();
     st.engine.seek(70);
-    h.scroll(st.view.origin.x + st.view.size.x * 0.4f, st.view.origin.y + st.view.size.y * 0.5f, 2.0f);  // zoom in: some edges leave the view
+    h.scroll(st.view.origin.x + st.view.size.x * 0.4f, st.view.origin.y + st.view.size.y * 0.5f,
+             2.0f);  // zoom in: some edges leave the view
     ASSERT_TRUE(dlab::ui::ExportViewSvg(st, dir / "v.svg"));
     const std::string svg = slurp(dir / "v.svg");
     std::smatch mm;
@@ -214,9 +227,12 @@ TEST(Files, ViewSvgHasEveryVisibleEdgeAndPointWhereTheCanvasDrawsThem) {
     const auto edgesBegin = svg.find("<g id=\"edges\""), edgesEnd = svg.find("</g>", edgesBegin);
     const std::string edges = svg.substr(edgesBegin, edgesEnd - edgesBegin);
     std::set<std::pair<long, long>> drawn;  // screen-rounded endpoints
-    const std::regex lineRe("<line x1=\"([-0-9.]+)\" y1=\"([-0-9.]+)\" x2=\"([-0-9.]+)\" y2=\"([-0-9.]+)\"/>");
+    const std::regex lineRe(
+        "<line x1=\"([-0-9.]+)\" y1=\"([-0-9.]+)\" x2=\"([-0-9.]+)\" y2=\"([-0-9.]+)\"/>");
     int lines = 0;
-    for (auto it = std::sregex_iterator(edges.begin(), edges.end(), lineRe); it != std::sregex_iterator(); ++it) ++lines;
+    for (auto it = std::sregex_iterator(edges.begin(), edges.end(), lineRe);
+         it != std::sregex_iterator(); ++it)
+        ++lines;
     const dlab::Mesh& m = st.engine.mesh();
     const auto& ins = st.engine.inserter();
     int expected = 0;
@@ -224,19 +240,22 @@ TEST(Files, ViewSvgHasEveryVisibleEdgeAndPointWhereTheCanvasDrawsThem) {
         if (m.O[c] != kNone && m.O[c] < c) continue;
         const std::int32_t a = m.V[dlab::next(c)], b = m.V[dlab::prev(c)];
         if (ins.isVirtual(a) || ins.isVirtual(b)) continue;
-        const auto p = st.view.toScreen(m.G[a]) - st.view.origin, q = st.view.toScreen(m.G[b]) - st.view.origin;
-        expected += std::max(p.x, q.x) >= 0 && std::min(p.x, q.x) <= st.view.size.x && std::max(p.y, q.y) >= 0 &&
-                    std::min(p.y, q.y) <= st.view.size.y;
+        const auto p = st.view.toScreen(m.G[a]) - st.view.origin,
+                   q = st.view.toScreen(m.G[b]) - st.view.origin;
+        expected += std::max(p.x, q.x) >= 0 && std::min(p.x, q.x) <= st.view.size.x &&
+                    std::max(p.y, q.y) >= 0 && std::min(p.y, q.y) <= st.view.size.y;
     }
     EXPECT_EQ(lines, expected);
     EXPECT_GT(lines, 5);
     // Points: each circle maps back (through the view) to its input point.
     const std::regex circleRe("<circle data-id=\"(\\d+)\" cx=\"([-0-9.]+)\" cy=\"([-0-9.]+)\"");
     int circles = 0;
-    for (auto it = std::sregex_iterator(svg.begin(), svg.end(), circleRe); it != std::sregex_iterator(); ++it) {
+    for (auto it = std::sregex_iterator(svg.begin(), svg.end(), circleRe);
+         it != std::sregex_iterator(); ++it) {
         const std::size_t i = std::stoul((*it)[1]);
         ASSERT_LT(i, st.engine.points().size());
-        const Vec2 w = st.view.toWorld({std::stod((*it)[2]) + st.view.origin.x, std::stod((*it)[3]) + st.view.origin.y});
+        const Vec2 w = st.view.toWorld(
+            {std::stod((*it)[2]) + st.view.origin.x, std::stod((*it)[3]) + st.view.origin.y});
         EXPECT_NEAR(w.x, st.engine.points()[i].x, 0.01 / st.view.scale);
         EXPECT_NEAR(w.y, st.engine.points()[i].y, 0.01 / st.view.scale);
         ++circles;
@@ -272,7 +291,8 @@ TEST(Files, F12WritesAPngOfTheWindow) {
     ASSERT_EQ(w, fw);
     ASSERT_EQ(hgt, fh);
     std::size_t diff = 0;
-    for (std::size_t i = 0; i < static_cast<std::size_t>(w) * hgt * 4; ++i) diff += (i % 4 != 3) && data[i] != frame[i];
+    for (std::size_t i = 0; i < static_cast<std::size_t>(w) * hgt * 4; ++i)
+        diff += (i % 4 != 3) && data[i] != frame[i];
     stbi_image_free(data);
     EXPECT_EQ(diff, 0u);
 }
@@ -313,18 +333,21 @@ TEST(Files, AnimatedGifHasOneFramePerStepAsRendered) {
         const auto px = dlab::ui::CaptureRegion(h.gui(), false, w, hh);
         ASSERT_EQ(w, gif->SWidth);
         const SavedImage& img = gif->SavedImages[k];
-        const ColorMapObject* map = img.ImageDesc.ColorMap ? img.ImageDesc.ColorMap : gif->SColorMap;
+        const ColorMapObject* map =
+            img.ImageDesc.ColorMap ? img.ImageDesc.ColorMap : gif->SColorMap;
         ASSERT_NE(map, nullptr);
         // 256 colours cannot hold every antialiased shade: most pixels come back exact, nearly
         // all close.
         int exact = 0, close = 0;
         for (int i = 0; i < w * hh; ++i) {
             const GifColorType c = map->Colors[img.RasterBits[i]];
-            const int d = std::max({std::abs(c.Red - px[4 * i]), std::abs(c.Green - px[4 * i + 1]), std::abs(c.Blue - px[4 * i + 2])});
+            const int d = std::max({std::abs(c.Red - px[4 * i]), std::abs(c.Green - px[4 * i + 1]),
+                                    std::abs(c.Blue - px[4 * i + 2])});
             exact += d == 0;
             close += d <= 24;
         }
-        std::printf("[ info ] GIF frame %d: %.1f%% of pixels exact, %.2f%% within 24\n", k, 100.0 * exact / (w * hh), 100.0 * close / (w * hh));
+        std::printf("[ info ] GIF frame %d: %.1f%% of pixels exact, %.2f%% within 24\n", k,
+                    100.0 * exact / (w * hh), 100.0 * close / (w * hh));
         EXPECT_GT(exact, 0.9 * w * hh) << "frame " << k;
         EXPECT_GT(close, 0.99 * w * hh) << "frame " << k;
     }
@@ -398,7 +421,8 @@ TEST(Files, SessionRoundTripRestoresTheSameStateAtTheSameStep) {
     EXPECT_EQ(st.expressions.live, "c.n");
     ASSERT_EQ(st.run.breakpoints.size(), 1u);
     EXPECT_EQ(st.run.breakpoints[0].bp, bps[0].bp);
-    for (const auto& msg : st.messages) EXPECT_NE(msg.level, dlab::ui::Message::Level::Warning) << msg.text;
+    for (const auto& msg : st.messages)
+        EXPECT_NE(msg.level, dlab::ui::Message::Level::Warning) << msg.text;
     // Saving again gives the same file: nothing was lost or invented on the way.
     ASSERT_TRUE(dlab::ui::SaveSessionFile(st, dir / "again.json"));
     std::string a = slurp(path), b = slurp(dir / "again.json");
@@ -419,7 +443,8 @@ TEST(Files, ASessionWhoseMeshDiffersSaysSo) {
     EXPECT_EQ(st.engine.position(), 40u);
     ASSERT_FALSE(st.messages.empty());
     EXPECT_EQ(st.messages.back().level, dlab::ui::Message::Level::Warning);
-    EXPECT_NE(st.messages.back().text.find("differs"), std::string::npos) << st.messages.back().text;
+    EXPECT_NE(st.messages.back().text.find("differs"), std::string::npos)
+        << st.messages.back().text;
 }
 
 TEST(Files, ABadFileChangesNothingAndShowsOneLineNamingFileAndLine) {
@@ -435,7 +460,8 @@ TEST(Files, ABadFileChangesNothingAndShowsOneLineNamingFileAndLine) {
     const std::string good = dlab::ui::SessionText(st);
     auto lineOf = [&](const std::string& text, const std::string& needle) {
         const auto at = text.find(needle);
-        return 1 + static_cast<int>(std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(at), '\n'));
+        return 1 + static_cast<int>(std::count(
+                       text.begin(), text.begin() + static_cast<std::ptrdiff_t>(at), '\n'));
     };
     struct Case {
         std::string name, text, expect;
@@ -445,14 +471,21 @@ TEST(Files, ABadFileChangesNothingAndShowsOneLineNamingFileAndLine) {
     std::size_t at = 0;
     for (int k = 0; k < 4; ++k) at = badPoint.find(third, at + 1);
     badPoint.insert(at + third.size(), "\"x\", ");  // point 3 becomes ["x", x, y]
-    std::string badVersion = std::regex_replace(good, std::regex("\"version\": 1"), "\"version\": 9");
-    std::string badLocator = std::regex_replace(good, std::regex("\"locator\": \"walk\""), "\"locator\": \"teleport\"");
+    std::string badVersion =
+        std::regex_replace(good, std::regex("\"version\": 1"), "\"version\": 9");
+    std::string badLocator =
+        std::regex_replace(good, std::regex("\"locator\": \"walk\""), "\"locator\": \"teleport\"");
     std::string syntax = good;
     syntax.insert(syntax.find("\"view\""), "oops ");
     const std::vector<Case> cases = {
-        {"point.json", badPoint, ":" + std::to_string(lineOf(badPoint, "\"x\", ")) + ": points[3]: expected [x, y]"},
-        {"version.json", badVersion, ":" + std::to_string(lineOf(badVersion, "\"version\"")) + ": version: session version 9 is newer"},
-        {"locator.json", badLocator, ":" + std::to_string(lineOf(badLocator, "teleport")) + ": options.locator: unknown locator"},
+        {"point.json", badPoint,
+         ":" + std::to_string(lineOf(badPoint, "\"x\", ")) + ": points[3]: expected [x, y]"},
+        {"version.json", badVersion,
+         ":" + std::to_string(lineOf(badVersion, "\"version\"")) +
+             ": version: session version 9 is newer"},
+        {"locator.json", badLocator,
+         ":" + std::to_string(lineOf(badLocator, "teleport")) +
+             ": options.locator: unknown locator"},
         {"syntax.json", syntax, ":" + std::to_string(lineOf(syntax, "oops")) + ": not valid JSON"},
         {"other.json", "{\"hello\": 1}\n", ": not a Delaunay Lab session"},
         {"points.csv", "1,2\n3,4\n5,inf\n", ":3:"},
@@ -500,9 +533,10 @@ TEST(Files, DISABLED_RecoveryChildEditsUntilKilled) {
     const auto canvas = h.rect("canvas");
     std::ofstream progress(std::string(dir) + "/progress.txt");
     for (int i = 0; i < 400; ++i) {
-        const float x = canvas[0] + 25 + 22 * static_cast<float>(i % 12), y = canvas[3] - 25 - 22 * static_cast<float>(i / 12);
+        const float x = canvas[0] + 25 + 22 * static_cast<float>(i % 12),
+                    y = canvas[3] - 25 - 22 * static_cast<float>(i / 12);
         const std::size_t n = st.engine.points().size();
-        h.click(x, y);  // the frame after the edit autosaves
+        h.click(x, y);                                     // the frame after the edit autosaves
         if (st.engine.points().size() != n + 1) continue;  // landed on a point: no edit
         const Vec2 p = st.engine.points().back();
         char line[96];
@@ -520,7 +554,8 @@ TEST(Files, RecoveryAfterKillRestoresEveryPoint) {
     const pid_t child = ::fork();
     if (child == 0) {
         ::execl("/proc/self/exe", "dlab_ui_tests", "--gtest_also_run_disabled_tests",
-                "--gtest_filter=Files.DISABLED_RecoveryChildEditsUntilKilled", static_cast<char*>(nullptr));
+                "--gtest_filter=Files.DISABLED_RecoveryChildEditsUntilKilled",
+                static_cast<char*>(nullptr));
         ::_exit(127);
     }
     ::unsetenv("DLAB_RECOVERY_DIR");
@@ -532,7 +567,8 @@ TEST(Files, RecoveryAfterKillRestoresEveryPoint) {
         for (std::string l; std::getline(in, l);) out.push_back(l);
         return out;
     };
-    for (int i = 0; i < 600 && lines().size() < 8; ++i) std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    for (int i = 0; i < 600 && lines().size() < 8; ++i)
+        std::this_thread::sleep_for(std::chrono::milliseconds(50));
     ASSERT_EQ(::kill(child, SIGKILL), 0);
     int status = 0;
     ::waitpid(child, &status, 0);
@@ -564,7 +600,8 @@ TEST(Files, RecoveryAfterKillRestoresEveryPoint) {
     ASSERT_TRUE(st.editPoints(more));
     h.frames(1);
     int autosaves = 0;
-    for (const auto& e : fs::directory_iterator(dir.path)) autosaves += e.path().filename().string().rfind("autosave-", 0) == 0;
+    for (const auto& e : fs::directory_iterator(dir.path))
+        autosaves += e.path().filename().string().rfind("autosave-", 0) == 0;
     EXPECT_EQ(autosaves, 1);
     ASSERT_TRUE(fs::exists(st.files.autosavePath));
     dlab::ui::RemoveAutosave(st);

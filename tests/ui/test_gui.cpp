@@ -3,8 +3,8 @@
 #include "core/engine/generators.h"
 #include "core/engine/mesh.h"
 #include "tests/ui/ui_harness.h"
-#include "ui/platform/keys.h"
 #include "ui/panels/panels.h"
+#include "ui/platform/keys.h"
 
 #include <gtest/gtest.h>
 #include <imgui.h>
@@ -46,11 +46,13 @@ TEST(Gui, StepButtonsDriveTheJournal) {
     EXPECT_EQ(e.position(), 2u);
     h.clickItem(">>");  // to the end of the first insertion
     ASSERT_NE(e.current(), nullptr);
-    EXPECT_TRUE(e.current()->type == OpType::Inserted || e.current()->type == OpType::SkipDuplicate);
+    EXPECT_TRUE(e.current()->type == OpType::Inserted ||
+                e.current()->type == OpType::SkipDuplicate);
     const std::size_t afterOne = e.position();
     h.clickItem(">>");
     EXPECT_GT(e.position(), afterOne);
-    EXPECT_EQ(e.current()->type == OpType::Inserted || e.current()->type == OpType::SkipDuplicate, true);
+    EXPECT_EQ(e.current()->type == OpType::Inserted || e.current()->type == OpType::SkipDuplicate,
+              true);
     h.clickItem("<<");
     EXPECT_EQ(e.position(), afterOne);
     h.clickItem("|<");
@@ -164,7 +166,8 @@ TEST(Gui, TheCanvasDrawsTheMeshEdges) {
         if (st.engine.inserter().isVirtual(a) || st.engine.inserter().isVirtual(b)) continue;
         const auto pa = st.view.toScreen(m.G[a]), pb = st.view.toScreen(m.G[b]);
         // Sample a point a third along the edge (labels sit near the ends).
-        const int x = static_cast<int>(std::lround(pa.x + (pb.x - pa.x) / 3)), y = static_cast<int>(std::lround(pa.y + (pb.y - pa.y) / 3));
+        const int x = static_cast<int>(std::lround(pa.x + (pb.x - pa.x) / 3)),
+                  y = static_cast<int>(std::lround(pa.y + (pb.y - pa.y) / 3));
         bool found = false;
         for (int dy = -1; dy <= 1 && !found; ++dy) {
             for (int dx = -1; dx <= 1 && !found; ++dx) {
@@ -186,24 +189,29 @@ TEST(Gui, EveryOverlayOnAThousandsOfPointsStaysWithinTheDrawListAndSaysWhatIsLef
     for (const std::size_t n : {450u, 1500u, 4000u}) {
         UiHarness h;
         auto& st = h.state();
-        ASSERT_TRUE(st.loadPoints(dlab::generatePoints(dlab::Generator::Uniform, n, 11), "uniform"));
+        ASSERT_TRUE(
+            st.loadPoints(dlab::generatePoints(dlab::Generator::Uniform, n, 11), "uniform"));
         dlab::InsertOptions options = st.engine.options();
         options.order = dlab::OrderKind::Input;  // a long walk from the first triangle
         ASSERT_TRUE(st.setOptions(options));
         auto& o = st.overlays;
-        o.fill = o.vertexIds = o.cornerIds = o.triangleIds = o.walk = o.flipQueue = o.flipped = o.circumcircles = o.voronoi =
-            o.pendingPoints = o.virtualTriangles = true;
+        o.fill = o.vertexIds = o.cornerIds = o.triangleIds = o.walk = o.flipQueue = o.flipped =
+            o.circumcircles = o.voronoi = o.pendingPoints = o.virtualTriangles = true;
         // Halfway, in the middle of an insertion's flips.
         st.engine.toEnd(SIZE_MAX);
         st.engine.seek(st.engine.position() / 2);
-        while (st.engine.current() && st.engine.current()->type != OpType::InCircleTest && st.engine.forward()) {}
+        while (st.engine.current() && st.engine.current()->type != OpType::InCircleTest &&
+               st.engine.forward()) {}
         h.frames(2);
         EXPECT_TRUE(st.frameStats.canvasFull) << n << " points";
         const std::array<float, 4> canvas = h.rect("canvas");
-        EXPECT_GT(h.countColour({canvas[0], canvas[1], canvas[0] + 600, canvas[1] + 40}, {120, 70, 0}), 20)
+        EXPECT_GT(
+            h.countColour({canvas[0], canvas[1], canvas[0] + 600, canvas[1] + 40}, {120, 70, 0}),
+            20)
             << "no notice on the canvas";
         // Zoomed in on a few triangles, everything fits.
-        for (int i = 0; i < 14; ++i) h.scroll((canvas[0] + canvas[2]) / 2, (canvas[1] + canvas[3]) / 2, 1);
+        for (int i = 0; i < 14; ++i)
+            h.scroll((canvas[0] + canvas[2]) / 2, (canvas[1] + canvas[3]) / 2, 1);
         h.frames(2);
         EXPECT_FALSE(st.frameStats.canvasFull) << n << " points, zoomed in";
     }
@@ -238,7 +246,8 @@ TEST(Gui, DraggingAQueuedPointMovesIt) {
     const auto before = st.engine.points();
     const std::size_t i = 10;  // queued at op 0, and no other point near it
     const auto p = st.view.toScreen(before[i]);
-    h.drag(static_cast<float>(p.x), static_cast<float>(p.y), static_cast<float>(p.x) + 60, static_cast<float>(p.y) + 40);
+    h.drag(static_cast<float>(p.x), static_cast<float>(p.y), static_cast<float>(p.x) + 60,
+           static_cast<float>(p.y) + 40);
     const auto after = st.engine.points();
     ASSERT_EQ(after.size(), before.size());
     EXPECT_GT(after[i].x, before[i].x);
@@ -294,7 +303,8 @@ TEST(Gui, AHistoryPastTheOpLimitFinishesInOneBatchAndSaysSo) {
     EXPECT_EQ(st.engine.mesh().numVertices(), static_cast<std::int32_t>(n));
     EXPECT_TRUE(dlab::validate(st.engine.mesh()).empty());
     ASSERT_GT(st.messages.size(), messages);
-    EXPECT_NE(st.messages.back().text.find("one batch"), std::string::npos) << st.messages.back().text;
+    EXPECT_NE(st.messages.back().text.find("one batch"), std::string::npos)
+        << st.messages.back().text;
     EXPECT_EQ(st.messages.back().level, dlab::ui::Message::Level::Warning);
 }
 
@@ -304,7 +314,8 @@ TEST(Gui, TheCornerTableScrollsAMillionCorners) {
     // More points than the history limit: one batch, the final mesh at once (BRIO order: the
     // demo's input order would make every walk long).
     ASSERT_TRUE(st.setOptions(dlab::InsertOptions{}));
-    ASSERT_TRUE(st.loadPoints(dlab::generatePoints(dlab::Generator::Uniform, 340000, 3), "uniform 340k"));
+    ASSERT_TRUE(
+        st.loadPoints(dlab::generatePoints(dlab::Generator::Uniform, 340000, 3), "uniform 340k"));
     ASSERT_TRUE(st.engine.batch());
     ASSERT_GE(st.engine.mesh().numCorners(), 1000000);
     h.frames(3);
@@ -323,8 +334,11 @@ TEST(Gui, TheCornerTableScrollsAMillionCorners) {
     // Frames stay interactive with a million rows (reported, not asserted: see the README).
     const auto t0 = std::chrono::steady_clock::now();
     h.scroll((table[0] + table[2]) / 2, (table[1] + table[3]) / 2, 5.0f);
-    const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count() / 4;
-    std::printf("[ info ] %d corners: %.1f ms per frame while scrolling\n", st.engine.mesh().numCorners(), ms);
+    const double ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count() /
+        4;
+    std::printf("[ info ] %d corners: %.1f ms per frame while scrolling\n",
+                st.engine.mesh().numCorners(), ms);
 }
 
 TEST(Gui, ChangingTheBoundaryModeRestartsWithTheSamePoints) {
@@ -354,7 +368,8 @@ TEST(Gui, ABadFileShowsAnErrorAndChangesNothing) {
     EXPECT_EQ(st.engine.position(), 20u);
     ASSERT_FALSE(st.messages.empty());
     EXPECT_EQ(st.messages.back().level, dlab::ui::Message::Level::Error);
-    EXPECT_NE(st.messages.back().text.find("dlab_gui_bad.csv:2"), std::string::npos) << st.messages.back().text;
+    EXPECT_NE(st.messages.back().text.find("dlab_gui_bad.csv:2"), std::string::npos)
+        << st.messages.back().text;
     h.frames(2);  // and the UI keeps drawing
 }
 

@@ -10,16 +10,17 @@
 // A failure prints the seed and the whole action log. Replay one seed, longer or shorter:
 //   DLAB_GUI_ROBUST_SEED=7 DLAB_GUI_ROBUST_ACTIONS=2000 build/tests/ui/dlab_ui_tests
 //       --gtest_filter='Seeds/GuiRobustness.*/0'
-// Every action is also appended (flushed) to $TMPDIR/dlab_gui_robust_SEED.log, which survives a crash.
-#include "core/teaching/breakpoint.h"
+// Every action is also appended (flushed) to $TMPDIR/dlab_gui_robust_SEED.log, which survives a
+// crash.
 #include "core/engine/generators.h"
 #include "core/engine/mesh.h"
+#include "core/teaching/breakpoint.h"
 #include "tests/exact_check.h"
 #include "tests/ui/ui_harness.h"
 #include "ui/files/files.h"
-#include "ui/platform/keys.h"
 #include "ui/lesson_player.h"
 #include "ui/panels/panels.h"
+#include "ui/platform/keys.h"
 
 #include <gtest/gtest.h>
 #include <imgui.h>
@@ -47,9 +48,9 @@ namespace {
 
 // A smaller window than the other GUI tests: software rasterisation is most of a frame's cost.
 constexpr int kWidth = 1100, kHeight = 720;
-constexpr int kDefaultActions = 500;     // per seed in CTest
-constexpr int kUndoActions = 250;        // per seed of the undo test
-constexpr int kStepBackEvery = 12;       // the costly back-to-0-and-forward check: 1 action in this many
+constexpr int kDefaultActions = 500;  // per seed in CTest
+constexpr int kUndoActions = 250;     // per seed of the undo test
+constexpr int kStepBackEvery = 12;  // the costly back-to-0-and-forward check: 1 action in this many
 
 std::size_t envCount(const char* name, std::size_t fallback) {
     const char* v = std::getenv(name);
@@ -77,9 +78,11 @@ std::string checkInvariants(const ui::AppState& st) {
     const ui::Engine& e = st.engine;
     const dlab::Inserter& ins = e.inserter();
     const dlab::Mesh& m = e.mesh();
-    if (e.pointStates().size() != e.points().size()) return "pointStates() and points() differ in size";
+    if (e.pointStates().size() != e.points().size())
+        return "pointStates() and points() differ in size";
     if (!e.batch() && e.position() > e.recorded()) return "position beyond the recorded ops";
-    if (ins.numInput() != static_cast<std::int32_t>(e.points().size())) return "the inserter runs other points than the engine shows";
+    if (ins.numInput() != static_cast<std::int32_t>(e.points().size()))
+        return "the inserter runs other points than the engine shows";
     dlab::ValidateOptions vo;
     vo.firstVirtual = ins.firstVirtual();
     vo.delaunay = betweenInsertions(ins);
@@ -90,7 +93,9 @@ std::string checkInvariants(const ui::AppState& st) {
     }
     if (ins.done() && e.options().boundary == dlab::Boundary::Exact) {
         if (allCollinearExact(e.points())) {
-            if (m.numTriangles() != 0) return "all points collinear, yet " + std::to_string(m.numTriangles()) + " triangles";
+            if (m.numTriangles() != 0)
+                return "all points collinear, yet " + std::to_string(m.numTriangles()) +
+                       " triangles";
         } else {
             const auto distinct = firstOccurrences(e.points());
             const std::string exact = checkDelaunayExact(m, &distinct);
@@ -116,10 +121,29 @@ std::vector<std::string> lessonFiles() {
 }
 
 // Expressions a student might type: right, wrong, and nonsense.
-const char* const kExpressions[] = {"c.n.o",      "o(o(c))",   "c.s.s.s",        "V[c]",     "r(o(n(7)))", "G[V[c]]",
-                                    "c.l.r.u",    "t(o(c))",   "V[n(o(c))] == V[p(c)]",  "o(999999)", "n(-1)",   "c.x",
-                                    "((",         "c.o.o.o.o", "G[100000]",      "",         "7",        "c ==",
-                                    "V[O[c]]",    "p(p(p(c)))", "c.n.n.n == c",  "\x01\x7f", "s(s(s(s(s(s(c))))))"};
+const char* const kExpressions[] = {"c.n.o",
+                                    "o(o(c))",
+                                    "c.s.s.s",
+                                    "V[c]",
+                                    "r(o(n(7)))",
+                                    "G[V[c]]",
+                                    "c.l.r.u",
+                                    "t(o(c))",
+                                    "V[n(o(c))] == V[p(c)]",
+                                    "o(999999)",
+                                    "n(-1)",
+                                    "c.x",
+                                    "((",
+                                    "c.o.o.o.o",
+                                    "G[100000]",
+                                    "",
+                                    "7",
+                                    "c ==",
+                                    "V[O[c]]",
+                                    "p(p(p(c)))",
+                                    "c.n.n.n == c",
+                                    "\x01\x7f",
+                                    "s(s(s(s(s(s(c))))))"};
 
 // One seeded user: picks actions with weights, performs them through the harness and checks.
 class RandomUser {
@@ -127,7 +151,9 @@ public:
     RandomUser(std::uint64_t seed, UiHarness& h) : m_seed(seed), m_rng(seed), m_h(h) {
         m_dir = fs::temp_directory_path() / ("dlab_gui_robust_" + std::to_string(seed));
         fs::create_directories(m_dir);
-        m_logFile.open(fs::temp_directory_path() / ("dlab_gui_robust_" + std::to_string(seed) + ".log"), std::ios::trunc);
+        m_logFile.open(
+            fs::temp_directory_path() / ("dlab_gui_robust_" + std::to_string(seed) + ".log"),
+            std::ios::trunc);
         writeBadFiles();
         ui::AppState& st = m_h.state();
         // A deterministic animation: a run at full speed goes on until its end or a breakpoint in
@@ -164,15 +190,19 @@ public:
         int w = 0, h = 0;
         const auto& px = m_h.gui().lastFrame(w, h);
         std::string error;
-        m_screenshot = (fs::temp_directory_path() / ("dlab_gui_robust_" + std::to_string(m_seed) + ".png")).string();
-        if (!ui::writePng(m_screenshot, px, w, h, error)) m_screenshot = "(no screenshot: " + error + ")";
+        m_screenshot =
+            (fs::temp_directory_path() / ("dlab_gui_robust_" + std::to_string(m_seed) + ".png"))
+                .string();
+        if (!ui::writePng(m_screenshot, px, w, h, error))
+            m_screenshot = "(no screenshot: " + error + ")";
     }
 
     std::string report(const std::string& failure) const {
         std::ostringstream os;
         os << "seed " << m_seed << ", action " << m_step << ": " << failure << "\n"
            << "replay: DLAB_GUI_ROBUST_SEED=" << m_seed << " DLAB_GUI_ROBUST_ACTIONS=" << m_step + 1
-           << " dlab_ui_tests --gtest_filter='" << ::testing::UnitTest::GetInstance()->current_test_info()->test_suite_name()
+           << " dlab_ui_tests --gtest_filter='"
+           << ::testing::UnitTest::GetInstance()->current_test_info()->test_suite_name()
            << ".*/0'\nlast frame: " << m_screenshot << "\naction log:\n";
         for (std::size_t i = 0; i < m_log.size(); ++i) os << "  " << i << ": " << m_log[i] << "\n";
         return os.str();
@@ -202,8 +232,13 @@ private:
     // ---- Random choices ----------------------------------------------------------------------
     std::uint64_t below(std::uint64_t n) { return n == 0 ? 0 : m_rng() % n; }
     bool chance(double p) { return static_cast<double>(m_rng() >> 11) * 0x1.0p-53 < p; }
-    float between(float lo, float hi) { return lo + static_cast<float>(static_cast<double>(m_rng() >> 11) * 0x1.0p-53) * (hi - lo); }
-    template <class T, std::size_t N> const T& pick(const T (&a)[N]) { return a[below(N)]; }
+    float between(float lo, float hi) {
+        return lo + static_cast<float>(static_cast<double>(m_rng() >> 11) * 0x1.0p-53) * (hi - lo);
+    }
+    template <class T, std::size_t N>
+    const T& pick(const T (&a)[N]) {
+        return a[below(N)];
+    }
 
     void note(std::string line) {
         m_logFile << m_step << ": " << line << std::endl;  // flushed: a crash keeps it
@@ -225,7 +260,8 @@ private:
         for (std::size_t i = 0; i < states.size(); ++i) {
             if (states[i] != ui::Engine::PointState::Pending) continue;
             const auto s = st.view.toScreen(st.engine.points()[i]);
-            if (s.x > r[0] + 4 && s.x < r[2] - 4 && s.y > r[1] + 4 && s.y < r[3] - 4) candidates.push_back(static_cast<std::int32_t>(i));
+            if (s.x > r[0] + 4 && s.x < r[2] - 4 && s.y > r[1] + 4 && s.y < r[3] - 4)
+                candidates.push_back(static_cast<std::int32_t>(i));
         }
         if (candidates.empty()) return false;
         index = candidates[below(candidates.size())];
@@ -242,12 +278,15 @@ private:
             std::string (RandomUser::*fn)();
         };
         static const Choice kChoices[] = {
-            {8, &RandomUser::clickCanvas},    {4, &RandomUser::rightClickQueued}, {4, &RandomUser::dragQueued},
-            {5, &RandomUser::clickCorner},    {24, &RandomUser::pressKey},        {12, &RandomUser::clickStepButton},
-            {3, &RandomUser::wheelZoom},      {2, &RandomUser::middlePan},        {4, &RandomUser::changeOptions},
-            {3, &RandomUser::loadGenerated},  {3, &RandomUser::loadBadFile},      {2, &RandomUser::openLessonFile},
-            {4, &RandomUser::lessonStep},     {2, &RandomUser::typeExpression},   {1, &RandomUser::togglePresentation},
-            {4, &RandomUser::runFrames},      {2, &RandomUser::toggleBreakpoint}, {2, &RandomUser::clickTimeline},
+            {8, &RandomUser::clickCanvas},        {4, &RandomUser::rightClickQueued},
+            {4, &RandomUser::dragQueued},         {5, &RandomUser::clickCorner},
+            {24, &RandomUser::pressKey},          {12, &RandomUser::clickStepButton},
+            {3, &RandomUser::wheelZoom},          {2, &RandomUser::middlePan},
+            {4, &RandomUser::changeOptions},      {3, &RandomUser::loadGenerated},
+            {3, &RandomUser::loadBadFile},        {2, &RandomUser::openLessonFile},
+            {4, &RandomUser::lessonStep},         {2, &RandomUser::typeExpression},
+            {1, &RandomUser::togglePresentation}, {4, &RandomUser::runFrames},
+            {2, &RandomUser::toggleBreakpoint},   {2, &RandomUser::clickTimeline},
             {1, &RandomUser::dismissNotice},
         };
         int total = 0;
@@ -265,7 +304,9 @@ private:
         const std::size_t n = m_h.state().engine.points().size();
         note("click canvas at (" + std::to_string(x) + ", " + std::to_string(y) + ")");
         m_h.click(x, y);
-        if (m_h.state().engine.points().size() > n) m_log.back() += " -> point " + std::to_string(n) + " " + describe(m_h.state().engine.points().back());
+        if (m_h.state().engine.points().size() > n)
+            m_log.back() += " -> point " + std::to_string(n) + " " +
+                            describe(m_h.state().engine.points().back());
         return "";
     }
 
@@ -289,7 +330,8 @@ private:
         const auto r = canvas();
         const float tx = std::clamp(x + between(-120, 120), r[0] + 8, r[2] - 8);
         const float ty = std::clamp(y + between(-120, 120), r[1] + 8, r[3] - 8);
-        note("drag queued point " + std::to_string(i) + " to (" + std::to_string(tx) + ", " + std::to_string(ty) + ")");
+        note("drag queued point " + std::to_string(i) + " to (" + std::to_string(tx) + ", " +
+             std::to_string(ty) + ")");
         m_h.drag(x, y, tx, ty);
         return "";
     }
@@ -316,17 +358,28 @@ private:
             bool shift, ctrl;
         };
         static const Key kKeys[] = {
-            {6, "Right", key::kRight, false, false},      {4, "Left", key::kLeft, false, false},
-            {3, "Shift+Right", key::kRight, true, false}, {2, "Shift+Left", key::kLeft, true, false},
-            {1, "Home", key::kHome, false, false},        {1, "End", key::kEnd, false, false},
-            {2, "Space", key::kSpace, false, false},      {1, "N", key::letter('N'), false, false},
-            {1, "P", key::letter('P'), false, false},     {2, "O", key::letter('O'), false, false},
-            {1, "L", key::letter('L'), false, false},     {1, "R", key::letter('R'), false, false},
-            {1, "S", key::letter('S'), false, false},     {1, "U", key::letter('U'), false, false},
-            {1, "F", key::letter('F'), false, false},     {1, "V", key::letter('V'), false, false},
-            {1, "C", key::letter('C'), false, false},     {1, "G", key::letter('G'), false, false},
-            {1, "Escape", key::kEscape, false, false},    {1, "F1", key::kF1, false, false},
-            {2, "Ctrl+Z", key::letter('Z'), false, true}, {1, "Ctrl+Y", key::letter('Y'), false, true},
+            {6, "Right", key::kRight, false, false},
+            {4, "Left", key::kLeft, false, false},
+            {3, "Shift+Right", key::kRight, true, false},
+            {2, "Shift+Left", key::kLeft, true, false},
+            {1, "Home", key::kHome, false, false},
+            {1, "End", key::kEnd, false, false},
+            {2, "Space", key::kSpace, false, false},
+            {1, "N", key::letter('N'), false, false},
+            {1, "P", key::letter('P'), false, false},
+            {2, "O", key::letter('O'), false, false},
+            {1, "L", key::letter('L'), false, false},
+            {1, "R", key::letter('R'), false, false},
+            {1, "S", key::letter('S'), false, false},
+            {1, "U", key::letter('U'), false, false},
+            {1, "F", key::letter('F'), false, false},
+            {1, "V", key::letter('V'), false, false},
+            {1, "C", key::letter('C'), false, false},
+            {1, "G", key::letter('G'), false, false},
+            {1, "Escape", key::kEscape, false, false},
+            {1, "F1", key::kF1, false, false},
+            {2, "Ctrl+Z", key::letter('Z'), false, true},
+            {1, "Ctrl+Y", key::letter('Y'), false, true},
         };
         int total = 0;
         for (const Key& k : kKeys) total += k.weight;
@@ -343,7 +396,8 @@ private:
     }
 
     std::string clickStepButton() {
-        static const char* const kButtons[] = {">", ">", ">", "<", ">>", ">>", "<<", "|<", ">|", "run"};
+        static const char* const kButtons[] = {">",  ">",  ">",  "<",  ">>",
+                                               ">>", "<<", "|<", ">|", "run"};
         const char* b = pick(kButtons);
         note(std::string("button ") + b);
         m_h.clickItem(b);
@@ -354,7 +408,8 @@ private:
         static const float kWheel[] = {-2.0f, -1.0f, -0.5f, 0.5f, 1.0f, 2.0f, 3.0f};
         const auto [x, y] = canvasSpot();
         const float w = pick(kWheel);
-        note("wheel " + std::to_string(w) + " at (" + std::to_string(x) + ", " + std::to_string(y) + ")");
+        note("wheel " + std::to_string(w) + " at (" + std::to_string(x) + ", " + std::to_string(y) +
+             ")");
         m_h.scroll(x, y, w);
         return "";
     }
@@ -379,13 +434,15 @@ private:
     };
     Before before() const {
         const ui::AppState& st = m_h.state();
-        return {st.engine.points(), st.engine.options(), st.engine.position(), st.undoPoints.size(), st.source};
+        return {st.engine.points(), st.engine.options(), st.engine.position(), st.undoPoints.size(),
+                st.source};
     }
     std::string unchanged(const Before& b, const std::string& what) const {
         const ui::AppState& st = m_h.state();
         if (st.engine.points() != b.points) return what + " changed the points";
         const dlab::InsertOptions& o = st.engine.options();
-        if (o.boundary != b.options.boundary || o.locator != b.options.locator || o.order != b.options.order || o.seed != b.options.seed) {
+        if (o.boundary != b.options.boundary || o.locator != b.options.locator ||
+            o.order != b.options.order || o.seed != b.options.seed) {
             return what + " changed the options";
         }
         if (st.engine.position() != b.position) return what + " moved the run";
@@ -396,22 +453,26 @@ private:
 
     std::string changeOptions() {
         static const dlab::Boundary kBoundaries[] = {dlab::Boundary::Exact, dlab::Boundary::Super};
-        static const dlab::LocatorKind kLocators[] = {dlab::LocatorKind::Walk, dlab::LocatorKind::Naive, dlab::LocatorKind::Grid,
-                                                      dlab::LocatorKind::IdBufferCpu};
-        static const dlab::OrderKind kOrders[] = {dlab::OrderKind::Input, dlab::OrderKind::Random, dlab::OrderKind::Brio};
+        static const dlab::LocatorKind kLocators[] = {
+            dlab::LocatorKind::Walk, dlab::LocatorKind::Naive, dlab::LocatorKind::Grid,
+            dlab::LocatorKind::IdBufferCpu};
+        static const dlab::OrderKind kOrders[] = {dlab::OrderKind::Input, dlab::OrderKind::Random,
+                                                  dlab::OrderKind::Brio};
         ui::AppState& st = m_h.state();
         dlab::InsertOptions o = st.engine.options();
         o.boundary = pick(kBoundaries);
         o.locator = pick(kLocators);
         o.order = pick(kOrders);
         o.seed = 1 + below(5);
-        note(std::string("setOptions boundary ") + toString(o.boundary) + ", locate " + toString(o.locator) + ", order " +
-             toString(o.order) + ", seed " + std::to_string(o.seed));
+        note(std::string("setOptions boundary ") + toString(o.boundary) + ", locate " +
+             toString(o.locator) + ", order " + toString(o.order) + ", seed " +
+             std::to_string(o.seed));
         const Before b = before();
         const std::size_t messages = st.messages.size();
         if (!st.setOptions(o)) {
             m_log.back() += " -> refused";
-            if (st.messages.size() == messages || st.messages.back().level != ui::Message::Level::Error) {
+            if (st.messages.size() == messages ||
+                st.messages.back().level != ui::Message::Level::Error) {
                 return "setOptions refused without an error message";
             }
             return unchanged(b, "a refused setOptions");
@@ -424,14 +485,17 @@ private:
 
     std::string loadGenerated() {
         static const dlab::Generator kKinds[] = {
-            dlab::Generator::Uniform, dlab::Generator::Clusters,  dlab::Generator::Grid,           dlab::Generator::RotatedGrid,
-            dlab::Generator::Ngon,    dlab::Generator::Circle,    dlab::Generator::Collinear,      dlab::Generator::NearDuplicates,
+            dlab::Generator::Uniform,     dlab::Generator::Clusters,
+            dlab::Generator::Grid,        dlab::Generator::RotatedGrid,
+            dlab::Generator::Ngon,        dlab::Generator::Circle,
+            dlab::Generator::Collinear,   dlab::Generator::NearDuplicates,
             dlab::Generator::HugeTinyBox, dlab::Generator::AllCollinear};
         static const std::size_t kSizes[] = {0, 1, 2, 3, 4, 5, 7, 10, 16, 24, 32, 40};
         const dlab::Generator kind = pick(kKinds);
         const std::size_t n = pick(kSizes);
         const std::uint64_t seed = 1 + below(1000);
-        std::string name = std::string(toString(kind)) + " " + std::to_string(n) + " seed " + std::to_string(seed);
+        std::string name =
+            std::string(toString(kind)) + " " + std::to_string(n) + " seed " + std::to_string(seed);
         note("load generated " + name);
         ui::AppState& st = m_h.state();
         const Before b = before();
@@ -460,8 +524,11 @@ private:
         write("empty.node", "");
         write("short.node", "5 2 0 0\n1 0 0\n2 1 1\n");
         write("huge-count.node", "2147483647 2 0 0\n1 0 0\n2 1 1\n3 0 1\n");
-        write("bad-session.json", "{\"format\": \"delaunay-lab session\", \"version\": 1, \"points\": [[0, 0], [1, \"x\"], [2, 2]]}\n");
-        write("truncated-session.json", "{\"format\": \"delaunay-lab session\", \"version\": 1, \"points\": [[0, 0], [1");
+        write("bad-session.json",
+              "{\"format\": \"delaunay-lab session\", \"version\": 1, \"points\": [[0, 0], [1, "
+              "\"x\"], [2, 2]]}\n");
+        write("truncated-session.json",
+              "{\"format\": \"delaunay-lab session\", \"version\": 1, \"points\": [[0, 0], [1");
         std::string binary = std::string("\x89PNG\r\n\x1a\n\0\0\0\rIHDR", 16);
         for (int i = 0; i < 300; ++i) binary.push_back(static_cast<char>(m_rng() & 0xff));
         write("binary.csv", binary);
@@ -477,7 +544,8 @@ private:
         ui::AppState& st = m_h.state();
         const std::string path = m_badFiles[below(m_badFiles.size())];
         const bool viaOpen = chance(0.5);  // File > Open (points or session) or the point reader
-        note(std::string(viaOpen ? "open" : "load points from") + " bad file " + fs::path(path).filename().string());
+        note(std::string(viaOpen ? "open" : "load points from") + " bad file " +
+             fs::path(path).filename().string());
         const Before b = before();
         const std::size_t messages = st.messages.size();
         const bool loaded = viaOpen ? ui::OpenFile(st, path) : ui::LoadPointFile(st, path);
@@ -488,7 +556,8 @@ private:
         for (std::size_t i = messages; i < st.messages.size(); ++i) {
             const ui::Message& msg = st.messages[i];
             if (msg.level != ui::Message::Level::Error) continue;
-            if (msg.text.find('\n') != std::string::npos) return "the error for " + path + " spans several lines: " + msg.text;
+            if (msg.text.find('\n') != std::string::npos)
+                return "the error for " + path + " spans several lines: " + msg.text;
             named |= msg.text.find(fs::path(path).filename().string()) != std::string::npos;
         }
         if (!named) return "no error message naming " + path;
@@ -502,7 +571,8 @@ private:
         const std::string& path = kLessons[below(kLessons.size())];
         note("open lesson " + fs::path(path).filename().string());
         ui::AppState& st = m_h.state();
-        if (!ui::openLesson(st, path)) return "the lesson " + path + " did not open: " + st.messages.back().text;
+        if (!ui::openLesson(st, path))
+            return "the lesson " + path + " did not open: " + st.messages.back().text;
         m_h.frames(2);
         return "";
     }
@@ -523,8 +593,10 @@ private:
             note("lesson go to stop " + std::to_string(k));
             ui::goToStop(st, k);
             m_h.frames(2);
-            if (L.progress.stop != std::min(k, L.lesson->stops.size() - 1)) return "goToStop did not go to the stop";
-            if (st.engine.position() != L.plan.stops[L.progress.stop].position) return "goToStop did not seek to the stop's operation";
+            if (L.progress.stop != std::min(k, L.lesson->stops.size() - 1))
+                return "goToStop did not go to the stop";
+            if (st.engine.position() != L.plan.stops[L.progress.stop].position)
+                return "goToStop did not seek to the stop's operation";
         } else if (r < 9) {
             // Answer through the field: the shown answer is always accepted, junk never is.
             const std::size_t k = L.progress.stop;
@@ -536,8 +608,9 @@ private:
             }
             // The field and its button are recorded only where a user can see them: a long
             // stop text in a short column hides them below; scroll down to them, as a user would.
-            for (int i = 0; i < 12 && st.itemRects.count("lesson-text") &&
-                            (!st.itemRects.count("lesson-answer") || !st.itemRects.count("lesson-check"));
+            for (int i = 0;
+                 i < 12 && st.itemRects.count("lesson-text") &&
+                 (!st.itemRects.count("lesson-answer") || !st.itemRects.count("lesson-check"));
                  ++i) {
                 const auto r = m_h.rect("lesson-text");
                 m_h.scroll((r[0] + r[2]) / 2, (r[1] + r[3]) / 2, -2);
@@ -548,15 +621,18 @@ private:
                 return "";
             }
             const bool right = chance(0.5);
-            const std::string text = right ? L.plan.stops[k].answer->display() : std::string("no idea #") + std::to_string(below(100));
+            const std::string text = right ? L.plan.stops[k].answer->display()
+                                           : std::string("no idea #") + std::to_string(below(100));
             note("lesson answer '" + text + "'");
             closeHelp();
             m_h.clickItem("lesson-answer");
             for (char c : text) ImGui::GetIO().AddInputCharacter(static_cast<unsigned char>(c));
             m_h.frames(2);
             m_h.clickItem("lesson-check");
-            if (L.progress.stop == k && L.feedback == ui::LessonState::Feedback::None) return "Check gave no feedback";
-            if (right && L.feedback == ui::LessonState::Feedback::Wrong) return "the lesson's own answer '" + text + "' was judged wrong";
+            if (L.progress.stop == k && L.feedback == ui::LessonState::Feedback::None)
+                return "Check gave no feedback";
+            if (right && L.feedback == ui::LessonState::Feedback::Wrong)
+                return "the lesson's own answer '" + text + "' was judged wrong";
             leaveTextFields();
         } else {
             note("close lesson");
@@ -587,9 +663,12 @@ private:
         m_h.frames(1);
         m_h.press(key::kEnter);
         m_h.frames(1);
-        const bool printable = std::all_of(text.begin(), text.end(), [](char c) { return c >= 0x20 && c < 0x7f; });
-        if (printable && !text.empty() && st.expressions.history.size() != lines + 1) return "the console did not answer '" + text + "'";
-        if (!st.expressions.history.empty() && st.expressions.history.back().answer.find('\n') != std::string::npos) {
+        const bool printable =
+            std::all_of(text.begin(), text.end(), [](char c) { return c >= 0x20 && c < 0x7f; });
+        if (printable && !text.empty() && st.expressions.history.size() != lines + 1)
+            return "the console did not answer '" + text + "'";
+        if (!st.expressions.history.empty() &&
+            st.expressions.history.back().answer.find('\n') != std::string::npos) {
             return "the console's answer spans lines: " + st.expressions.history.back().answer;
         }
         leaveTextFields();
@@ -620,9 +699,12 @@ private:
             bps.erase(bps.begin() + static_cast<std::ptrdiff_t>(i));
             return "";
         }
-        static const char* const kTexts[] = {"flip", "insertion", "degenerate", "duplicate", "split-edge", "located", "finalize"};
+        static const char* const kTexts[] = {"flip",       "insertion", "degenerate", "duplicate",
+                                             "split-edge", "located",   "finalize"};
         std::string text = pick(kTexts);
-        if (chance(0.3)) text = "insert:" + std::to_string(below(std::max<std::size_t>(1, st.engine.points().size())));
+        if (chance(0.3))
+            text = "insert:" +
+                   std::to_string(below(std::max<std::size_t>(1, st.engine.points().size())));
         const auto bp = dlab::parseBreakpoint(text);
         if (!bp) return "the breakpoint text '" + text + "' does not parse";
         note("add breakpoint " + text);
@@ -669,12 +751,16 @@ private:
         if (e.position() != 0) return "seek(0) did not reach operation 0";
         if (e.mesh().numTriangles() != 0) return "operation 0 has triangles";
         e.seek(p);
-        if (e.position() != p) return "seek(" + std::to_string(p) + ") stopped at " + std::to_string(e.position());
-        if (!(copyOf(e.mesh()) == at)) return "back to 0 and forward to " + std::to_string(p) + " gave another V/O";
+        if (e.position() != p)
+            return "seek(" + std::to_string(p) + ") stopped at " + std::to_string(e.position());
+        if (!(copyOf(e.mesh()) == at))
+            return "back to 0 and forward to " + std::to_string(p) + " gave another V/O";
         ui::Engine fresh;
         std::string error;
-        if (!fresh.resetAt(e.points(), e.options(), p, error)) return "a fresh replay was refused: " + error;
-        if (!(copyOf(fresh.mesh()) == at)) return "a fresh replay to " + std::to_string(p) + " gives another V/O";
+        if (!fresh.resetAt(e.points(), e.options(), p, error))
+            return "a fresh replay was refused: " + error;
+        if (!(copyOf(fresh.mesh()) == at))
+            return "a fresh replay to " + std::to_string(p) + " gives another V/O";
         m_h.frames(1);
         return "";
     }
@@ -704,7 +790,8 @@ class GuiRobustness : public ::testing::TestWithParam<std::uint64_t> {};
 TEST_P(GuiRobustness, RandomActionsKeepTheMeshValid) {
     const std::uint64_t seed = seedFor(GetParam());
     const std::size_t actions = envCount("DLAB_GUI_ROBUST_ACTIONS", kDefaultActions);
-    std::printf("[ info ] seed %llu, %zu actions\n", static_cast<unsigned long long>(seed), actions);
+    std::printf("[ info ] seed %llu, %zu actions\n", static_cast<unsigned long long>(seed),
+                actions);
     UiHarness h(kWidth, kHeight);
     RandomUser user(seed, h);
     const std::string failure = user.run(actions);
@@ -721,7 +808,8 @@ TEST_P(GuiRobustnessUndo, UndoingEveryEditBringsBackTheOriginalPoints) {
     {
         const std::uint64_t seed = seedFor(GetParam());
         const std::size_t actions = envCount("DLAB_GUI_ROBUST_ACTIONS", kUndoActions);
-        std::printf("[ info ] seed %llu, %zu actions, then undo all\n", static_cast<unsigned long long>(seed), actions);
+        std::printf("[ info ] seed %llu, %zu actions, then undo all\n",
+                    static_cast<unsigned long long>(seed), actions);
         UiHarness h(kWidth, kHeight);
         const std::vector<Vec2> original = h.state().engine.points();
         RandomUser user(seed, h);
@@ -735,12 +823,13 @@ TEST_P(GuiRobustnessUndo, UndoingEveryEditBringsBackTheOriginalPoints) {
         EXPECT_TRUE(h.state().undoPoints.empty());
         ASSERT_TRUE(h.state().engine.points() == original)
             << user.report("after undoing everything the points are not the original ones (" +
-                           std::to_string(h.state().engine.points().size()) + " points, " + std::to_string(original.size()) +
-                           " at the start)");
+                           std::to_string(h.state().engine.points().size()) + " points, " +
+                           std::to_string(original.size()) + " at the start)");
         EXPECT_EQ(checkInvariants(h.state()), "");
         const std::size_t redone = user.redoAll();
         EXPECT_EQ(redone, undone);
-        EXPECT_TRUE(h.state().engine.points() == last) << user.report("redoing everything does not give the last points back");
+        EXPECT_TRUE(h.state().engine.points() == last)
+            << user.report("redoing everything does not give the last points back");
     }
 }
 

@@ -72,14 +72,15 @@ IdBufferGlOptions glOptions(GlReadback mode, int w = 320, int h = 200, int batch
 // coordinate's size); an endpoint moved by delta moves the line, at the point with parameter s
 // along the edge, by at most delta * (|1 - s| + |s|).
 struct Comparison {
-    std::size_t agree = 0;      // equal and away from every edge of their triangle
-    std::size_t nearEdge = 0;   // equal or not, within the error of an edge
+    std::size_t agree = 0;     // equal and away from every edge of their triangle
+    std::size_t nearEdge = 0;  // equal or not, within the error of an edge
     std::size_t mismatches = 0;
     std::string first;
 };
 
 // Whether pixel-space point (cx, cy) lies within the rasterizer's error of an edge of triangle t.
-bool nearEdgeOf(const Mesh& m, const PixelMap& map, int subpixelBits, std::int32_t t, double cx, double cy) {
+bool nearEdgeOf(const Mesh& m, const PixelMap& map, int subpixelBits, std::int32_t t, double cx,
+                double cy) {
     if (t < 0 || t >= m.numTriangles()) return false;
     const double snap = std::ldexp(1.0, -subpixelBits) + std::ldexp(1.0, -10);
     double x[3], y[3];
@@ -89,7 +90,8 @@ bool nearEdgeOf(const Mesh& m, const PixelMap& map, int subpixelBits, std::int32
         y[k] = map.fy(g.y);
     }
     auto delta = [&](int v) {
-        return std::sqrt(2.0) * (snap + std::max(std::abs(x[v]), std::abs(y[v])) * std::ldexp(1.0, -22));
+        return std::sqrt(2.0) *
+               (snap + std::max(std::abs(x[v]), std::abs(y[v])) * std::ldexp(1.0, -22));
     };
     for (int k = 0; k < 3; ++k) {
         const int a = k, b = (k + 1) % 3;
@@ -103,14 +105,16 @@ bool nearEdgeOf(const Mesh& m, const PixelMap& map, int subpixelBits, std::int32
     return false;
 }
 
-Comparison compareWithCpu(const std::vector<std::int32_t>& glIds, const Inserter& ins, const IdBufferGl& gl,
-                          const Bounds& bounds, int subpixelBits) {
+Comparison compareWithCpu(const std::vector<std::int32_t>& glIds, const Inserter& ins,
+                          const IdBufferGl& gl, const Bounds& bounds, int subpixelBits) {
     const Mesh& m = ins.mesh();
     IdBufferCpu cpu(gl.width(), gl.height());
     const LocatorContext ctx{&m, ins.firstVirtual(), ins.options().boundary == Boundary::Exact,
                              static_cast<std::size_t>(ins.numInput())};
     cpu.reset(ctx, bounds);
-    auto nearEdge = [&](std::int32_t t, double cx, double cy) { return nearEdgeOf(m, gl.map(), subpixelBits, t, cx, cy); };
+    auto nearEdge = [&](std::int32_t t, double cx, double cy) {
+        return nearEdgeOf(m, gl.map(), subpixelBits, t, cx, cy);
+    };
     Comparison c;
     const auto& ref = cpu.pixels();
     for (int j = 0; j < gl.height(); ++j) {
@@ -125,8 +129,8 @@ Comparison compareWithCpu(const std::vector<std::int32_t>& glIds, const Inserter
                 ++c.agree;
             } else {
                 if (c.mismatches++ == 0) {
-                    c.first = "pixel (" + std::to_string(i) + ", " + std::to_string(j) + "): GL " + std::to_string(tg) +
-                              ", CPU " + std::to_string(tc);
+                    c.first = "pixel (" + std::to_string(i) + ", " + std::to_string(j) + "): GL " +
+                              std::to_string(tg) + ", CPU " + std::to_string(tc);
                 }
             }
         }
@@ -136,8 +140,9 @@ Comparison compareWithCpu(const std::vector<std::int32_t>& glIds, const Inserter
 
 bool contains(const Mesh& m, std::int32_t t, Vec2 q);
 
-void expectMatchesCpu(const std::vector<std::int32_t>& ids, const Inserter& ins, const IdBufferGl& gl,
-                      const Bounds& bounds, int subpixelBits, const std::string& what) {
+void expectMatchesCpu(const std::vector<std::int32_t>& ids, const Inserter& ins,
+                      const IdBufferGl& gl, const Bounds& bounds, int subpixelBits,
+                      const std::string& what) {
     ASSERT_EQ(ids.size(), static_cast<std::size_t>(gl.width()) * gl.height()) << what;
     const Comparison c = compareWithCpu(ids, ins, gl, bounds, subpixelBits);
     // Independently of the CPU buffer, on a sample of pixels: the pixel's triangle contains the
@@ -151,7 +156,9 @@ void expectMatchesCpu(const std::vector<std::int32_t>& ids, const Inserter& ins,
         const Vec2 q = gl.pixelCentre(i, j);
         // Near 1e15 (huge-tiny-box) doubles are 0.125 apart, coarser than the pixels: the centre
         // has no world position there, and only the pixel-space comparison above applies.
-        if (std::abs(gl.map().fx(q.x) - (i + 0.5)) > 1e-3 || std::abs(gl.map().fy(q.y) - (j + 0.5)) > 1e-3) continue;
+        if (std::abs(gl.map().fx(q.x) - (i + 0.5)) > 1e-3 ||
+            std::abs(gl.map().fy(q.y) - (j + 0.5)) > 1e-3)
+            continue;
         ++representable;
         const std::int32_t t = ids[k];
         std::int32_t truth = t;
@@ -174,16 +181,20 @@ void expectMatchesCpu(const std::vector<std::int32_t>& ids, const Inserter& ins,
             continue;
         }
         EXPECT_TRUE(nearEdgeOf(m, gl.map(), subpixelBits, truth, i + 0.5, j + 0.5))
-            << what << ": pixel (" << i << ", " << j << ") shows " << t << " but its centre lies in " << truth;
+            << what << ": pixel (" << i << ", " << j << ") shows " << t
+            << " but its centre lies in " << truth;
     }
     EXPECT_GE(checked, representable / 4) << what;
-    EXPECT_EQ(c.mismatches, 0u) << what << ": " << c.mismatches << " pixels differ away from edges; first " << c.first;
+    EXPECT_EQ(c.mismatches, 0u) << what << ": " << c.mismatches
+                                << " pixels differ away from edges; first " << c.first;
     // Most pixels are far from any edge: the comparison is not vacuous.
-    EXPECT_GT(c.agree, ids.size() * 7 / 10) << what << ": only " << c.agree << " of " << ids.size()
-                                            << " pixels away from edges (" << c.nearEdge << " near)";
+    EXPECT_GT(c.agree, ids.size() * 7 / 10)
+        << what << ": only " << c.agree << " of " << ids.size() << " pixels away from edges ("
+        << c.nearEdge << " near)";
 }
 
-// Each triangle as its vertex triple rotated to start at the smallest id (orientation kept), sorted.
+// Each triangle as its vertex triple rotated to start at the smallest id (orientation kept),
+// sorted.
 std::vector<std::array<std::int32_t, 3>> canonical(const Mesh& m) {
     std::vector<std::array<std::int32_t, 3>> tris;
     for (std::int32_t t = 0; t < m.numTriangles(); ++t) {
@@ -236,7 +247,8 @@ TEST(IdBufferGlEncoding, IsThePapersAndRoundTrips) {
     EXPECT_EQ(c[1], 0x0C);
     EXPECT_EQ(c[2], 0x0D);
     EXPECT_EQ(c[3], 0x0A);
-    for (std::int32_t id : {0, 1, 255, 256, 65535, 65536, (1 << 24) - 1, 1 << 24, (1 << 24) + 77, (1 << 27) + 5}) {
+    for (std::int32_t id :
+         {0, 1, 255, 256, 65535, 65536, (1 << 24) - 1, 1 << 24, (1 << 24) + 77, (1 << 27) + 5}) {
         const auto e = ui::encodeTriangleId(id);
         EXPECT_EQ(ui::decodeTriangleId(e.data()), id) << id;
     }
@@ -252,7 +264,8 @@ TEST(IdBufferGlEncoding, CoreRefusesTheGlKindsWithAReason) {
             makeLocator(k);
             ADD_FAILURE() << "makeLocator built " << toString(k) << " without a GL context";
         } catch (const std::invalid_argument& e) {
-            EXPECT_NE(std::string(e.what()).find("needs a GL context"), std::string::npos) << e.what();
+            EXPECT_NE(std::string(e.what()).find("needs a GL context"), std::string::npos)
+                << e.what();
         }
     }
     EXPECT_EQ(parseLocatorKind("idbuffer-gl"), LocatorKind::IdBufferGl);
@@ -272,9 +285,12 @@ TEST_F(IdBufferGlTest, PixelsMatchTheCpuBufferAwayFromEdges) {
         int w, h;
     };
     const Case cases[] = {
-        {Generator::Uniform, 60, Boundary::Exact, 320, 200},      {Generator::Uniform, 3000, Boundary::Exact, 320, 200},
-        {Generator::Clusters, 2000, Boundary::Exact, 257, 301},   {Generator::HugeTinyBox, 500, Boundary::Exact, 320, 200},
-        {Generator::Uniform, 400, Boundary::Super, 320, 200},     {Generator::Grid, 400, Boundary::Exact, 200, 200},
+        {Generator::Uniform, 60, Boundary::Exact, 320, 200},
+        {Generator::Uniform, 3000, Boundary::Exact, 320, 200},
+        {Generator::Clusters, 2000, Boundary::Exact, 257, 301},
+        {Generator::HugeTinyBox, 500, Boundary::Exact, 320, 200},
+        {Generator::Uniform, 400, Boundary::Super, 320, 200},
+        {Generator::Grid, 400, Boundary::Exact, 200, 200},
         {Generator::Uniform, 20000, Boundary::Exact, 1600, 1600},
     };
     for (const Case& k : cases) {
@@ -284,11 +300,13 @@ TEST_F(IdBufferGlTest, PixelsMatchTheCpuBufferAwayFromEdges) {
         o.order = OrderKind::Random;
         Run r = makeRun(points, o, glOptions(GlReadback::OnePixel, k.w, k.h));
         Journal journal(*r.ins);
-        const std::string name = std::string(toString(k.gen)) + " n=" + std::to_string(k.n) + " " + toString(k.boundary);
+        const std::string name =
+            std::string(toString(k.gen)) + " n=" + std::to_string(k.n) + " " + toString(k.boundary);
         // Mid-run (ghost triangles and a partial hull), then at the end of the insertions.
         for (const double share : {0.3, 1.0}) {
             const std::size_t target = static_cast<std::size_t>(share * k.n);
-            while (r.ins->stats().inserted + r.ins->stats().duplicates < static_cast<std::int64_t>(target) &&
+            while (r.ins->stats().inserted + r.ins->stats().duplicates <
+                       static_cast<std::int64_t>(target) &&
                    !r.ins->done() && r.ins->control().phase != Phase::Finalize) {
                 journal.forward();
             }
@@ -297,7 +315,8 @@ TEST_F(IdBufferGlTest, PixelsMatchTheCpuBufferAwayFromEdges) {
         }
         // After Finalize (the triangles are renumbered without a report: the buffer notices).
         while (journal.forward()) {}
-        expectMatchesCpu(r.gl->readAll(), *r.ins, *r.gl, Bounds::of(points), m_subpixelBits, name + " final");
+        expectMatchesCpu(r.gl->readAll(), *r.ins, *r.gl, Bounds::of(points), m_subpixelBits,
+                         name + " final");
     }
 }
 
@@ -320,10 +339,12 @@ TEST_F(IdBufferGlTest, BuffersCoverTheWholeBoxNotItsLowerLeftQuarter) {
     cpu.reset({&m, r.ins->firstVirtual(), true, points.size()}, box);
     const std::vector<std::int32_t> gl = r.gl->readAll();
     for (const auto* ids : {&cpu.pixels(), &gl}) {
-        const double painted = static_cast<double>(std::count_if(ids->begin(), ids->end(), [](std::int32_t t) { return t >= 0; }));
+        const double painted = static_cast<double>(
+            std::count_if(ids->begin(), ids->end(), [](std::int32_t t) { return t >= 0; }));
         EXPECT_NEAR(painted / ids->size(), share, 0.02);
         // Each quadrant's centre shows a triangle.
-        for (const auto& [i, j] : {std::pair{75, 50}, std::pair{225, 50}, std::pair{75, 150}, std::pair{225, 150}}) {
+        for (const auto& [i, j] :
+             {std::pair{75, 50}, std::pair{225, 50}, std::pair{75, 150}, std::pair{225, 150}}) {
             EXPECT_GE((*ids)[static_cast<std::size_t>(j) * 300 + i], 0) << i << "," << j;
         }
     }
@@ -335,7 +356,8 @@ TEST_F(IdBufferGlTest, ReadApiAgreesWithItself) {
     r.ins->run();
     const std::vector<std::int32_t> all = r.gl->readAll();
     ASSERT_EQ(all.size(), 300u * 170u);
-    for (const auto& [i, j] : {std::pair{0, 0}, std::pair{299, 169}, std::pair{150, 85}, std::pair{7, 160}}) {
+    for (const auto& [i, j] :
+         {std::pair{0, 0}, std::pair{299, 169}, std::pair{150, 85}, std::pair{7, 160}}) {
         EXPECT_EQ(r.gl->idAt(i, j), all[static_cast<std::size_t>(j) * 300 + i]) << i << "," << j;
     }
     EXPECT_EQ(r.gl->idAt(-1, 0), kNone);
@@ -375,10 +397,12 @@ TEST_F(IdBufferGlTest, HintsPlusTheExactWalkFindTheContainingTriangle) {
         while (queries.size() < 5000) {
             const Vec2 q{20 + rng.uniform01() * 1560, 20 + rng.uniform01() * 1560};
             bool inside = false;
-            for (std::int32_t t = 0; t < m.numTriangles() && !inside; ++t) inside = contains(m, t, q);
+            for (std::int32_t t = 0; t < m.numTriangles() && !inside; ++t)
+                inside = contains(m, t, q);
             if (inside) queries.push_back(q);
         }
-        if (mode == GlReadback::Batched) r.gl->setInsertionOrder(queries);  // read ahead along the queries
+        if (mode == GlReadback::Batched)
+            r.gl->setInsertionOrder(queries);  // read ahead along the queries
         const auto before = r.gl->stats();
         const auto readsBefore = r.gl->glStats().reads;
         std::size_t hits = 0;
@@ -416,9 +440,10 @@ TEST_F(IdBufferGlTest, TriangulationsEqualTheWalkLocatorsInEveryReadbackMode) {
         std::size_t n;
         bool unique;  // no four cocircular points: the Delaunay triangulation is unique
     };
-    const Case cases[] = {{Generator::Uniform, 5000, true},       {Generator::Clusters, 3000, true},
-                          {Generator::NearDuplicates, 1500, false}, {Generator::Grid, 900, false},
-                          {Generator::Collinear, 800, false},      {Generator::HugeTinyBox, 1000, false}};
+    const Case cases[] = {
+        {Generator::Uniform, 5000, true},         {Generator::Clusters, 3000, true},
+        {Generator::NearDuplicates, 1500, false}, {Generator::Grid, 900, false},
+        {Generator::Collinear, 800, false},       {Generator::HugeTinyBox, 1000, false}};
     for (const Case& k : cases) {
         const std::vector<Vec2> points = generatePoints(k.gen, k.n, 21);
         for (const Boundary boundary : {Boundary::Exact, Boundary::Super}) {
@@ -428,13 +453,16 @@ TEST_F(IdBufferGlTest, TriangulationsEqualTheWalkLocatorsInEveryReadbackMode) {
             Inserter reference(points, o);
             reference.run();
             const auto want = canonical(reference.mesh());
-            for (const GlReadback mode : {GlReadback::OnePixel, GlReadback::Batched, GlReadback::Pipelined}) {
-                const std::string name = std::string(toString(k.gen)) + " " + toString(boundary) + " " + toString(mode);
+            for (const GlReadback mode :
+                 {GlReadback::OnePixel, GlReadback::Batched, GlReadback::Pipelined}) {
+                const std::string name =
+                    std::string(toString(k.gen)) + " " + toString(boundary) + " " + toString(mode);
                 Run r = makeRun(points, o, glOptions(mode, 320, 240, 37));
                 r.ins->run();
                 const Mesh& m = r.ins->mesh();
                 ValidateOptions vo;
-                vo.delaunay = boundary == Boundary::Exact;  // super mode does not promise it near the hull
+                vo.delaunay =
+                    boundary == Boundary::Exact;  // super mode does not promise it near the hull
                 const auto bad = validate(m, vo);
                 EXPECT_TRUE(bad.empty()) << name << ": " << (bad.empty() ? "" : bad[0].message);
                 EXPECT_EQ(r.ins->skipped(), reference.skipped()) << name;
@@ -442,13 +470,17 @@ TEST_F(IdBufferGlTest, TriangulationsEqualTheWalkLocatorsInEveryReadbackMode) {
                     EXPECT_EQ(canonical(m), want) << name;  // the Delaunay triangulation is unique
                 }
                 EXPECT_EQ(m.numTriangles(), reference.mesh().numTriangles()) << name;
-                EXPECT_EQ(r.gl->stats().queries, static_cast<std::uint64_t>(r.ins->stats().inserted + r.ins->stats().duplicates - (boundary == Boundary::Exact ? 3 : 0)))
+                EXPECT_EQ(
+                    r.gl->stats().queries,
+                    static_cast<std::uint64_t>(r.ins->stats().inserted + r.ins->stats().duplicates -
+                                               (boundary == Boundary::Exact ? 3 : 0)))
                     << name << ": one hint per located point";
                 if (mode != GlReadback::OnePixel) {
                     // (Not on a grid in input order: row by row, every point lies outside the hull
                     // that the read-ahead pixels show, so it has no id to use.)
                     if (k.unique) {
-                        EXPECT_GT(r.gl->glStats().staleQueries, 0u) << name << ": later points use read-ahead ids";
+                        EXPECT_GT(r.gl->glStats().staleQueries, 0u)
+                            << name << ": later points use read-ahead ids";
                     }
                     EXPECT_LT(r.gl->glStats().reads, r.gl->stats().queries / 10) << name;
                 }
@@ -499,10 +531,12 @@ TEST_F(IdBufferGlTest, UndoAndRedoKeepTheBufferInSync) {
             const int back = static_cast<int>(rng.below(100));
             for (int i = 0; i < forward && journal.forward(); ++i) {}
             for (int i = 0; i < back && journal.back(); ++i) {}
-            if (round % 7 == 3) journal.seek(rng.below(static_cast<std::uint32_t>(journal.recorded() + 1)));  // bulk: resync
+            if (round % 7 == 3)
+                journal.seek(
+                    rng.below(static_cast<std::uint32_t>(journal.recorded() + 1)));  // bulk: resync
             expectMatchesCpu(r.gl->readAll(), *r.ins, *r.gl, Bounds::of(points), m_subpixelBits,
-                             std::string(toString(mode)) + " round " + std::to_string(round) + " at op " +
-                                 std::to_string(journal.position()));
+                             std::string(toString(mode)) + " round " + std::to_string(round) +
+                                 " at op " + std::to_string(journal.position()));
             ++checks;
         }
         EXPECT_GT(checks, 20);
@@ -513,7 +547,8 @@ TEST_F(IdBufferGlTest, UndoAndRedoKeepTheBufferInSync) {
         }
         while (journal.forward()) {}
         EXPECT_TRUE(validate(r.ins->mesh()).empty());
-        expectMatchesCpu(r.gl->readAll(), *r.ins, *r.gl, Bounds::of(points), m_subpixelBits, "at the end");
+        expectMatchesCpu(r.gl->readAll(), *r.ins, *r.gl, Bounds::of(points), m_subpixelBits,
+                         "at the end");
     }
 }
 
@@ -532,15 +567,34 @@ struct GlSnapshot {
 
 GlSnapshot snapshot() {
     GlSnapshot s;
-    for (GLenum e : {GL_DRAW_FRAMEBUFFER_BINDING, GL_READ_FRAMEBUFFER_BINDING, GL_ARRAY_BUFFER_BINDING,
-                     GL_PIXEL_PACK_BUFFER_BINDING, GL_PIXEL_UNPACK_BUFFER_BINDING, GL_CURRENT_PROGRAM,
-                     GL_TEXTURE_BINDING_2D, GL_ACTIVE_TEXTURE, GL_CLIENT_ACTIVE_TEXTURE, GL_MATRIX_MODE,
-                     GL_SHADE_MODEL, GL_BLEND_SRC, GL_BLEND_DST, GL_PACK_ALIGNMENT, GL_PACK_ROW_LENGTH,
-                     GL_UNPACK_ALIGNMENT, GL_READ_BUFFER, GL_DRAW_BUFFER, GL_VERTEX_ARRAY_SIZE,
-                     GL_VERTEX_ARRAY_STRIDE, GL_COLOR_ARRAY_SIZE, GL_POLYGON_MODE, GL_TEXTURE_ENV_MODE}) {
+    for (GLenum e : {GL_DRAW_FRAMEBUFFER_BINDING,
+                     GL_READ_FRAMEBUFFER_BINDING,
+                     GL_ARRAY_BUFFER_BINDING,
+                     GL_PIXEL_PACK_BUFFER_BINDING,
+                     GL_PIXEL_UNPACK_BUFFER_BINDING,
+                     GL_CURRENT_PROGRAM,
+                     GL_TEXTURE_BINDING_2D,
+                     GL_ACTIVE_TEXTURE,
+                     GL_CLIENT_ACTIVE_TEXTURE,
+                     GL_MATRIX_MODE,
+                     GL_SHADE_MODEL,
+                     GL_BLEND_SRC,
+                     GL_BLEND_DST,
+                     GL_PACK_ALIGNMENT,
+                     GL_PACK_ROW_LENGTH,
+                     GL_UNPACK_ALIGNMENT,
+                     GL_READ_BUFFER,
+                     GL_DRAW_BUFFER,
+                     GL_VERTEX_ARRAY_SIZE,
+                     GL_VERTEX_ARRAY_STRIDE,
+                     GL_COLOR_ARRAY_SIZE,
+                     GL_POLYGON_MODE,
+                     GL_TEXTURE_ENV_MODE}) {
         GLint v[4] = {0, 0, 0, 0};
-        if (e == GL_TEXTURE_ENV_MODE) glGetTexEnviv(GL_TEXTURE_ENV, GL_TEXTURE_ENV_MODE, v);
-        else glGetIntegerv(e, v);
+        if (e == GL_TEXTURE_ENV_MODE)
+            glGetTexEnviv(GL_TEXTURE_ENV, GL_TEXTURE_ENV_MODE, v);
+        else
+            glGetIntegerv(e, v);
         s.ints.insert(s.ints.end(), v, v + (e == GL_POLYGON_MODE ? 2 : 1));
     }
     GLint vp[4], sc[4];
@@ -551,14 +605,15 @@ GlSnapshot snapshot() {
     GLvoid* ptr = nullptr;
     glGetPointerv(GL_VERTEX_ARRAY_POINTER, &ptr);
     s.ints.push_back(static_cast<GLint>(reinterpret_cast<std::uintptr_t>(ptr) & 0x7FFFFFFF));
-    for (GLenum e : {GL_PROJECTION_MATRIX, GL_MODELVIEW_MATRIX, GL_TEXTURE_MATRIX, GL_COLOR_CLEAR_VALUE, GL_CURRENT_COLOR,
-                     GL_POINT_SIZE}) {
+    for (GLenum e : {GL_PROJECTION_MATRIX, GL_MODELVIEW_MATRIX, GL_TEXTURE_MATRIX,
+                     GL_COLOR_CLEAR_VALUE, GL_CURRENT_COLOR, GL_POINT_SIZE}) {
         GLfloat v[16] = {};
         glGetFloatv(e, v);
         s.floats.insert(s.floats.end(), v, v + 16);
     }
-    for (GLenum e : {GL_BLEND, GL_SCISSOR_TEST, GL_TEXTURE_2D, GL_DITHER, GL_CULL_FACE, GL_DEPTH_TEST, GL_LIGHTING,
-                     GL_VERTEX_ARRAY, GL_COLOR_ARRAY, GL_TEXTURE_COORD_ARRAY, GL_MULTISAMPLE, GL_ALPHA_TEST}) {
+    for (GLenum e : {GL_BLEND, GL_SCISSOR_TEST, GL_TEXTURE_2D, GL_DITHER, GL_CULL_FACE,
+                     GL_DEPTH_TEST, GL_LIGHTING, GL_VERTEX_ARRAY, GL_COLOR_ARRAY,
+                     GL_TEXTURE_COORD_ARRAY, GL_MULTISAMPLE, GL_ALPHA_TEST}) {
         s.enables.push_back(glIsEnabled(e));
     }
     GLboolean mask[4];
@@ -607,7 +662,8 @@ TEST_F(IdBufferGlTest, LeavesTheCallersGlStateAsItFoundIt) {
     const GlSnapshot before = snapshot();
 
     const std::vector<Vec2> points = generatePoints(Generator::Uniform, 3000, 8);
-    for (const GlReadback mode : {GlReadback::OnePixel, GlReadback::Batched, GlReadback::Pipelined}) {
+    for (const GlReadback mode :
+         {GlReadback::OnePixel, GlReadback::Batched, GlReadback::Pipelined}) {
         InsertOptions o;
         o.order = OrderKind::Input;
         Run r = makeRun(points, o, glOptions(mode, 200, 200, 50));
@@ -619,7 +675,8 @@ TEST_F(IdBufferGlTest, LeavesTheCallersGlStateAsItFoundIt) {
         EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR)) << toString(mode);
         EXPECT_TRUE(snapshot() == before) << toString(mode) << ": the GL state changed";
         // And the buffer is still right, whatever the caller's state was.
-        expectMatchesCpu(r.gl->readAll(), *r.ins, *r.gl, Bounds::of(points), m_subpixelBits, toString(mode));
+        expectMatchesCpu(r.gl->readAll(), *r.ins, *r.gl, Bounds::of(points), m_subpixelBits,
+                         toString(mode));
     }
     a.deleteBuffers(1, &vbo);
     glDeleteTextures(1, &tex);
@@ -646,7 +703,8 @@ TEST(IdBufferGlGui, TheGuiRunsTheGlLocatorOnItsContext) {
         ASSERT_TRUE(st.setOptions(o)) << st.messages.back().text;
         IdBufferGl* gl = st.engine.idBufferGl();
         ASSERT_NE(gl, nullptr);
-        EXPECT_EQ(gl->name(), kind == LocatorKind::IdBufferGl ? "idbuffer-gl" : "idbuffer-gl-batched");
+        EXPECT_EQ(gl->name(),
+                  kind == LocatorKind::IdBufferGl ? "idbuffer-gl" : "idbuffer-gl-batched");
         // The run was recorded (400 points: the whole history), so the locator worked already;
         // step back and forth through the frames as a user would.
         h.frames(2);
@@ -660,13 +718,15 @@ TEST(IdBufferGlGui, TheGuiRunsTheGlLocatorOnItsContext) {
         // The same pixels as the CPU reference: the GUI's GL state did not get in the way.
         GLint subpixelBits = 4;
         glGetIntegerv(GL_SUBPIXEL_BITS, &subpixelBits);
-        expectMatchesCpu(ids, st.engine.inserter(), *gl, Bounds::of(points), subpixelBits, toString(kind));
+        expectMatchesCpu(ids, st.engine.inserter(), *gl, Bounds::of(points), subpixelBits,
+                         toString(kind));
         st.engine.seek(st.engine.recorded());
         h.frames(2);
         EXPECT_TRUE(st.engine.atEnd());
         EXPECT_TRUE(validate(st.engine.mesh()).empty());
         // Most hints right (batched: ids up to 31 insertions old, on a mesh of a few hundred).
-        EXPECT_GT(gl->stats().hits, gl->stats().queries * (kind == LocatorKind::IdBufferGl ? 7 : 5) / 10);
+        EXPECT_GT(gl->stats().hits,
+                  gl->stats().queries * (kind == LocatorKind::IdBufferGl ? 7 : 5) / 10);
     }
     // Without a context, the engine refuses the GL kinds with a reason.
     ui::Engine bare;
@@ -687,8 +747,9 @@ TEST(IdBufferGlTable1, WritesTheCsvAndThePlot) {
     const std::string csv = (dir / "t1.csv").string(), png = (dir / "t1.png").string();
     std::filesystem::remove(csv);
     std::filesystem::remove(png);
-    const std::string cmd = std::string(DLAB_DTLAB_PATH) + " table1 --sizes 200,400,800 --repeat 1 --batch 32 --csv " +
-                            csv + " --png " + png + " > " + (dir / "out.txt").string() + " 2>&1";
+    const std::string cmd = std::string(DLAB_DTLAB_PATH) +
+                            " table1 --sizes 200,400,800 --repeat 1 --batch 32 --csv " + csv +
+                            " --png " + png + " > " + (dir / "out.txt").string() + " 2>&1";
     ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
     std::ifstream in(csv);
     std::string header;
@@ -720,7 +781,8 @@ TEST(IdBufferGlTable1, WritesTheCsvAndThePlot) {
     EXPECT_EQ(w, 1400u);
     EXPECT_EQ(hgt, 900u);
     // Bad sizes: one line, a non-zero status.
-    const std::string bad = std::string(DLAB_DTLAB_PATH) + " table1 --sizes 100,x > " + (dir / "bad.txt").string() + " 2>&1";
+    const std::string bad = std::string(DLAB_DTLAB_PATH) + " table1 --sizes 100,x > " +
+                            (dir / "bad.txt").string() + " 2>&1";
     EXPECT_NE(std::system(bad.c_str()), 0);
     std::ifstream b(dir / "bad.txt");
     std::string line;
@@ -731,18 +793,20 @@ TEST(IdBufferGlTable1, WritesTheCsvAndThePlot) {
 TEST(IdBufferGlTable1, DtlabTriangulatesWithTheGlLocatorInEveryReadbackMode) {
     const std::filesystem::path dir = std::filesystem::temp_directory_path() / "dlab_table1_test";
     std::filesystem::create_directories(dir);
-    const std::string dtlab = DLAB_DTLAB_PATH, pts = (dir / "u.node").string(), log = (dir / "tri.txt").string();
+    const std::string dtlab = DLAB_DTLAB_PATH, pts = (dir / "u.node").string(),
+                      log = (dir / "tri.txt").string();
     ASSERT_EQ(std::system((dtlab + " gen uniform 3000 -o " + pts + " > " + log).c_str()), 0);
     // "FILE: 3000 points, T triangles in ..." must say the same T as the walk locator's run.
     auto triangles = [&](const char* flags) {
-        const std::string cmd = dtlab + " triangulate " + pts + " -o " + (dir / "out").string() + " --check " + flags +
-                                " > " + log + " 2>&1";
+        const std::string cmd = dtlab + " triangulate " + pts + " -o " + (dir / "out").string() +
+                                " --check " + flags + " > " + log + " 2>&1";
         EXPECT_EQ(std::system(cmd.c_str()), 0) << cmd;
         std::ifstream in(log);
         std::string first;
         std::getline(in, first);
         const std::size_t at = first.find(" points, ");
-        return at == std::string::npos ? std::string("?") : first.substr(at, first.find(" triangles") - at);
+        return at == std::string::npos ? std::string("?")
+                                       : first.substr(at, first.find(" triangles") - at);
     };
     const std::string want = triangles("--locate walk");
     ASSERT_NE(want, "?");

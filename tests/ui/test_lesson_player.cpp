@@ -1,9 +1,9 @@
 // The lesson player in the GUI: open a lesson, go from stop to stop, answer its questions.
 #include "core/teaching/lesson.h"
 #include "tests/ui/ui_harness.h"
-#include "ui/platform/keys.h"
 #include "ui/lesson_player.h"
 #include "ui/panels/panels.h"
+#include "ui/platform/keys.h"
 
 #include <gtest/gtest.h>
 #include <imgui.h>
@@ -15,7 +15,9 @@ using dlab::test::UiHarness;
 
 namespace {
 
-std::string lessonPath(const char* name) { return std::string(DLAB_SOURCE_DIR) + "/lessons/" + name; }
+std::string lessonPath(const char* name) {
+    return std::string(DLAB_SOURCE_DIR) + "/lessons/" + name;
+}
 
 // Types text into the focused-by-click answer field, then clicks Check.
 void typeAnswer(UiHarness& h, const std::string& text) {
@@ -123,10 +125,12 @@ TEST(LessonPlayer, ABrokenLessonChangesNothing) {
     auto& st = h.state();
     const auto points = st.engine.points();
     const auto bad = std::filesystem::temp_directory_path() / "dlab_broken_lesson.toml";
-    std::ofstream(bad) << "title = \"x\"\npoints = [[0, 0], [1, 0], [0, 1]]\n[[stop]]\nrun_to = \"flop\"\n";
+    std::ofstream(bad)
+        << "title = \"x\"\npoints = [[0, 0], [1, 0], [0, 1]]\n[[stop]]\nrun_to = \"flop\"\n";
     EXPECT_FALSE(dlab::ui::openLesson(st, bad.string()));
     EXPECT_FALSE(st.lessonPlayer.lesson);
     EXPECT_EQ(st.engine.points(), points);
     ASSERT_FALSE(st.messages.empty());
-    EXPECT_NE(st.messages.back().text.find("dlab_broken_lesson.toml:4"), std::string::npos) << st.messages.back().text;
+    EXPECT_NE(st.messages.back().text.find("dlab_broken_lesson.toml:4"), std::string::npos)
+        << st.messages.back().text;
 }

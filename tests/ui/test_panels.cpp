@@ -4,10 +4,10 @@
 // the ID-buffer view hovered and checked against the core's locator, and the statistics.
 #include "core/engine/generators.h"
 #include "core/engine/predicates.h"
-#include "ui/gl/idbuffer_gl.h"
 #include "tests/ui/ui_harness.h"
-#include "ui/platform/keys.h"
+#include "ui/gl/idbuffer_gl.h"
 #include "ui/panels/panels.h"
+#include "ui/platform/keys.h"
 
 #include <gtest/gtest.h>
 #include <imgui.h>
@@ -25,10 +25,11 @@ namespace key = dlab::ui::key;
 
 namespace {
 
-constexpr std::array<int, 3> kPathRgb = {214, 0, 120};       // expressions.cpp
-constexpr std::array<int, 3> kWarningRgb = {200, 20, 30};    // predicates.cpp
-constexpr std::array<int, 3> kViolationRgb = {230, 0, 0};    // statistics.cpp
-constexpr std::array<int, 3> kPendingRgb = {250, 170, 60};    // statistics.cpp: expected mid-insertion
+constexpr std::array<int, 3> kPathRgb = {214, 0, 120};     // expressions.cpp
+constexpr std::array<int, 3> kWarningRgb = {200, 20, 30};  // predicates.cpp
+constexpr std::array<int, 3> kViolationRgb = {230, 0, 0};  // statistics.cpp
+constexpr std::array<int, 3> kPendingRgb = {250, 170,
+                                            60};  // statistics.cpp: expected mid-insertion
 
 void typeText(UiHarness& h, const std::string& text) {
     for (char ch : text) {
@@ -43,7 +44,9 @@ void openTab(UiHarness& h, const char* name) {
     h.frames(2);
 }
 
-bool anchorOf(UiHarness& h, std::int32_t c, float& x, float& y) { return dlab::ui::CornerAnchor(h.state(), c, x, y); }
+bool anchorOf(UiHarness& h, std::int32_t c, float& x, float& y) {
+    return dlab::ui::CornerAnchor(h.state(), c, x, y);
+}
 
 std::array<float, 4> around(float x, float y, float r) { return {x - r, y - r, x + r, y + r}; }
 
@@ -71,11 +74,14 @@ TEST(Panels, TypedExpressionGivesItsValueAndDrawsItsPath) {
     float ax = 0, ay = 0, bx = 0, by = 0, ox = 0, oy = 0;
     for (std::int32_t k = 0; k < m.numCorners() && c == kNone; ++k) {
         const std::int32_t o = m.O[dlab::next(k)];
-        if (o != kNone && anchorOf(h, k, ax, ay) && anchorOf(h, dlab::next(k), bx, by) && anchorOf(h, o, ox, oy)) c = k;
+        if (o != kNone && anchorOf(h, k, ax, ay) && anchorOf(h, dlab::next(k), bx, by) &&
+            anchorOf(h, o, ox, oy))
+            c = k;
     }
     ASSERT_NE(c, kNone);
     openTab(h, "Expressions");
-    EXPECT_EQ(h.countColour(h.rect("canvas"), kPathRgb), 0) << "path colour on the canvas before any expression";
+    EXPECT_EQ(h.countColour(h.rect("canvas"), kPathRgb), 0)
+        << "path colour on the canvas before any expression";
     st.select(c);
     h.clickItem("expr-input");
     typeText(h, "c.n.o");
@@ -87,7 +93,8 @@ TEST(Panels, TypedExpressionGivesItsValueAndDrawsItsPath) {
     EXPECT_EQ(line.text, "c.n.o");
     EXPECT_TRUE(line.ok) << line.answer;
     const std::int32_t expected = m.O[dlab::next(c)];
-    EXPECT_EQ(line.answer, "= " + std::to_string(expected) + "  (corner, c = " + std::to_string(c) + ")");
+    EXPECT_EQ(line.answer,
+              "= " + std::to_string(expected) + "  (corner, c = " + std::to_string(c) + ")");
     ASSERT_EQ(ex.path.size(), 2u);
     EXPECT_EQ(ex.path[0].op, 'n');
     EXPECT_EQ(ex.path[0].from, c);
@@ -104,7 +111,8 @@ TEST(Panels, TypedExpressionGivesItsValueAndDrawsItsPath) {
         EXPECT_GT(h.countColour(r, kPathRgb), 30) << label;
         const float mx = (r[0] + r[2]) / 2, my = (r[1] + r[3]) / 2, (&e)[4] = ends[k];
         const float len = std::hypot(e[2] - e[0], e[3] - e[1]);
-        EXPECT_LT(std::hypot(mx - (e[0] + e[2]) / 2, my - (e[1] + e[3]) / 2), 0.2f * len + 4) << label << " is not between its corners";
+        EXPECT_LT(std::hypot(mx - (e[0] + e[2]) / 2, my - (e[1] + e[3]) / 2), 0.2f * len + 4)
+            << label << " is not between its corners";
     }
     EXPECT_TRUE(st.expressions.input.empty());  // the console is ready for the next line
 
@@ -112,7 +120,8 @@ TEST(Panels, TypedExpressionGivesItsValueAndDrawsItsPath) {
     h.clickItem("expr-input");
     typeText(h, "r(o(n(" + std::to_string(c) + ")))");
     h.press(key::kEnter);
-    const std::int32_t r = m.O[dlab::next(c)] == kNone ? kNone : m.O[dlab::prev(m.O[dlab::next(c)])];
+    const std::int32_t r =
+        m.O[dlab::next(c)] == kNone ? kNone : m.O[dlab::prev(m.O[dlab::next(c)])];
     if (r != kNone) {
         EXPECT_EQ(ex.history.back().answer, "= " + std::to_string(r) + "  (corner)");  // no c in it
     }
@@ -152,7 +161,7 @@ TEST(Panels, AWatchPausesTheRunAtTheFirstOperationThatBreaksIt) {
     // "No corner's vertex is 7" breaks exactly when vertex 7 enters the mesh.
     ASSERT_TRUE(dlab::ui::AddWatch(st, "V[c] != 7"));
     ASSERT_FALSE(dlab::ui::AddWatch(st, "c.n.o"));  // not a comparison: refused, logged
-    h.press(key::kEnd);  // full speed: many operations per frame
+    h.press(key::kEnd);                             // full speed: many operations per frame
     for (int i = 0; i < 200 && st.run.running; ++i) h.frames(1);
     ASSERT_FALSE(st.run.running);
     ASSERT_FALSE(st.engine.atEnd()) << "the run went to the end: the watch did not stop it";
@@ -174,7 +183,8 @@ TEST(Panels, AWatchPausesTheRunAtTheFirstOperationThatBreaksIt) {
     // The log names the operation and the corner.
     bool named = false;
     for (const auto& msg : st.messages) {
-        named |= msg.level == dlab::ui::Message::Level::Error && msg.text.find("op " + std::to_string(first - 1) + " (") != std::string::npos &&
+        named |= msg.level == dlab::ui::Message::Level::Error &&
+                 msg.text.find("op " + std::to_string(first - 1) + " (") != std::string::npos &&
                  msg.text.find("c = " + std::to_string(st.selection.corner)) != std::string::npos;
     }
     EXPECT_TRUE(named);
@@ -188,7 +198,8 @@ TEST(Panels, OnALargeMeshAWatchChecksTheChangedCornersAndStillStopsAtTheRightOpe
     UiHarness h;
     auto& st = h.state();
     // 1500 points in input order: about 9000 corners, beyond where every corner is checked.
-    ASSERT_TRUE(st.loadPoints(dlab::generatePoints(dlab::Generator::Uniform, 1500, 4), "uniform 1500"));
+    ASSERT_TRUE(
+        st.loadPoints(dlab::generatePoints(dlab::Generator::Uniform, 1500, 4), "uniform 1500"));
     ASSERT_TRUE(dlab::ui::AddWatch(st, "V[c] != 1400"));
     ASSERT_TRUE(dlab::ui::AddWatch(st, "o(o(c)) == c"));
     h.press(key::kEnd);
@@ -207,7 +218,8 @@ TEST(Panels, OnALargeMeshAWatchChecksTheChangedCornersAndStillStopsAtTheRightOpe
 TEST(Panels, TheStandardWatchesHoldThroughAWholeRun) {
     UiHarness h;
     auto& st = h.state();
-    ASSERT_TRUE(st.loadPoints(dlab::generatePoints(dlab::Generator::Grid, 64, 3), "grid"));  // cocircular quadruples
+    ASSERT_TRUE(st.loadPoints(dlab::generatePoints(dlab::Generator::Grid, 64, 3),
+                              "grid"));  // cocircular quadruples
     openTab(h, "Expressions");
     for (const char* w : dlab::standardWatches()) ASSERT_TRUE(dlab::ui::AddWatch(st, w));
     h.press(key::kEnd);
@@ -236,11 +248,18 @@ NearDegenerate findNearDegenerate() {
     std::mt19937_64 rng(12345);
     std::uniform_real_distribution<double> u(0.0, 1.0);
     for (int attempt = 0; attempt < 5000; ++attempt) {
-        const Vec2 a{u(rng) * 100, u(rng) * 100}, b{u(rng) * 100, u(rng) * 100}, c{u(rng) * 100, u(rng) * 100};
+        const Vec2 a{u(rng) * 100, u(rng) * 100}, b{u(rng) * 100, u(rng) * 100},
+            c{u(rng) * 100, u(rng) * 100};
         const double d2 = 2 * (a.x * (b.y - c.y) + b.x * (c.y - a.y) + c.x * (a.y - b.y));
         if (std::fabs(d2) < 100) continue;
-        const double ux = ((a.x * a.x + a.y * a.y) * (b.y - c.y) + (b.x * b.x + b.y * b.y) * (c.y - a.y) + (c.x * c.x + c.y * c.y) * (a.y - b.y)) / d2;
-        const double uy = ((a.x * a.x + a.y * a.y) * (c.x - b.x) + (b.x * b.x + b.y * b.y) * (a.x - c.x) + (c.x * c.x + c.y * c.y) * (b.x - a.x)) / d2;
+        const double ux =
+            ((a.x * a.x + a.y * a.y) * (b.y - c.y) + (b.x * b.x + b.y * b.y) * (c.y - a.y) +
+             (c.x * c.x + c.y * c.y) * (a.y - b.y)) /
+            d2;
+        const double uy =
+            ((a.x * a.x + a.y * a.y) * (c.x - b.x) + (b.x * b.x + b.y * b.y) * (a.x - c.x) +
+             (c.x * c.x + c.y * c.y) * (b.x - a.x)) /
+            d2;
         const double r = std::hypot(a.x - ux, a.y - uy), t = u(rng) * 6.283185307179586;
         const Vec2 d{ux + r * std::cos(t), uy + r * std::sin(t)};
         dlab::ui::Engine e;
@@ -249,7 +268,8 @@ NearDegenerate findNearDegenerate() {
         while (e.forward()) {
             if (e.current()->type != OpType::InCircleTest) continue;
             for (const auto& call : dlab::ui::CurrentPredicateCalls(e)) {
-                if (call.inCircle && call.report.naiveSign != call.report.exactSign) return {{a, b, c, d}, e.position()};
+                if (call.inCircle && call.report.naiveSign != call.report.exactSign)
+                    return {{a, b, c, d}, e.position()};
             }
         }
     }
@@ -275,7 +295,8 @@ TEST(Panels, PredicateInspectorWarnsWhereFloatingPointIsWrong) {
 
     ASSERT_TRUE(st.loadPoints(nd.points, "near-degenerate"));
     // Step there with the panel's own button: "Next in-circle test" until the position.
-    for (int i = 0; i < 20 && st.engine.position() < nd.position; ++i) h.clickItem("predicate-next");
+    for (int i = 0; i < 20 && st.engine.position() < nd.position; ++i)
+        h.clickItem("predicate-next");
     ASSERT_EQ(st.engine.position(), nd.position);
     const auto now = dlab::ui::CurrentPredicateCalls(st.engine);
     ASSERT_EQ(now.size(), 1u);
@@ -322,16 +343,20 @@ TEST(Panels, HoveredIdBufferPixelIsTheLocatorsAndIsCheckedExactly) {
     h.frames(3);
     ASSERT_TRUE(drawnNow(h, "idbuffer-image"));
     const auto img = h.rect("idbuffer-image");
-    auto* cpu = dynamic_cast<const dlab::IdBufferCpu*>(const_cast<dlab::Inserter&>(st.engine.inserter()).locator());
+    auto* cpu = dynamic_cast<const dlab::IdBufferCpu*>(
+        const_cast<dlab::Inserter&>(st.engine.inserter()).locator());
     ASSERT_NE(cpu, nullptr);
     const dlab::Mesh& m = st.engine.mesh();
     const auto& ins = st.engine.inserter();
     // Where a world point shows in the image (pixel centres span [0.5, W - 0.5] pixel widths).
-    const Vec2 lo = cpu->pixelCentre(0, 0), hi = cpu->pixelCentre(cpu->width() - 1, cpu->height() - 1);
+    const Vec2 lo = cpu->pixelCentre(0, 0),
+               hi = cpu->pixelCentre(cpu->width() - 1, cpu->height() - 1);
     auto screenOf = [&](Vec2 q) {
         const double fx = ((q.x - lo.x) / (hi.x - lo.x) * (cpu->width() - 1) + 0.5) / cpu->width();
-        const double fy = ((q.y - lo.y) / (hi.y - lo.y) * (cpu->height() - 1) + 0.5) / cpu->height();
-        return std::array<float, 2>{img[0] + static_cast<float>(fx) * (img[2] - img[0]), img[3] - static_cast<float>(fy) * (img[3] - img[1])};
+        const double fy =
+            ((q.y - lo.y) / (hi.y - lo.y) * (cpu->height() - 1) + 0.5) / cpu->height();
+        return std::array<float, 2>{img[0] + static_cast<float>(fx) * (img[2] - img[0]),
+                                    img[3] - static_cast<float>(fy) * (img[3] - img[1])};
     };
     // Probes: the centroids of some real triangles, and a few points of a grid.
     std::vector<std::array<float, 2>> probes;
@@ -340,7 +365,9 @@ TEST(Panels, HoveredIdBufferPixelIsTheLocatorsAndIsCheckedExactly) {
         const Vec2 a = m.G[m.V[3 * t]], b = m.G[m.V[3 * t + 1]], c = m.G[m.V[3 * t + 2]];
         probes.push_back(screenOf({(a.x + b.x + c.x) / 3, (a.y + b.y + c.y) / 3}));
     }
-    for (int k = 1; k <= 4; ++k) probes.push_back({img[0] + (img[2] - img[0]) * k / 5.0f, img[1] + (img[3] - img[1]) * (5 - k) / 5.0f});
+    for (int k = 1; k <= 4; ++k)
+        probes.push_back(
+            {img[0] + (img[2] - img[0]) * k / 5.0f, img[1] + (img[3] - img[1]) * (5 - k) / 5.0f});
     int agree = 0, inside = 0;
     for (const auto& [x, y] : probes) {
         h.moveTo(x, y);
@@ -354,7 +381,8 @@ TEST(Panels, HoveredIdBufferPixelIsTheLocatorsAndIsCheckedExactly) {
         for (std::int32_t t = 0; t < m.numTriangles(); ++t) {
             if (!ins.done() && ins.isVirtualTriangle(t)) continue;
             const Vec2 a = m.G[m.V[3 * t]], b = m.G[m.V[3 * t + 1]], c = m.G[m.V[3 * t + 2]];
-            if (dlab::orient2d(a, b, hv.centre) >= 0 && dlab::orient2d(b, c, hv.centre) >= 0 && dlab::orient2d(c, a, hv.centre) >= 0) {
+            if (dlab::orient2d(a, b, hv.centre) >= 0 && dlab::orient2d(b, c, hv.centre) >= 0 &&
+                dlab::orient2d(c, a, hv.centre) >= 0) {
                 containing.insert(t);
             }
         }
@@ -365,7 +393,9 @@ TEST(Panels, HoveredIdBufferPixelIsTheLocatorsAndIsCheckedExactly) {
         // What the image shows under the mouse is that id's false colour.
         const auto px = h.pixel(static_cast<int>(x), static_cast<int>(y));
         const std::uint32_t col = dlab::ui::IdFalseColour(hv.id);
-        EXPECT_EQ(px, (std::array<int, 3>{static_cast<int>(col & 255), static_cast<int>((col >> 8) & 255), static_cast<int>((col >> 16) & 255)}));
+        EXPECT_EQ(
+            px, (std::array<int, 3>{static_cast<int>(col & 255), static_cast<int>((col >> 8) & 255),
+                                    static_cast<int>((col >> 16) & 255)}));
     }
     const int probesN = static_cast<int>(probes.size());
     EXPECT_GE(inside, 10) << "the probes missed the mesh";
@@ -391,7 +421,8 @@ TEST(Panels, StatisticsCountTheRunAndViolationsShowOnTheCanvas) {
         }
     }
     ASSERT_TRUE(found) << "no split left a non-Delaunay edge in the demo";
-    for (const auto& v : st.statistics.violations) EXPECT_EQ(v.kind, dlab::Violation::Kind::NotDelaunay);
+    for (const auto& v : st.statistics.violations)
+        EXPECT_EQ(v.kind, dlab::Violation::Kind::NotDelaunay);
     h.frames(1);
     // Expected mid-insertion: drawn in the calmer colour, not as errors.
     EXPECT_GT(h.countColour(h.rect("canvas"), kPendingRgb), 40) << "violations not drawn";
@@ -401,11 +432,14 @@ TEST(Panels, StatisticsCountTheRunAndViolationsShowOnTheCanvas) {
     h.frames(3);
     EXPECT_TRUE(st.statistics.violations.empty());
     EXPECT_TRUE(st.statistics.hullDents.empty());
-    EXPECT_NE(st.statistics.hullReport.find("Euler holds"), std::string::npos) << st.statistics.hullReport;
+    EXPECT_NE(st.statistics.hullReport.find("Euler holds"), std::string::npos)
+        << st.statistics.hullReport;
     EXPECT_EQ(h.countColour(h.rect("canvas"), kViolationRgb), 0);
     ASSERT_TRUE(drawnNow(h, "flips-plot"));
-    constexpr std::array<int, 3> kHistogramRgb = {230, 179, 0};  // ImGui's light style PlotHistogram
-    EXPECT_GT(h.countColour(h.rect("flips-plot"), kHistogramRgb), 100) << "the flips plot is not drawn";
+    constexpr std::array<int, 3> kHistogramRgb = {230, 179,
+                                                  0};  // ImGui's light style PlotHistogram
+    EXPECT_GT(h.countColour(h.rect("flips-plot"), kHistogramRgb), 100)
+        << "the flips plot is not drawn";
     const auto& ins = st.engine.inserter().stats();
     const auto& c = st.statistics.counts;
     EXPECT_EQ(c.flips, ins.flips);
@@ -431,13 +465,17 @@ TEST(Panels, SuperTriangleHullDentIsShown) {
     dlab::InsertOptions o = dlab::ui::demoOptions();
     o.boundary = dlab::Boundary::Super;
     ASSERT_TRUE(st.setOptions(o));
-    ASSERT_TRUE(st.loadPoints({{0, 0}, {1000, 0}, {500, 500}, {500, 1}, {250, 200}, {700, 150}}, "sliver"));
+    ASSERT_TRUE(
+        st.loadPoints({{0, 0}, {1000, 0}, {500, 500}, {500, 1}, {250, 200}, {700, 150}}, "sliver"));
     while (!st.engine.toEnd(1 << 20)) {}
     h.frames(2);
     ASSERT_EQ(st.statistics.hullDents, std::vector<std::int32_t>{3}) << st.statistics.hullReport;
     EXPECT_NE(st.statistics.hullReport.find("NOT convex"), std::string::npos);
     const auto p = st.view.toScreen(st.engine.mesh().G[3]);
-    EXPECT_GT(h.countColour(around(static_cast<float>(p.x), static_cast<float>(p.y), 16), kViolationRgb), 20) << "the dent is not marked";
+    EXPECT_GT(
+        h.countColour(around(static_cast<float>(p.x), static_cast<float>(p.y), 16), kViolationRgb),
+        20)
+        << "the dent is not marked";
     o.boundary = dlab::Boundary::Exact;
     ASSERT_TRUE(st.setOptions(o));
     while (!st.engine.toEnd(1 << 20)) {}
@@ -463,15 +501,19 @@ TEST(Panels, TheGlIdBufferShowsInTheSameViewAndAgreesWithItsOwnReadback) {
     const dlab::Mesh& m = st.engine.mesh();
     int inside = 0;
     for (int k = 1; k <= 7; ++k) {
-        h.moveTo(img[0] + (img[2] - img[0]) * k / 8.0f, img[1] + (img[3] - img[1]) * ((k * 3) % 8 + 0.5f) / 8.0f);
+        h.moveTo(img[0] + (img[2] - img[0]) * k / 8.0f,
+                 img[1] + (img[3] - img[1]) * ((k * 3) % 8 + 0.5f) / 8.0f);
         const auto& hv = st.idBuffer.hover;
         ASSERT_TRUE(hv.valid);
         EXPECT_EQ(hv.id, gl->idAt(hv.i, hv.j));  // the view decodes what GL holds there
         EXPECT_EQ(hv.centre, gl->pixelCentre(hv.i, hv.j));
         if (hv.id == kNone) continue;
         ++inside;
-        const Vec2 a = m.G[m.V[3 * hv.id]], b = m.G[m.V[3 * hv.id + 1]], c = m.G[m.V[3 * hv.id + 2]];
-        const bool contains = dlab::orient2d(a, b, hv.centre) >= 0 && dlab::orient2d(b, c, hv.centre) >= 0 && dlab::orient2d(c, a, hv.centre) >= 0;
+        const Vec2 a = m.G[m.V[3 * hv.id]], b = m.G[m.V[3 * hv.id + 1]],
+                   c = m.G[m.V[3 * hv.id + 2]];
+        const bool contains = dlab::orient2d(a, b, hv.centre) >= 0 &&
+                              dlab::orient2d(b, c, hv.centre) >= 0 &&
+                              dlab::orient2d(c, a, hv.centre) >= 0;
         EXPECT_EQ(hv.agrees, contains);
     }
     EXPECT_GE(inside, 3);

@@ -26,7 +26,8 @@ std::vector<std::string> traceLines(const dlab::ui::AppState& st) {
     dlab::Journal journal(ins);
     std::vector<std::string> lines;
     while (journal.forward()) {
-        lines.push_back(dlab::toJsonLine(dlab::traceRecord(journal, journal.position() - 1, ins.mesh())));
+        lines.push_back(
+            dlab::toJsonLine(dlab::traceRecord(journal, journal.position() - 1, ins.mesh())));
     }
     return lines;
 }
@@ -61,7 +62,7 @@ TEST(TraceCompare, AStudentWhoMissedAFlipIsShownAtThatFlipAndBothRunsStepTogethe
     EXPECT_EQ(tc.diff.refOp, flip) << tc.diff.what;
     EXPECT_EQ(st.engine.position(), flip + 1);  // just after our flip
     EXPECT_EQ(st.engine.current()->type, dlab::OpType::Flip);
-    EXPECT_EQ(st.engine.points(), points);      // nothing else changed
+    EXPECT_EQ(st.engine.points(), points);  // nothing else changed
     EXPECT_EQ(st.messages.back().level, dlab::ui::Message::Level::Warning);
     EXPECT_NE(st.messages.back().text.find("dlab_student_missed_flip.jsonl"), std::string::npos);
     // The tab is on show, and the student's triangles that are not ours are drawn in magenta.
@@ -73,8 +74,10 @@ TEST(TraceCompare, AStudentWhoMissedAFlipIsShownAtThatFlipAndBothRunsStepTogethe
     h.clickItem("trace-forward");
     EXPECT_GT(st.engine.position(), ours);
     EXPECT_GT(tc.studentPos, theirs);
-    EXPECT_TRUE(st.engine.current()->type == dlab::OpType::Flip || st.engine.current()->type == dlab::OpType::Split ||
-                st.engine.current()->type == dlab::OpType::SplitEdge || st.engine.current()->type == dlab::OpType::Finalize);
+    EXPECT_TRUE(st.engine.current()->type == dlab::OpType::Flip ||
+                st.engine.current()->type == dlab::OpType::Split ||
+                st.engine.current()->type == dlab::OpType::SplitEdge ||
+                st.engine.current()->type == dlab::OpType::Finalize);
     h.clickItem("trace-back");
     EXPECT_EQ(st.engine.position(), ours);
     EXPECT_EQ(tc.studentPos, theirs);
@@ -90,7 +93,8 @@ TEST(TraceCompare, TheSameRunIsSaidToBeTheSame) {
     ASSERT_TRUE(dlab::ui::OpenFile(st, path));
     EXPECT_TRUE(st.traceCompare.diff.equal) << st.traceCompare.diff.what;
     EXPECT_TRUE(st.engine.atEnd());
-    EXPECT_NE(st.messages.back().text.find("the same run"), std::string::npos) << st.messages.back().text;
+    EXPECT_NE(st.messages.back().text.find("the same run"), std::string::npos)
+        << st.messages.back().text;
     h.frames(2);
     EXPECT_EQ(h.countColour(h.rect("canvas"), {200, 0, 160}), 0);
 }
@@ -99,10 +103,12 @@ TEST(TraceCompare, ABadTraceChangesNothingAndNamesTheFileAndLine) {
     UiHarness h;
     auto& st = h.state();
     st.engine.seek(10);
-    const std::string path = writeLines("dlab_student_bad.jsonl", {"{\"op\":\"Split\",\"triangles\":[[0,0,1,2]]}", "{\"op\": 17}"});
+    const std::string path = writeLines(
+        "dlab_student_bad.jsonl", {"{\"op\":\"Split\",\"triangles\":[[0,0,1,2]]}", "{\"op\": 17}"});
     EXPECT_FALSE(dlab::ui::OpenFile(st, path));
     EXPECT_FALSE(st.traceCompare.student);
     EXPECT_EQ(st.engine.position(), 10u);
-    EXPECT_NE(st.messages.back().text.find("dlab_student_bad.jsonl:2"), std::string::npos) << st.messages.back().text;
+    EXPECT_NE(st.messages.back().text.find("dlab_student_bad.jsonl:2"), std::string::npos)
+        << st.messages.back().text;
     EXPECT_EQ(st.messages.back().level, dlab::ui::Message::Level::Error);
 }

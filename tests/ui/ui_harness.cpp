@@ -98,7 +98,8 @@ std::array<int, 3> UiHarness::pixel(int x, int y) {
 int UiHarness::countColour(const std::array<float, 4>& r, std::array<int, 3> rgb) {
     int count = 0;
     for (int y = static_cast<int>(r[1]); y < static_cast<int>(r[3]); ++y) {
-        for (int x = static_cast<int>(r[0]); x < static_cast<int>(r[2]); ++x) count += pixel(x, y) == rgb;
+        for (int x = static_cast<int>(r[0]); x < static_cast<int>(r[2]); ++x)
+            count += pixel(x, y) == rgb;
     }
     return count;
 }

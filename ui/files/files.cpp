@@ -9,14 +9,14 @@
 //   [SECTION] Autosave and recovery
 #include "ui/files/files.h"
 
-#include "core/teaching/describe.h"
 #include "core/engine/io_write.h"
 #include "core/engine/mesh_build.h"
+#include "core/teaching/describe.h"
 #include "ui/files/gif_export.h"
+#include "ui/files/session.h"
 #include "ui/gui.h"
 #include "ui/lesson_player.h"
 #include "ui/panels/panels.h"
-#include "ui/files/session.h"
 
 #include <signal.h>
 #include <unistd.h>
@@ -56,7 +56,8 @@ bool looksLikeJson(const std::string& path) {
 }
 
 // Runs a writer; a failure becomes one FileError line.
-bool writeFile(AppState& st, const std::string& path, const std::function<void(std::ostream&)>& body) {
+bool writeFile(AppState& st, const std::string& path,
+               const std::function<void(std::ostream&)>& body) {
     try {
         std::error_code ec;
         const fs::path parent = fs::path(path).parent_path();
@@ -94,7 +95,9 @@ bool OpenFile(AppState& st, const std::string& path) {
     if (lowerExtension(path) == ".toml") {
         const std::size_t before = st.messages.size();
         ok = openLesson(st, path);
-        if (!ok) st.files.notice = st.messages.size() > before ? st.messages.back().text : path + ": cannot be read";
+        if (!ok)
+            st.files.notice =
+                st.messages.size() > before ? st.messages.back().text : path + ": cannot be read";
     } else if (lowerExtension(path) == ".jsonl") {
         ok = OpenStudentTrace(st, path);  // it reported its own error
     } else if (lowerExtension(path) == ".json" || looksLikeJson(path)) {
@@ -105,7 +108,9 @@ bool OpenFile(AppState& st, const std::string& path) {
         const std::size_t before = st.messages.size();
         ok = LoadPointFile(st, path);
         // LoadPointFile logged the error line: show it over the canvas too.
-        if (!ok) st.files.notice = st.messages.size() > before ? st.messages.back().text : path + ": cannot be read";
+        if (!ok)
+            st.files.notice =
+                st.messages.size() > before ? st.messages.back().text : path + ": cannot be read";
     }
     if (ok) st.files.notice.clear();
     return ok;
@@ -134,7 +139,8 @@ bool SavePoints(AppState& st, const std::string& path) {
         FileError(st, path + ": unknown point format \"" + ext + "\" (save as .node or .csv)");
         return false;
     }
-    if (ok) st.log(Message::Level::Info, "saved " + std::to_string(pts.size()) + " points to " + path);
+    if (ok)
+        st.log(Message::Level::Info, "saved " + std::to_string(pts.size()) + " points to " + path);
     return ok;
 }
 
@@ -144,8 +150,9 @@ bool SaveSessionFile(AppState& st, const std::string& path) {
         FileError(st, error);
         return false;
     }
-    st.log(Message::Level::Info, "saved the session (" + std::to_string(st.engine.points().size()) + " points, operation " +
-                                     std::to_string(st.engine.position()) + ") to " + path);
+    st.log(Message::Level::Info, "saved the session (" + std::to_string(st.engine.points().size()) +
+                                     " points, operation " + std::to_string(st.engine.position()) +
+                                     ") to " + path);
     return true;
 }
 
@@ -158,7 +165,8 @@ Mesh ExportableMesh(const Engine& e) {
     const Inserter& ins = e.inserter();
     if (ins.done()) return m;
     Mesh out;
-    out.G.assign(m.G.begin(), m.G.begin() + std::min<std::ptrdiff_t>(m.numVertices(), ins.firstVirtual()));
+    out.G.assign(m.G.begin(),
+                 m.G.begin() + std::min<std::ptrdiff_t>(m.numVertices(), ins.firstVirtual()));
     for (std::int32_t t = 0; t < m.numTriangles(); ++t) {
         if (ins.isVirtualTriangle(t)) continue;
         out.V.insert(out.V.end(), m.V.begin() + 3 * t, m.V.begin() + 3 * t + 3);
@@ -199,8 +207,11 @@ bool ExportMesh(AppState& st, const std::string& path, MeshFormat format) {
             break;
     }
     if (ok) {
-        st.log(Message::Level::Info, "exported " + std::to_string(m.numTriangles()) + " triangles to " + what +
-                                         (st.engine.inserter().done() ? "" : " (the mesh at this step, virtual triangles left out)"));
+        st.log(Message::Level::Info,
+               "exported " + std::to_string(m.numTriangles()) + " triangles to " + what +
+                   (st.engine.inserter().done()
+                        ? ""
+                        : " (the mesh at this step, virtual triangles left out)"));
     }
     return ok;
 }
@@ -230,14 +241,16 @@ struct SvgScene {
     std::ostream& os;
     double w, h;
     bool inView(glm::dvec2 a, glm::dvec2 b) const {
-        return std::max(a.x, b.x) >= 0 && std::min(a.x, b.x) <= w && std::max(a.y, b.y) >= 0 && std::min(a.y, b.y) <= h;
+        return std::max(a.x, b.x) >= 0 && std::min(a.x, b.x) <= w && std::max(a.y, b.y) >= 0 &&
+               std::min(a.y, b.y) <= h;
     }
     glm::dvec2 at(Vec2 p) const { return st.view.toScreen(p) - st.view.origin; }
     bool drawable(std::int32_t v) const {
         const Inserter& ins = st.engine.inserter();
         if (v < 0 || v >= st.engine.mesh().numVertices()) return false;
         if (ins.done() || !ins.isVirtual(v)) return true;
-        return st.engine.options().boundary == Boundary::Super && st.overlays.virtualTriangles;  // ghosts have no place
+        return st.engine.options().boundary == Boundary::Super &&
+               st.overlays.virtualTriangles;  // ghosts have no place
     }
     void line(std::int32_t a, std::int32_t b) const {
         if (!drawable(a) || !drawable(b)) return;
@@ -245,7 +258,8 @@ struct SvgScene {
         const glm::dvec2 p = at(m.G[a]), q = at(m.G[b]);
         if (!inView(p, q)) return;
         char buf[160];
-        std::snprintf(buf, sizeof buf, "<line x1=\"%.2f\" y1=\"%.2f\" x2=\"%.2f\" y2=\"%.2f\"/>\n", p.x, p.y, q.x, q.y);
+        std::snprintf(buf, sizeof buf, "<line x1=\"%.2f\" y1=\"%.2f\" x2=\"%.2f\" y2=\"%.2f\"/>\n",
+                      p.x, p.y, q.x, q.y);
         os << buf;
     }
     void triangle(std::int32_t t, const char* fill) const {
@@ -257,8 +271,9 @@ struct SvgScene {
             p[k] = at(m.G[m.V[3 * t + k]]);
         }
         char buf[200];
-        std::snprintf(buf, sizeof buf, "<polygon points=\"%.2f,%.2f %.2f,%.2f %.2f,%.2f\" fill=\"%s\"/>\n", p[0].x, p[0].y, p[1].x,
-                      p[1].y, p[2].x, p[2].y, fill);
+        std::snprintf(buf, sizeof buf,
+                      "<polygon points=\"%.2f,%.2f %.2f,%.2f %.2f,%.2f\" fill=\"%s\"/>\n", p[0].x,
+                      p[0].y, p[1].x, p[1].y, p[2].x, p[2].y, fill);
         os << buf;
     }
 };
@@ -271,12 +286,15 @@ void WriteViewSvg(std::ostream& os, const AppState& st) {
     const View& view = st.view;
     const SvgScene s{st, os, std::max(1.0, view.size.x), std::max(1.0, view.size.y)};
     const Op* op = e.current();
-    const std::string caption = op ? "[" + std::to_string(e.position() - 1) + "] " + toString(op->type) + ": " + describe(*op, e.inserter())
-                                   : std::to_string(e.points().size()) + " points, nothing inserted yet";
+    const std::string caption =
+        op ? "[" + std::to_string(e.position() - 1) + "] " + toString(op->type) + ": " +
+                 describe(*op, e.inserter())
+           : std::to_string(e.points().size()) + " points, nothing inserted yet";
     char head[256];
     std::snprintf(head, sizeof head,
-                  "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"%.0f\" height=\"%.0f\" viewBox=\"0 0 %.0f %.0f\">\n", s.w, s.h, s.w,
-                  s.h);
+                  "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"%.0f\" height=\"%.0f\" "
+                  "viewBox=\"0 0 %.0f %.0f\">\n",
+                  s.w, s.h, s.w, s.h);
     os << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n" << head;
     os << "<title>" << xmlEscape("Delaunay Lab - " + st.source + " - " + caption) << "</title>\n";
     os << "<rect width=\"100%\" height=\"100%\" fill=\"#ffffff\"/>\n";
@@ -328,20 +346,24 @@ void WriteViewSvg(std::ostream& os, const AppState& st) {
             bool real = true;  // a ghost triangle's "circle" is a half-plane: not drawn
             for (int k = 0; k < 3; ++k) real &= s.drawable(m.V[3 * t + k]);
             if (real) {
-                const Vec2 cc = circumcenter(m.G[m.V[3 * t]], m.G[m.V[3 * t + 1]], m.G[m.V[3 * t + 2]]);
-                const double r = std::hypot(cc.x - m.G[m.V[3 * t]].x, cc.y - m.G[m.V[3 * t]].y) * view.scale;
+                const Vec2 cc =
+                    circumcenter(m.G[m.V[3 * t]], m.G[m.V[3 * t + 1]], m.G[m.V[3 * t + 2]]);
+                const double r =
+                    std::hypot(cc.x - m.G[m.V[3 * t]].x, cc.y - m.G[m.V[3 * t]].y) * view.scale;
                 const glm::dvec2 q = s.at(cc);
                 if (std::isfinite(r) && std::isfinite(q.x) && std::isfinite(q.y) && r < 1e7) {
                     char buf[200];
-                    std::snprintf(buf, sizeof buf, "<circle cx=\"%.2f\" cy=\"%.2f\" r=\"%.2f\" stroke=\"%s\"/>\n", q.x, q.y, r,
-                                  op->sign > 0 ? "#d72828" : "#1e963c");
+                    std::snprintf(buf, sizeof buf,
+                                  "<circle cx=\"%.2f\" cy=\"%.2f\" r=\"%.2f\" stroke=\"%s\"/>\n",
+                                  q.x, q.y, r, op->sign > 0 ? "#d72828" : "#1e963c");
                     os << buf;
                 }
             }
         }
         os << "</g>\n";
     }
-    // Points: inserted (filled), queued (hollow), the one being inserted (orange), duplicates (red).
+    // Points: inserted (filled), queued (hollow), the one being inserted (orange), duplicates
+    // (red).
     os << "<g id=\"points\">\n";
     const auto& states = e.pointStates();
     const auto& pts = e.points();
@@ -360,15 +382,21 @@ void WriteViewSvg(std::ostream& os, const AppState& st) {
             case Engine::PointState::Skipped: style = "fill=\"#c81e1e\""; break;
         }
         char buf[200];
-        std::snprintf(buf, sizeof buf, "<circle data-id=\"%zu\" cx=\"%.2f\" cy=\"%.2f\" r=\"4\" %s/>\n", i, q.x, q.y, style);
+        std::snprintf(buf, sizeof buf,
+                      "<circle data-id=\"%zu\" cx=\"%.2f\" cy=\"%.2f\" r=\"4\" %s/>\n", i, q.x, q.y,
+                      style);
         os << buf;
         if (ids) {
-            std::snprintf(buf, sizeof buf, "<text x=\"%.2f\" y=\"%.2f\" font-size=\"13\" fill=\"#193ca0\">%zu</text>\n", q.x + 6, q.y - 6, i);
+            std::snprintf(
+                buf, sizeof buf,
+                "<text x=\"%.2f\" y=\"%.2f\" font-size=\"13\" fill=\"#193ca0\">%zu</text>\n",
+                q.x + 6, q.y - 6, i);
             os << buf;
         }
     }
     os << "</g>\n";
-    os << "<text x=\"8\" y=\"20\" font-family=\"sans-serif\" font-size=\"16\" fill=\"#000000\">" << xmlEscape(caption) << "</text>\n";
+    os << "<text x=\"8\" y=\"20\" font-family=\"sans-serif\" font-size=\"16\" fill=\"#000000\">"
+       << xmlEscape(caption) << "</text>\n";
     os << "</svg>\n";
 }
 
@@ -388,10 +416,12 @@ bool SaveScreenshotFile(Gui& gui, std::string path) {
         const std::time_t now = std::time(nullptr);
         char stamp[32];
         std::strftime(stamp, sizeof stamp, "%Y%m%d-%H%M%S", std::localtime(&now));
-        const fs::path folder = st.files.screenshotFolder.empty() ? fs::path(".") : fs::path(st.files.screenshotFolder);
+        const fs::path folder =
+            st.files.screenshotFolder.empty() ? fs::path(".") : fs::path(st.files.screenshotFolder);
         std::error_code ec;
         fs::path p = folder / (std::string("delaunay-lab-") + stamp + ".png");
-        for (int k = 2; fs::exists(p, ec); ++k) p = folder / (std::string("delaunay-lab-") + stamp + "-" + std::to_string(k) + ".png");
+        for (int k = 2; fs::exists(p, ec); ++k)
+            p = folder / (std::string("delaunay-lab-") + stamp + "-" + std::to_string(k) + ".png");
         path = p.string();
     }
     std::string error;
@@ -414,9 +444,12 @@ void ServiceCaptures(Gui& gui) {
         st.files.gif.reset();
         std::string error;
         const int frames = ExportStepsGif(gui, req, error);
-        if (frames == 0) FileError(st, error);
-        else st.log(Message::Level::Info, "wrote " + req.path + ": " + std::to_string(frames) + " frames, operations " +
-                                              std::to_string(req.from) + " to " + std::to_string(req.to));
+        if (frames == 0)
+            FileError(st, error);
+        else
+            st.log(Message::Level::Info, "wrote " + req.path + ": " + std::to_string(frames) +
+                                             " frames, operations " + std::to_string(req.from) +
+                                             " to " + std::to_string(req.to));
     }
 }
 
@@ -447,8 +480,10 @@ bool instanceAlive(long pid) {
 }  // namespace
 
 std::string DefaultAutosaveFolder() {
-    if (const char* x = std::getenv("XDG_CACHE_HOME"); x && *x) return std::string(x) + "/delaunay-lab";
-    if (const char* h = std::getenv("HOME"); h && *h) return std::string(h) + "/.cache/delaunay-lab";
+    if (const char* x = std::getenv("XDG_CACHE_HOME"); x && *x)
+        return std::string(x) + "/delaunay-lab";
+    if (const char* h = std::getenv("HOME"); h && *h)
+        return std::string(h) + "/.cache/delaunay-lab";
     return {};
 }
 
@@ -460,7 +495,8 @@ void EnableAutosave(AppState& st, const std::string& folder) {
     }
     std::error_code ec;
     fs::create_directories(folder, ec);
-    f.autosavePath = (fs::path(folder) / ("autosave-" + std::to_string(::getpid()) + ".json")).string();
+    f.autosavePath =
+        (fs::path(folder) / ("autosave-" + std::to_string(::getpid()) + ".json")).string();
     f.autosaved = st.engine.points();
 }
 
@@ -470,7 +506,8 @@ void Autosave(AppState& st) {
     const std::vector<Vec2>& pts = st.engine.points();
     if (pts.size() > kAutosaveLimit) {
         if (!f.autosaveTooBig) {
-            st.log(Message::Level::Info, "autosave is off above " + std::to_string(kAutosaveLimit) + " points");
+            st.log(Message::Level::Info,
+                   "autosave is off above " + std::to_string(kAutosaveLimit) + " points");
             f.autosaveTooBig = true;
         }
         return;
@@ -509,7 +546,8 @@ bool OfferRecovery(AppState& st, const std::string& folder) {
     SessionSummary summary;
     std::string error;
     if (!PeekSession(best.string(), summary, error)) {
-        st.log(Message::Level::Warning, "an autosave from a crashed session cannot be read: " + error);
+        st.log(Message::Level::Warning,
+               "an autosave from a crashed session cannot be read: " + error);
         return false;
     }
     f.recoveryPath = best.string();
@@ -531,7 +569,8 @@ bool AcceptRecovery(AppState& st) {
     fs::remove(path, ec);
     f.recoveryPath.clear();
     f.autosaved.clear();  // write our own autosave of the recovered points at once
-    st.log(Message::Level::Info, "recovered " + std::to_string(st.engine.points().size()) + " points from the session that ended unexpectedly");
+    st.log(Message::Level::Info, "recovered " + std::to_string(st.engine.points().size()) +
+                                     " points from the session that ended unexpectedly");
     return true;
 }
 

@@ -24,26 +24,33 @@ std::string gifError(const std::string& path, int code) {
 
 constexpr int kMaxFrames = 2000;
 
-std::uint32_t rgb(GifByteType r, GifByteType g, GifByteType b) { return (std::uint32_t{r} << 16) | (std::uint32_t{g} << 8) | b; }
+std::uint32_t rgb(GifByteType r, GifByteType g, GifByteType b) {
+    return (std::uint32_t{r} << 16) | (std::uint32_t{g} << 8) | b;
+}
 
 // The palette of one frame. A flat UI has few colours that cover most pixels (background, fills,
 // text) and many antialiased shades in between: the 128 most frequent colours are kept exactly,
 // and the rest of the pixels are quantized to 128 more by giflib's median cut, each of those
 // entries then set to the most frequent exact colour among its pixels (the cut's box mean would
 // tint the flat areas). A frame of at most 256 colours keeps them all exactly.
-bool quantizeFrame(const std::vector<GifByteType>& r, const std::vector<GifByteType>& g, const std::vector<GifByteType>& b,
-                   std::vector<GifByteType>& index, GifColorType* palette) {
+bool quantizeFrame(const std::vector<GifByteType>& r, const std::vector<GifByteType>& g,
+                   const std::vector<GifByteType>& b, std::vector<GifByteType>& index,
+                   GifColorType* palette) {
     std::unordered_map<std::uint32_t, std::uint32_t> freq;
     freq.reserve(8192);
     for (std::size_t i = 0; i < r.size(); ++i) ++freq[rgb(r[i], g[i], b[i])];
-    std::vector<std::pair<std::uint32_t, std::uint32_t>> byCount(freq.begin(), freq.end());  // (colour, count)
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> byCount(freq.begin(),
+                                                                 freq.end());  // (colour, count)
     const std::size_t reserved = byCount.size() <= 256 ? byCount.size() : 128;
-    std::partial_sort(byCount.begin(), byCount.begin() + static_cast<std::ptrdiff_t>(reserved), byCount.end(),
-                      [](const auto& x, const auto& y) { return x.second > y.second || (x.second == y.second && x.first < y.first); });
+    std::partial_sort(byCount.begin(), byCount.begin() + static_cast<std::ptrdiff_t>(reserved),
+                      byCount.end(), [](const auto& x, const auto& y) {
+                          return x.second > y.second || (x.second == y.second && x.first < y.first);
+                      });
     std::unordered_map<std::uint32_t, GifByteType> exact;
     for (std::size_t k = 0; k < reserved; ++k) {
         const std::uint32_t c = byCount[k].first;
-        palette[k] = {static_cast<GifByteType>(c >> 16), static_cast<GifByteType>(c >> 8), static_cast<GifByteType>(c)};
+        palette[k] = {static_cast<GifByteType>(c >> 16), static_cast<GifByteType>(c >> 8),
+                      static_cast<GifByteType>(c)};
         exact.emplace(c, static_cast<GifByteType>(k));
     }
     std::vector<GifByteType> r2, g2, b2;
@@ -63,20 +70,24 @@ bool quantizeFrame(const std::vector<GifByteType>& r, const std::vector<GifByteT
     GifColorType* rest = palette + reserved;
     int size = static_cast<int>(256 - reserved);
     std::vector<GifByteType> idx(where.size());
-    if (GifQuantizeBuffer(static_cast<unsigned>(where.size()), 1, &size, r2.data(), g2.data(), b2.data(), idx.data(), rest) == GIF_ERROR) {
+    if (GifQuantizeBuffer(static_cast<unsigned>(where.size()), 1, &size, r2.data(), g2.data(),
+                          b2.data(), idx.data(), rest) == GIF_ERROR) {
         return false;
     }
     std::unordered_map<std::uint64_t, std::uint32_t> count;
-    for (std::size_t k = 0; k < where.size(); ++k) ++count[(std::uint64_t{idx[k]} << 32) | rgb(r2[k], g2[k], b2[k])];
+    for (std::size_t k = 0; k < where.size(); ++k)
+        ++count[(std::uint64_t{idx[k]} << 32) | rgb(r2[k], g2[k], b2[k])];
     std::uint32_t best[256] = {};
     for (const auto& [key, n] : count) {
         const auto k = static_cast<std::size_t>(key >> 32);
         if (n <= best[k]) continue;
         best[k] = n;
         const auto c = static_cast<std::uint32_t>(key);
-        rest[k] = {static_cast<GifByteType>(c >> 16), static_cast<GifByteType>(c >> 8), static_cast<GifByteType>(c)};
+        rest[k] = {static_cast<GifByteType>(c >> 16), static_cast<GifByteType>(c >> 8),
+                   static_cast<GifByteType>(c)};
     }
-    for (std::size_t k = 0; k < where.size(); ++k) index[where[k]] = static_cast<GifByteType>(reserved + idx[k]);
+    for (std::size_t k = 0; k < where.size(); ++k)
+        index[where[k]] = static_cast<GifByteType>(reserved + idx[k]);
     return true;
 }
 
@@ -101,7 +112,8 @@ GifWriter::~GifWriter() {
 
 bool GifWriter::open(const std::string& path, int width, int height, std::string& error) {
     if (width < 1 || height < 1 || width > 65535 || height > 65535) {
-        error = path + ": a GIF frame must be 1 to 65535 pixels wide and high, not " + std::to_string(width) + "x" + std::to_string(height);
+        error = path + ": a GIF frame must be 1 to 65535 pixels wide and high, not " +
+                std::to_string(width) + "x" + std::to_string(height);
         return false;
     }
     int err = 0;
@@ -123,8 +135,10 @@ bool GifWriter::open(const std::string& path, int width, int height, std::string
     // Loop forever (the NETSCAPE2.0 application extension, sub-block 1, count 0).
     static const char kNetscape[] = "NETSCAPE2.0";
     const unsigned char loop[3] = {1, 0, 0};
-    if (EGifPutExtensionLeader(gif, APPLICATION_EXT_FUNC_CODE) == GIF_ERROR || EGifPutExtensionBlock(gif, 11, kNetscape) == GIF_ERROR ||
-        EGifPutExtensionBlock(gif, 3, loop) == GIF_ERROR || EGifPutExtensionTrailer(gif) == GIF_ERROR) {
+    if (EGifPutExtensionLeader(gif, APPLICATION_EXT_FUNC_CODE) == GIF_ERROR ||
+        EGifPutExtensionBlock(gif, 11, kNetscape) == GIF_ERROR ||
+        EGifPutExtensionBlock(gif, 3, loop) == GIF_ERROR ||
+        EGifPutExtensionTrailer(gif) == GIF_ERROR) {
         error = gifError(path, gif->Error);
         m_file->failed = true;
         return false;
@@ -158,10 +172,12 @@ bool GifWriter::addFrame(const std::uint8_t* rgba, int delayMs, std::string& err
     gcb.TransparentColor = NO_TRANSPARENT_COLOR;
     GifByteType ext[4];
     const std::size_t len = EGifGCBToExtension(&gcb, ext);
-    ok = ok && EGifPutExtension(gif, GRAPHICS_EXT_FUNC_CODE, static_cast<int>(len), ext) != GIF_ERROR;
+    ok = ok &&
+         EGifPutExtension(gif, GRAPHICS_EXT_FUNC_CODE, static_cast<int>(len), ext) != GIF_ERROR;
     ok = ok && EGifPutImageDesc(gif, 0, 0, m_width, m_height, false, map) != GIF_ERROR;
     for (int y = 0; ok && y < m_height; ++y) {
-        ok = EGifPutLine(gif, index.data() + static_cast<std::size_t>(y) * m_width, m_width) != GIF_ERROR;
+        ok = EGifPutLine(gif, index.data() + static_cast<std::size_t>(y) * m_width, m_width) !=
+             GIF_ERROR;
     }
     GifFreeMapObject(map);
     if (!ok) {
@@ -183,7 +199,8 @@ bool GifWriter::close(std::string& error) {
     const bool closed = EGifCloseFile(gif, &err) != GIF_ERROR;
     m_file->gif = nullptr;
     if (!closed || m_file->failed || m_frames == 0) {
-        if (error.empty()) error = closed ? m_path + ": no frame was written" : gifError(m_path, err);
+        if (error.empty())
+            error = closed ? m_path + ": no frame was written" : gifError(m_path, err);
         std::error_code ec;
         std::filesystem::remove(m_path, ec);
         return false;
@@ -206,13 +223,15 @@ std::vector<std::uint8_t> CaptureRegion(Gui& gui, bool wholeWindow, int& width, 
     }
     width = x1 - x0;
     height = y1 - y0;
-    std::vector<std::uint8_t> out(static_cast<std::size_t>(std::max(0, width)) * std::max(0, height) * 4);
+    std::vector<std::uint8_t> out(static_cast<std::size_t>(std::max(0, width)) *
+                                  std::max(0, height) * 4);
     if (px.size() < static_cast<std::size_t>(fw) * fh * 4) {
         width = height = 0;
         return {};
     }
     for (int y = 0; y < height; ++y) {
-        std::copy_n(px.begin() + (static_cast<std::ptrdiff_t>(y0 + y) * fw + x0) * 4, static_cast<std::ptrdiff_t>(width) * 4,
+        std::copy_n(px.begin() + (static_cast<std::ptrdiff_t>(y0 + y) * fw + x0) * 4,
+                    static_cast<std::ptrdiff_t>(width) * 4,
                     out.begin() + static_cast<std::ptrdiff_t>(y) * width * 4);
     }
     return out;
@@ -222,17 +241,20 @@ int ExportStepsGif(Gui& gui, const GifRequest& req, std::string& error) {
     AppState& st = gui.state();
     Engine& e = st.engine;
     if (e.batch()) {
-        error = req.path + ": this run has no steps to animate (more than " + std::to_string(Engine::kHistoryLimit) + " points)";
+        error = req.path + ": this run has no steps to animate (more than " +
+                std::to_string(Engine::kHistoryLimit) + " points)";
         return 0;
     }
     const std::size_t every = std::max<std::size_t>(1, req.every);
     if (req.to < req.from) {
-        error = req.path + ": the last step (" + std::to_string(req.to) + ") comes before the first (" + std::to_string(req.from) + ")";
+        error = req.path + ": the last step (" + std::to_string(req.to) +
+                ") comes before the first (" + std::to_string(req.from) + ")";
         return 0;
     }
     if ((req.to - req.from) / every + 1 > static_cast<std::size_t>(kMaxFrames)) {
-        error = req.path + ": " + std::to_string((req.to - req.from) / every + 1) + " frames is too many (at most " +
-                std::to_string(kMaxFrames) + "): take every n-th step";
+        error = req.path + ": " + std::to_string((req.to - req.from) / every + 1) +
+                " frames is too many (at most " + std::to_string(kMaxFrames) +
+                "): take every n-th step";
         return 0;
     }
     const std::size_t saved = e.position();
@@ -252,7 +274,8 @@ int ExportStepsGif(Gui& gui, const GifRequest& req, std::string& error) {
             ok = false;
             break;
         }
-        if (w * h * 4 != static_cast<int>(px.size()) || !gif.addFrame(px.data(), req.delayMs, error)) {
+        if (w * h * 4 != static_cast<int>(px.size()) ||
+            !gif.addFrame(px.data(), req.delayMs, error)) {
             if (error.empty()) error = req.path + ": the window changed size during the export";
             ok = false;
             break;

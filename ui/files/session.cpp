@@ -71,7 +71,9 @@ struct SessionError {
     std::string message;
 };
 
-[[noreturn]] void fail(std::string pointer, std::string message) { throw SessionError{std::move(pointer), std::move(message)}; }
+[[noreturn]] void fail(std::string pointer, std::string message) {
+    throw SessionError{std::move(pointer), std::move(message)};
+}
 
 // "/points/3/1" -> "points[3][1]", as one would write it.
 std::string readablePath(const std::string& pointer) {
@@ -80,7 +82,8 @@ std::string readablePath(const std::string& pointer) {
     while (i <= pointer.size()) {
         const std::size_t j = std::min(pointer.find('/', i), pointer.size());
         const std::string token = pointer.substr(i, j - i);
-        const bool index = !token.empty() && token.find_first_not_of("0123456789") == std::string::npos;
+        const bool index =
+            !token.empty() && token.find_first_not_of("0123456789") == std::string::npos;
         out += index ? "[" + token + "]" : (out.empty() ? "" : ".") + token;
         i = j + 1;
     }
@@ -110,7 +113,9 @@ public:
 
 private:
     void ws() {
-        while (m_p < m_s.size() && (m_s[m_p] == ' ' || m_s[m_p] == '\n' || m_s[m_p] == '\r' || m_s[m_p] == '\t')) ++m_p;
+        while (m_p < m_s.size() &&
+               (m_s[m_p] == ' ' || m_s[m_p] == '\n' || m_s[m_p] == '\r' || m_s[m_p] == '\t'))
+            ++m_p;
     }
     std::string string() {
         std::string out;
@@ -153,7 +158,9 @@ private:
                 return;
             }
         } else {
-            while (m_p < m_s.size() && std::string_view(",]} \n\r\t").find(m_s[m_p]) == std::string_view::npos) ++m_p;
+            while (m_p < m_s.size() &&
+                   std::string_view(",]} \n\r\t").find(m_s[m_p]) == std::string_view::npos)
+                ++m_p;
         }
     }
     bool find(const std::vector<std::string>& tokens, std::size_t depth) {
@@ -171,8 +178,10 @@ private:
                 if (key == tokens[depth]) return find(tokens, depth + 1);
                 skip();
                 ws();
-                if (m_p < m_s.size() && m_s[m_p] == ',') ++m_p;
-                else return false;
+                if (m_p < m_s.size() && m_s[m_p] == ',')
+                    ++m_p;
+                else
+                    return false;
             }
             return false;
         }
@@ -187,8 +196,10 @@ private:
             for (std::size_t k = 0; k < index; ++k) {
                 skip();
                 ws();
-                if (m_p < m_s.size() && m_s[m_p] == ',') ++m_p;
-                else return false;
+                if (m_p < m_s.size() && m_s[m_p] == ',')
+                    ++m_p;
+                else
+                    return false;
             }
             return find(tokens, depth + 1);
         }
@@ -213,7 +224,8 @@ double finiteNumber(const Json& v, const std::string& where) {
 
 std::uint64_t count(const Json& v, const std::string& where) {
     if (v.is_number_unsigned()) return v.get<std::uint64_t>();
-    if (v.is_number_integer() && v.get<std::int64_t>() >= 0) return static_cast<std::uint64_t>(v.get<std::int64_t>());
+    if (v.is_number_integer() && v.get<std::int64_t>() >= 0)
+        return static_cast<std::uint64_t>(v.get<std::int64_t>());
     fail(where, "expected a whole number >= 0");
 }
 
@@ -251,14 +263,16 @@ Session parseSession(const Json& j) {
     if (!j.is_object()) fail("", "not a Delaunay Lab session (the file is not a JSON object)");
     const Json* format = member(j, "format");
     if (!format || !format->is_string() || format->get<std::string>() != kSessionFormat) {
-        fail("/format", std::string("not a Delaunay Lab session (\"format\" must be \"") + kSessionFormat + "\")");
+        fail("/format", std::string("not a Delaunay Lab session (\"format\" must be \"") +
+                            kSessionFormat + "\")");
     }
     const Json* version = member(j, "version");
     if (!version) fail("", "no \"version\"");
     const std::uint64_t v = count(*version, "/version");
     if (v == 0) fail("/version", "version must be 1 or more");
     if (v > static_cast<std::uint64_t>(kSessionVersion)) {
-        fail("/version", "session version " + std::to_string(v) + " is newer than this Delaunay Lab reads (" +
+        fail("/version", "session version " + std::to_string(v) +
+                             " is newer than this Delaunay Lab reads (" +
                              std::to_string(kSessionVersion) + "): update Delaunay Lab");
     }
     if (const Json* src = member(j, "source")) s.source = text(*src, "/source");
@@ -266,7 +280,8 @@ Session parseSession(const Json& j) {
     const Json* pts = member(j, "points");
     if (!pts) fail("", "no \"points\"");
     if (!pts->is_array()) fail("/points", "expected an array of [x, y] pairs");
-    if (pts->size() > kMaxPoints) fail("/points", "more than " + std::to_string(kMaxPoints) + " points");
+    if (pts->size() > kMaxPoints)
+        fail("/points", "more than " + std::to_string(kMaxPoints) + " points");
     s.points.reserve(pts->size());
     for (std::size_t k = 0; k < pts->size(); ++k) {
         const Json& p = (*pts)[k];
@@ -279,24 +294,32 @@ Session parseSession(const Json& j) {
         if (!o->is_object()) fail("/options", "expected an object");
         if (const Json* b = member(*o, "boundary")) {
             const auto parsed = parseBoundary(text(*b, "/options/boundary"));
-            if (!parsed) fail("/options/boundary", "unknown boundary mode \"" + b->get<std::string>() + "\" (exact, super)");
+            if (!parsed)
+                fail("/options/boundary",
+                     "unknown boundary mode \"" + b->get<std::string>() + "\" (exact, super)");
             s.options.boundary = *parsed;
         }
         if (const Json* l = member(*o, "locator")) {
             const auto parsed = parseLocatorKind(text(*l, "/options/locator"));
-            if (!parsed) fail("/options/locator", "unknown locator \"" + l->get<std::string>() + "\"");
+            if (!parsed)
+                fail("/options/locator", "unknown locator \"" + l->get<std::string>() + "\"");
             s.options.locator = *parsed;
         }
         if (const Json* r = member(*o, "order")) {
             const auto parsed = parseOrderKind(text(*r, "/options/order"));
-            if (!parsed) fail("/options/order", "unknown insertion order \"" + r->get<std::string>() + "\" (input, random, brio)");
+            if (!parsed)
+                fail("/options/order", "unknown insertion order \"" + r->get<std::string>() +
+                                           "\" (input, random, brio)");
             s.options.order = *parsed;
         }
         if (const Json* seed = member(*o, "seed")) s.options.seed = count(*seed, "/options/seed");
         if (const Json* id = member(*o, "id_buffer")) {
-            if (!id->is_array() || id->size() != 2) fail("/options/id_buffer", "expected [width, height]");
-            const std::uint64_t w = count((*id)[0], "/options/id_buffer/0"), h = count((*id)[1], "/options/id_buffer/1");
-            if (w < 1 || h < 1 || w > 16384 || h > 16384) fail("/options/id_buffer", "width and height must be 1 to 16384");
+            if (!id->is_array() || id->size() != 2)
+                fail("/options/id_buffer", "expected [width, height]");
+            const std::uint64_t w = count((*id)[0], "/options/id_buffer/0"),
+                                h = count((*id)[1], "/options/id_buffer/1");
+            if (w < 1 || h < 1 || w > 16384 || h > 16384)
+                fail("/options/id_buffer", "width and height must be 1 to 16384");
             s.options.locatorOptions.idBufferWidth = static_cast<int>(w);
             s.options.locatorOptions.idBufferHeight = static_cast<int>(h);
         }
@@ -309,7 +332,8 @@ Session parseSession(const Json& j) {
         const Json* sc = member(*view, "scale");
         if (!c || !sc) fail("/view", "expected \"center\" and \"scale\"");
         if (!c->is_array() || c->size() != 2) fail("/view/center", "expected [x, y]");
-        s.center = {finiteNumber((*c)[0], "/view/center/0"), finiteNumber((*c)[1], "/view/center/1")};
+        s.center = {finiteNumber((*c)[0], "/view/center/0"),
+                    finiteNumber((*c)[1], "/view/center/1")};
         s.scale = finiteNumber(*sc, "/view/scale");
         if (!(s.scale > 0)) fail("/view/scale", "the scale must be positive");
         s.hasView = true;
@@ -317,7 +341,8 @@ Session parseSession(const Json& j) {
     if (const Json* sel = member(j, "selection")) {
         if (!sel->is_object()) fail("/selection", "expected an object");
         if (const Json* c = member(*sel, "corner")) {
-            if (!c->is_number_integer() || c->get<std::int64_t>() < -1 || c->get<std::int64_t>() > INT32_MAX) {
+            if (!c->is_number_integer() || c->get<std::int64_t>() < -1 ||
+                c->get<std::int64_t>() > INT32_MAX) {
                 fail("/selection/corner", "expected a corner id (or -1 for none)");
             }
             s.corner = static_cast<std::int32_t>(c->get<std::int64_t>());
@@ -327,7 +352,8 @@ Session parseSession(const Json& j) {
         if (!ov->is_object()) fail("/overlays", "expected an object");
         Overlays o;
         for (const OverlayField& f : kOverlayFields) {
-            if (const Json* v2 = member(*ov, f.name)) o.*f.flag = flag(*v2, std::string("/overlays/") + f.name);
+            if (const Json* v2 = member(*ov, f.name))
+                o.*f.flag = flag(*v2, std::string("/overlays/") + f.name);
         }
         s.overlays = o;
     }
@@ -349,12 +375,15 @@ Session parseSession(const Json& j) {
             for (std::size_t k = 0; k < ws->size(); ++k) {
                 const std::string where = "/expressions/watches/" + std::to_string(k);
                 const Json& w = (*ws)[k];
-                if (!w.is_object() || !member(w, "text")) fail(where, "expected {\"text\": ..., \"enabled\": ...}");
+                if (!w.is_object() || !member(w, "text"))
+                    fail(where, "expected {\"text\": ..., \"enabled\": ...}");
                 const std::string t = text(w["text"], where + "/text");
                 ExprError err;
                 const auto parsed = CornerExpr::parse(t, &err);
-                if (!parsed || !parsed->isComparison()) fail(where + "/text", parsed ? "a watch must be a comparison" : err.message);
-                const bool enabled = member(w, "enabled") ? flag(w["enabled"], where + "/enabled") : true;
+                if (!parsed || !parsed->isComparison())
+                    fail(where + "/text", parsed ? "a watch must be a comparison" : err.message);
+                const bool enabled =
+                    member(w, "enabled") ? flag(w["enabled"], where + "/enabled") : true;
                 s.watches.emplace_back(t, enabled);
             }
         }
@@ -365,7 +394,8 @@ Session parseSession(const Json& j) {
             s.expectPosition = count(*p, "/expect/position");
             s.hasExpect = true;
         }
-        if (const Json* f = member(*ex, "fingerprint")) s.expectFingerprint = text(*f, "/expect/fingerprint");
+        if (const Json* f = member(*ex, "fingerprint"))
+            s.expectFingerprint = text(*f, "/expect/fingerprint");
     }
     return s;
 }
@@ -400,11 +430,12 @@ std::string SessionText(const AppState& st) {
     j["saved_by"] = "Delaunay Lab";
     j["source"] = st.source;
     j["points"] = "@POINTS@";
-    j["options"] = {{"boundary", toString(o.boundary)},
-                    {"locator", toString(o.locator)},
-                    {"order", toString(o.order)},
-                    {"seed", o.seed},
-                    {"id_buffer", {o.locatorOptions.idBufferWidth, o.locatorOptions.idBufferHeight}}};
+    j["options"] = {
+        {"boundary", toString(o.boundary)},
+        {"locator", toString(o.locator)},
+        {"order", toString(o.order)},
+        {"seed", o.seed},
+        {"id_buffer", {o.locatorOptions.idBufferWidth, o.locatorOptions.idBufferHeight}}};
     j["position"] = e.position();
     j["view"] = {{"center", {st.view.center.x, st.view.center.y}}, {"scale", st.view.scale}};
     j["selection"] = {{"corner", st.selection.corner}};
@@ -415,7 +446,8 @@ std::string SessionText(const AppState& st) {
     }
     j["breakpoints"] = bps;
     Json watches = Json::array();
-    for (const WatchEntry& w : st.expressions.watches) watches.push_back({{"text", w.text}, {"enabled", w.enabled}});
+    for (const WatchEntry& w : st.expressions.watches)
+        watches.push_back({{"text", w.text}, {"enabled", w.enabled}});
     j["expressions"] = {{"live", st.expressions.live}, {"watches", watches}};
     const Op* op = e.current();
     j["expect"] = {{"position", e.position()},
@@ -453,7 +485,8 @@ bool SaveSession(const AppState& st, const std::string& path, std::string& error
     return true;
 }
 
-bool LoadSessionText(AppState& st, std::string_view textIn, const std::string& name, std::string& error) {
+bool LoadSessionText(AppState& st, std::string_view textIn, const std::string& name,
+                     std::string& error) {
     Session s;
     try {
         const Json j = Json::parse(textIn.begin(), textIn.end());
@@ -464,14 +497,17 @@ bool LoadSessionText(AppState& st, std::string_view textIn, const std::string& n
         int line = 1;
         for (std::size_t k = 0; k < e.byte && k < textIn.size(); ++k) line += textIn[k] == '\n';
         std::string what = e.what();
-        if (const auto colon = what.find(": "); colon != std::string::npos) what = what.substr(colon + 2);
-        error = name + ":" + std::to_string(line) + ": not valid JSON (" + escapeControls(what) + ")";
+        if (const auto colon = what.find(": "); colon != std::string::npos)
+            what = what.substr(colon + 2);
+        error =
+            name + ":" + std::to_string(line) + ": not valid JSON (" + escapeControls(what) + ")";
         return false;
     } catch (const SessionError& e) {
         LineFinder finder(textIn);
         const int line = e.pointer.empty() ? 0 : finder.lineOf(e.pointer);
         // The message may quote the file's own text (a bad mode name with a \n in it): one line.
-        error = name + (line > 0 ? ":" + std::to_string(line) : "") + (e.pointer.empty() ? "" : ": " + readablePath(e.pointer)) + ": " +
+        error = name + (line > 0 ? ":" + std::to_string(line) : "") +
+                (e.pointer.empty() ? "" : ": " + readablePath(e.pointer)) + ": " +
                 escapeControls(e.message);
         return false;
     } catch (const std::exception& e) {
@@ -523,17 +559,20 @@ bool LoadSessionText(AppState& st, std::string_view textIn, const std::string& n
     ex.path.clear();
     ex.result.reset();
 
-    st.log(Message::Level::Info, name + ": session restored: " + std::to_string(n) + " points, operation " +
-                                     std::to_string(eng.position()) + " of " + std::to_string(eng.recorded()));
+    st.log(Message::Level::Info, name + ": session restored: " + std::to_string(n) +
+                                     " points, operation " + std::to_string(eng.position()) +
+                                     " of " + std::to_string(eng.recorded()));
     if (eng.position() != s.position) {
-        st.log(Message::Level::Warning, name + ": the run ends after " + std::to_string(eng.position()) +
-                                            " operations, before the saved step " + std::to_string(s.position));
+        st.log(Message::Level::Warning,
+               name + ": the run ends after " + std::to_string(eng.position()) +
+                   " operations, before the saved step " + std::to_string(s.position));
     }
     if (s.hasExpect && !s.expectFingerprint.empty() && s.expectPosition == eng.position() &&
         s.expectFingerprint != hex64(MeshFingerprint(eng.mesh()))) {
-        st.log(Message::Level::Warning, name + ": the mesh at operation " + std::to_string(eng.position()) +
-                                            " differs from the one saved in the file: this build triangulates differently "
-                                            "(keep the file: it reproduces the difference)");
+        st.log(Message::Level::Warning,
+               name + ": the mesh at operation " + std::to_string(eng.position()) +
+                   " differs from the one saved in the file: this build triangulates differently "
+                   "(keep the file: it reproduces the difference)");
     }
     return true;
 }
@@ -571,7 +610,8 @@ bool PeekSession(const std::string& path, SessionSummary& out, std::string& erro
         out.position = s.position;
         out.source = s.source;
     } catch (const SessionError& e) {
-        error = path + (e.pointer.empty() ? "" : ": " + readablePath(e.pointer)) + ": " + escapeControls(e.message);
+        error = path + (e.pointer.empty() ? "" : ": " + readablePath(e.pointer)) + ": " +
+                escapeControls(e.message);
         return false;
     } catch (const std::exception& e) {
         error = path + ": " + escapeControls(e.what());

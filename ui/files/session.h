@@ -39,7 +39,8 @@ bool SaveSession(const AppState& state, const std::string& path, std::string& er
 // Parses and applies a session. On any error returns false with one line in `error` and leaves
 // the state as it was. `name` names the file in messages. Warnings (a different mesh at the
 // saved step, a step beyond the run's end) go to the message log.
-bool LoadSessionText(AppState& state, std::string_view text, const std::string& name, std::string& error);
+bool LoadSessionText(AppState& state, std::string_view text, const std::string& name,
+                     std::string& error);
 bool LoadSession(AppState& state, const std::string& path, std::string& error);
 
 // A few facts about a session file without applying it (the recovery offer).

@@ -26,12 +26,15 @@ void read(const nlohmann::json& j, const char* key, T& out) {
 }  // namespace
 
 std::string defaultSettingsPath() {
-    if (const char* x = std::getenv("XDG_CONFIG_HOME"); x && *x) return std::string(x) + "/delaunay-lab/settings.json";
-    if (const char* h = std::getenv("HOME"); h && *h) return std::string(h) + "/.config/delaunay-lab/settings.json";
+    if (const char* x = std::getenv("XDG_CONFIG_HOME"); x && *x)
+        return std::string(x) + "/delaunay-lab/settings.json";
+    if (const char* h = std::getenv("HOME"); h && *h)
+        return std::string(h) + "/.config/delaunay-lab/settings.json";
     return {};
 }
 
-void loadSettings(const std::string& path, AppState& st, WindowOptions& window, std::string& warning) {
+void loadSettings(const std::string& path, AppState& st, WindowOptions& window,
+                  std::string& warning) {
     if (path.empty()) return;
     std::ifstream in(path);
     if (!in) return;
@@ -97,15 +100,33 @@ void loadSettings(const std::string& path, AppState& st, WindowOptions& window, 
     if (!(st.gridStep > 0)) st.gridStep = 10;
 }
 
-bool saveSettings(const std::string& path, const AppState& st, const WindowOptions& window, std::string& error) {
+bool saveSettings(const std::string& path, const AppState& st, const WindowOptions& window,
+                  std::string& error) {
     if (path.empty()) return true;
     const Overlays& ov = st.overlays;
     nlohmann::json j = {
-        {"window", {{"x", window.x}, {"y", window.y}, {"width", window.width}, {"height", window.height}, {"maximized", window.maximized}}},
-        {"layout", {{"right_width", st.layout.rightWidth}, {"bottom_height", st.layout.bottomHeight}, {"inspector_height", st.layout.inspectorHeight}}},
-        {"overlays", {{"fill", ov.fill}, {"vertex_ids", ov.vertexIds}, {"corner_ids", ov.cornerIds}, {"triangle_ids", ov.triangleIds},
-                      {"walk", ov.walk}, {"flip_queue", ov.flipQueue}, {"flipped", ov.flipped}, {"circumcircles", ov.circumcircles},
-                      {"voronoi", ov.voronoi}, {"pending_points", ov.pendingPoints}, {"virtual_triangles", ov.virtualTriangles}}},
+        {"window",
+         {{"x", window.x},
+          {"y", window.y},
+          {"width", window.width},
+          {"height", window.height},
+          {"maximized", window.maximized}}},
+        {"layout",
+         {{"right_width", st.layout.rightWidth},
+          {"bottom_height", st.layout.bottomHeight},
+          {"inspector_height", st.layout.inspectorHeight}}},
+        {"overlays",
+         {{"fill", ov.fill},
+          {"vertex_ids", ov.vertexIds},
+          {"corner_ids", ov.cornerIds},
+          {"triangle_ids", ov.triangleIds},
+          {"walk", ov.walk},
+          {"flip_queue", ov.flipQueue},
+          {"flipped", ov.flipped},
+          {"circumcircles", ov.circumcircles},
+          {"voronoi", ov.voronoi},
+          {"pending_points", ov.pendingPoints},
+          {"virtual_triangles", ov.virtualTriangles}}},
         {"presentation", st.presentation},
         {"ops_per_second", st.run.opsPerSecond},
         {"snap_to_grid", st.snapToGrid},
@@ -113,7 +134,8 @@ bool saveSettings(const std::string& path, const AppState& st, const WindowOptio
     };
     nlohmann::json lessons = nlohmann::json::object();
     for (const auto& [file, p] : st.lessonPlayer.saved) {
-        lessons[file] = {{"title", p.title}, {"stop", p.stop}, {"furthest", p.furthest}, {"answers", p.answers}};
+        lessons[file] = {
+            {"title", p.title}, {"stop", p.stop}, {"furthest", p.furthest}, {"answers", p.answers}};
     }
     j["lessons"] = std::move(lessons);
     std::error_code ec;

@@ -15,8 +15,10 @@ std::string defaultSettingsPath();
 
 // Reads what it can; a missing file is not an error, a damaged one gives a warning (and the
 // defaults). Never throws.
-void loadSettings(const std::string& path, AppState& state, WindowOptions& window, std::string& warning);
+void loadSettings(const std::string& path, AppState& state, WindowOptions& window,
+                  std::string& warning);
 // Writes to a temporary file and renames it over the old one. False with a reason on failure.
-bool saveSettings(const std::string& path, const AppState& state, const WindowOptions& window, std::string& error);
+bool saveSettings(const std::string& path, const AppState& state, const WindowOptions& window,
+                  std::string& error);
 
 }  // namespace dlab::ui

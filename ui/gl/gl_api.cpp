@@ -35,7 +35,8 @@ std::shared_ptr<GlContext> GlContext::load(Platform& platform, std::string& erro
     get(a.bindVertexArray, "glBindVertexArray", false);
     get(a.bindSampler, "glBindSampler", false);
     if (!missing.empty()) {
-        error = std::string(platform.name()) + " GL context lacks " + missing + " (the GL ID buffer needs GL 3.2)";
+        error = std::string(platform.name()) + " GL context lacks " + missing +
+                " (the GL ID buffer needs GL 3.2)";
         return nullptr;
     }
     return ctx;

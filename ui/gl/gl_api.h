@@ -33,8 +33,8 @@ struct GlApi {
     PFNGLUSEPROGRAMPROC useProgram = nullptr;
     PFNGLACTIVETEXTUREPROC activeTexture = nullptr;
     void(APIENTRYP clientActiveTexture)(GLenum) = nullptr;  // gl.h names no PFN type for it
-    PFNGLBINDVERTEXARRAYPROC bindVertexArray = nullptr;  // optional (GL 3.0)
-    PFNGLBINDSAMPLERPROC bindSampler = nullptr;          // optional (GL 3.3)
+    PFNGLBINDVERTEXARRAYPROC bindVertexArray = nullptr;     // optional (GL 3.0)
+    PFNGLBINDSAMPLERPROC bindSampler = nullptr;             // optional (GL 3.3)
 };
 
 // The GL context a locator draws on: its entry points, and a flag that the owner of the context

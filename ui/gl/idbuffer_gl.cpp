@@ -29,7 +29,9 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-double msSince(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
+double msSince(Clock::time_point t0) {
+    return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+}
 
 constexpr int kGatherWidth = 256;  // the gather target: 256 ids per row
 constexpr std::uint32_t kNoTriangle = 0xFFFFFFFFu;
@@ -98,7 +100,8 @@ IdBufferGlOptions IdBufferGlOptions::from(LocatorKind kind, const LocatorOptions
     g.width = o.idBufferWidth;
     g.height = o.idBufferHeight;
     g.batch = o.idBufferBatch;
-    g.readback = kind == LocatorKind::IdBufferGlBatched ? GlReadback::Batched : GlReadback::OnePixel;
+    g.readback =
+        kind == LocatorKind::IdBufferGlBatched ? GlReadback::Batched : GlReadback::OnePixel;
     return g;
 }
 
@@ -109,7 +112,8 @@ std::array<std::uint8_t, 4> encodeTriangleId(std::int32_t id) {
 }
 
 std::int32_t decodeTriangleId(const std::uint8_t* c) {
-    const std::uint32_t v = (std::uint32_t{c[3]} << 24) | (std::uint32_t{c[0]} << 16) | (std::uint32_t{c[1]} << 8) | c[2];
+    const std::uint32_t v = (std::uint32_t{c[3]} << 24) | (std::uint32_t{c[0]} << 16) |
+                            (std::uint32_t{c[1]} << 8) | c[2];
     return v == kNoTriangle ? kNone : static_cast<std::int32_t>(v & 0x7FFFFFFFu);
 }
 
@@ -150,8 +154,9 @@ public:
                 if (m_sampler != 0) m_gl.bindSampler(0, 0);
             }
         }
-        glPushAttrib(GL_ENABLE_BIT | GL_COLOR_BUFFER_BIT | GL_CURRENT_BIT | GL_VIEWPORT_BIT | GL_POLYGON_BIT |
-                     GL_PIXEL_MODE_BIT | GL_POINT_BIT | (m_texturing ? GL_TEXTURE_BIT : 0));
+        glPushAttrib(GL_ENABLE_BIT | GL_COLOR_BUFFER_BIT | GL_CURRENT_BIT | GL_VIEWPORT_BIT |
+                     GL_POLYGON_BIT | GL_PIXEL_MODE_BIT | GL_POINT_BIT |
+                     (m_texturing ? GL_TEXTURE_BIT : 0));
         glPushClientAttrib(GL_CLIENT_VERTEX_ARRAY_BIT | GL_CLIENT_PIXEL_STORE_BIT);
         for (GLenum mode : {GL_PROJECTION, GL_MODELVIEW, GL_TEXTURE}) {
             if (mode == GL_TEXTURE && !m_texturing) continue;
@@ -164,13 +169,39 @@ public:
         m_gl.bindBuffer(GL_PIXEL_UNPACK_BUFFER, 0);
         if (m_program != 0) m_gl.useProgram(0);
         // Exact integer colours: nothing between the vertex colour and the pixel may change it.
-        for (GLenum cap : {GL_BLEND, GL_DITHER, GL_SCISSOR_TEST, GL_DEPTH_TEST, GL_STENCIL_TEST, GL_ALPHA_TEST,
-                           GL_CULL_FACE, GL_LIGHTING, GL_FOG, GL_TEXTURE_1D, GL_TEXTURE_2D, GL_TEXTURE_3D,
-                           GL_TEXTURE_CUBE_MAP, GL_TEXTURE_GEN_S, GL_TEXTURE_GEN_T, GL_TEXTURE_GEN_R,
-                           GL_TEXTURE_GEN_Q, GL_COLOR_LOGIC_OP, GL_POLYGON_SMOOTH, GL_POLYGON_STIPPLE,
-                           GL_MULTISAMPLE, GL_SAMPLE_ALPHA_TO_COVERAGE, GL_COLOR_SUM, GL_FRAMEBUFFER_SRGB,
-                           GL_POINT_SMOOTH, GL_POINT_SPRITE, GL_VERTEX_PROGRAM_POINT_SIZE, GL_CLIP_PLANE0,
-                           GL_CLIP_PLANE1, GL_CLIP_PLANE2, GL_CLIP_PLANE3, GL_CLIP_PLANE4, GL_CLIP_PLANE5}) {
+        for (GLenum cap : {GL_BLEND,
+                           GL_DITHER,
+                           GL_SCISSOR_TEST,
+                           GL_DEPTH_TEST,
+                           GL_STENCIL_TEST,
+                           GL_ALPHA_TEST,
+                           GL_CULL_FACE,
+                           GL_LIGHTING,
+                           GL_FOG,
+                           GL_TEXTURE_1D,
+                           GL_TEXTURE_2D,
+                           GL_TEXTURE_3D,
+                           GL_TEXTURE_CUBE_MAP,
+                           GL_TEXTURE_GEN_S,
+                           GL_TEXTURE_GEN_T,
+                           GL_TEXTURE_GEN_R,
+                           GL_TEXTURE_GEN_Q,
+                           GL_COLOR_LOGIC_OP,
+                           GL_POLYGON_SMOOTH,
+                           GL_POLYGON_STIPPLE,
+                           GL_MULTISAMPLE,
+                           GL_SAMPLE_ALPHA_TO_COVERAGE,
+                           GL_COLOR_SUM,
+                           GL_FRAMEBUFFER_SRGB,
+                           GL_POINT_SMOOTH,
+                           GL_POINT_SPRITE,
+                           GL_VERTEX_PROGRAM_POINT_SIZE,
+                           GL_CLIP_PLANE0,
+                           GL_CLIP_PLANE1,
+                           GL_CLIP_PLANE2,
+                           GL_CLIP_PLANE3,
+                           GL_CLIP_PLANE4,
+                           GL_CLIP_PLANE5}) {
             glDisable(cap);
         }
         glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
@@ -178,16 +209,19 @@ public:
         glShadeModel(GL_FLAT);
         glPointSize(1.0f);
         glPixelTransferi(GL_MAP_COLOR, GL_FALSE);
-        for (GLenum scale : {GL_RED_SCALE, GL_GREEN_SCALE, GL_BLUE_SCALE, GL_ALPHA_SCALE}) glPixelTransferf(scale, 1.0f);
-        for (GLenum bias : {GL_RED_BIAS, GL_GREEN_BIAS, GL_BLUE_BIAS, GL_ALPHA_BIAS}) glPixelTransferf(bias, 0.0f);
+        for (GLenum scale : {GL_RED_SCALE, GL_GREEN_SCALE, GL_BLUE_SCALE, GL_ALPHA_SCALE})
+            glPixelTransferf(scale, 1.0f);
+        for (GLenum bias : {GL_RED_BIAS, GL_GREEN_BIAS, GL_BLUE_BIAS, GL_ALPHA_BIAS})
+            glPixelTransferf(bias, 0.0f);
         glPixelStorei(GL_PACK_ALIGNMENT, 4);
         glPixelStorei(GL_PACK_ROW_LENGTH, 0);
         glPixelStorei(GL_PACK_SKIP_ROWS, 0);
         glPixelStorei(GL_PACK_SKIP_PIXELS, 0);
         glPixelStorei(GL_PACK_SWAP_BYTES, GL_FALSE);
         glPixelStorei(GL_PACK_LSB_FIRST, GL_FALSE);
-        for (GLenum array : {GL_NORMAL_ARRAY, GL_COLOR_ARRAY, GL_INDEX_ARRAY, GL_TEXTURE_COORD_ARRAY,
-                             GL_EDGE_FLAG_ARRAY, GL_FOG_COORD_ARRAY, GL_SECONDARY_COLOR_ARRAY}) {
+        for (GLenum array :
+             {GL_NORMAL_ARRAY, GL_COLOR_ARRAY, GL_INDEX_ARRAY, GL_TEXTURE_COORD_ARRAY,
+              GL_EDGE_FLAG_ARRAY, GL_FOG_COORD_ARRAY, GL_SECONDARY_COLOR_ARRAY}) {
             glDisableClientState(array);
         }
         glEnableClientState(GL_VERTEX_ARRAY);
@@ -228,7 +262,8 @@ private:
     bool m_texturing;
     GLint m_drawFbo = 0, m_readFbo = 0, m_arrayBuffer = 0, m_packBuffer = 0, m_unpackBuffer = 0;
     GLint m_program = 0, m_shadeModel = GL_SMOOTH, m_matrixMode = GL_MODELVIEW, m_vertexArray = 0;
-    GLint m_activeTexture = GL_TEXTURE0, m_clientActiveTexture = GL_TEXTURE0, m_texture2d = 0, m_sampler = 0;
+    GLint m_activeTexture = GL_TEXTURE0, m_clientActiveTexture = GL_TEXTURE0, m_texture2d = 0,
+          m_sampler = 0;
 };
 
 // ============================================================================================
@@ -244,8 +279,10 @@ IdBufferGl::IdBufferGl(std::shared_ptr<GlContext> gl, const IdBufferGlOptions& o
     glGetIntegerv(GL_MAX_VIEWPORT_DIMS, maxViewport);
     const int limit = std::min({maxTexture, maxViewport[0], maxViewport[1]});
     if (m_opt.width < 1 || m_opt.height < 1 || m_opt.width > limit || m_opt.height > limit) {
-        throw std::runtime_error("idbuffer-gl: a " + std::to_string(m_opt.width) + "x" + std::to_string(m_opt.height) +
-                                 " buffer does not fit this GL context (at most " + std::to_string(limit) + " per side)");
+        throw std::runtime_error("idbuffer-gl: a " + std::to_string(m_opt.width) + "x" +
+                                 std::to_string(m_opt.height) +
+                                 " buffer does not fit this GL context (at most " +
+                                 std::to_string(limit) + " per side)");
     }
     while (glGetError() != GL_NO_ERROR) {}  // earlier errors are not ours
     const GlApi& a = m_gl->api();
@@ -282,7 +319,8 @@ IdBufferGl::IdBufferGl(std::shared_ptr<GlContext> gl, const IdBufferGlOptions& o
             makeTarget(m_gatherTex, m_gatherFbo, kGatherWidth, m_gatherRows);
             a.genBuffers(1, &m_pbo);
             a.bindBuffer(GL_PIXEL_PACK_BUFFER, m_pbo);
-            a.bufferData(GL_PIXEL_PACK_BUFFER, static_cast<GLsizeiptr>(kGatherWidth) * m_gatherRows * 4, nullptr,
+            a.bufferData(GL_PIXEL_PACK_BUFFER,
+                         static_cast<GLsizeiptr>(kGatherWidth) * m_gatherRows * 4, nullptr,
                          GL_STREAM_READ);
         }
     }
@@ -313,8 +351,9 @@ IdBufferGl::~IdBufferGl() {
 bool IdBufferGl::ready() const { return m_reset && m_gl && m_gl->alive(); }
 
 std::string IdBufferGl::name() const {
-    return m_opt.readback == GlReadback::OnePixel ? "idbuffer-gl"
-                                                  : std::string("idbuffer-gl-") + toString(m_opt.readback);
+    return m_opt.readback == GlReadback::OnePixel
+               ? "idbuffer-gl"
+               : std::string("idbuffer-gl-") + toString(m_opt.readback);
 }
 
 // ============================================================================================
@@ -361,7 +400,8 @@ void IdBufferGl::paintShape(std::int32_t t) {
         float* xy = &m_shadow[6 * static_cast<std::size_t>(t)];
         corners(t, xy);
         appendTriangle(packColour(t), xy);
-        m_glStats.pixelsPainted += std::abs((xy[2] - xy[0]) * (xy[5] - xy[1]) - (xy[3] - xy[1]) * (xy[4] - xy[0])) / 2;
+        m_glStats.pixelsPainted +=
+            std::abs((xy[2] - xy[0]) * (xy[5] - xy[1]) - (xy[3] - xy[1]) * (xy[4] - xy[0])) / 2;
         m_shown[t] = 1;
     } else {
         m_shown[t] = 0;
@@ -382,11 +422,13 @@ void IdBufferGl::submit() {
     if (m_vertices.empty()) return;
     const GlApi& a = m_gl->api();
     a.bindBuffer(GL_ARRAY_BUFFER, m_vbo);
-    a.bufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(m_vertices.size() * sizeof(Vertex)), m_vertices.data(),
-                 GL_STREAM_DRAW);
+    a.bufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(m_vertices.size() * sizeof(Vertex)),
+                 m_vertices.data(), GL_STREAM_DRAW);
     glEnableClientState(GL_COLOR_ARRAY);
-    glVertexPointer(2, GL_FLOAT, sizeof(Vertex), reinterpret_cast<const void*>(offsetof(Vertex, x)));
-    glColorPointer(4, GL_UNSIGNED_BYTE, sizeof(Vertex), reinterpret_cast<const void*>(offsetof(Vertex, rgba)));
+    glVertexPointer(2, GL_FLOAT, sizeof(Vertex),
+                    reinterpret_cast<const void*>(offsetof(Vertex, x)));
+    glColorPointer(4, GL_UNSIGNED_BYTE, sizeof(Vertex),
+                   reinterpret_cast<const void*>(offsetof(Vertex, rgba)));
     glDrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(m_vertices.size()));
     glDisableClientState(GL_COLOR_ARRAY);
     a.bindBuffer(GL_ARRAY_BUFFER, 0);
@@ -488,7 +530,8 @@ std::vector<std::int32_t> IdBufferGl::readAll() {
 // the point, and a long walk from the last triangle). Four, not one: every early batch repaints
 // most of the box, and each costs a full read.
 std::int32_t IdBufferGl::batchCount(std::int32_t start) const {
-    return std::min({m_opt.batch, std::max<std::int32_t>(4 * start, 1), static_cast<std::int32_t>(m_order.size()) - start});
+    return std::min({m_opt.batch, std::max<std::int32_t>(4 * start, 1),
+                     static_cast<std::int32_t>(m_order.size()) - start});
 }
 
 // The ids under the points [start, start + count) of the insertion order, in one draw and one
@@ -537,15 +580,17 @@ void IdBufferGl::takeBatch() {
     const GlApi& a = m_gl->api();
     if (m_pending.fence) {
         const auto fence = static_cast<GLsync>(m_pending.fence);
-        while (a.clientWaitSync(fence, GL_SYNC_FLUSH_COMMANDS_BIT, 1'000'000'000) == GL_TIMEOUT_EXPIRED) {}
+        while (a.clientWaitSync(fence, GL_SYNC_FLUSH_COMMANDS_BIT, 1'000'000'000) ==
+               GL_TIMEOUT_EXPIRED) {}
         a.deleteSync(fence);
         m_pending.fence = nullptr;
     }
     a.bindBuffer(GL_PIXEL_PACK_BUFFER, m_pbo);
-    const auto* p = static_cast<const std::uint8_t*>(
-        a.mapBufferRange(GL_PIXEL_PACK_BUFFER, 0, static_cast<GLsizeiptr>(m_pending.count) * 4, GL_MAP_READ_BIT));
+    const auto* p = static_cast<const std::uint8_t*>(a.mapBufferRange(
+        GL_PIXEL_PACK_BUFFER, 0, static_cast<GLsizeiptr>(m_pending.count) * 4, GL_MAP_READ_BIT));
     m_windowIds.resize(static_cast<std::size_t>(m_pending.count));
-    for (std::int32_t k = 0; k < m_pending.count; ++k) m_windowIds[k] = p ? decodeTriangleId(p + 4 * k) : kNone;
+    for (std::int32_t k = 0; k < m_pending.count; ++k)
+        m_windowIds[k] = p ? decodeTriangleId(p + 4 * k) : kNone;
     if (p) a.unmapBuffer(GL_PIXEL_PACK_BUFFER);
     a.bindBuffer(GL_PIXEL_PACK_BUFFER, 0);
     m_window = m_pending;
@@ -555,7 +600,8 @@ void IdBufferGl::takeBatch() {
 }
 
 void IdBufferGl::dropPending() {
-    if (m_pending.fence && m_gl && m_gl->alive()) m_gl->api().deleteSync(static_cast<GLsync>(m_pending.fence));
+    if (m_pending.fence && m_gl && m_gl->alive())
+        m_gl->api().deleteSync(static_cast<GLsync>(m_pending.fence));
     m_pending = {};
 }
 

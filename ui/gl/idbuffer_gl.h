@@ -51,20 +51,21 @@ const char* toString(GlReadback mode);
 struct IdBufferGlOptions {
     int width = 1600, height = 1600;  // the paper's box
     GlReadback readback = GlReadback::OnePixel;
-    int batch = 256;                  // Batched / Pipelined: points per readback (K), 1 .. kMaxBatch
+    int batch = 256;  // Batched / Pipelined: points per readback (K), 1 .. kMaxBatch
     static constexpr int kMaxBatch = 1 << 16;
-    // idbuffer-gl: one pixel per insertion; idbuffer-gl-batched: Batched with options.idBufferBatch.
+    // idbuffer-gl: one pixel per insertion; idbuffer-gl-batched: Batched with
+    // options.idBufferBatch.
     static IdBufferGlOptions from(LocatorKind kind, const LocatorOptions& options);
 };
 
 // The paper's encoding, RGBA bytes in memory order.
 std::array<std::uint8_t, 4> encodeTriangleId(std::int32_t id);  // kNone -> the "no triangle" colour
-std::int32_t decodeTriangleId(const std::uint8_t* rgba);          // the "no triangle" colour -> kNone
+std::int32_t decodeTriangleId(const std::uint8_t* rgba);        // the "no triangle" colour -> kNone
 
 struct IdBufferGlStats {
-    std::uint64_t reads = 0;           // readbacks that waited for the drawing (one per batch)
-    std::uint64_t pixelsRead = 0;      // ids fetched for the locator
-    std::uint64_t draws = 0;           // paint draw calls
+    std::uint64_t reads = 0;       // readbacks that waited for the drawing (one per batch)
+    std::uint64_t pixelsRead = 0;  // ids fetched for the locator
+    std::uint64_t draws = 0;       // paint draw calls
     std::uint64_t trianglesPainted = 0;
     std::uint64_t trianglesCleared = 0;  // old footprints cleared (undo shrinking the hull)
     double pixelsPainted = 0;            // area of the painted triangles, in pixels (clipped: less)
@@ -105,11 +106,13 @@ public:
     // it sees the mesh as it is now; each one waits for the drawing (a sync, ~0.1 ms on llvmpipe).
     int width() const { return m_opt.width; }
     int height() const { return m_opt.height; }
-    bool ready() const;  // reset() happened and the context is alive
-    std::int32_t idAt(int i, int j);  // pixel (i, j), row 0 = lowest y; kNone: no triangle
+    bool ready() const;                   // reset() happened and the context is alive
+    std::int32_t idAt(int i, int j);      // pixel (i, j), row 0 = lowest y; kNone: no triangle
     std::vector<std::int32_t> readAll();  // width*height ids, row 0 = lowest y (as IdBufferCpu)
     // The pixel under p; false when p lies outside the box (left of or below it).
-    bool pixelOf(Vec2 p, int& i, int& j) const { return m_map.pixel(p, m_opt.width, m_opt.height, i, j); }
+    bool pixelOf(Vec2 p, int& i, int& j) const {
+        return m_map.pixel(p, m_opt.width, m_opt.height, i, j);
+    }
     Vec2 pixelCentre(int i, int j) const { return m_map.centre(i, j); }
     const PixelMap& map() const { return m_map; }
     unsigned texture() const { return m_tex; }  // GL_RGBA8, the encoded ids (for a GL viewer)
@@ -131,9 +134,9 @@ private:
     void paintShape(std::int32_t t);
     void appendTriangle(std::uint32_t colour, const float* xy);
     void submit();
-    void paintPending();                    // inside a Scope: every changed triangle
+    void paintPending();  // inside a Scope: every changed triangle
     std::int32_t batchCount(std::int32_t start) const;
-    std::int32_t readOne(int i, int j);    // inside a Scope, painted
+    std::int32_t readOne(int i, int j);     // inside a Scope, painted
     void requestBatch(std::int32_t start);  // inside a Scope: gather + read into the PBO
     void takeBatch();                       // map the PBO into m_window
     void dropPending();
@@ -151,27 +154,27 @@ private:
     // What was painted: per triangle its pixel-space corners (6 floats) and whether it is shown.
     std::vector<float> m_shadow;
     std::vector<std::uint8_t> m_shown;
-    std::int32_t m_shadowTriangles = 0;     // triangles the shadow covers
-    std::vector<std::int32_t> m_dirty;      // changed since painted
+    std::int32_t m_shadowTriangles = 0;  // triangles the shadow covers
+    std::vector<std::int32_t> m_dirty;   // changed since painted
     std::vector<std::uint8_t> m_isDirty;
     bool m_fullRepaint = true;
-    std::int32_t m_seenVertices = 0;        // |G| at the last paint (Finalize changes it unseen)
+    std::int32_t m_seenVertices = 0;  // |G| at the last paint (Finalize changes it unseen)
     struct Vertex {
         float x, y;          // pixel coordinates
         std::uint32_t rgba;  // the encoded id, bytes in memory order r, g, b, a
     };
-    std::vector<Vertex> m_vertices;         // the triangles of one draw
+    std::vector<Vertex> m_vertices;  // the triangles of one draw
 
     // Read-ahead along the insertion order.
     std::vector<Vec2> m_order;
-    std::int32_t m_next = 0;                // predicted position of the next hint
-    Batch m_window;                         // ids at hand: positions [start, start + count)
+    std::int32_t m_next = 0;  // predicted position of the next hint
+    Batch m_window;           // ids at hand: positions [start, start + count)
     std::vector<std::int32_t> m_windowIds;
-    Batch m_pending;                        // Pipelined: issued, not mapped yet (count > 0)
+    Batch m_pending;  // Pipelined: issued, not mapped yet (count > 0)
     std::vector<float> m_gatherXy, m_gatherUv;
-    std::uint64_t m_hints = 0;              // hints served since reset()
-    std::uint64_t m_paintedAt = 0;          // m_hints at the last paint: the pixels' age
-    int m_lastAge = -1;                     // age of the last hint's id (-1: no pixel)
+    std::uint64_t m_hints = 0;      // hints served since reset()
+    std::uint64_t m_paintedAt = 0;  // m_hints at the last paint: the pixels' age
+    int m_lastAge = -1;             // age of the last hint's id (-1: no pixel)
 
     std::uint64_t m_version = 0;
     IdBufferGlStats m_glStats;

@@ -17,9 +17,10 @@ bool sameView(const View& a, const View& b) {
 }
 
 bool sameStyle(const MeshStyle& a, const MeshStyle& b) {
-    return a.fill == b.fill && a.edge == b.edge && a.virtualEdge == b.virtualEdge && a.point == b.point &&
-           a.pending == b.pending && a.edgeWidth == b.edgeWidth && a.pointSize == b.pointSize &&
-           a.drawFill == b.drawFill && a.drawVirtual == b.drawVirtual && a.drawPoints == b.drawPoints;
+    return a.fill == b.fill && a.edge == b.edge && a.virtualEdge == b.virtualEdge &&
+           a.point == b.point && a.pending == b.pending && a.edgeWidth == b.edgeWidth &&
+           a.pointSize == b.pointSize && a.drawFill == b.drawFill &&
+           a.drawVirtual == b.drawVirtual && a.drawPoints == b.drawPoints;
 }
 
 void colour(std::uint32_t c) {
@@ -34,7 +35,8 @@ float clampCoord(double v) { return static_cast<float>(std::clamp(v, -1e7, 1e7))
 }  // namespace
 
 bool MeshRenderer::update(const Engine& engine, const View& view, const MeshStyle& style) {
-    if (engine.version() == m_version && sameView(view, m_view) && sameStyle(style, m_style)) return false;
+    if (engine.version() == m_version && sameView(view, m_view) && sameStyle(style, m_style))
+        return false;
     const auto t0 = std::chrono::steady_clock::now();
     m_version = engine.version();
     m_view = view;
@@ -49,7 +51,8 @@ bool MeshRenderer::update(const Engine& engine, const View& view, const MeshStyl
     const bool ghostMode = ins.options().boundary == Boundary::Exact;
     const bool running = !ins.done();
     const float left = static_cast<float>(view.origin.x), top = static_cast<float>(view.origin.y);
-    const float right = left + static_cast<float>(view.size.x), bottom = top + static_cast<float>(view.size.y);
+    const float right = left + static_cast<float>(view.size.x),
+                bottom = top + static_cast<float>(view.size.y);
 
     // Screen positions of every vertex, once (the ghost vertex has a placeholder, never drawn).
     std::vector<float> xy(2 * static_cast<std::size_t>(m.numVertices()));
@@ -63,7 +66,8 @@ bool MeshRenderer::update(const Engine& engine, const View& view, const MeshStyl
     };
     auto visible = [&](std::int32_t a, std::int32_t b) {
         const float x0 = xy[2 * a], y0 = xy[2 * a + 1], x1 = xy[2 * b], y1 = xy[2 * b + 1];
-        return std::max(x0, x1) >= left && std::min(x0, x1) <= right && std::max(y0, y1) >= top && std::min(y0, y1) <= bottom;
+        return std::max(x0, x1) >= left && std::min(x0, x1) <= right && std::max(y0, y1) >= top &&
+               std::min(y0, y1) <= bottom;
     };
     // Each edge once: from its lower corner, unless the other side is not drawn.
     auto forEachEdge = [&](auto&& f) {
@@ -95,7 +99,8 @@ bool MeshRenderer::update(const Engine& engine, const View& view, const MeshStyl
             for (std::size_t i = 0; i < states.size(); ++i) {
                 const bool pending = states[i] == Engine::PointState::Pending;
                 if (pending || states[i] == Engine::PointState::Inserted) {
-                    rasterDot(xy[2 * i] - left, xy[2 * i + 1] - top, 2, pending ? style.pending : style.point);
+                    rasterDot(xy[2 * i] - left, xy[2 * i + 1] - top, 2,
+                              pending ? style.pending : style.point);
                 }
             }
         }
@@ -112,7 +117,8 @@ bool MeshRenderer::update(const Engine& engine, const View& view, const MeshStyl
                 if (!visible(a, b) && !visible(b, c) && !visible(c, a)) {
                     // A triangle can cover the canvas with all its edges outside: keep it if
                     // its box overlaps the canvas.
-                    const float x0 = std::min({xy[2 * a], xy[2 * b], xy[2 * c]}), x1 = std::max({xy[2 * a], xy[2 * b], xy[2 * c]});
+                    const float x0 = std::min({xy[2 * a], xy[2 * b], xy[2 * c]}),
+                                x1 = std::max({xy[2 * a], xy[2 * b], xy[2 * c]});
                     const float y0 = std::min({xy[2 * a + 1], xy[2 * b + 1], xy[2 * c + 1]});
                     const float y1 = std::max({xy[2 * a + 1], xy[2 * b + 1], xy[2 * c + 1]});
                     if (x1 < left || x0 > right || y1 < top || y0 > bottom) continue;
@@ -130,12 +136,15 @@ bool MeshRenderer::update(const Engine& engine, const View& view, const MeshStyl
         if (style.drawPoints) {
             const auto& states = engine.pointStates();
             for (std::size_t i = 0; i < states.size(); ++i) {
-                if (states[i] == Engine::PointState::Inserted) push(m_points, static_cast<std::int32_t>(i));
-                if (states[i] == Engine::PointState::Pending) push(m_pending, static_cast<std::int32_t>(i));
+                if (states[i] == Engine::PointState::Inserted)
+                    push(m_points, static_cast<std::int32_t>(i));
+                if (states[i] == Engine::PointState::Pending)
+                    push(m_pending, static_cast<std::int32_t>(i));
             }
         }
     }
-    m_buildMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    m_buildMs =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     return true;
 }
 
@@ -145,30 +154,36 @@ void MeshRenderer::rasterLine(float x0, float y0, float x1, float y1, std::uint3
     const int steps = static_cast<int>(std::ceil(std::max(std::fabs(dx), std::fabs(dy))));
     if (steps > 4 * (m_rasterW + m_rasterH)) {
         // A long edge (mostly off the canvas): clip it to the raster first.
-        const float tx0 = dx != 0 ? (0 - x0) / dx : -1e9f, tx1 = dx != 0 ? (m_rasterW - x0) / dx : 1e9f;
-        const float ty0 = dy != 0 ? (0 - y0) / dy : -1e9f, ty1 = dy != 0 ? (m_rasterH - y0) / dy : 1e9f;
+        const float tx0 = dx != 0 ? (0 - x0) / dx : -1e9f,
+                    tx1 = dx != 0 ? (m_rasterW - x0) / dx : 1e9f;
+        const float ty0 = dy != 0 ? (0 - y0) / dy : -1e9f,
+                    ty1 = dy != 0 ? (m_rasterH - y0) / dy : 1e9f;
         const float t0 = std::max({0.0f, std::min(tx0, tx1), std::min(ty0, ty1)});
         const float t1 = std::min({1.0f, std::max(tx0, tx1), std::max(ty0, ty1)});
         if (t0 >= t1) return;
-        rasterLine(x0 + dx * t0, y0 + dy * t0, x0 + dx * (t0 + (t1 - t0) * 0.999f), y0 + dy * (t0 + (t1 - t0) * 0.999f), colour);
+        rasterLine(x0 + dx * t0, y0 + dy * t0, x0 + dx * (t0 + (t1 - t0) * 0.999f),
+                   y0 + dy * (t0 + (t1 - t0) * 0.999f), colour);
         return;
     }
     const float sx = steps ? dx / steps : 0, sy = steps ? dy / steps : 0;
     float x = x0, y = y0;
     for (int i = 0; i <= steps; ++i, x += sx, y += sy) {
         const int px = static_cast<int>(x), py = static_cast<int>(y);
-        if (px >= 0 && py >= 0 && px < m_rasterW && py < m_rasterH) m_raster[static_cast<std::size_t>(py) * m_rasterW + px] = colour;
+        if (px >= 0 && py >= 0 && px < m_rasterW && py < m_rasterH)
+            m_raster[static_cast<std::size_t>(py) * m_rasterW + px] = colour;
     }
 }
 
 void MeshRenderer::rasterDot(float x, float y, int size, std::uint32_t colour) {
     const int px = static_cast<int>(x) - size / 2, py = static_cast<int>(y) - size / 2;
     for (int j = std::max(0, py); j < std::min(m_rasterH, py + size); ++j) {
-        for (int i = std::max(0, px); i < std::min(m_rasterW, px + size); ++i) m_raster[static_cast<std::size_t>(j) * m_rasterW + i] = colour;
+        for (int i = std::max(0, px); i < std::min(m_rasterW, px + size); ++i)
+            m_raster[static_cast<std::size_t>(j) * m_rasterW + i] = colour;
     }
 }
 
-void MeshRenderer::enqueue(ImDrawList* drawList, Pass pass, float x0, float y0, float x1, float y1) {
+void MeshRenderer::enqueue(ImDrawList* drawList, Pass pass, float x0, float y0, float x1,
+                           float y1) {
     m_clip[0] = x0;
     m_clip[1] = y0;
     m_clip[2] = x1;
@@ -184,12 +199,15 @@ void MeshRenderer::drawCallback(const ImDrawList*, const void* cmdPtr) {
     const ImDrawData* dd = ImGui::GetDrawData();
     const float fbScaleX = dd->FramebufferScale.x, fbScaleY = dd->FramebufferScale.y;
     const float fbH = dd->DisplaySize.y * fbScaleY;
-    const float x0 = (self->m_clip[0] - dd->DisplayPos.x) * fbScaleX, y0 = (self->m_clip[1] - dd->DisplayPos.y) * fbScaleY;
-    const float x1 = (self->m_clip[2] - dd->DisplayPos.x) * fbScaleX, y1 = (self->m_clip[3] - dd->DisplayPos.y) * fbScaleY;
+    const float x0 = (self->m_clip[0] - dd->DisplayPos.x) * fbScaleX,
+                y0 = (self->m_clip[1] - dd->DisplayPos.y) * fbScaleY;
+    const float x1 = (self->m_clip[2] - dd->DisplayPos.x) * fbScaleX,
+                y1 = (self->m_clip[3] - dd->DisplayPos.y) * fbScaleY;
     // ImGui's OpenGL2 backend sets its array pointers once per draw list, so everything we
     // change must be put back exactly: push the client arrays and the server state we touch.
     glPushClientAttrib(GL_CLIENT_VERTEX_ARRAY_BIT);
-    glPushAttrib(GL_ENABLE_BIT | GL_CURRENT_BIT | GL_LINE_BIT | GL_POINT_BIT | GL_SCISSOR_BIT | GL_TEXTURE_BIT);
+    glPushAttrib(GL_ENABLE_BIT | GL_CURRENT_BIT | GL_LINE_BIT | GL_POINT_BIT | GL_SCISSOR_BIT |
+                 GL_TEXTURE_BIT);
     glEnable(GL_SCISSOR_TEST);
     glScissor(static_cast<GLint>(x0), static_cast<GLint>(fbH - y1), static_cast<GLsizei>(x1 - x0),
               static_cast<GLsizei>(y1 - y0));
@@ -222,11 +240,13 @@ void MeshRenderer::drawRaster() {
         if (m_textureW != m_rasterW || m_textureH != m_rasterH) {
             glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
             glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-            glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA, m_rasterW, m_rasterH, 0, GL_RGBA, GL_UNSIGNED_BYTE, m_raster.data());
+            glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA, m_rasterW, m_rasterH, 0, GL_RGBA,
+                         GL_UNSIGNED_BYTE, m_raster.data());
             m_textureW = m_rasterW;
             m_textureH = m_rasterH;
         } else {
-            glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, m_rasterW, m_rasterH, GL_RGBA, GL_UNSIGNED_BYTE, m_raster.data());
+            glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, m_rasterW, m_rasterH, GL_RGBA, GL_UNSIGNED_BYTE,
+                            m_raster.data());
         }
         m_rasterDirty = false;
     }

@@ -21,7 +21,8 @@ struct ImDrawList;
 namespace dlab::ui {
 
 struct MeshStyle {
-    std::uint32_t fill = 0, edge = 0, virtualEdge = 0, point = 0, pending = 0;  // ImU32 colours (ABGR)
+    std::uint32_t fill = 0, edge = 0, virtualEdge = 0, point = 0,
+                  pending = 0;  // ImU32 colours (ABGR)
     float edgeWidth = 1.0f, pointSize = 4.0f;
     bool drawFill = true, drawVirtual = true, drawPoints = true;
 };
@@ -40,7 +41,8 @@ public:
     // Adds a GL draw (clipped to the rectangle) to the draw list; it leaves ImGui's GL state as
     // it found it. Two passes, so that highlights can go between the fill and the edges.
     enum class Pass : std::uint8_t { Fill, Lines };
-    void enqueue(ImDrawList* drawList, Pass pass, float clipX0, float clipY0, float clipX1, float clipY1);
+    void enqueue(ImDrawList* drawList, Pass pass, float clipX0, float clipY0, float clipX1,
+                 float clipY1);
     bool dense() const { return m_dense; }
     std::size_t visibleEdges() const { return m_visibleEdges; }
     double lastBuildMs() const { return m_buildMs; }

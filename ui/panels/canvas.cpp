@@ -11,8 +11,8 @@
 //   [SECTION] Input
 //   [SECTION] ShowCanvas
 #include "core/engine/voronoi.h"
-#include "ui/gui.h"
 #include "ui/gl/mesh_renderer.h"
+#include "ui/gui.h"
 #include "ui/panels/panels.h"
 
 #include <imgui.h>
@@ -50,7 +50,8 @@ namespace {
 
 struct Palette {
     ImU32 background, grid, fill, edge, virtualEdge, vertex, vertexId, pending, current, skipped;
-    ImU32 walk, walkNow, lineL, split[3], testEdge, circleFlip, circleKeep, flipped, queue, cornerId, cornerChanged;
+    ImU32 walk, walkNow, lineL, split[3], testEdge, circleFlip, circleKeep, flipped, queue,
+        cornerId, cornerChanged;
     ImU32 selected, hovered, arrow, triangleId, voronoi, circum;
 };
 
@@ -88,14 +89,13 @@ Palette palette(bool presentation) {
     return p;
 }
 
-
 // Clips segment ab to the rectangle [lo, hi] (Liang-Barsky); false when nothing is left.
 bool ClipSegment(ImVec2& a, ImVec2& b, ImVec2 lo, ImVec2 hi) {
     const double dx = static_cast<double>(b.x) - a.x, dy = static_cast<double>(b.y) - a.y;
     double t0 = 0, t1 = 1;
     const double p[4] = {-dx, dx, -dy, dy};
-    const double q[4] = {static_cast<double>(a.x) - lo.x, static_cast<double>(hi.x) - a.x, static_cast<double>(a.y) - lo.y,
-                         static_cast<double>(hi.y) - a.y};
+    const double q[4] = {static_cast<double>(a.x) - lo.x, static_cast<double>(hi.x) - a.x,
+                         static_cast<double>(a.y) - lo.y, static_cast<double>(hi.y) - a.y};
     for (int i = 0; i < 4; ++i) {
         if (!std::isfinite(p[i]) || !std::isfinite(q[i])) return false;
         if (p[i] == 0) {
@@ -103,8 +103,10 @@ bool ClipSegment(ImVec2& a, ImVec2& b, ImVec2 lo, ImVec2 hi) {
             continue;
         }
         const double r = q[i] / p[i];
-        if (p[i] < 0) t0 = std::max(t0, r);
-        else t1 = std::min(t1, r);
+        if (p[i] < 0)
+            t0 = std::max(t0, r);
+        else
+            t1 = std::min(t1, r);
         if (t0 > t1) return false;
     }
     const ImVec2 a0 = a;
@@ -115,14 +117,16 @@ bool ClipSegment(ImVec2& a, ImVec2& b, ImVec2 lo, ImVec2 hi) {
 
 // Dashes only the visible part: an edge to a super-triangle vertex of a huge box can be
 // millions of pixels long on screen (a dash each would exhaust memory).
-void DashedLine(ImDrawList* dl, ImVec2 a, ImVec2 b, ImU32 col, float thickness, float dash = 7, float gap = 5) {
+void DashedLine(ImDrawList* dl, ImVec2 a, ImVec2 b, ImU32 col, float thickness, float dash = 7,
+                float gap = 5) {
     if (!ClipSegment(a, b, dl->GetClipRectMin(), dl->GetClipRectMax())) return;
     const float dx = b.x - a.x, dy = b.y - a.y, len = std::sqrt(dx * dx + dy * dy);
     if (len < 1e-3f) return;
     const float ux = dx / len, uy = dy / len;
     for (float t = 0; t < len; t += dash + gap) {
         const float e = std::min(len, t + dash);
-        dl->AddLine(ImVec2(a.x + ux * t, a.y + uy * t), ImVec2(a.x + ux * e, a.y + uy * e), col, thickness);
+        dl->AddLine(ImVec2(a.x + ux * t, a.y + uy * t), ImVec2(a.x + ux * e, a.y + uy * e), col,
+                    thickness);
     }
 }
 
@@ -135,9 +139,11 @@ void Arrow(ImDrawList* dl, ImVec2 a, ImVec2 b, ImU32 col, float thickness) {
                           ImVec2(b.x - ux * s + uy * s * 0.5f, b.y - uy * s - ux * s * 0.5f), col);
 }
 
-void LabelBox(ImDrawList* dl, ImFont* font, float size, ImVec2 centre, ImU32 text, ImU32 box, const char* s) {
+void LabelBox(ImDrawList* dl, ImFont* font, float size, ImVec2 centre, ImU32 text, ImU32 box,
+              const char* s) {
     const ImVec2 ts = font->CalcTextSizeA(size, 1e9f, 0, s);
-    const ImVec2 a(centre.x - ts.x / 2 - 2, centre.y - ts.y / 2), b(centre.x + ts.x / 2 + 2, centre.y + ts.y / 2);
+    const ImVec2 a(centre.x - ts.x / 2 - 2, centre.y - ts.y / 2),
+        b(centre.x + ts.x / 2 + 2, centre.y + ts.y / 2);
     if (box) dl->AddRectFilled(a, b, box, 3);
     dl->AddText(font, size, ImVec2(a.x + 2, a.y), text, s);
 }
@@ -163,9 +169,12 @@ struct Scene {
     bool room(unsigned vertices) const { return CanvasHasRoom(st, dl, vertices); }
     // Labels leave this much room for the points, drawn after them (on top).
     unsigned pointReserve() const {
-        return kVerticesPerPoint * static_cast<unsigned>(std::min<std::size_t>(e.points().size(), kFewPoints));
+        return kVerticesPerPoint *
+               static_cast<unsigned>(std::min<std::size_t>(e.points().size(), kFewPoints));
     }
-    bool drawable(std::int32_t t) const { return t >= 0 && t < m.numTriangles() && !(ghostMode && virtualTri(t)); }
+    bool drawable(std::int32_t t) const {
+        return t >= 0 && t < m.numTriangles() && !(ghostMode && virtualTri(t));
+    }
     // The three screen corners of a drawable triangle.
     void corners(std::int32_t t, ImVec2 out[3]) const {
         for (int k = 0; k < 3; ++k) out[k] = screen(m.V[3 * t + k]);
@@ -190,12 +199,12 @@ struct Scene {
     // Whether a screen box [x0, x1] x [y0, y1] (plus a margin) meets the canvas: shapes off it
     // are not sent to the draw list at all (it holds at most 65536 vertices).
     bool onCanvas(float x0, float y0, float x1, float y1, float margin = 4) const {
-        return x1 >= view.origin.x - margin && x0 <= view.origin.x + view.size.x + margin && y1 >= view.origin.y - margin &&
-               y0 <= view.origin.y + view.size.y + margin;
+        return x1 >= view.origin.x - margin && x0 <= view.origin.x + view.size.x + margin &&
+               y1 >= view.origin.y - margin && y0 <= view.origin.y + view.size.y + margin;
     }
     bool onCanvas(const ImVec2 (&p)[3]) const {
-        return onCanvas(std::min({p[0].x, p[1].x, p[2].x}), std::min({p[0].y, p[1].y, p[2].y}), std::max({p[0].x, p[1].x, p[2].x}),
-                        std::max({p[0].y, p[1].y, p[2].y}));
+        return onCanvas(std::min({p[0].x, p[1].x, p[2].x}), std::min({p[0].y, p[1].y, p[2].y}),
+                        std::max({p[0].x, p[1].x, p[2].x}), std::max({p[0].y, p[1].y, p[2].y}));
     }
     void fillTriangle(std::int32_t t, ImU32 col) const {
         if (!drawable(t)) return;
@@ -213,7 +222,9 @@ struct Scene {
         if (a < 0 || b < 0 || a >= m.numVertices() || b >= m.numVertices()) return;
         if (ghostMode && running && (ins.isVirtual(a) || ins.isVirtual(b))) return;
         const ImVec2 pa = screen(a), pb = screen(b);
-        if (!onCanvas(std::min(pa.x, pb.x), std::min(pa.y, pb.y), std::max(pa.x, pb.x), std::max(pa.y, pb.y), w)) return;
+        if (!onCanvas(std::min(pa.x, pb.x), std::min(pa.y, pb.y), std::max(pa.x, pb.x),
+                      std::max(pa.y, pb.y), w))
+            return;
         dashed ? DashedLine(dl, pa, pb, col, w) : dl->AddLine(pa, pb, col, w);
     }
     // A circle given in world coordinates (centre, radius), clipped by the canvas.
@@ -221,13 +232,17 @@ struct Scene {
         const glm::dvec2 s = view.toScreen(c);
         const double rs = r * view.scale;
         if (!std::isfinite(rs) || rs > 1e6) return;
-        const float x = static_cast<float>(s.x), y = static_cast<float>(s.y), rf = static_cast<float>(rs);
+        const float x = static_cast<float>(s.x), y = static_cast<float>(s.y),
+                    rf = static_cast<float>(rs);
         if (!onCanvas(x - rf, y - rf, x + rf, y + rf, w)) return;
         // Wholly around the canvas: nothing of it shows.
-        const double dx = std::max(std::abs(s.x - view.origin.x), std::abs(s.x - view.origin.x - view.size.x));
-        const double dy = std::max(std::abs(s.y - view.origin.y), std::abs(s.y - view.origin.y - view.size.y));
+        const double dx =
+            std::max(std::abs(s.x - view.origin.x), std::abs(s.x - view.origin.x - view.size.x));
+        const double dy =
+            std::max(std::abs(s.y - view.origin.y), std::abs(s.y - view.origin.y - view.size.y));
         if (dx * dx + dy * dy < (rs - w) * (rs - w)) return;
-        dl->AddCircle(toIm(s), static_cast<float>(rs), col, std::clamp(static_cast<int>(rs / 3), 24, 256), w);
+        dl->AddCircle(toIm(s), static_cast<float>(rs), col,
+                      std::clamp(static_cast<int>(rs / 3), 24, 256), w);
     }
 };
 
@@ -305,7 +320,8 @@ void DrawOpOverlay(const Scene& s) {
             const std::int32_t v = op->vertex;
             if (v >= 0 && v < m.numVertices() && ctl.straight && ctl.walkSteps > 0) {
                 // The paper's line L from q (inside the start triangle) to the new point.
-                Arrow(s.dl, toIm(s.view.toScreen(ctl.walkOrigin)), s.screen(v), s.pal.lineL, w * 0.7f);
+                Arrow(s.dl, toIm(s.view.toScreen(ctl.walkOrigin)), s.screen(v), s.pal.lineL,
+                      w * 0.7f);
             }
             break;
         }
@@ -321,7 +337,8 @@ void DrawOpOverlay(const Scene& s) {
                 const std::int32_t x = m.V[next(a)], y = m.V[prev(a)];
                 const ImVec2 px = s.screen(x), py = s.screen(y);
                 const float dx = py.x - px.x, dy = py.y - px.y;
-                DashedLine(s.dl, ImVec2(px.x - dx * 50, px.y - dy * 50), ImVec2(py.x + dx * 50, py.y + dy * 50), col, w);
+                DashedLine(s.dl, ImVec2(px.x - dx * 50, px.y - dy * 50),
+                           ImVec2(py.x + dx * 50, py.y + dy * 50), col, w);
             } else {
                 Vec2 c;
                 double r;
@@ -343,7 +360,8 @@ void DrawOpOverlay(const Scene& s) {
                     if (t < 0 || t >= m.numTriangles()) continue;
                     for (int k = 0; k < 3; ++k) {
                         if (m.V[3 * t + k] == op->vertex) {
-                            s.edge(op->vertex, m.V[3 * t + (k + 1) % 3], s.pal.split[0] & 0xFF208020, w);
+                            s.edge(op->vertex, m.V[3 * t + (k + 1) % 3],
+                                   s.pal.split[0] & 0xFF208020, w);
                         }
                     }
                 }
@@ -384,12 +402,15 @@ void DrawVoronoi(const Scene& s) {
         }
         if (!seg) continue;
         if (!s.room(8)) return;
-        s.dl->AddLine(toIm(s.view.toScreen(seg->first)), toIm(s.view.toScreen(seg->second)), s.pal.voronoi, w);
+        s.dl->AddLine(toIm(s.view.toScreen(seg->first)), toIm(s.view.toScreen(seg->second)),
+                      s.pal.voronoi, w);
     }
     for (std::int32_t t = 0; t < m.numTriangles(); ++t) {
         if (s.virtualTri(t)) continue;
         const ImVec2 q = toIm(s.view.toScreen(cc[t]));
-        if (q.x < s.view.origin.x || q.y < s.view.origin.y || q.x > s.view.origin.x + s.view.size.x || q.y > s.view.origin.y + s.view.size.y) continue;
+        if (q.x < s.view.origin.x || q.y < s.view.origin.y ||
+            q.x > s.view.origin.x + s.view.size.x || q.y > s.view.origin.y + s.view.size.y)
+            continue;
         if (!s.room(32)) return;
         s.dl->AddCircleFilled(q, 2.5f, s.pal.voronoi);
     }
@@ -403,7 +424,8 @@ void DrawLabels(const Scene& s, std::int32_t& hoveredCorner, ImVec2 mouse, bool 
     // Cells the current op changed: their corners' labels are drawn in the highlight colour.
     std::vector<std::int32_t> changed;
     if (const Op* op = s.e.current(); op && s.e.journal()) {
-        for (std::uint32_t i = 0; i < op->numChanges; ++i) changed.push_back(s.e.journal()->changes()[op->firstChange + i].corner());
+        for (std::uint32_t i = 0; i < op->numChanges; ++i)
+            changed.push_back(s.e.journal()->changes()[op->firstChange + i].corner());
     }
     const bool fewTriangles = m.numTriangles() <= 20000;
     float best = 14.0f * 14.0f;
@@ -414,17 +436,20 @@ void DrawLabels(const Scene& s, std::int32_t& hoveredCorner, ImVec2 mouse, bool 
         ImVec2 p[3];
         s.corners(t, p);
         // Cull triangles off the canvas.
-        const float minX = std::min({p[0].x, p[1].x, p[2].x}), maxX = std::max({p[0].x, p[1].x, p[2].x});
-        const float minY = std::min({p[0].y, p[1].y, p[2].y}), maxY = std::max({p[0].y, p[1].y, p[2].y});
-        if (maxX < s.view.origin.x || minX > s.view.origin.x + s.view.size.x || maxY < s.view.origin.y ||
-            minY > s.view.origin.y + s.view.size.y) {
+        const float minX = std::min({p[0].x, p[1].x, p[2].x}),
+                    maxX = std::max({p[0].x, p[1].x, p[2].x});
+        const float minY = std::min({p[0].y, p[1].y, p[2].y}),
+                    maxY = std::max({p[0].y, p[1].y, p[2].y});
+        if (maxX < s.view.origin.x || minX > s.view.origin.x + s.view.size.x ||
+            maxY < s.view.origin.y || minY > s.view.origin.y + s.view.size.y) {
             continue;
         }
         if (ov.triangleIds) {
             const ImVec2 centre((p[0].x + p[1].x + p[2].x) / 3, (p[0].y + p[1].y + p[2].y) / 3);
             if (maxX - minX > 40 && maxY - minY > 30 && s.room(48 + s.pointReserve())) {
                 std::snprintf(buf, sizeof buf, "t%d", t);
-                LabelBox(s.dl, mono, fs, centre, s.pal.triangleId, IM_COL32(255, 255, 255, 200), buf);
+                LabelBox(s.dl, mono, fs, centre, s.pal.triangleId, IM_COL32(255, 255, 255, 200),
+                         buf);
             }
         }
         for (int k = 0; k < 3; ++k) {
@@ -463,19 +488,18 @@ void DrawPoints(const Scene& s, std::int32_t draggedPoint, Vec2 dragTo) {
         const Engine::PointState st = states[i];
         const Vec2 p = static_cast<std::int32_t>(i) == draggedPoint ? dragTo : pts[i];
         const ImVec2 q = toIm(s.view.toScreen(p));
-        if (q.x < s.view.origin.x - 20 || q.x > s.view.origin.x + s.view.size.x + 20 || q.y < s.view.origin.y - 20 ||
-            q.y > s.view.origin.y + s.view.size.y + 20) {
+        if (q.x < s.view.origin.x - 20 || q.x > s.view.origin.x + s.view.size.x + 20 ||
+            q.y < s.view.origin.y - 20 || q.y > s.view.origin.y + s.view.size.y + 20) {
             continue;
         }
-        if (!few && (st == Engine::PointState::Inserted || st == Engine::PointState::Pending)) continue;
+        if (!few && (st == Engine::PointState::Inserted || st == Engine::PointState::Pending))
+            continue;
         if (!few && st == Engine::PointState::Skipped && ++skippedDrawn > kSkippedDrawn) continue;
         // The point in progress always; the others while the draw list has room.
         if (st != Engine::PointState::Current && !s.room(kVerticesPerPoint)) continue;
         ImU32 idCol = s.pal.vertexId;
         switch (st) {
-            case Engine::PointState::Inserted:
-                s.dl->AddCircleFilled(q, r, s.pal.vertex);
-                break;
+            case Engine::PointState::Inserted: s.dl->AddCircleFilled(q, r, s.pal.vertex); break;
             case Engine::PointState::Pending:
                 if (!s.st.overlays.pendingPoints) continue;
                 s.dl->AddCircle(q, r + 1, s.pal.pending, 0, 1.5f);
@@ -509,7 +533,8 @@ void DrawSelection(const Scene& s) {
             s.dl->AddCircleFilled(a, 11, s.pal.selected);
             char buf[16];
             std::snprintf(buf, sizeof buf, "%d", sel.corner);
-            LabelBox(s.dl, fonts().mono, ImGui::GetFontSize() * 0.85f, a, IM_COL32(255, 255, 255, 255), 0, buf);
+            LabelBox(s.dl, fonts().mono, ImGui::GetFontSize() * 0.85f, a,
+                     IM_COL32(255, 255, 255, 255), 0, buf);
         }
     }
     for (std::int32_t c : {sel.hoveredRow, sel.hoveredCorner}) {
@@ -521,7 +546,8 @@ void DrawSelection(const Scene& s) {
         Arrow(s.dl, from, to, s.pal.arrow, w);
         char buf[8];
         std::snprintf(buf, sizeof buf, "%c", mv.op);
-        LabelBox(s.dl, fonts().ui, ImGui::GetFontSize(), ImVec2((from.x + to.x) / 2, (from.y + to.y) / 2 - 12),
+        LabelBox(s.dl, fonts().ui, ImGui::GetFontSize(),
+                 ImVec2((from.x + to.x) / 2, (from.y + to.y) / 2 - 12),
                  IM_COL32(255, 255, 255, 255), s.pal.arrow, buf);
     }
 }
@@ -533,14 +559,17 @@ void DrawGrid(const Scene& s, double step) {
     const Vec2 hi = s.view.toWorld({s.view.origin.x + s.view.size.x, s.view.origin.y});
     // Lines counted, not stepped: far from the origin x + step can round back to x.
     const double x0 = std::floor(lo.x / step) * step, y0 = std::floor(lo.y / step) * step;
-    const int nx = static_cast<int>(std::min(4096.0, (hi.x - x0) / step)), ny = static_cast<int>(std::min(4096.0, (hi.y - y0) / step));
+    const int nx = static_cast<int>(std::min(4096.0, (hi.x - x0) / step)),
+              ny = static_cast<int>(std::min(4096.0, (hi.y - y0) / step));
     for (int i = 0; i <= nx; ++i) {
         const float sx = static_cast<float>(s.view.toScreen({x0 + i * step, 0}).x);
-        s.dl->AddLine(ImVec2(sx, s.view.origin.y), ImVec2(sx, s.view.origin.y + s.view.size.y), s.pal.grid);
+        s.dl->AddLine(ImVec2(sx, s.view.origin.y), ImVec2(sx, s.view.origin.y + s.view.size.y),
+                      s.pal.grid);
     }
     for (int i = 0; i <= ny; ++i) {
         const float sy = static_cast<float>(s.view.toScreen({0, y0 + i * step}).y);
-        s.dl->AddLine(ImVec2(s.view.origin.x, sy), ImVec2(s.view.origin.x + s.view.size.x, sy), s.pal.grid);
+        s.dl->AddLine(ImVec2(s.view.origin.x, sy), ImVec2(s.view.origin.x + s.view.size.x, sy),
+                      s.pal.grid);
     }
 }
 
@@ -551,7 +580,8 @@ void DrawGrid(const Scene& s, double step) {
 // A clicked world position, rounded to the grid (snap) or to a precision that reads well at
 // this zoom (integers at the default zoom of the paper's box).
 Vec2 roundedClick(const AppState& st, Vec2 p) {
-    double step = st.snapToGrid ? st.gridStep : std::pow(10.0, std::floor(std::log10(2.0 / st.view.scale)));
+    double step =
+        st.snapToGrid ? st.gridStep : std::pow(10.0, std::floor(std::log10(2.0 / st.view.scale)));
     if (!(step > 0) || !std::isfinite(step)) return p;
     return {std::round(p.x / step) * step, std::round(p.y / step) * step};
 }
@@ -577,7 +607,8 @@ void HandleInput(AppState& st, CanvasCache& cache, bool hovered) {
     ImGuiIO& io = ImGui::GetIO();
     View& view = st.view;
     const ImVec2 mouse = io.MousePos;
-    if (hovered && io.MouseWheel != 0.0f) view.zoomAt({mouse.x, mouse.y}, std::pow(1.2, io.MouseWheel));
+    if (hovered && io.MouseWheel != 0.0f)
+        view.zoomAt({mouse.x, mouse.y}, std::pow(1.2, io.MouseWheel));
     // Middle drag pans from anywhere on the canvas.
     if (hovered && ImGui::IsMouseDragging(ImGuiMouseButton_Middle, 0.0f)) {
         view.center.x -= io.MouseDelta.x / view.scale;
@@ -611,12 +642,15 @@ void HandleInput(AppState& st, CanvasCache& cache, bool hovered) {
             st.editPoints(std::move(pts));
         } else if (!cache.moved) {
             if (cache.drag == CanvasCache::Drag::Pending) {
-                st.log(Message::Level::Info, "point " + std::to_string(cache.dragPoint) + " is queued: drag it to move it, right-click to remove it");
+                st.log(Message::Level::Info,
+                       "point " + std::to_string(cache.dragPoint) +
+                           " is queued: drag it to move it, right-click to remove it");
             } else if (!st.engine.batch()) {
                 pts.push_back(world);  // a click on empty canvas queues a new point
                 if (st.editPoints(std::move(pts))) {
                     char buf[96];
-                    std::snprintf(buf, sizeof buf, "added point %zu at (%g, %g)", st.engine.points().size() - 1, world.x, world.y);
+                    std::snprintf(buf, sizeof buf, "added point %zu at (%g, %g)",
+                                  st.engine.points().size() - 1, world.x, world.y);
                     st.log(Message::Level::Info, buf);
                 }
             }
@@ -629,7 +663,8 @@ void HandleInput(AppState& st, CanvasCache& cache, bool hovered) {
         if (i != kNone) {
             std::vector<Vec2> pts = st.engine.points();
             pts.erase(pts.begin() + i);
-            if (st.editPoints(std::move(pts))) st.log(Message::Level::Info, "removed queued point " + std::to_string(i));
+            if (st.editPoints(std::move(pts)))
+                st.log(Message::Level::Info, "removed queued point " + std::to_string(i));
         }
     }
 }
@@ -646,18 +681,29 @@ bool CanvasHasRoom(AppState& st, const ImDrawList* dl, unsigned vertices) {
 
 void ShowCanvasNotice(AppState& st) {
     if (!st.frameStats.canvasFull) return;
-    const char* text = "Too many shapes to draw at this zoom: some labels, circles or points are left out. Zoom in.";
+    const char* text =
+        "Too many shapes to draw at this zoom: some labels, circles or points are left out. Zoom "
+        "in.";
     ImDrawList* dl = ImGui::GetWindowDrawList();
-    const ImVec2 p(static_cast<float>(st.view.origin.x) + 8, static_cast<float>(st.view.origin.y) + 8);
+    const ImVec2 p(static_cast<float>(st.view.origin.x) + 8,
+                   static_cast<float>(st.view.origin.y) + 8);
     const ImVec2 ts = ImGui::CalcTextSize(text);
-    dl->AddRectFilled(ImVec2(p.x - 4, p.y - 2), ImVec2(p.x + ts.x + 4, p.y + ts.y + 2), IM_COL32(255, 244, 214, 235), 3);
+    dl->AddRectFilled(ImVec2(p.x - 4, p.y - 2), ImVec2(p.x + ts.x + 4, p.y + ts.y + 2),
+                      IM_COL32(255, 244, 214, 235), 3);
     dl->AddText(p, IM_COL32(120, 70, 0, 255), text);
 }
 
 bool CornerAnchor(const AppState& st, std::int32_t c, float& x, float& y) {
     const Engine& e = st.engine;
     // A read-only scene (no draw list: room() is never asked).
-    const Scene scene{const_cast<AppState&>(st), e, e.mesh(), e.inserter(), st.view, nullptr, palette(st.presentation), !e.inserter().done(),
+    const Scene scene{const_cast<AppState&>(st),
+                      e,
+                      e.mesh(),
+                      e.inserter(),
+                      st.view,
+                      nullptr,
+                      palette(st.presentation),
+                      !e.inserter().done(),
                       e.options().boundary == Boundary::Exact};
     ImVec2 a;
     if (!scene.anchor(c, a)) return false;
@@ -683,12 +729,15 @@ void ShowCanvas(AppState& st) {
     view.size = {size.x, size.y};
     if (st.fitPending) {
         const Bounds b = Bounds::of(st.engine.points());
-        if (st.engine.points().empty()) view.fit({0, 0}, {1600, 1600});
-        else view.fit(b.lo, b.hi);
+        if (st.engine.points().empty())
+            view.fit({0, 0}, {1600, 1600});
+        else
+            view.fit(b.lo, b.hi);
         st.fitPending = false;
     }
-    ImGui::InvisibleButton("##canvas", size, ImGuiButtonFlags_MouseButtonLeft | ImGuiButtonFlags_MouseButtonRight |
-                                                 ImGuiButtonFlags_MouseButtonMiddle);
+    ImGui::InvisibleButton("##canvas", size,
+                           ImGuiButtonFlags_MouseButtonLeft | ImGuiButtonFlags_MouseButtonRight |
+                               ImGuiButtonFlags_MouseButtonMiddle);
     const bool hovered = ImGui::IsItemHovered();
     RecordItem(st, "canvas");
     ImDrawList* dl = ImGui::GetWindowDrawList();
@@ -697,7 +746,14 @@ void ShowCanvas(AppState& st) {
 
     st.frameStats.canvasFull = false;
     const Engine& e = st.engine;
-    Scene scene{st, e, e.mesh(), e.inserter(), view, dl, palette(st.presentation), !e.inserter().done(),
+    Scene scene{st,
+                e,
+                e.mesh(),
+                e.inserter(),
+                view,
+                dl,
+                palette(st.presentation),
+                !e.inserter().done(),
                 e.options().boundary == Boundary::Exact};
     dl->AddRectFilled(p0, p1, scene.pal.background);
     if (st.snapToGrid) DrawGrid(scene, st.gridStep);
@@ -719,10 +775,11 @@ void ShowCanvas(AppState& st) {
     // At full speed on a mesh whose rebuild is costly, the mesh is rebuilt every other frame (it
     // shows one frame late): the frame stays interactive on software GL. A moved view always
     // rebuilds.
-    const bool sameView = view.center == cache.builtView.center && view.scale == cache.builtView.scale &&
-                          view.origin == cache.builtView.origin && view.size == cache.builtView.size;
-    const bool defer = st.run.running && st.run.opsPerSecond >= RunControl::kFullSpeed && cache.rebuiltLastFrame && sameView &&
-                       cache.renderer.lastBuildMs() > 5.0;
+    const bool sameView =
+        view.center == cache.builtView.center && view.scale == cache.builtView.scale &&
+        view.origin == cache.builtView.origin && view.size == cache.builtView.size;
+    const bool defer = st.run.running && st.run.opsPerSecond >= RunControl::kFullSpeed &&
+                       cache.rebuiltLastFrame && sameView && cache.renderer.lastBuildMs() > 5.0;
     const bool rebuilt = !defer && cache.renderer.update(e, view, ms);
     cache.rebuiltLastFrame = rebuilt;
     if (rebuilt) cache.builtView = view;
@@ -746,8 +803,11 @@ void ShowCanvas(AppState& st) {
     std::int32_t hoveredCorner = kNone;
     DrawLabels(scene, hoveredCorner, ImGui::GetIO().MousePos, hovered);
     st.selection.hoveredCorner = hoveredCorner;
-    const Vec2 dragTo = roundedClick(st, view.toWorld({ImGui::GetIO().MousePos.x, ImGui::GetIO().MousePos.y}));
-    DrawPoints(scene, cache.drag == CanvasCache::Drag::Pending && cache.moved ? cache.dragPoint : kNone, dragTo);
+    const Vec2 dragTo =
+        roundedClick(st, view.toWorld({ImGui::GetIO().MousePos.x, ImGui::GetIO().MousePos.y}));
+    DrawPoints(scene,
+               cache.drag == CanvasCache::Drag::Pending && cache.moved ? cache.dragPoint : kNone,
+               dragTo);
     DrawSelection(scene);
     dl->PopClipRect();
     HandleInput(st, cache, hovered);

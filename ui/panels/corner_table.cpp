@@ -22,8 +22,10 @@ constexpr ImU32 kSelectedRow = IM_COL32(255, 214, 170, 255);
 constexpr ImU32 kHoveredRow = IM_COL32(205, 225, 255, 255);
 
 void IdCell(std::int32_t v) {
-    if (v == kNone) ImGui::TextDisabled("-1");
-    else ImGui::Text("%d", v);
+    if (v == kNone)
+        ImGui::TextDisabled("-1");
+    else
+        ImGui::Text("%d", v);
 }
 
 }  // namespace
@@ -66,19 +68,22 @@ void ShowCornerTable(AppState& st) {
     }
     st.tableVersion = e.version();
 
-    const ImGuiTableFlags flags = ImGuiTableFlags_ScrollY | ImGuiTableFlags_RowBg | ImGuiTableFlags_BordersInnerV |
+    const ImGuiTableFlags flags = ImGuiTableFlags_ScrollY | ImGuiTableFlags_RowBg |
+                                  ImGuiTableFlags_BordersInnerV |
                                   ImGuiTableFlags_SizingStretchSame | ImGuiTableFlags_Resizable;
     ImGui::PushFont(fonts().mono);
     const bool tableOpen = ImGui::BeginTable("##corners", 8, flags);
     if (tableOpen) {
         ImGui::TableSetupScrollFreeze(0, 1);
-        for (const char* h : {"c", "t", "V[c]", "O[c]", "n", "p", "l", "r"}) ImGui::TableSetupColumn(h);
+        for (const char* h : {"c", "t", "V[c]", "O[c]", "n", "p", "l", "r"})
+            ImGui::TableSetupColumn(h);
         ImGui::TableHeadersRow();
         const float rowH = ImGui::GetTextLineHeightWithSpacing();
         if (st.selection.jumpToCorner != kNone) {
             const float y = rowH * static_cast<float>(st.selection.jumpToCorner);
             const float visible = ImGui::GetWindowHeight() - 2 * rowH;
-            if (y < ImGui::GetScrollY() || y > ImGui::GetScrollY() + visible) ImGui::SetScrollY(std::max(0.0f, y - visible / 2));
+            if (y < ImGui::GetScrollY() || y > ImGui::GetScrollY() + visible)
+                ImGui::SetScrollY(std::max(0.0f, y - visible / 2));
             st.selection.jumpToCorner = kNone;
         }
         std::int32_t hoveredRow = kNone;
@@ -98,24 +103,31 @@ void ShowCornerTable(AppState& st) {
                 ImGui::TableSetColumnIndex(0);
                 char label[24];
                 std::snprintf(label, sizeof label, "%d", c);
-                if (ImGui::Selectable(label, c == st.selection.corner, ImGuiSelectableFlags_SpanAllColumns)) {
+                if (ImGui::Selectable(label, c == st.selection.corner,
+                                      ImGuiSelectableFlags_SpanAllColumns)) {
                     st.select(c);
                 }
                 if (ImGui::IsItemHovered()) hoveredRow = c;
                 ImGui::TableSetColumnIndex(1);
                 ImGui::Text("%d", t);
                 const bool virtualVertex = !ins.done() && ins.isVirtual(m.V[c]);
-                auto changedCell = [&](int column, const std::unordered_map<std::int32_t, std::int32_t>& before, std::int32_t value) {
+                auto changedCell = [&](int column,
+                                       const std::unordered_map<std::int32_t, std::int32_t>& before,
+                                       std::int32_t value) {
                     ImGui::TableSetColumnIndex(column);
                     const auto it = before.find(c);
-                    if (it != before.end()) ImGui::TableSetBgColor(ImGuiTableBgTarget_CellBg, kChangedCell);
+                    if (it != before.end())
+                        ImGui::TableSetBgColor(ImGuiTableBgTarget_CellBg, kChangedCell);
                     if (column == 2 && virtualVertex) {
-                        ImGui::Text(e.options().boundary == Boundary::Exact ? "%d (ghost)" : "%d (super)", value);
+                        ImGui::Text(
+                            e.options().boundary == Boundary::Exact ? "%d (ghost)" : "%d (super)",
+                            value);
                     } else {
                         IdCell(value);
                     }
                     if (it != before.end() && ImGui::IsItemHovered()) {
-                        ImGui::SetTooltip("%s[%d] was %d, now %d", column == 2 ? "V" : "O", c, it->second, value);
+                        ImGui::SetTooltip("%s[%d] was %d, now %d", column == 2 ? "V" : "O", c,
+                                          it->second, value);
                     }
                 };
                 changedCell(2, beforeV, m.V[c]);
@@ -144,8 +156,8 @@ void ShowVertexTable(AppState& st) {
     const Mesh& m = e.mesh();
     const auto& states = e.pointStates();
     ImGui::TextDisabled("%d vertices in G (%zu input points)", m.numVertices(), e.points().size());
-    const ImGuiTableFlags flags = ImGuiTableFlags_ScrollY | ImGuiTableFlags_RowBg | ImGuiTableFlags_BordersInnerV |
-                                  ImGuiTableFlags_SizingStretchProp;
+    const ImGuiTableFlags flags = ImGuiTableFlags_ScrollY | ImGuiTableFlags_RowBg |
+                                  ImGuiTableFlags_BordersInnerV | ImGuiTableFlags_SizingStretchProp;
     ImGui::PushFont(fonts().mono);
     if (ImGui::BeginTable("##vertices", 4, flags)) {
         ImGui::TableSetupScrollFreeze(0, 1);
@@ -164,16 +176,21 @@ void ShowVertexTable(AppState& st) {
                 const bool virt = v >= static_cast<int>(states.size());
                 const bool ghost = virt && e.options().boundary == Boundary::Exact;
                 ImGui::TableSetColumnIndex(1);
-                if (ghost) ImGui::TextDisabled("-");
-                else ImGui::Text("%.17g", m.G[v].x);
+                if (ghost)
+                    ImGui::TextDisabled("-");
+                else
+                    ImGui::Text("%.17g", m.G[v].x);
                 ImGui::TableSetColumnIndex(2);
-                if (ghost) ImGui::TextDisabled("-");
-                else ImGui::Text("%.17g", m.G[v].y);
+                if (ghost)
+                    ImGui::TextDisabled("-");
+                else
+                    ImGui::Text("%.17g", m.G[v].y);
                 ImGui::TableSetColumnIndex(3);
                 if (virt) {
                     ImGui::TextDisabled(ghost ? "ghost (no coordinates)" : "super-triangle");
                 } else {
-                    static const char* const kNames[] = {"queued", "inserting", "vertex", "duplicate"};
+                    static const char* const kNames[] = {"queued", "inserting", "vertex",
+                                                         "duplicate"};
                     ImGui::TextUnformatted(kNames[static_cast<int>(states[v])]);
                 }
             }

@@ -53,15 +53,19 @@ ExprResult evaluateWithSelection(const CornerExpr& expr, const AppState& st) {
     if (expr.uses("c") && (c == kNone || c >= m.numCorners())) {
         ExprResult r;
         r.error.kind = ExprError::Kind::Range;
-        r.error.message = "c is the selected corner: select one first (click near a corner, or a row of the corner table)";
+        r.error.message =
+            "c is the selected corner: select one first (click near a corner, or a row of the "
+            "corner table)";
         return r;
     }
-    return expr.uses("c") ? expr.evaluateAt(m, c, contextOf(st.engine)) : expr.evaluate(m, {}, contextOf(st.engine));
+    return expr.uses("c") ? expr.evaluateAt(m, c, contextOf(st.engine))
+                          : expr.evaluate(m, {}, contextOf(st.engine));
 }
 
 // The corners whose V or O the ops between two positions changed, with the corners of their
 // triangles and across their edges (identities look one step around a corner).
-std::vector<std::int32_t> cornersChangedBetween(const Engine& e, std::size_t a, std::size_t b, bool& tooMany) {
+std::vector<std::int32_t> cornersChangedBetween(const Engine& e, std::size_t a, std::size_t b,
+                                                bool& tooMany) {
     tooMany = false;
     std::vector<std::int32_t> out;
     const Journal* j = e.journal();
@@ -88,13 +92,15 @@ std::vector<std::int32_t> cornersChangedBetween(const Engine& e, std::size_t a, 
             tooMany = true;
             return {};
         }
-        for (std::uint32_t k = 0; k < op.numChanges; ++k) add(j->changes()[op.firstChange + k].corner());
+        for (std::uint32_t k = 0; k < op.numChanges; ++k)
+            add(j->changes()[op.firstChange + k].corner());
     }
     return out;
 }
 
 // One watch at the current state. `corners` null: every corner.
-WatchReport checkOne(const WatchEntry& w, const Engine& e, const std::vector<std::int32_t>* corners) {
+WatchReport checkOne(const WatchEntry& w, const Engine& e,
+                     const std::vector<std::int32_t>* corners) {
     const Mesh& m = e.mesh();
     const ExprContext ctx = contextOf(e);
     if (!w.expr->uses("c")) {
@@ -102,9 +108,11 @@ WatchReport checkOne(const WatchEntry& w, const Engine& e, const std::vector<std
         WatchReport rep;
         const ExprResult r = w.expr->evaluate(m, {}, ctx);
         if (!r.ok()) {
-            const bool notYet = r.error.kind == ExprError::Kind::Range || r.error.kind == ExprError::Kind::Boundary;
+            const bool notYet =
+                r.error.kind == ExprError::Kind::Range || r.error.kind == ExprError::Kind::Boundary;
             rep.ok = notYet;
-            rep.message = (notYet ? "does not apply yet: " : "cannot be evaluated: ") + r.error.message;
+            rep.message =
+                (notYet ? "does not apply yet: " : "cannot be evaluated: ") + r.error.message;
         } else {
             rep.ok = r.value->kind != ValueKind::Truth || r.value->truth;
             rep.checked = 1;
@@ -141,7 +149,8 @@ int checkAll(AppState& st, const std::vector<std::int32_t>* corners, WatchReport
 std::string opName(const Engine& e) {
     const Op* op = e.current();
     if (!op) return "before the first operation";
-    return "op " + std::to_string(e.position() - 1) + " (" + toString(op->type) + ": " + describe(*op, e.inserter()) + ")";
+    return "op " + std::to_string(e.position() - 1) + " (" + toString(op->type) + ": " +
+           describe(*op, e.inserter()) + ")";
 }
 
 void reportFailure(AppState& st, const WatchEntry& w, const WatchReport& rep, bool runMoved) {
@@ -154,7 +163,8 @@ void reportFailure(AppState& st, const WatchEntry& w, const WatchReport& rep, bo
     }
     if ((runMoved || st.run.running) && st.expressions.pauseOnFailure) {
         st.run.running = false;
-        st.run.stopReason = "watch " + w.text + " fails" + (rep.corner != kNone ? " at c = " + std::to_string(rep.corner) : "");
+        st.run.stopReason = "watch " + w.text + " fails" +
+                            (rep.corner != kNone ? " at c = " + std::to_string(rep.corner) : "");
         st.run.stopPosition = st.engine.position();
     }
 }
@@ -175,7 +185,6 @@ void refreshLive(AppState& st) {
     ex.result = r.value;
 }
 
-
 // A curved arrow from a to b; returns the middle of the curve (where its label goes).
 ImVec2 PathArrow(ImDrawList* dl, ImVec2 a, ImVec2 b, ImU32 col, float w) {
     const float dx = b.x - a.x, dy = b.y - a.y, len = std::sqrt(dx * dx + dy * dy);
@@ -186,12 +195,15 @@ ImVec2 PathArrow(ImDrawList* dl, ImVec2 a, ImVec2 b, ImU32 col, float w) {
     const ImVec2 mid((a.x + end.x) / 2 - uy * len * 0.12f, (a.y + end.y) / 2 + ux * len * 0.12f);
     dl->AddBezierQuadratic(a, mid, end, col, w, 16);
     const float s = 8 + w * 2;
-    const float hx = end.x - mid.x, hy = end.y - mid.y, hl = std::max(1e-3f, std::sqrt(hx * hx + hy * hy));
+    const float hx = end.x - mid.x, hy = end.y - mid.y,
+                hl = std::max(1e-3f, std::sqrt(hx * hx + hy * hy));
     const float vx = hx / hl, vy = hy / hl;
-    dl->AddTriangleFilled(end, ImVec2(end.x - vx * s - vy * s * 0.5f, end.y - vy * s + vx * s * 0.5f),
-                          ImVec2(end.x - vx * s + vy * s * 0.5f, end.y - vy * s - vx * s * 0.5f), col);
+    dl->AddTriangleFilled(
+        end, ImVec2(end.x - vx * s - vy * s * 0.5f, end.y - vy * s + vx * s * 0.5f),
+        ImVec2(end.x - vx * s + vy * s * 0.5f, end.y - vy * s - vx * s * 0.5f), col);
     // The quadratic curve at t = 1/2.
-    return ImVec2(0.25f * a.x + 0.5f * mid.x + 0.25f * end.x, 0.25f * a.y + 0.5f * mid.y + 0.25f * end.y);
+    return ImVec2(0.25f * a.x + 0.5f * mid.x + 0.25f * end.x,
+                  0.25f * a.y + 0.5f * mid.y + 0.25f * end.y);
 }
 
 }  // namespace
@@ -210,7 +222,8 @@ bool EvaluateExpression(AppState& st, const std::string& text) {
         const ExprResult r = evaluateWithSelection(*expr, st);
         if (r.ok()) {
             line.answer = "= " + formatValue(*r.value) + "  (" + toString(r.value->kind) +
-                          (expr->uses("c") ? ", c = " + std::to_string(st.selection.corner) : "") + ")";
+                          (expr->uses("c") ? ", c = " + std::to_string(st.selection.corner) : "") +
+                          ")";
             ok = true;
         } else {
             line.answer = r.error.message;
@@ -237,7 +250,9 @@ bool AddWatch(AppState& st, const std::string& text) {
         return false;
     }
     if (!expr->isComparison()) {
-        st.log(Message::Level::Error, "watch \"" + text + "\" is not a comparison: write it as A == B or A != B, e.g. o(o(c)) == c");
+        st.log(Message::Level::Error,
+               "watch \"" + text +
+                   "\" is not a comparison: write it as A == B or A != B, e.g. o(o(c)) == c");
         return false;
     }
     for (const WatchEntry& w : st.expressions.watches) {
@@ -260,11 +275,13 @@ void CheckWatches(AppState& st) {
     const bool firstCheck = ex.watchedVersion == ~std::uint64_t{0};
     ex.watchedVersion = e.version();
     ex.watchedPosition = to;
-    const bool any = std::any_of(ex.watches.begin(), ex.watches.end(), [](const WatchEntry& w) { return w.enabled && w.expr; });
+    const bool any = std::any_of(ex.watches.begin(), ex.watches.end(),
+                                 [](const WatchEntry& w) { return w.enabled && w.expr; });
     if (!any) return;
 
     const bool small = e.mesh().numCorners() <= kWatchAllCorners;
-    const bool anyFailing = std::any_of(ex.watches.begin(), ex.watches.end(), [](const WatchEntry& w) { return w.enabled && w.failing; });
+    const bool anyFailing = std::any_of(ex.watches.begin(), ex.watches.end(),
+                                        [](const WatchEntry& w) { return w.enabled && w.failing; });
     std::vector<std::int32_t> changed;
     bool tooMany = firstCheck;
     if (!small && !firstCheck) changed = cornersChangedBetween(e, from, to, tooMany);
@@ -291,7 +308,8 @@ void CheckWatches(AppState& st) {
             const std::size_t before = e.position();
             if (!e.forward()) break;
             bool many = false;
-            const std::vector<std::int32_t> local = cornersChangedBetween(e, before, e.position(), many);
+            const std::vector<std::int32_t> local =
+                cornersChangedBetween(e, before, e.position(), many);
             failed = checkAll(st, many ? nullptr : &local, &rep);
         }
         if (failed < 0) {
@@ -327,7 +345,8 @@ void DrawExpressionOverlay(AppState& st) {
         return true;
     };
     auto vertexOk = [&](std::int32_t v) {
-        return v >= 0 && v < m.numVertices() && !(st.engine.inserter().isVirtual(v) && !st.engine.inserter().done());
+        return v >= 0 && v < m.numVertices() &&
+               !(st.engine.inserter().isVirtual(v) && !st.engine.inserter().done());
     };
     ImFont* font = fonts().ui;
     const float fs = ImGui::GetFontSize();
@@ -361,8 +380,10 @@ void DrawExpressionOverlay(AppState& st) {
                 if (s.to == kNone) {
                     // The boundary: a cross where the path ran out.
                     if (anchor(s.from, a)) {
-                        dl->AddLine(ImVec2(a.x - 8, a.y - 8), ImVec2(a.x + 8, a.y + 8), kPathColour, w);
-                        dl->AddLine(ImVec2(a.x - 8, a.y + 8), ImVec2(a.x + 8, a.y - 8), kPathColour, w);
+                        dl->AddLine(ImVec2(a.x - 8, a.y - 8), ImVec2(a.x + 8, a.y + 8), kPathColour,
+                                    w);
+                        dl->AddLine(ImVec2(a.x - 8, a.y + 8), ImVec2(a.x + 8, a.y - 8), kPathColour,
+                                    w);
                     }
                 } else if (anchor(s.from, a) && anchor(s.to, b)) {
                     const ImVec2 at = PathArrow(dl, a, b, kPathColour, w);
@@ -370,9 +391,11 @@ void DrawExpressionOverlay(AppState& st) {
                     char label[24];
                     std::snprintf(label, sizeof label, "%d.%c", stepNo, s.op);
                     const ImVec2 ts = font->CalcTextSizeA(fs, 1e9f, 0, label);
-                    const ImVec2 l0(at.x - ts.x / 2 - 3, at.y - ts.y / 2), l1(at.x + ts.x / 2 + 3, at.y + ts.y / 2);
+                    const ImVec2 l0(at.x - ts.x / 2 - 3, at.y - ts.y / 2),
+                        l1(at.x + ts.x / 2 + 3, at.y + ts.y / 2);
                     dl->AddRectFilled(l0, l1, kPathColour, 3);
-                    dl->AddText(font, fs, ImVec2(l0.x + 3, l0.y), IM_COL32(255, 255, 255, 255), label);
+                    dl->AddText(font, fs, ImVec2(l0.x + 3, l0.y), IM_COL32(255, 255, 255, 255),
+                                label);
                     st.itemRects["expr-path-" + std::to_string(stepNo)] = {l0.x, l0.y, l1.x, l1.y};
                 }
                 break;
@@ -380,7 +403,8 @@ void DrawExpressionOverlay(AppState& st) {
     }
     if (ex.result && ex.result->kind == ValueKind::Corner) {
         ImVec2 a;
-        if (anchor(static_cast<std::int32_t>(ex.result->i), a)) dl->AddCircle(a, 15, kResultColour, 0, w);
+        if (anchor(static_cast<std::int32_t>(ex.result->i), a))
+            dl->AddCircle(a, 15, kResultColour, 0, w);
     }
     dl->PopClipRect();
 }
@@ -399,16 +423,18 @@ void ShowExpressions(AppState& st) {
     ImGui::SameLine();
     ImGui::TextDisabled("(?)");
     if (ImGui::IsItemHovered()) {
-        ImGui::SetTooltip("Operators n p o l r s u t v, as calls r(o(n(7))) or chains c.n.o.r\n"
-                          "Tables: V[c] (vertex), O[c] (opposite), G[v] (coordinates)\n"
-                          "Comparisons: V[n(o(c))] == V[p(c)], t(o(c)) != t(c)\n"
-                          "The path is drawn on the canvas and follows every step.");
+        ImGui::SetTooltip(
+            "Operators n p o l r s u t v, as calls r(o(n(7))) or chains c.n.o.r\n"
+            "Tables: V[c] (vertex), O[c] (opposite), G[v] (coordinates)\n"
+            "Comparisons: V[n(o(c))] == V[p(c)], t(o(c)) != t(c)\n"
+            "The path is drawn on the canvas and follows every step.");
     }
 
     // ---- The console ------------------------------------------------------------------------
     ImGui::PushFont(fonts().mono);
     ImGui::SetNextItemWidth(-70);
-    const bool enter = ImGui::InputTextWithHint("##expr", "r(o(n(7)))  or  c.n.o.r", &ex.input, ImGuiInputTextFlags_EnterReturnsTrue);
+    const bool enter = ImGui::InputTextWithHint("##expr", "r(o(n(7)))  or  c.n.o.r", &ex.input,
+                                                ImGuiInputTextFlags_EnterReturnsTrue);
     RecordItem(st, "expr-input");
     ImGui::PopFont();
     ImGui::SameLine();
@@ -422,7 +448,8 @@ void ShowExpressions(AppState& st) {
     // Below the input line everything scrolls (the side column may be short); the history has
     // its own scrolling box that keeps the newest line in view.
     ImGui::BeginChild("##exprbody", ImVec2(0, 0), false);
-    const float logH = std::max(ImGui::GetTextLineHeightWithSpacing() * 5, ImGui::GetContentRegionAvail().y * 0.45f);
+    const float logH = std::max(ImGui::GetTextLineHeightWithSpacing() * 5,
+                                ImGui::GetContentRegionAvail().y * 0.45f);
     ImGui::BeginChild("##exprlog", ImVec2(0, logH), true);
     ImGui::PushFont(fonts().mono);
     for (const ExprLine& line : ex.history) {
@@ -433,7 +460,9 @@ void ShowExpressions(AppState& st) {
             ImGui::TextColored(ImVec4(0.05f, 0.45f, 0.15f, 1), "  %s", line.answer.c_str());
         } else {
             // A caret under the culprit, as a compiler does.
-            ImGui::TextColored(ImVec4(0.8f, 0.1f, 0.1f, 1), "  %s^", std::string(std::min<std::size_t>(line.errorColumn, 200), ' ').c_str());
+            ImGui::TextColored(
+                ImVec4(0.8f, 0.1f, 0.1f, 1), "  %s^",
+                std::string(std::min<std::size_t>(line.errorColumn, 200), ' ').c_str());
             ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(0.8f, 0.1f, 0.1f, 1));
             ImGui::TextWrapped("  %s", line.answer.c_str());
             ImGui::PopStyleColor();
@@ -448,7 +477,8 @@ void ShowExpressions(AppState& st) {
         ImGui::TextUnformatted(ex.live.c_str());
         if (ex.result) {
             ImGui::SameLine();
-            ImGui::TextColored(ImVec4(0.84f, 0.0f, 0.47f, 1), "= %s", formatValue(*ex.result).c_str());
+            ImGui::TextColored(ImVec4(0.84f, 0.0f, 0.47f, 1), "= %s",
+                               formatValue(*ex.result).c_str());
         }
         if (!ex.path.empty()) ImGui::TextDisabled("path: %s", pathText(ex.path).c_str());
         if (ex.result && ex.result->kind == ValueKind::Corner && ex.result->i >= 0) {
@@ -479,8 +509,11 @@ void ShowExpressions(AppState& st) {
         ImGui::PushID(static_cast<int>(i));
         if (ImGui::Checkbox("##on", &w.enabled)) ex.watchedVersion = ~std::uint64_t{0};
         ImGui::SameLine();
-        const ImVec4 col = !w.enabled ? ImVec4(0.5f, 0.5f, 0.5f, 1) : w.failing ? ImVec4(0.8f, 0.1f, 0.1f, 1) : ImVec4(0.05f, 0.45f, 0.15f, 1);
-        ImGui::TextColored(col, "%s %s", w.enabled ? (w.failing ? "FAIL" : "ok  ") : "off ", w.text.c_str());
+        const ImVec4 col = !w.enabled  ? ImVec4(0.5f, 0.5f, 0.5f, 1)
+                           : w.failing ? ImVec4(0.8f, 0.1f, 0.1f, 1)
+                                       : ImVec4(0.05f, 0.45f, 0.15f, 1);
+        ImGui::TextColored(col, "%s %s", w.enabled ? (w.failing ? "FAIL" : "ok  ") : "off ",
+                           w.text.c_str());
         if (ImGui::IsItemHovered() && !w.status.empty()) ImGui::SetTooltip("%s", w.status.c_str());
         ImGui::SameLine();
         if (ImGui::SmallButton("x")) remove = static_cast<int>(i);
@@ -494,7 +527,8 @@ void ShowExpressions(AppState& st) {
     ImGui::PopFont();
     if (remove >= 0) ex.watches.erase(ex.watches.begin() + remove);
     ImGui::SetNextItemWidth(-150);
-    const bool addEnter = ImGui::InputTextWithHint("##watch", "V[n(o(c))] == V[p(c)]", &ex.watchInput, ImGuiInputTextFlags_EnterReturnsTrue);
+    const bool addEnter = ImGui::InputTextWithHint(
+        "##watch", "V[n(o(c))] == V[p(c)]", &ex.watchInput, ImGuiInputTextFlags_EnterReturnsTrue);
     RecordItem(st, "watch-input");
     ImGui::SameLine();
     if ((ImGui::Button("Add") || addEnter) && !ex.watchInput.empty()) {
@@ -504,7 +538,8 @@ void ShowExpressions(AppState& st) {
     if (ImGui::Button("Standard")) {
         for (const char* s : standardWatches()) AddWatch(st, s);
     }
-    if (ImGui::IsItemHovered()) ImGui::SetTooltip("Add the identities every corner table satisfies");
+    if (ImGui::IsItemHovered())
+        ImGui::SetTooltip("Add the identities every corner table satisfies");
     ImGui::EndChild();
 }
 

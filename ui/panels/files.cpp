@@ -26,10 +26,22 @@ struct DialogInfo {
 
 const std::vector<DialogInfo>& dialogs() {
     static const std::vector<DialogInfo> kDialogs = {
-        {FileState::Dialog::OpenFile, "Open a point file or a session", "", {".node", ".csv", ".xy", ".txt", ".pts", ".json"}, "Open"},
-        {FileState::Dialog::SavePoints, "Save the points", "points.node", {".node", ".csv"}, "Save"},
+        {FileState::Dialog::OpenFile,
+         "Open a point file or a session",
+         "",
+         {".node", ".csv", ".xy", ".txt", ".pts", ".json"},
+         "Open"},
+        {FileState::Dialog::SavePoints,
+         "Save the points",
+         "points.node",
+         {".node", ".csv"},
+         "Save"},
         {FileState::Dialog::SaveSession, "Save the session", "session.json", {".json"}, "Save"},
-        {FileState::Dialog::ExportMesh, "Export the mesh", "mesh.ele", {".ele", ".off", ".obj"}, "Export"},
+        {FileState::Dialog::ExportMesh,
+         "Export the mesh",
+         "mesh.ele",
+         {".ele", ".off", ".obj"},
+         "Export"},
         {FileState::Dialog::ExportSvg, "Export an SVG of the view", "view.svg", {".svg"}, "Export"},
         {FileState::Dialog::ExportGif, "Animated GIF of steps", "steps.gif", {".gif"}, "Render"},
     };
@@ -39,7 +51,8 @@ const std::vector<DialogInfo>& dialogs() {
 bool hasExtension(const fs::path& p, const std::vector<const char*>& exts) {
     std::string e = p.extension().string();
     for (char& c : e) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-    return std::find_if(exts.begin(), exts.end(), [&](const char* x) { return e == x; }) != exts.end();
+    return std::find_if(exts.begin(), exts.end(), [&](const char* x) { return e == x; }) !=
+           exts.end();
 }
 
 // A path field over a folder listing (files with the dialog's extensions, and subfolders).
@@ -57,12 +70,14 @@ void PathField(AppState& st, const DialogInfo& d) {
     if (ImGui::Selectable("..")) path = (folder.parent_path() / name).string();
     std::vector<fs::directory_entry> entries;
     for (const auto& entry : fs::directory_iterator(folder, ec)) entries.push_back(entry);
-    std::sort(entries.begin(), entries.end(), [](const auto& a, const auto& b) { return a.path() < b.path(); });
+    std::sort(entries.begin(), entries.end(),
+              [](const auto& a, const auto& b) { return a.path() < b.path(); });
     for (const auto& entry : entries) {
         const std::string n = entry.path().filename().string();
         if (entry.is_directory(ec)) {
             if (ImGui::Selectable((n + "/").c_str())) path = (entry.path() / name).string();
-        } else if (hasExtension(entry.path(), d.extensions) && ImGui::Selectable(n.c_str(), n == name)) {
+        } else if (hasExtension(entry.path(), d.extensions) &&
+                   ImGui::Selectable(n.c_str(), n == name)) {
             path = entry.path().string();
         }
     }
@@ -79,12 +94,15 @@ void DialogFields(AppState& st, const DialogInfo& d) {
         ImGui::SameLine();
         ImGui::RadioButton("OBJ", &f.meshFormat, 2);
         if (!st.engine.inserter().done()) {
-            ImGui::TextDisabled("The run is not finished: the mesh at this step is exported, without its virtual triangles.");
+            ImGui::TextDisabled(
+                "The run is not finished: the mesh at this step is exported, without its virtual "
+                "triangles.");
         }
     } else if (d.kind == FileState::Dialog::ExportGif) {
         GifRequest& g = f.gifDraft;
         const int last = static_cast<int>(st.engine.recorded());
-        int from = static_cast<int>(g.from), to = static_cast<int>(g.to), every = static_cast<int>(g.every);
+        int from = static_cast<int>(g.from), to = static_cast<int>(g.to),
+            every = static_cast<int>(g.every);
         ImGui::SetNextItemWidth(140);
         ImGui::InputInt("from operation", &from);
         ImGui::SameLine();
@@ -100,7 +118,8 @@ void DialogFields(AppState& st, const DialogInfo& d) {
         g.to = static_cast<std::size_t>(std::clamp(to, 0, std::max(last, 0)));
         g.every = static_cast<std::size_t>(std::max(1, every));
         g.delayMs = std::clamp(g.delayMs, 10, 10000);
-        ImGui::TextDisabled("%zu frames; the GUI plays them while it records", g.to >= g.from ? (g.to - g.from) / g.every + 1 : 0);
+        ImGui::TextDisabled("%zu frames; the GUI plays them while it records",
+                            g.to >= g.from ? (g.to - g.from) / g.every + 1 : 0);
     }
 }
 
@@ -113,7 +132,8 @@ bool RunDialog(AppState& st, const DialogInfo& d) {
         case FileState::Dialog::SavePoints: return SavePoints(st, path);
         case FileState::Dialog::SaveSession: return SaveSessionFile(st, path);
         case FileState::Dialog::ExportSvg: return ExportViewSvg(st, path);
-        case FileState::Dialog::ExportMesh: return ExportMesh(st, path, static_cast<MeshFormat>(f.meshFormat));
+        case FileState::Dialog::ExportMesh:
+            return ExportMesh(st, path, static_cast<MeshFormat>(f.meshFormat));
         case FileState::Dialog::ExportGif:
             f.gifDraft.path = path;
             f.gif = f.gifDraft;  // rendered by ServiceCaptures after this frame
@@ -127,12 +147,16 @@ void ShowNotice(AppState& st) {
     FileState& f = st.files;
     if (f.notice.empty()) return;
     const View& v = st.view;
-    ImGui::SetNextWindowPos(ImVec2(static_cast<float>(v.origin.x + 12), static_cast<float>(v.origin.y + 12)));
-    ImGui::SetNextWindowSizeConstraints(ImVec2(200, 0), ImVec2(static_cast<float>(std::max(240.0, v.size.x - 24)), 400));
+    ImGui::SetNextWindowPos(
+        ImVec2(static_cast<float>(v.origin.x + 12), static_cast<float>(v.origin.y + 12)));
+    ImGui::SetNextWindowSizeConstraints(
+        ImVec2(200, 0), ImVec2(static_cast<float>(std::max(240.0, v.size.x - 24)), 400));
     ImGui::PushStyleColor(ImGuiCol_WindowBg, ImVec4(0.75f, 0.08f, 0.10f, 1.0f));
     ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1, 1, 1, 1));
     ImGui::PushStyleColor(ImGuiCol_Button, ImVec4(1, 1, 1, 0.25f));
-    const ImGuiWindowFlags flags = ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoSavedSettings |
+    const ImGuiWindowFlags flags = ImGuiWindowFlags_NoDecoration |
+                                   ImGuiWindowFlags_AlwaysAutoResize |
+                                   ImGuiWindowFlags_NoSavedSettings |
                                    ImGuiWindowFlags_NoFocusOnAppearing | ImGuiWindowFlags_NoNav;
     if (ImGui::Begin("##file-notice", nullptr, flags)) {
         ImGui::PushTextWrapPos(static_cast<float>(std::max(240.0, v.size.x - 60)));
@@ -153,7 +177,8 @@ void ShowRecoveryOffer(AppState& st) {
     if (f.recoveryPath.empty()) return;
     if (!ImGui::IsPopupOpen(kTitle)) ImGui::OpenPopup(kTitle);
     if (!ImGui::BeginPopupModal(kTitle, nullptr, ImGuiWindowFlags_AlwaysAutoResize)) return;
-    ImGui::Text("The last session did not end cleanly. Its autosave holds %zu points", f.recoveryPoints);
+    ImGui::Text("The last session did not end cleanly. Its autosave holds %zu points",
+                f.recoveryPoints);
     if (!f.recoverySource.empty()) ImGui::Text("(from %s).", f.recoverySource.c_str());
     ImGui::TextDisabled("%s", f.recoveryPath.c_str());
     if (ImGui::Button("Recover them")) {
@@ -181,10 +206,12 @@ void ShowFileDialogs(AppState& st) {
             std::error_code ec;
             const fs::path current(f.dialogPath);
             if (f.dialogPath.empty() || (*d.defaultName && !hasExtension(current, d.extensions))) {
-                const fs::path folder = current.has_parent_path() ? current.parent_path() : fs::current_path(ec);
+                const fs::path folder =
+                    current.has_parent_path() ? current.parent_path() : fs::current_path(ec);
                 f.dialogPath = (folder / d.defaultName).string();
             }
-            if (d.kind == FileState::Dialog::ExportGif && f.gifDraft.to == 0) f.gifDraft.to = st.engine.recorded();
+            if (d.kind == FileState::Dialog::ExportGif && f.gifDraft.to == 0)
+                f.gifDraft.to = st.engine.recorded();
             ImGui::OpenPopup(d.title);
         }
         f.dialog = FileState::Dialog::None;

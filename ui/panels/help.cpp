@@ -7,9 +7,13 @@ namespace dlab::ui {
 
 void ShowHelp(AppState& st) {
     const ImGuiViewport* vp = ImGui::GetMainViewport();
-    ImGui::SetNextWindowPos(ImVec2(vp->WorkPos.x + vp->WorkSize.x / 2, vp->WorkPos.y + vp->WorkSize.y / 2), ImGuiCond_Always, ImVec2(0.5f, 0.5f));
+    ImGui::SetNextWindowPos(
+        ImVec2(vp->WorkPos.x + vp->WorkSize.x / 2, vp->WorkPos.y + vp->WorkSize.y / 2),
+        ImGuiCond_Always, ImVec2(0.5f, 0.5f));
     ImGui::SetNextWindowBgAlpha(0.97f);
-    if (!ImGui::Begin("Help (F1)", &st.showHelp, ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoCollapse | ImGuiWindowFlags_NoSavedSettings)) {
+    if (!ImGui::Begin("Help (F1)", &st.showHelp,
+                      ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoCollapse |
+                          ImGuiWindowFlags_NoSavedSettings)) {
         ImGui::End();
         return;
     }
@@ -44,9 +48,14 @@ void ShowHelp(AppState& st) {
         ImGui::EndTable();
     }
     ImGui::Separator();
-    ImGui::TextUnformatted("Corners: triangle t owns corners 3t, 3t+1, 3t+2, counter-clockwise (y up).");
-    ImGui::TextUnformatted("c.n, c.p: next and previous corner of the same triangle.   c.o = O[c]: across the edge facing c.");
-    ImGui::TextUnformatted("c.l = o(n(c)) (left neighbour),  c.r = o(p(c)) (right neighbour),  c.s = n(l(c)),  c.u = p(r(c)).");
+    ImGui::TextUnformatted(
+        "Corners: triangle t owns corners 3t, 3t+1, 3t+2, counter-clockwise (y up).");
+    ImGui::TextUnformatted(
+        "c.n, c.p: next and previous corner of the same triangle.   c.o = O[c]: across the edge "
+        "facing c.");
+    ImGui::TextUnformatted(
+        "c.l = o(n(c)) (left neighbour),  c.r = o(p(c)) (right neighbour),  c.s = n(l(c)),  c.u = "
+        "p(r(c)).");
     ImGui::End();
 }
 

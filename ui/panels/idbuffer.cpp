@@ -5,8 +5,8 @@
 // walk. The buffer is read through ReadIdBuffer() only, so that another buffer (the GL one) plugs
 // in beside the CPU one.
 #include "core/engine/predicates.h"
-#include "ui/gui.h"
 #include "ui/gl/idbuffer_gl.h"
+#include "ui/gui.h"
 #include "ui/panels/panels.h"
 
 #include <GL/gl.h>
@@ -50,12 +50,15 @@ bool realTriangle(const Engine& e, std::int32_t t) {
 }
 
 void rebuildTexture(IdBufferView& v, const IdBufferFrame& f, bool trueColours) {
-    const double scale = std::min(1.0, static_cast<double>(kMaxTexture) / std::max(f.width, f.height));
+    const double scale =
+        std::min(1.0, static_cast<double>(kMaxTexture) / std::max(f.width, f.height));
     v.texW = std::max(1, static_cast<int>(f.width * scale));
     v.texH = std::max(1, static_cast<int>(f.height * scale));
     v.rgba.resize(static_cast<std::size_t>(v.texW) * v.texH * 4);
     for (int y = 0; y < v.texH; ++y) {
-        const int j = f.height - 1 - static_cast<int>(static_cast<long long>(y) * f.height / v.texH);  // texture row 0 = top
+        const int j =
+            f.height - 1 -
+            static_cast<int>(static_cast<long long>(y) * f.height / v.texH);  // texture row 0 = top
         for (int x = 0; x < v.texW; ++x) {
             const int i = static_cast<int>(static_cast<long long>(x) * f.width / v.texW);
             const std::int32_t id = f.ids[static_cast<std::size_t>(j) * f.width + i];
@@ -76,7 +79,8 @@ void rebuildTexture(IdBufferView& v, const IdBufferFrame& f, bool trueColours) {
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
     glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
     glPixelStorei(GL_UNPACK_ROW_LENGTH, 0);
-    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA, v.texW, v.texH, 0, GL_RGBA, GL_UNSIGNED_BYTE, v.rgba.data());
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA, v.texW, v.texH, 0, GL_RGBA, GL_UNSIGNED_BYTE,
+                 v.rgba.data());
     v.bufW = f.width;
     v.bufH = f.height;
 }
@@ -101,7 +105,9 @@ LocateSummary lastLocate(const Engine& e) {
     s.vertex = located.vertex;
     s.end = located.a;
     std::size_t first = k - 1;
-    while (first > 0 && ops[first - 1].type == OpType::LocateStep && ops[first - 1].vertex == located.vertex) --first;
+    while (first > 0 && ops[first - 1].type == OpType::LocateStep &&
+           ops[first - 1].vertex == located.vertex)
+        --first;
     s.steps = static_cast<std::int32_t>(k - 1 - first);
     s.start = ops[first].a;
     return s;
@@ -119,8 +125,11 @@ std::uint32_t IdFalseColour(std::int32_t id) {
     // Golden-ratio hues: neighbouring ids get far-apart colours.
     const double h = std::fmod(static_cast<double>(id) * 0.6180339887498949, 1.0);
     float r, g, b;
-    ImGui::ColorConvertHSVtoRGB(static_cast<float>(h), 0.55f + 0.25f * static_cast<float>((id * 7) % 3) / 2.0f, 0.95f, r, g, b);
-    return IM_COL32(static_cast<int>(r * 255 + 0.5f), static_cast<int>(g * 255 + 0.5f), static_cast<int>(b * 255 + 0.5f), 255);
+    ImGui::ColorConvertHSVtoRGB(static_cast<float>(h),
+                                0.55f + 0.25f * static_cast<float>((id * 7) % 3) / 2.0f, 0.95f, r,
+                                g, b);
+    return IM_COL32(static_cast<int>(r * 255 + 0.5f), static_cast<int>(g * 255 + 0.5f),
+                    static_cast<int>(b * 255 + 0.5f), 255);
 }
 
 bool ReadIdBuffer(const Engine& e, IdBufferFrame& out, IdBufferCopy& copy) {
@@ -128,12 +137,14 @@ bool ReadIdBuffer(const Engine& e, IdBufferFrame& out, IdBufferCopy& copy) {
         if (!gl->ready()) return false;
         // Reading back paints what is pending first (and bumps its version): read when the run
         // moved or the buffer changed since the copy.
-        if (copy.engineVersion != e.version() || copy.bufferVersion != gl->version() || copy.ids.empty()) {
+        if (copy.engineVersion != e.version() || copy.bufferVersion != gl->version() ||
+            copy.ids.empty()) {
             copy.ids = gl->readAll();
             copy.engineVersion = e.version();
             copy.bufferVersion = gl->version();
         }
-        out.kind = e.options().locator == LocatorKind::IdBufferGlBatched ? "idbuffer-gl-batched" : "idbuffer-gl";
+        out.kind = e.options().locator == LocatorKind::IdBufferGlBatched ? "idbuffer-gl-batched"
+                                                                         : "idbuffer-gl";
         out.width = gl->width();
         out.height = gl->height();
         out.ids = std::span<const std::int32_t>(copy.ids);
@@ -165,13 +176,17 @@ void IdBufferBody(AppState& st) {
     IdBufferView& v = *vs.cache;
     IdBufferFrame f;
     if (!ReadIdBuffer(e, f, v.copy)) {
-        ImGui::TextWrapped("The run's locator is \"%s\": it keeps no ID buffer.", toString(e.options().locator));
-        ImGui::TextWrapped("The ID-buffer locator paints every triangle in a colour that encodes its id, and reads the "
-                           "pixel under each new point to find where to start the walk (the paper's section 4).");
+        ImGui::TextWrapped("The run's locator is \"%s\": it keeps no ID buffer.",
+                           toString(e.options().locator));
+        ImGui::TextWrapped(
+            "The ID-buffer locator paints every triangle in a colour that encodes its id, and "
+            "reads the "
+            "pixel under each new point to find where to start the walk (the paper's section 4).");
         if (e.options().locator == LocatorKind::IdBufferCpu || needsGl(e.options().locator)) {
             ImGui::TextDisabled("The buffer is made at the first triangle: take a step.");
         } else {
-            auto offer = [&](const char* label, LocatorKind kind, const char* item, const char* tip) {
+            auto offer = [&](const char* label, LocatorKind kind, const char* item,
+                             const char* tip) {
                 if (ImGui::Button(label)) {
                     InsertOptions o = e.options();
                     o.locator = kind;
@@ -180,17 +195,21 @@ void IdBufferBody(AppState& st) {
                 RecordItem(st, item);
                 if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", tip);
             };
-            offer("Use idbuffer-cpu", LocatorKind::IdBufferCpu, "idbuffer-use", "A software rasterizer of triangle ids: the paper's idea without GL");
+            offer("Use idbuffer-cpu", LocatorKind::IdBufferCpu, "idbuffer-use",
+                  "A software rasterizer of triangle ids: the paper's idea without GL");
             if (e.hasGl()) {
                 ImGui::SameLine();
                 offer("Use idbuffer-gl", LocatorKind::IdBufferGl, "idbuffer-use-gl",
-                      "The paper's GL colour-ID buffer: an offscreen framebuffer, one pixel read back per insertion");
+                      "The paper's GL colour-ID buffer: an offscreen framebuffer, one pixel read "
+                      "back per insertion");
             }
         }
-        ImGui::TextDisabled("or choose it under Locate in the toolbar (the run restarts with the same points)");
+        ImGui::TextDisabled(
+            "or choose it under Locate in the toolbar (the run restarts with the same points)");
         return;
     }
-    if (v.version != e.version() || v.trueColours != vs.trueColours || v.bufW != f.width || v.bufH != f.height) {
+    if (v.version != e.version() || v.trueColours != vs.trueColours || v.bufW != f.width ||
+        v.bufH != f.height) {
         rebuildTexture(v, f, vs.trueColours);
         v.version = e.version();
         v.trueColours = vs.trueColours;
@@ -200,44 +219,57 @@ void IdBufferBody(AppState& st) {
     if (ImGui::RadioButton("false colour", !vs.trueColours)) vs.trueColours = false;
     ImGui::SameLine();
     if (ImGui::RadioButton("encoded colours", vs.trueColours)) vs.trueColours = true;
-    if (ImGui::IsItemHovered()) ImGui::SetTooltip("What the buffer really holds: id = (r << 16) | (g << 8) | b (+ a << 24).\nSmall ids look black; white means no triangle.");
+    if (ImGui::IsItemHovered())
+        ImGui::SetTooltip(
+            "What the buffer really holds: id = (r << 16) | (g << 8) | b (+ a << 24).\nSmall ids "
+            "look black; white means no triangle.");
 
     // The last locate: did the buffer's hint already contain the point?
     const LocateSummary loc = lastLocate(e);
     if (loc.found) {
-        ImGui::PushStyleColor(ImGuiCol_Text, loc.steps == 0 ? ImVec4(0.05f, 0.45f, 0.15f, 1) : ImVec4(0.7f, 0.4f, 0.0f, 1));
+        ImGui::PushStyleColor(ImGuiCol_Text, loc.steps == 0 ? ImVec4(0.05f, 0.45f, 0.15f, 1)
+                                                            : ImVec4(0.7f, 0.4f, 0.0f, 1));
         if (loc.steps == 0) {
-            ImGui::TextWrapped("Last locate (v%d): HIT - the hinted triangle t%d contains it", loc.vertex, loc.end);
+            ImGui::TextWrapped("Last locate (v%d): HIT - the hinted triangle t%d contains it",
+                               loc.vertex, loc.end);
         } else {
-            ImGui::TextWrapped("Last locate (v%d): missed - walked %d step%s from t%d to t%d", loc.vertex, loc.steps,
-                               loc.steps == 1 ? "" : "s", loc.start, loc.end);
+            ImGui::TextWrapped("Last locate (v%d): missed - walked %d step%s from t%d to t%d",
+                               loc.vertex, loc.steps, loc.steps == 1 ? "" : "s", loc.start,
+                               loc.end);
         }
         ImGui::PopStyleColor();
     } else {
         ImGui::TextDisabled("No locate yet.");
     }
     if (const RunCounts& rc = UpdateRunCounts(st); rc.locates > 0) {
-        ImGui::TextDisabled("locates so far: %lld of %lld hits, %lld walk steps in all", static_cast<long long>(rc.hits),
-                            static_cast<long long>(rc.locates), static_cast<long long>(rc.walkSteps));
+        ImGui::TextDisabled("locates so far: %lld of %lld hits, %lld walk steps in all",
+                            static_cast<long long>(rc.hits), static_cast<long long>(rc.locates),
+                            static_cast<long long>(rc.walkSteps));
     }
 
     // ---- The image, and beside it the pixel under the mouse -----------------------------------
-    constexpr int kR = 5;         // the magnifier shows (2 kR + 1)^2 buffer pixels
+    constexpr int kR = 5;  // the magnifier shows (2 kR + 1)^2 buffer pixels
     const ImVec2 avail = ImGui::GetContentRegionAvail();
-    const float cell = std::clamp(std::floor(ImGui::GetFontSize() * 0.6f), 6.0f, std::floor(avail.x * 0.3f / (2 * kR + 1)));
-    const float sideW = std::max((2 * kR + 1) * cell + 16, ImGui::CalcTextSize("RGBA 00 00 00 00").x + 8);
+    const float cell = std::clamp(std::floor(ImGui::GetFontSize() * 0.6f), 6.0f,
+                                  std::floor(avail.x * 0.3f / (2 * kR + 1)));
+    const float sideW =
+        std::max((2 * kR + 1) * cell + 16, ImGui::CalcTextSize("RGBA 00 00 00 00").x + 8);
     // As tall as the panel allows, but never so small it cannot be read (the panel scrolls then).
     const float widthLeft = avail.x - sideW - ImGui::GetStyle().ItemSpacing.x;
-    const float side = std::max({80.0f, std::min(widthLeft, avail.y - ImGui::GetFrameHeightWithSpacing()), 0.6f * widthLeft});
+    const float side =
+        std::max({80.0f, std::min(widthLeft, avail.y - ImGui::GetFrameHeightWithSpacing()),
+                  0.6f * widthLeft});
     const float fit = side / static_cast<float>(std::max(v.texW, v.texH));
     const ImVec2 size(std::floor(v.texW * fit), std::floor(v.texH * fit));
-    const float sx = size.x / static_cast<float>(v.texW), sy = size.y / static_cast<float>(v.texH);  // screen px per texel
+    const float sx = size.x / static_cast<float>(v.texW),
+                sy = size.y / static_cast<float>(v.texH);  // screen px per texel
     const ImVec2 p0 = ImGui::GetCursorScreenPos();
     ImGui::Image(reinterpret_cast<ImTextureID>(static_cast<std::intptr_t>(v.texture)), size);
     RecordItem(st, "idbuffer-image");
     const bool hovered = ImGui::IsItemHovered();
     ImDrawList* dl = ImGui::GetWindowDrawList();
-    dl->AddRect(ImVec2(p0.x - 1, p0.y - 1), ImVec2(p0.x + size.x + 1, p0.y + size.y + 1), IM_COL32(120, 120, 130, 255));
+    dl->AddRect(ImVec2(p0.x - 1, p0.y - 1), ImVec2(p0.x + size.x + 1, p0.y + size.y + 1),
+                IM_COL32(120, 120, 130, 255));
     // Where the point being inserted falls in the buffer (the pixel the locator reads).
     const std::int32_t cv = e.currentVertex();
     if (cv != kNone && cv < e.mesh().numVertices() && f.width > 1 && f.height > 1) {
@@ -246,8 +278,10 @@ void IdBufferBody(AppState& st) {
         // Pixel centres span [0.5, W - 0.5] of the image's W pixel widths.
         const double fx = ((q.x - lo.x) / (hi.x - lo.x) * (f.width - 1) + 0.5) / f.width;
         const double fy = ((q.y - lo.y) / (hi.y - lo.y) * (f.height - 1) + 0.5) / f.height;
-        if (std::isfinite(fx) && std::isfinite(fy) && fx >= -0.01 && fx <= 1.01 && fy >= -0.01 && fy <= 1.01) {
-            const ImVec2 m(p0.x + static_cast<float>(fx) * size.x, p0.y + (1 - static_cast<float>(fy)) * size.y);
+        if (std::isfinite(fx) && std::isfinite(fy) && fx >= -0.01 && fx <= 1.01 && fy >= -0.01 &&
+            fy <= 1.01) {
+            const ImVec2 m(p0.x + static_cast<float>(fx) * size.x,
+                           p0.y + (1 - static_cast<float>(fy)) * size.y);
             dl->AddCircle(m, 7, IM_COL32(0, 0, 0, 255), 0, 2.5f);
             dl->AddCircle(m, 9, IM_COL32(255, 255, 255, 255), 0, 1.5f);
         }
@@ -256,7 +290,8 @@ void IdBufferBody(AppState& st) {
     ImGui::BeginGroup();
     if (!hovered) {
         ImGui::PushTextWrapPos(ImGui::GetCursorPosX() + sideW);
-        ImGui::TextDisabled("Hover the image: the pixel under the mouse is decoded and checked exactly.");
+        ImGui::TextDisabled(
+            "Hover the image: the pixel under the mouse is decoded and checked exactly.");
         ImGui::PopTextWrapPos();
         ImGui::EndGroup();
         return;
@@ -265,12 +300,16 @@ void IdBufferBody(AppState& st) {
     // The texel under the mouse (the centre of the screen pixel, as GL samples it) and the
     // buffer pixel it shows.
     const ImVec2 mouse = ImGui::GetIO().MousePos;
-    const int tx = std::clamp(static_cast<int>(std::floor((mouse.x + 0.5f - p0.x) / sx)), 0, v.texW - 1);
-    const int ty = std::clamp(static_cast<int>(std::floor((mouse.y + 0.5f - p0.y) / sy)), 0, v.texH - 1);
+    const int tx =
+        std::clamp(static_cast<int>(std::floor((mouse.x + 0.5f - p0.x) / sx)), 0, v.texW - 1);
+    const int ty =
+        std::clamp(static_cast<int>(std::floor((mouse.y + 0.5f - p0.y) / sy)), 0, v.texH - 1);
     // Mark the texel on the image (the mouse pointer is not in screenshots or on every projector).
     const ImVec2 t0(p0.x + static_cast<float>(tx) * sx, p0.y + static_cast<float>(ty) * sy);
-    dl->AddRect(ImVec2(t0.x - 4, t0.y - 4), ImVec2(t0.x + sx + 4, t0.y + sy + 4), IM_COL32(0, 0, 0, 255), 0, 0, 2);
-    dl->AddRect(ImVec2(t0.x - 6, t0.y - 6), ImVec2(t0.x + sx + 6, t0.y + sy + 6), IM_COL32(255, 255, 255, 255), 0, 0, 2);
+    dl->AddRect(ImVec2(t0.x - 4, t0.y - 4), ImVec2(t0.x + sx + 4, t0.y + sy + 4),
+                IM_COL32(0, 0, 0, 255), 0, 0, 2);
+    dl->AddRect(ImVec2(t0.x - 6, t0.y - 6), ImVec2(t0.x + sx + 6, t0.y + sy + 6),
+                IM_COL32(255, 255, 255, 255), 0, 0, 2);
     IdBufferViewState::Hover& h = vs.hover;
     h.valid = true;
     h.i = static_cast<int>(static_cast<long long>(tx) * f.width / v.texW);
@@ -319,17 +358,25 @@ void IdBufferBody(AppState& st) {
     ImGui::Dummy(ImVec2((2 * kR + 1) * cell, (2 * kR + 1) * cell));
     ImGui::PushFont(fonts().mono);
     ImGui::Text("pixel %d, %d", h.i, h.j);
-    if (h.id == kNone) ImGui::TextUnformatted("id: none");
-    else ImGui::Text("id: t%d", h.id);
+    if (h.id == kNone)
+        ImGui::TextUnformatted("id: none");
+    else
+        ImGui::Text("id: t%d", h.id);
     HexColour("", h.id);
     ImGui::PopFont();
     ImGui::PushTextWrapPos(ImGui::GetCursorPosX() + sideW);
     if (h.agrees) {
-        ImGui::TextColored(ImVec4(0.05f, 0.45f, 0.15f, 1), "%s", h.id == kNone ? "exact: outside every triangle - agrees" : "exact: contains the centre - agrees");
+        ImGui::TextColored(ImVec4(0.05f, 0.45f, 0.15f, 1), "%s",
+                           h.id == kNone ? "exact: outside every triangle - agrees"
+                                         : "exact: contains the centre - agrees");
     } else if (h.exactTriangle != kNone) {
-        ImGui::TextColored(ImVec4(0.8f, 0.1f, 0.1f, 1), "exact: the centre is in t%d - a stale or rounded hint (the walk fixes it)", h.exactTriangle);
+        ImGui::TextColored(
+            ImVec4(0.8f, 0.1f, 0.1f, 1),
+            "exact: the centre is in t%d - a stale or rounded hint (the walk fixes it)",
+            h.exactTriangle);
     } else {
-        ImGui::TextColored(ImVec4(0.8f, 0.1f, 0.1f, 1), "exact: in no triangle - a stale hint (the walk fixes it)");
+        ImGui::TextColored(ImVec4(0.8f, 0.1f, 0.1f, 1),
+                           "exact: in no triangle - a stale hint (the walk fixes it)");
     }
     ImGui::PopTextWrapPos();
     ImGui::EndGroup();

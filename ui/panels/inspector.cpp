@@ -24,8 +24,10 @@ void ShowInspector(AppState& st) {
     ImGui::SameLine();
     ImGui::TextDisabled("(click a corner on the canvas or a table row; keys N P O L R S U move)");
     if (c == kNone || c >= m.numCorners()) {
-        ImGui::TextWrapped("No corner selected. A corner is a triangle seen from one of its vertices: triangle t owns "
-                           "corners 3t, 3t+1 and 3t+2, counter-clockwise.");
+        ImGui::TextWrapped(
+            "No corner selected. A corner is a triangle seen from one of its vertices: triangle t "
+            "owns "
+            "corners 3t, 3t+1 and 3t+2, counter-clockwise.");
         return;
     }
     // Operator buttons.
@@ -64,11 +66,15 @@ void ShowInspector(AppState& st) {
         {"c.o", id(o), "O[" + std::to_string(c) + "]"},
         {"c.l", id(l), "o(n(c)) = O[" + std::to_string(n) + "]"},
         {"c.r", id(r), "o(p(c)) = O[" + std::to_string(p) + "]"},
-        {"c.s", id(s), l == kNone ? "n(l(c)): l(c) is the boundary" : "n(l(c)) = n(" + std::to_string(l) + ")"},
-        {"c.u", id(u), r == kNone ? "p(r(c)): r(c) is the boundary" : "p(r(c)) = p(" + std::to_string(r) + ")"},
+        {"c.s", id(s),
+         l == kNone ? "n(l(c)): l(c) is the boundary" : "n(l(c)) = n(" + std::to_string(l) + ")"},
+        {"c.u", id(u),
+         r == kNone ? "p(r(c)): r(c) is the boundary" : "p(r(c)) = p(" + std::to_string(r) + ")"},
     };
     ImGui::PushFont(fonts().mono);
-    if (ImGui::BeginTable("##inspector", 3, ImGuiTableFlags_RowBg | ImGuiTableFlags_BordersInnerV | ImGuiTableFlags_SizingStretchProp)) {
+    if (ImGui::BeginTable("##inspector", 3,
+                          ImGuiTableFlags_RowBg | ImGuiTableFlags_BordersInnerV |
+                              ImGuiTableFlags_SizingStretchProp)) {
         ImGui::TableSetupColumn("", ImGuiTableColumnFlags_WidthStretch, 0.5f);
         ImGui::TableSetupColumn("", ImGuiTableColumnFlags_WidthStretch, 1.0f);
         ImGui::TableSetupColumn("", ImGuiTableColumnFlags_WidthStretch, 2.5f);
@@ -87,8 +93,10 @@ void ShowInspector(AppState& st) {
     const Vec2 g = m.G[m.V[c]];
     const bool ghost = !st.engine.inserter().done() && st.engine.inserter().isVirtual(m.V[c]) &&
                        st.engine.options().boundary == Boundary::Exact;
-    if (ghost) ImGui::TextDisabled("vertex %d is the ghost vertex: it has no coordinates", m.V[c]);
-    else ImGui::TextDisabled("G[%d] = (%.17g, %.17g)", m.V[c], g.x, g.y);
+    if (ghost)
+        ImGui::TextDisabled("vertex %d is the ghost vertex: it has no coordinates", m.V[c]);
+    else
+        ImGui::TextDisabled("G[%d] = (%.17g, %.17g)", m.V[c], g.x, g.y);
     if (const CornerMove& mv = st.selection.lastMove; mv.op) {
         ImGui::Text("last move: %d.%c = %d", mv.from, mv.op, mv.to);
     }

@@ -33,10 +33,13 @@ void WrappedSpan(const TextSpan& span, float right) {
         }
         const ImVec2 size = ImGui::CalcTextSize(word.c_str());
         const float x = ImGui::GetCursorScreenPos().x;
-        if (x + size.x > right && x > ImGui::GetWindowPos().x + ImGui::GetStyle().WindowPadding.x + 40) ImGui::NewLine();
+        if (x + size.x > right &&
+            x > ImGui::GetWindowPos().x + ImGui::GetStyle().WindowPadding.x + 40)
+            ImGui::NewLine();
         if (span.style == TextSpan::Style::Code) {
             const ImVec2 p = ImGui::GetCursorScreenPos();
-            ImGui::GetWindowDrawList()->AddRectFilled(ImVec2(p.x - 2, p.y), ImVec2(p.x + size.x + 2, p.y + size.y),
+            ImGui::GetWindowDrawList()->AddRectFilled(ImVec2(p.x - 2, p.y),
+                                                      ImVec2(p.x + size.x + 2, p.y + size.y),
                                                       IM_COL32(232, 234, 240, 255), 3);
         }
         ImGui::TextUnformatted(word.c_str());
@@ -80,9 +83,11 @@ void ShowLesson(AppState& st) {
     const std::size_t n = lesson.stops.size();
     if (n == 0) {
         ImGui::TextWrapped("%s", lesson.summary.c_str());
-        ImGui::TextDisabled(lesson.assignment ? "An assignment: the points are loaded. Step through them, or compare your own "
-                                                "run with `dtlab diff-trace`."
-                                              : "This lesson has no stops.");
+        ImGui::TextDisabled(
+            lesson.assignment
+                ? "An assignment: the points are loaded. Step through them, or compare your own "
+                  "run with `dtlab diff-trace`."
+                : "This lesson has no stops.");
         if (ImGui::Button("Close lesson")) closeLesson(st);
         return;
     }
@@ -97,11 +102,15 @@ void ShowLesson(AppState& st) {
     ImGui::SameLine();
     if (lessonStateChanged(st)) {
         if (ImGui::SmallButton("Back to the lesson")) goToStop(st, k);
-        if (ImGui::IsItemHovered()) ImGui::SetTooltip("You changed the points or the options: this brings the lesson's back (Ctrl+Z, yours)");
+        if (ImGui::IsItemHovered())
+            ImGui::SetTooltip(
+                "You changed the points or the options: this brings the lesson's back (Ctrl+Z, "
+                "yours)");
         ImGui::SameLine();
     } else if (st.engine.position() != L.plan.stops[k].position) {
         if (ImGui::SmallButton("Back to the stop")) goToStop(st, k);
-        if (ImGui::IsItemHovered()) ImGui::SetTooltip("You stepped away from this stop's operation");
+        if (ImGui::IsItemHovered())
+            ImGui::SetTooltip("You stepped away from this stop's operation");
         ImGui::SameLine();
     }
     if (ImGui::SmallButton("Close")) {
@@ -115,12 +124,13 @@ void ShowLesson(AppState& st) {
         const float w = ImGui::GetContentRegionAvail().x / static_cast<float>(n);
         for (std::size_t i = 0; i < n; ++i) {
             const std::uint8_t a = i < L.progress.answers.size() ? L.progress.answers[i] : 0;
-            const ImU32 col = i == k ? IM_COL32(240, 120, 0, 255)
-                              : a == 2 ? IM_COL32(60, 170, 80, 255)
-                              : a == 1 ? IM_COL32(235, 170, 60, 255)
+            const ImU32 col = i == k                     ? IM_COL32(240, 120, 0, 255)
+                              : a == 2                   ? IM_COL32(60, 170, 80, 255)
+                              : a == 1                   ? IM_COL32(235, 170, 60, 255)
                               : i <= L.progress.furthest ? IM_COL32(170, 175, 190, 255)
                                                          : IM_COL32(220, 222, 228, 255);
-            dl->AddRectFilled(ImVec2(p.x + i * w + 1, p.y), ImVec2(p.x + (i + 1) * w - 1, p.y + 6), col, 2);
+            dl->AddRectFilled(ImVec2(p.x + i * w + 1, p.y), ImVec2(p.x + (i + 1) * w - 1, p.y + 6),
+                              col, 2);
         }
         ImGui::Dummy(ImVec2(0, 10));
     }
@@ -134,7 +144,8 @@ void ShowLesson(AppState& st) {
         ImGui::TextWrapped("%s", stop.question.c_str());
         ImGui::PopFont();
         ImGui::SetNextItemWidth(std::min(260.0f, ImGui::GetContentRegionAvail().x * 0.6f));
-        const bool enter = ImGui::InputText("##answer", &L.typed, ImGuiInputTextFlags_EnterReturnsTrue);
+        const bool enter =
+            ImGui::InputText("##answer", &L.typed, ImGuiInputTextFlags_EnterReturnsTrue);
         RecordItem(st, "lesson-answer");
         ImGui::SameLine();
         if (ImGui::Button("Check") || enter) checkAnswer(st);
@@ -144,12 +155,16 @@ void ShowLesson(AppState& st) {
             if (ImGui::SmallButton("Hint")) L.showHint = !L.showHint;
         }
         if (L.feedback == LessonState::Feedback::Right) {
-            ImGui::TextColored(ImVec4(0.1f, 0.55f, 0.2f, 1), "Right: %s", L.plan.stops[k].answer->display().c_str());
+            ImGui::TextColored(ImVec4(0.1f, 0.55f, 0.2f, 1), "Right: %s",
+                               L.plan.stops[k].answer->display().c_str());
         } else if (L.feedback == LessonState::Feedback::Wrong) {
-            ImGui::TextColored(ImVec4(0.8f, 0.2f, 0.1f, 1), "Not quite. Look again at the canvas and the tables, and try again.");
+            ImGui::TextColored(
+                ImVec4(0.8f, 0.2f, 0.1f, 1),
+                "Not quite. Look again at the canvas and the tables, and try again.");
             if (ImGui::SmallButton("Show the answer")) L.feedback = LessonState::Feedback::Shown;
         }
-        if (L.feedback == LessonState::Feedback::Shown) ImGui::Text("The answer: %s", L.plan.stops[k].answer->display().c_str());
+        if (L.feedback == LessonState::Feedback::Shown)
+            ImGui::Text("The answer: %s", L.plan.stops[k].answer->display().c_str());
         if (L.showHint) ImGui::TextWrapped("Hint: %s", stop.hint.c_str());
     }
     ImGui::EndChild();

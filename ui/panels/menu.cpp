@@ -3,8 +3,8 @@
 #include "core/engine/generators.h"
 #include "core/engine/io_read.h"
 #include "core/teaching/lesson.h"
-#include "ui/lesson_player.h"
 #include "ui/files/files.h"
+#include "ui/lesson_player.h"
 #include "ui/panels/panels.h"
 
 #include <imgui.h>
@@ -56,21 +56,32 @@ void ShowMenuBar(AppState& st) {
     DialogState& dialog = st.dialogs;
     if (!ImGui::BeginMenuBar()) return;
     if (ImGui::BeginMenu("File")) {
-        if (ImGui::MenuItem("Open points or a session...", "Ctrl+O")) st.files.dialog = FileState::Dialog::OpenFile;
+        if (ImGui::MenuItem("Open points or a session...", "Ctrl+O"))
+            st.files.dialog = FileState::Dialog::OpenFile;
         if (ImGui::MenuItem("Built-in demo")) {
             st.loadPoints(demoPoints(), "built-in demo");
         }
         ImGui::Separator();
-        if (ImGui::MenuItem("Save points as .node / .csv...")) st.files.dialog = FileState::Dialog::SavePoints;
-        if (ImGui::MenuItem("Save session...", "Ctrl+S")) st.files.dialog = FileState::Dialog::SaveSession;
-        if (ImGui::IsItemHovered()) ImGui::SetTooltip("Points, options, the step, view, selection and overlays in one JSON file:\nattach it to a bug report, or share a class");
-        if (ImGui::MenuItem("Export mesh (.ele/.neigh, OFF, OBJ)...")) st.files.dialog = FileState::Dialog::ExportMesh;
-        if (ImGui::MenuItem("Export SVG of the view...")) st.files.dialog = FileState::Dialog::ExportSvg;
+        if (ImGui::MenuItem("Save points as .node / .csv..."))
+            st.files.dialog = FileState::Dialog::SavePoints;
+        if (ImGui::MenuItem("Save session...", "Ctrl+S"))
+            st.files.dialog = FileState::Dialog::SaveSession;
+        if (ImGui::IsItemHovered())
+            ImGui::SetTooltip(
+                "Points, options, the step, view, selection and overlays in one JSON file:\nattach "
+                "it to a bug report, or share a class");
+        if (ImGui::MenuItem("Export mesh (.ele/.neigh, OFF, OBJ)..."))
+            st.files.dialog = FileState::Dialog::ExportMesh;
+        if (ImGui::MenuItem("Export SVG of the view..."))
+            st.files.dialog = FileState::Dialog::ExportSvg;
         if (ImGui::MenuItem("Screenshot (PNG)", "F12")) st.files.screenshotRequested = true;
-        if (ImGui::MenuItem("Animated GIF of steps...")) st.files.dialog = FileState::Dialog::ExportGif;
+        if (ImGui::MenuItem("Animated GIF of steps..."))
+            st.files.dialog = FileState::Dialog::ExportGif;
         ImGui::Separator();
-        if (ImGui::MenuItem("Undo point edit", "Ctrl+Z", false, !st.undoPoints.empty())) st.undoEdit();
-        if (ImGui::MenuItem("Redo point edit", "Ctrl+Y", false, !st.redoPoints.empty())) st.redoEdit();
+        if (ImGui::MenuItem("Undo point edit", "Ctrl+Z", false, !st.undoPoints.empty()))
+            st.undoEdit();
+        if (ImGui::MenuItem("Redo point edit", "Ctrl+Y", false, !st.redoPoints.empty()))
+            st.redoEdit();
         ImGui::Separator();
         if (ImGui::MenuItem("Quit", "Ctrl+Q")) st.quitRequested = true;
         ImGui::EndMenu();
@@ -114,8 +125,10 @@ void ShowMenuBar(AppState& st) {
             counts[i] = std::clamp(counts[i], 1, 5000000);
             ImGui::SameLine();
             if (ImGui::MenuItem(g.label)) {
-                st.loadPoints(generatePoints(g.kind, static_cast<std::size_t>(counts[i]), static_cast<std::uint64_t>(std::max(0, seed))),
-                              std::string(toString(g.kind)) + " (" + std::to_string(counts[i]) + " points, seed " + std::to_string(seed) + ")");
+                st.loadPoints(generatePoints(g.kind, static_cast<std::size_t>(counts[i]),
+                                             static_cast<std::uint64_t>(std::max(0, seed))),
+                              std::string(toString(g.kind)) + " (" + std::to_string(counts[i]) +
+                                  " points, seed " + std::to_string(seed) + ")");
             }
             ImGui::PopID();
         }
@@ -143,7 +156,8 @@ void ShowMenuBar(AppState& st) {
         }
         if (list.empty()) ImGui::TextDisabled("no lessons in %s", DLAB_LESSONS_DIR);
         ImGui::Separator();
-        if (ImGui::MenuItem("Close the lesson", nullptr, false, st.lessonPlayer.lesson != nullptr)) closeLesson(st);
+        if (ImGui::MenuItem("Close the lesson", nullptr, false, st.lessonPlayer.lesson != nullptr))
+            closeLesson(st);
         ImGui::EndMenu();
     }
     if (ImGui::BeginMenu("Help")) {

@@ -15,7 +15,11 @@ void ShowMessages(AppState& st) {
                            : m.level == Message::Level::Warning ? ImVec4(0.7f, 0.4f, 0.0f, 1)
                                                                 : ImVec4(0.2f, 0.2f, 0.25f, 1);
         ImGui::PushStyleColor(ImGuiCol_Text, col);
-        ImGui::TextWrapped("%s%s", m.level == Message::Level::Error ? "error: " : m.level == Message::Level::Warning ? "warning: " : "", m.text.c_str());
+        ImGui::TextWrapped("%s%s",
+                           m.level == Message::Level::Error     ? "error: "
+                           : m.level == Message::Level::Warning ? "warning: "
+                                                                : "",
+                           m.text.c_str());
         ImGui::PopStyleColor();
     }
     if (ImGui::GetScrollY() >= ImGui::GetScrollMaxY() - 4) ImGui::SetScrollHereY(1.0f);

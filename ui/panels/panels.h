@@ -17,19 +17,21 @@
 namespace dlab::ui {
 
 // A screen position (View::toScreen) as ImGui's vector.
-inline ImVec2 toIm(glm::dvec2 v) { return ImVec2(static_cast<float>(v.x), static_cast<float>(v.y)); }
+inline ImVec2 toIm(glm::dvec2 v) {
+    return ImVec2(static_cast<float>(v.x), static_cast<float>(v.y));
+}
 
-void ShowMenuBar(AppState& state);       // menu.cpp: File, View, Run, Generate, Help
-void ShowToolbar(AppState& state);       // toolbar.cpp: stepping, run/pause, speed, modes
-void ShowCaption(AppState& state);       // toolbar.cpp: "[17/245] edge 4-9 is Delaunay"
-void ShowTimeline(AppState& state);      // toolbar.cpp: scrubber over all operations
-void ShowCanvas(AppState& state);        // canvas.cpp: the mesh and every overlay
-void ShowCornerTable(AppState& state);   // corner_table.cpp: c, t, V, O, n, p, l, r
-void ShowVertexTable(AppState& state);   // corner_table.cpp: G (vertex coordinates)
-void ShowInspector(AppState& state);     // inspector.cpp: the selected corner's operators
-void ShowMessages(AppState& state);      // messages.cpp: every warning and error
-void ShowHelp(AppState& state);          // help.cpp: F1 overlay with all shortcuts
-void ShowLesson(AppState& state);        // lesson.cpp: the lesson's text and questions
+void ShowMenuBar(AppState& state);      // menu.cpp: File, View, Run, Generate, Help
+void ShowToolbar(AppState& state);      // toolbar.cpp: stepping, run/pause, speed, modes
+void ShowCaption(AppState& state);      // toolbar.cpp: "[17/245] edge 4-9 is Delaunay"
+void ShowTimeline(AppState& state);     // toolbar.cpp: scrubber over all operations
+void ShowCanvas(AppState& state);       // canvas.cpp: the mesh and every overlay
+void ShowCornerTable(AppState& state);  // corner_table.cpp: c, t, V, O, n, p, l, r
+void ShowVertexTable(AppState& state);  // corner_table.cpp: G (vertex coordinates)
+void ShowInspector(AppState& state);    // inspector.cpp: the selected corner's operators
+void ShowMessages(AppState& state);     // messages.cpp: every warning and error
+void ShowHelp(AppState& state);         // help.cpp: F1 overlay with all shortcuts
+void ShowLesson(AppState& state);       // lesson.cpp: the lesson's text and questions
 
 // Loads a point file into the run; on bad input logs one line (file:line: what) and changes
 // nothing (menu.cpp).
@@ -56,10 +58,10 @@ void HandleShortcuts(AppState& state);
 void AdvanceRun(AppState& state, double dtSeconds);
 
 // ---- Issue 5: debugging panels (side tabs), files and sessions --------------------------------
-void ShowExpressions(AppState& state);   // expressions.cpp: console, path on the canvas, watches
-void ShowPredicates(AppState& state);    // predicates.cpp: the current test's determinant and signs
-void ShowIdBuffer(AppState& state);      // idbuffer.cpp: the colour-ID buffer, pixel under the mouse
-void ShowStatistics(AppState& state);    // statistics.cpp: counts, flips plot, frame times, checks
+void ShowExpressions(AppState& state);  // expressions.cpp: console, path on the canvas, watches
+void ShowPredicates(AppState& state);   // predicates.cpp: the current test's determinant and signs
+void ShowIdBuffer(AppState& state);     // idbuffer.cpp: the colour-ID buffer, pixel under the mouse
+void ShowStatistics(AppState& state);   // statistics.cpp: counts, flips plot, frame times, checks
 void ShowTraceCompare(AppState& state);  // trace_compare.cpp: a student's trace beside our run
 
 // A student's trace (.jsonl) compared with this run (same points and options): opens at the
@@ -70,7 +72,7 @@ void CloseStudentTrace(AppState& state);
 bool StudentTraceSelectTab(AppState& state);
 // The student's triangles that are not ours, over the canvas.
 void DrawTraceCompareOverlay(AppState& state);
-void ShowFileDialogs(AppState& state);   // files.cpp: save/export/GIF dialogs, recovery, notices
+void ShowFileDialogs(AppState& state);  // files.cpp: save/export/GIF dialogs, recovery, notices
 
 // Per-frame work of those panels whichever tab is open: watches (pausing a run that breaks
 // one), validate(), frame times, autosave (debug_hooks.cpp; ShowApplication calls it).
@@ -90,8 +92,8 @@ void DrawExpressionOverlay(AppState& state);
 
 // Predicate inspector (predicates.cpp): the predicate calls the current operation made.
 struct PredicateCall {
-    bool inCircle = false;       // incircle(a, b, c, d); else orient2d(a, b, c)
-    std::string what;            // one line: what is being asked
+    bool inCircle = false;  // incircle(a, b, c, d); else orient2d(a, b, c)
+    std::string what;       // one line: what is being asked
     std::array<Vec2, 4> p{};
     std::array<std::int32_t, 4> v{kNone, kNone, kNone, kNone};  // their vertex ids (kNone: typed)
     PredicateReport report;
@@ -105,8 +107,8 @@ bool ParsePointText(std::string_view text, Vec2& out);
 struct IdBufferFrame {
     const char* kind = "";
     int width = 0, height = 0;
-    std::span<const std::int32_t> ids;      // width * height, row 0 = lowest y
-    std::function<Vec2(int, int)> centre;   // world position of the centre of pixel (i, j)
+    std::span<const std::int32_t> ids;     // width * height, row 0 = lowest y
+    std::function<Vec2(int, int)> centre;  // world position of the centre of pixel (i, j)
 };
 // A copy of a buffer that lives on the GPU, read back only when it may have changed.
 struct IdBufferCopy {
@@ -128,7 +130,8 @@ void DrawViolationOverlay(AppState& state);
 struct SideTab {
     const char* name;
     void (*show)(AppState&);
-    const char* id = nullptr;  // the panel's name in lesson files (core/teaching/lesson.h kPanelNames)
+    const char* id =
+        nullptr;  // the panel's name in lesson files (core/teaching/lesson.h kPanelNames)
 };
 
 }  // namespace dlab::ui

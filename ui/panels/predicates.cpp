@@ -29,8 +29,13 @@ const char* tierName(PredicateTier t) {
 }
 
 const char* signMeaning(bool inCircle, int s) {
-    if (inCircle) return s > 0 ? "inside the circle: flip" : s < 0 ? "outside the circle: keep" : "on the circle: keep";
-    return s > 0 ? "left of the edge (counter-clockwise)" : s < 0 ? "right of the edge (clockwise)" : "on the line (collinear)";
+    if (inCircle)
+        return s > 0   ? "inside the circle: flip"
+               : s < 0 ? "outside the circle: keep"
+                       : "on the circle: keep";
+    return s > 0   ? "left of the edge (counter-clockwise)"
+           : s < 0 ? "right of the edge (clockwise)"
+                   : "on the line (collinear)";
 }
 
 const char* signText(int s) { return s > 0 ? "+1" : s < 0 ? "-1" : " 0"; }
@@ -53,8 +58,8 @@ void WarningBox(AppState& st, const std::string& text) {
     const ImVec2 p = ImGui::GetCursorScreenPos();
     const ImVec2 q(p.x + wrap + 16, p.y + ts.y + 12);
     dl->AddRectFilled(p, q, kWarningFill, 4);
-    dl->AddText(ImGui::GetFont(), ImGui::GetFontSize(), ImVec2(p.x + 8, p.y + 6), IM_COL32(255, 255, 255, 255), text.c_str(),
-                nullptr, wrap);
+    dl->AddText(ImGui::GetFont(), ImGui::GetFontSize(), ImVec2(p.x + 8, p.y + 6),
+                IM_COL32(255, 255, 255, 255), text.c_str(), nullptr, wrap);
     ImGui::Dummy(ImVec2(wrap + 16, ts.y + 12));
     RecordItem(st, "predicate-warning");
 }
@@ -63,12 +68,14 @@ void WarningBox(AppState& st, const std::string& text) {
 void ShowVerdict(AppState& st, const PredicateCall& call) {
     const PredicateReport& r = call.report;
     if (r.naiveSign != r.exactSign) {
-        WarningBox(st, std::string("Plain floating point is WRONG here: it gives ") + signText(r.naiveSign) + " (" +
-                           signMeaning(call.inCircle, r.naiveSign) + "), the exact sign is " + signText(r.exactSign) + " (" +
+        WarningBox(st, std::string("Plain floating point is WRONG here: it gives ") +
+                           signText(r.naiveSign) + " (" + signMeaning(call.inCircle, r.naiveSign) +
+                           "), the exact sign is " + signText(r.exactSign) + " (" +
                            signMeaning(call.inCircle, r.exactSign) + ").");
     } else if (r.tier != PredicateTier::Filter) {
         ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(0.7f, 0.4f, 0.0f, 1));
-        ImGui::TextWrapped("Too close for the filter: decided exactly (the float sign happened to be right).");
+        ImGui::TextWrapped(
+            "Too close for the filter: decided exactly (the float sign happened to be right).");
         ImGui::PopStyleColor();
     }
 }
@@ -86,7 +93,8 @@ void ShowCall(AppState& st, const PredicateCall& call, int index, bool verdict =
     if (ImGui::BeginTable("##pred", 2, ImGuiTableFlags_RowBg | ImGuiTableFlags_BordersInnerV)) {
         ImGui::TableSetupColumn("", ImGuiTableColumnFlags_WidthFixed);
         ImGui::TableSetupColumn("", ImGuiTableColumnFlags_WidthStretch);
-        auto row = [](const std::string& name, const std::string& value, ImVec4 col = ImVec4(0, 0, 0, 0)) {
+        auto row = [](const std::string& name, const std::string& value,
+                      ImVec4 col = ImVec4(0, 0, 0, 0)) {
             ImGui::TableNextRow();
             ImGui::TableSetColumnIndex(0);
             ImGui::TextUnformatted(name.c_str());
@@ -102,18 +110,24 @@ void ShowCall(AppState& st, const PredicateCall& call, int index, bool verdict =
         char buf[96];
         std::snprintf(buf, sizeof buf, "%.17g", r.approx);
         row("float det", buf);
-        if (std::isfinite(r.errorBound)) std::snprintf(buf, sizeof buf, "%.3e", r.errorBound);
-        else std::snprintf(buf, sizeof buf, "n/a (outside the filter's safe range)");
+        if (std::isfinite(r.errorBound))
+            std::snprintf(buf, sizeof buf, "%.3e", r.errorBound);
+        else
+            std::snprintf(buf, sizeof buf, "n/a (outside the filter's safe range)");
         row("error bound", buf);
         if (std::isfinite(r.errorBound) && r.errorBound > 0) {
             std::snprintf(buf, sizeof buf, "%.3g %s", std::fabs(r.approx) / r.errorBound,
-                          std::fabs(r.approx) > r.errorBound ? "(> 1: the float sign is certain)" : "(<= 1: too close to call)");
+                          std::fabs(r.approx) > r.errorBound ? "(> 1: the float sign is certain)"
+                                                             : "(<= 1: too close to call)");
             row("|det| / bound", buf);
         }
         const bool wrong = r.naiveSign != r.exactSign;
-        row("naive sign", std::string(signText(r.naiveSign)) + "  " + signMeaning(call.inCircle, r.naiveSign),
+        row("naive sign",
+            std::string(signText(r.naiveSign)) + "  " + signMeaning(call.inCircle, r.naiveSign),
             wrong ? ImVec4(0.8f, 0.1f, 0.1f, 1) : ImVec4(0, 0, 0, 0));
-        row("exact sign", std::string(signText(r.exactSign)) + "  " + signMeaning(call.inCircle, r.exactSign), ImVec4(0.05f, 0.45f, 0.15f, 1));
+        row("exact sign",
+            std::string(signText(r.exactSign)) + "  " + signMeaning(call.inCircle, r.exactSign),
+            ImVec4(0.05f, 0.45f, 0.15f, 1));
         row("decided by", tierName(r.tier));
         ImGui::EndTable();
     }
@@ -127,8 +141,8 @@ void ShowCall(AppState& st, const PredicateCall& call, int index, bool verdict =
     ImGui::PopID();
 }
 
-PredicateCall makeCall(const Mesh& m, bool inCircle, std::string what, std::initializer_list<std::int32_t> vs, Vec2 extra,
-                       bool extraIsLast) {
+PredicateCall makeCall(const Mesh& m, bool inCircle, std::string what,
+                       std::initializer_list<std::int32_t> vs, Vec2 extra, bool extraIsLast) {
     PredicateCall call;
     call.inCircle = inCircle;
     call.what = std::move(what);
@@ -183,18 +197,27 @@ std::vector<PredicateCall> CurrentPredicateCalls(const Engine& e) {
         if (isGhost(D) || isGhost(B) || isGhost(A)) {
             // A ghost triangle's circle is the open half-plane beyond its hull edge u-w.
             std::int32_t u, w;
-            if (isGhost(D)) { u = B; w = A; }
-            else if (isGhost(B)) { u = A; w = D; }
-            else { u = D; w = B; }
+            if (isGhost(D)) {
+                u = B;
+                w = A;
+            } else if (isGhost(B)) {
+                u = A;
+                w = D;
+            } else {
+                u = D;
+                w = B;
+            }
             calls.push_back(makeCall(m, false,
-                                     "Ghost triangle: is P = v" + std::to_string(P) + " beyond the hull edge v" + std::to_string(u) +
-                                         " - v" + std::to_string(w) + "? (orient2d(a, b, c) > 0: flip)",
+                                     "Ghost triangle: is P = v" + std::to_string(P) +
+                                         " beyond the hull edge v" + std::to_string(u) + " - v" +
+                                         std::to_string(w) + "? (orient2d(a, b, c) > 0: flip)",
                                      {u, w, P}, {}, false));
         } else {
-            calls.push_back(makeCall(m, true,
-                                     "In-circle: is P = v" + std::to_string(P) + " inside the circle through v" + std::to_string(D) +
-                                         ", v" + std::to_string(B) + ", v" + std::to_string(A) + "?",
-                                     {D, B, A, P}, {}, false));
+            calls.push_back(makeCall(
+                m, true,
+                "In-circle: is P = v" + std::to_string(P) + " inside the circle through v" +
+                    std::to_string(D) + ", v" + std::to_string(B) + ", v" + std::to_string(A) + "?",
+                {D, B, A, P}, {}, false));
         }
     } else if (op->type == OpType::LocateStep || op->type == OpType::Located) {
         const std::int32_t t = op->a, v = op->vertex;
@@ -202,11 +225,12 @@ std::vector<PredicateCall> CurrentPredicateCalls(const Engine& e) {
         for (int k = 0; k < 3; ++k) {
             const std::int32_t c = 3 * t + k, from = m.V[next(c)], to = m.V[prev(c)];
             if (isGhost(from) || isGhost(to)) continue;
-            calls.push_back(makeCall(m, false,
-                                     "Locate in t" + std::to_string(t) + ": P = v" + std::to_string(v) + " against the edge v" +
-                                         std::to_string(from) + " -> v" + std::to_string(to) + " (opposite corner " +
-                                         std::to_string(c) + "; -1 means P lies beyond it)",
-                                     {from, to}, m.G[v], true));
+            calls.push_back(makeCall(
+                m, false,
+                "Locate in t" + std::to_string(t) + ": P = v" + std::to_string(v) +
+                    " against the edge v" + std::to_string(from) + " -> v" + std::to_string(to) +
+                    " (opposite corner " + std::to_string(c) + "; -1 means P lies beyond it)",
+                {from, to}, m.G[v], true));
             calls.back().v[2] = v;
         }
     }
@@ -220,14 +244,20 @@ void ShowPredicates(AppState& st) {
     ImGui::SameLine();
     ImGui::TextDisabled("(?)");
     if (ImGui::IsItemHovered()) {
-        ImGui::SetTooltip("Every orientation and in-circle decision is exact. A floating-point filter decides most calls:\n"
-                          "when |det| exceeds the error bound, the float sign is certain. Otherwise the determinant is\n"
-                          "evaluated exactly (expansions, or big integers for extreme exponents).");
+        ImGui::SetTooltip(
+            "Every orientation and in-circle decision is exact. A floating-point filter decides "
+            "most calls:\n"
+            "when |det| exceeds the error bound, the float sign is certain. Otherwise the "
+            "determinant is\n"
+            "evaluated exactly (expansions, or big integers for extreme exponents).");
     }
     ImGui::BeginChild("##predbody", ImVec2(0, 0), false);  // scrolls when the column is short
     if (calls.empty()) {
-        ImGui::TextWrapped("%s", e.current() ? "This operation makes no predicate call. Step to an in-circle test or a locate step."
-                                             : "Nothing has happened yet. Step to an in-circle test or a locate step.");
+        ImGui::TextWrapped(
+            "%s", e.current()
+                      ? "This operation makes no predicate call. Step to an in-circle test or a "
+                        "locate step."
+                      : "Nothing has happened yet. Step to an in-circle test or a locate step.");
     }
     if (!e.batch() && !e.atEnd()) {
         if (ImGui::Button("Next in-circle test")) {
@@ -238,7 +268,8 @@ void ShowPredicates(AppState& st) {
         ImGui::SameLine();
         if (ImGui::Button("Next locate step")) {
             st.run.running = false;
-            while (e.forward() && e.current()->type != OpType::LocateStep && e.current()->type != OpType::Located) {}
+            while (e.forward() && e.current()->type != OpType::LocateStep &&
+                   e.current()->type != OpType::Located) {}
         }
     }
     for (std::size_t i = 0; i < calls.size(); ++i) {
@@ -266,7 +297,8 @@ void ShowPredicates(AppState& st) {
     }
     ImGui::PopFont();
     if (!ok) {
-        ImGui::TextColored(ImVec4(0.8f, 0.1f, 0.1f, 1), "Each point is two finite numbers, e.g. 0.5, 1e-3");
+        ImGui::TextColored(ImVec4(0.8f, 0.1f, 0.1f, 1),
+                           "Each point is two finite numbers, e.g. 0.5, 1e-3");
         ImGui::EndChild();
         return;
     }
@@ -281,7 +313,8 @@ void ShowPredicates(AppState& st) {
     circle.report = incircleReport(p[0], p[1], p[2], p[3]);
     // Both verdicts right under the fields, where the user is typing; the numbers below.
     for (const PredicateCall* call : {&orient, &circle}) {
-        ImGui::TextWrapped("%s: %s %s", call->inCircle ? "incircle" : "orient2d", signText(call->report.exactSign),
+        ImGui::TextWrapped("%s: %s %s", call->inCircle ? "incircle" : "orient2d",
+                           signText(call->report.exactSign),
                            signMeaning(call->inCircle, call->report.exactSign));
         ShowVerdict(st, *call);
     }

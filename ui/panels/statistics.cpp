@@ -21,7 +21,8 @@ constexpr ImU32 kViolationColour = IM_COL32(230, 0, 0, 255);
 constexpr ImU32 kPendingColour = IM_COL32(250, 170, 60, 255);
 
 bool sameOp(const Op& a, const Op& b) {
-    return a.type == b.type && a.vertex == b.vertex && a.a == b.a && a.b == b.b && a.firstChange == b.firstChange;
+    return a.type == b.type && a.vertex == b.vertex && a.a == b.a && a.b == b.b &&
+           a.firstChange == b.firstChange;
 }
 
 void countOps(RunCounts& s, const Engine& e) {
@@ -29,7 +30,9 @@ void countOps(RunCounts& s, const Engine& e) {
     if (!j) return;
     const auto& ops = j->ops();
     const std::size_t pos = e.position();
-    const bool continues = s.position <= pos && (s.position == 0 || (s.position <= ops.size() && sameOp(ops[s.position - 1], s.last)));
+    const bool continues =
+        s.position <= pos &&
+        (s.position == 0 || (s.position <= ops.size() && sameOp(ops[s.position - 1], s.last)));
     if (!continues) s = RunCounts{};
     for (std::size_t k = s.position; k < pos; ++k) {
         const Op& op = ops[k];
@@ -77,7 +80,8 @@ void checkHull(const Engine& e, StatisticsState& s) {
     const Inserter& ins = e.inserter();
     const bool running = !ins.done();
     auto real = [&](std::int32_t t) { return !running || !ins.isVirtualTriangle(t); };
-    std::unordered_map<std::int32_t, std::int32_t> nextOnHull;  // boundary edge a -> b (interior on the left)
+    std::unordered_map<std::int32_t, std::int32_t>
+        nextOnHull;  // boundary edge a -> b (interior on the left)
     std::vector<std::uint8_t> used(static_cast<std::size_t>(m.numVertices()), 0);
     std::int64_t triangles = 0, boundary = 0;
     bool pinched = false;
@@ -107,13 +111,19 @@ void checkHull(const Engine& e, StatisticsState& s) {
     const bool euler = triangles == 2 * n - boundary - 2;
     char buf[256];
     if (pinched) {
-        std::snprintf(buf, sizeof buf, "boundary touches itself (a vertex with two boundary edges leaving it)");
+        std::snprintf(buf, sizeof buf,
+                      "boundary touches itself (a vertex with two boundary edges leaving it)");
     } else if (!s.hullDents.empty()) {
-        std::snprintf(buf, sizeof buf, "hull NOT convex at %zu vertex(es), first v%d%s", s.hullDents.size(), s.hullDents.front(),
-                      e.options().boundary == Boundary::Super ? " - the super-triangle's flaw (try boundary: exact)" : "");
+        std::snprintf(buf, sizeof buf, "hull NOT convex at %zu vertex(es), first v%d%s",
+                      s.hullDents.size(), s.hullDents.front(),
+                      e.options().boundary == Boundary::Super
+                          ? " - the super-triangle's flaw (try boundary: exact)"
+                          : "");
     } else {
-        std::snprintf(buf, sizeof buf, "hull convex (%lld edges); Euler %s: %lld triangles, %lld vertices", static_cast<long long>(boundary),
-                      euler ? "holds" : "FAILS", static_cast<long long>(triangles), static_cast<long long>(n));
+        std::snprintf(buf, sizeof buf,
+                      "hull convex (%lld edges); Euler %s: %lld triangles, %lld vertices",
+                      static_cast<long long>(boundary), euler ? "holds" : "FAILS",
+                      static_cast<long long>(triangles), static_cast<long long>(n));
     }
     s.hullReport = buf;
 }
@@ -123,7 +133,8 @@ void validateNow(AppState& st) {
     const Engine& e = st.engine;
     ValidateOptions o;
     o.maxViolations = 200;
-    if (!e.inserter().done() && e.options().boundary == Boundary::Exact) o.firstVirtual = e.inserter().firstVirtual();
+    if (!e.inserter().done() && e.options().boundary == Boundary::Exact)
+        o.firstVirtual = e.inserter().firstVirtual();
     s.violations = validate(e.mesh(), o);
     checkHull(e, s);
     s.validatedVersion = e.version();
@@ -151,7 +162,8 @@ void UpdateStatistics(AppState& st) {
     // meshes; larger ones when the run pauses or steps by hand.
     constexpr std::int32_t kWhileRunning = 60000;
     const std::int32_t corners = st.engine.mesh().numCorners();
-    if (s.autoValidate && s.validatedVersion != st.engine.version() && corners <= StatisticsState::kAutoValidateCorners &&
+    if (s.autoValidate && s.validatedVersion != st.engine.version() &&
+        corners <= StatisticsState::kAutoValidateCorners &&
         (corners <= kWhileRunning || !st.run.running)) {
         validateNow(st);
     }
@@ -165,19 +177,24 @@ void DrawViolationOverlay(AppState& st) {
     const View& view = st.view;
     ImDrawList* dl = ImGui::GetWindowDrawList();
     dl->PushClipRect(toIm(view.origin), toIm(view.origin + view.size), true);
-    const bool expected = midInsertion(st.engine) && std::all_of(s.violations.begin(), s.violations.end(), [](const Violation& v) {
-                              return v.kind == Violation::Kind::NotDelaunay;
-                          });
+    const bool expected =
+        midInsertion(st.engine) &&
+        std::all_of(s.violations.begin(), s.violations.end(),
+                    [](const Violation& v) { return v.kind == Violation::Kind::NotDelaunay; });
     const ImU32 col = expected ? kPendingColour : kViolationColour;
     const float w = (st.presentation ? 7.0f : 5.0f) * (expected ? 0.6f : 1.0f);
     const Inserter& ins = st.engine.inserter();
-    auto drawable = [&](std::int32_t v) { return v >= 0 && v < m.numVertices() && (ins.done() || !ins.isVirtual(v) || st.engine.options().boundary == Boundary::Super); };
+    auto drawable = [&](std::int32_t v) {
+        return v >= 0 && v < m.numVertices() &&
+               (ins.done() || !ins.isVirtual(v) || st.engine.options().boundary == Boundary::Super);
+    };
     for (const Violation& v : s.violations) {
         const std::int32_t c = v.corner;
         if (c < 0 || c >= m.numCorners()) continue;
         if (!CanvasHasRoom(st, dl, 120)) break;
         const std::int32_t a = m.V[next(c)], b = m.V[prev(c)];
-        if (drawable(a) && drawable(b)) dl->AddLine(toIm(view.toScreen(m.G[a])), toIm(view.toScreen(m.G[b])), col, w);
+        if (drawable(a) && drawable(b))
+            dl->AddLine(toIm(view.toScreen(m.G[a])), toIm(view.toScreen(m.G[b])), col, w);
         float x = 0, y = 0;
         if (CornerAnchor(st, c, x, y)) dl->AddCircle(ImVec2(x, y), 14, col, 0, 3);
     }
@@ -198,44 +215,58 @@ void ShowChecks(AppState& st) {
     // ---- validate() and the hull ------------------------------------------------------------
     ImGui::TextUnformatted("Checks of the current mesh (exact)");
     ImGui::Checkbox("after every change", &s.autoValidate);
-    if (ImGui::IsItemHovered()) ImGui::SetTooltip("validate() after each step, for meshes up to %d corners", StatisticsState::kAutoValidateCorners);
+    if (ImGui::IsItemHovered())
+        ImGui::SetTooltip("validate() after each step, for meshes up to %d corners",
+                          StatisticsState::kAutoValidateCorners);
     ImGui::SameLine();
     if (ImGui::Button("Validate now")) validateNow(st);
     RecordItem(st, "validate-now");
     ImGui::SameLine();
     ImGui::Checkbox("show on canvas", &s.showViolations);
     if (s.validatedVersion != e.version()) {
-        ImGui::TextDisabled("not checked at this step%s", m.numCorners() > StatisticsState::kAutoValidateCorners ? " (large mesh: press Validate now)" : "");
+        ImGui::TextDisabled("not checked at this step%s",
+                            m.numCorners() > StatisticsState::kAutoValidateCorners
+                                ? " (large mesh: press Validate now)"
+                                : "");
         return;
     }
     const bool expected = midInsertion(e);
     if (s.violations.empty()) {
-        ImGui::TextColored(ImVec4(0.05f, 0.45f, 0.15f, 1), "validate(): every invariant holds (O symmetric, CCW, local Delaunay)");
+        ImGui::TextColored(ImVec4(0.05f, 0.45f, 0.15f, 1),
+                           "validate(): every invariant holds (O symmetric, CCW, local Delaunay)");
     } else {
-        const bool onlyDelaunay = std::all_of(s.violations.begin(), s.violations.end(),
-                                              [](const Violation& v) { return v.kind == Violation::Kind::NotDelaunay; });
-        const ImVec4 col = expected && onlyDelaunay ? ImVec4(0.7f, 0.4f, 0.0f, 1) : ImVec4(0.8f, 0.1f, 0.1f, 1);
-        ImGui::TextColored(col, "validate(): %zu violation%s%s", s.violations.size(), s.violations.size() == 1 ? "" : "s",
+        const bool onlyDelaunay =
+            std::all_of(s.violations.begin(), s.violations.end(),
+                        [](const Violation& v) { return v.kind == Violation::Kind::NotDelaunay; });
+        const ImVec4 col =
+            expected && onlyDelaunay ? ImVec4(0.7f, 0.4f, 0.0f, 1) : ImVec4(0.8f, 0.1f, 0.1f, 1);
+        ImGui::TextColored(col, "validate(): %zu violation%s%s", s.violations.size(),
+                           s.violations.size() == 1 ? "" : "s",
                            s.violations.size() >= 200 ? " (first 200)" : "");
         if (expected && onlyDelaunay) {
             ImGui::PushStyleColor(ImGuiCol_Text, col);
-            ImGui::TextWrapped("expected mid-insertion: these edges are still to be tested and flipped");
+            ImGui::TextWrapped(
+                "expected mid-insertion: these edges are still to be tested and flipped");
             ImGui::PopStyleColor();
         }
     }
     const bool hullBad = !s.hullDents.empty() || s.hullReport.find("FAILS") != std::string::npos ||
                          s.hullReport.find("touches") != std::string::npos;
-    ImGui::PushStyleColor(ImGuiCol_Text, hullBad ? ImVec4(0.8f, 0.1f, 0.1f, 1) : ImVec4(0.05f, 0.45f, 0.15f, 1));
+    ImGui::PushStyleColor(ImGuiCol_Text,
+                          hullBad ? ImVec4(0.8f, 0.1f, 0.1f, 1) : ImVec4(0.05f, 0.45f, 0.15f, 1));
     ImGui::TextWrapped("%s", s.hullReport.c_str());
     ImGui::PopStyleColor();
     if (!s.violations.empty()) {
-        const float listH = ImGui::GetTextLineHeightWithSpacing() * static_cast<float>(std::min<std::size_t>(s.violations.size(), 8) + 1);
+        const float listH = ImGui::GetTextLineHeightWithSpacing() *
+                            static_cast<float>(std::min<std::size_t>(s.violations.size(), 8) + 1);
         ImGui::BeginChild("##violations", ImVec2(0, listH), true);
         for (std::size_t i = 0; i < s.violations.size(); ++i) {
             const Violation& v = s.violations[i];
             ImGui::PushID(static_cast<int>(i));
-            if (ImGui::Selectable((std::string(toString(v.kind)) + " at corner " + std::to_string(v.corner)).c_str(),
-                                  st.selection.corner == v.corner)) {
+            if (ImGui::Selectable(
+                    (std::string(toString(v.kind)) + " at corner " + std::to_string(v.corner))
+                        .c_str(),
+                    st.selection.corner == v.corner)) {
                 st.select(v.corner);
                 st.selection.jumpToCorner = v.corner;
             }
@@ -256,7 +287,8 @@ void ShowStatistics(AppState& st) {
     const Inserter& ins = e.inserter();
     std::int64_t virtualTriangles = 0;
     if (!ins.done()) {
-        for (std::int32_t t = 0; t < m.numTriangles(); ++t) virtualTriangles += ins.isVirtualTriangle(t);
+        for (std::int32_t t = 0; t < m.numTriangles(); ++t)
+            virtualTriangles += ins.isVirtualTriangle(t);
     }
 
     ImGui::BeginChild("##statsbody", ImVec2(0, 0), false);  // scrolls when the column is short
@@ -267,9 +299,11 @@ void ShowStatistics(AppState& st) {
     const bool batch = e.batch();
     UpdateRunCounts(st);
     const InsertStats& bs = ins.stats();
-    const std::int64_t flips = batch ? bs.flips : c.flips, steps = batch ? bs.walkSteps : c.walkSteps;
+    const std::int64_t flips = batch ? bs.flips : c.flips,
+                       steps = batch ? bs.walkSteps : c.walkSteps;
     const std::int64_t tests = batch ? bs.inCircleTests : c.inCircleTests;
-    const std::int64_t inserted = batch ? bs.inserted : c.inserted, dups = batch ? bs.duplicates : c.duplicates;
+    const std::int64_t inserted = batch ? bs.inserted : c.inserted,
+                       dups = batch ? bs.duplicates : c.duplicates;
     if (ImGui::BeginTable("##counts", 2, ImGuiTableFlags_RowBg | ImGuiTableFlags_BordersInnerV)) {
         ImGui::TableSetupColumn("", ImGuiTableColumnFlags_WidthFixed);
         ImGui::TableSetupColumn("", ImGuiTableColumnFlags_WidthStretch);
@@ -281,27 +315,39 @@ void ShowStatistics(AppState& st) {
             ImGui::TextUnformatted(value.c_str());
         };
         auto num = [](std::int64_t v) { return std::to_string(v); };
-        row("points", num(static_cast<std::int64_t>(e.points().size())) + "  (" + num(inserted) + " inserted, " + num(dups) + " duplicates)");
-        row("triangles", num(m.numTriangles() - virtualTriangles) + (virtualTriangles ? "  (+" + num(virtualTriangles) + " virtual)" : ""));
-        const double perIns = inserted > 0 ? static_cast<double>(flips) / static_cast<double>(inserted) : 0.0;
+        row("points", num(static_cast<std::int64_t>(e.points().size())) + "  (" + num(inserted) +
+                          " inserted, " + num(dups) + " duplicates)");
+        row("triangles",
+            num(m.numTriangles() - virtualTriangles) +
+                (virtualTriangles ? "  (+" + num(virtualTriangles) + " virtual)" : ""));
+        const double perIns =
+            inserted > 0 ? static_cast<double>(flips) / static_cast<double>(inserted) : 0.0;
         char buf[128];
-        std::snprintf(buf, sizeof buf, "%lld  (%.2f per insertion%s)", static_cast<long long>(flips), perIns,
-                      !batch && c.flipsNow ? (", " + std::to_string(c.flipsNow) + " in this one").c_str() : "");
+        std::snprintf(
+            buf, sizeof buf, "%lld  (%.2f per insertion%s)", static_cast<long long>(flips), perIns,
+            !batch && c.flipsNow ? (", " + std::to_string(c.flipsNow) + " in this one").c_str()
+                                 : "");
         row("flips", buf);
-        std::snprintf(buf, sizeof buf, "%lld  (%.2f per insertion)", static_cast<long long>(steps),
-                      inserted > 0 ? static_cast<double>(steps) / static_cast<double>(inserted + dups) : 0.0);
+        std::snprintf(
+            buf, sizeof buf, "%lld  (%.2f per insertion)", static_cast<long long>(steps),
+            inserted > 0 ? static_cast<double>(steps) / static_cast<double>(inserted + dups) : 0.0);
         row("walk steps", buf);
         if (!batch && c.locates > 0) {
-            std::snprintf(buf, sizeof buf, "%lld of %lld (%.0f%%)", static_cast<long long>(c.hits), static_cast<long long>(c.locates),
+            std::snprintf(buf, sizeof buf, "%lld of %lld (%.0f%%)", static_cast<long long>(c.hits),
+                          static_cast<long long>(c.locates),
                           100.0 * static_cast<double>(c.hits) / static_cast<double>(c.locates));
             row("0-step locates", buf);
         }
         row("in-circle tests", num(tests));
-        if (!batch) row("splits", num(c.splits) + " in triangles, " + num(c.edgeSplits) + " on edges");
+        if (!batch)
+            row("splits", num(c.splits) + " in triangles, " + num(c.edgeSplits) + " on edges");
         const PredicateCounters& pc = predicateCounters();
         row("exact fallbacks", num(static_cast<std::int64_t>(pc.orientExact)) + " orient2d, " +
                                    num(static_cast<std::int64_t>(pc.incircleExact)) + " incircle");
-        if (ImGui::IsItemHovered()) ImGui::SetTooltip("Predicate calls the floating-point filter could not decide, since the program started");
+        if (ImGui::IsItemHovered())
+            ImGui::SetTooltip(
+                "Predicate calls the floating-point filter could not decide, since the program "
+                "started");
         ImGui::EndTable();
     }
 
@@ -310,26 +356,36 @@ void ShowStatistics(AppState& st) {
         constexpr std::size_t kShown = 400;
         const std::size_t n = c.flipsPerInsertion.size();
         const std::size_t first = n > kShown ? n - kShown : 0;
-        const float maxFlips = *std::max_element(c.flipsPerInsertion.begin() + static_cast<std::ptrdiff_t>(first), c.flipsPerInsertion.end());
+        const float maxFlips =
+            *std::max_element(c.flipsPerInsertion.begin() + static_cast<std::ptrdiff_t>(first),
+                              c.flipsPerInsertion.end());
         char overlay[96];
-        std::snprintf(overlay, sizeof overlay, "flips per insertion (last %zu of %zu, max %.0f)", n - first, n, maxFlips);
-        ImGui::PlotHistogram("##flips", c.flipsPerInsertion.data() + first, static_cast<int>(n - first), 0, overlay, 0.0f,
-                             std::max(4.0f, maxFlips * 1.15f), ImVec2(ImGui::GetContentRegionAvail().x, 90));
+        std::snprintf(overlay, sizeof overlay, "flips per insertion (last %zu of %zu, max %.0f)",
+                      n - first, n, maxFlips);
+        ImGui::PlotHistogram(
+            "##flips", c.flipsPerInsertion.data() + first, static_cast<int>(n - first), 0, overlay,
+            0.0f, std::max(4.0f, maxFlips * 1.15f), ImVec2(ImGui::GetContentRegionAvail().x, 90));
         RecordItem(st, "flips-plot");
-        if (ImGui::IsItemHovered()) ImGui::SetTooltip("Expected about 3 per insertion on average for random insertion orders (the new vertex gets about 6 edges, 3 from the split).");
+        if (ImGui::IsItemHovered())
+            ImGui::SetTooltip(
+                "Expected about 3 per insertion on average for random insertion orders (the new "
+                "vertex gets about 6 edges, 3 from the split).");
     }
 
     // ---- Frame times ------------------------------------------------------------------------
     if (!s.frameMs.empty()) {
-        const float mean = std::accumulate(s.frameMs.begin(), s.frameMs.end(), 0.0f) / static_cast<float>(s.frameMs.size());
+        const float mean = std::accumulate(s.frameMs.begin(), s.frameMs.end(), 0.0f) /
+                           static_cast<float>(s.frameMs.size());
         const float worst = *std::max_element(s.frameMs.begin(), s.frameMs.end());
         char overlay[128];
         std::snprintf(overlay, sizeof overlay, "frame ms: mean %.1f, worst %.1f", mean, worst);
-        ImGui::PlotLines("##frames", s.frameMs.data(), static_cast<int>(s.frameMs.size()), 0, overlay, 0.0f, std::max(40.0f, worst * 1.1f),
+        ImGui::PlotLines("##frames", s.frameMs.data(), static_cast<int>(s.frameMs.size()), 0,
+                         overlay, 0.0f, std::max(40.0f, worst * 1.1f),
                          ImVec2(ImGui::GetContentRegionAvail().x, 60));
         const FrameStats& fs = st.frameStats;
-        ImGui::TextDisabled("mesh rebuild %.1f ms, %zu edges drawn%s, %zu ops this frame", fs.meshBuildMs, fs.visibleEdges,
-                            fs.denseMesh ? " (dense raster)" : "", fs.opsStepped);
+        ImGui::TextDisabled("mesh rebuild %.1f ms, %zu edges drawn%s, %zu ops this frame",
+                            fs.meshBuildMs, fs.visibleEdges, fs.denseMesh ? " (dense raster)" : "",
+                            fs.opsStepped);
     }
 
     ImGui::EndChild();

@@ -67,7 +67,9 @@ void ShowBreakpointsButton(AppState& state) {
     std::snprintf(label, sizeof label, "Breakpoints (%d)###breakpoints", active);
     if (ImGui::Button(label)) ImGui::OpenPopup("##breakpoints");
     RecordItem(state, "breakpoints");
-    if (ImGui::IsItemHovered()) ImGui::SetTooltip("Where Run stops: the next flip, a degenerate case, vertex k, a corner changing...");
+    if (ImGui::IsItemHovered())
+        ImGui::SetTooltip(
+            "Where Run stops: the next flip, a degenerate case, vertex k, a corner changing...");
     if (!ImGui::BeginPopup("##breakpoints")) return;
     auto find = [&](const Breakpoint& bp) {
         for (std::size_t i = 0; i < run.breakpoints.size(); ++i) {
@@ -79,13 +81,16 @@ void ShowBreakpointsButton(AppState& state) {
         const int i = find(bp);
         bool on = i >= 0 && run.breakpoints[i].enabled;
         if (ImGui::Checkbox(text, &on)) {
-            if (i >= 0) run.breakpoints[i].enabled = on;
-            else run.breakpoints.push_back({bp, true});
+            if (i >= 0)
+                run.breakpoints[i].enabled = on;
+            else
+                run.breakpoints.push_back({bp, true});
         }
     };
     ImGui::TextUnformatted("Stop the run...");
     toggle("at the next flip", {BreakKind::Flip, std::nullopt});
-    toggle("at a degenerate case (point on an edge or a vertex, cocircular test)", {BreakKind::Degenerate, std::nullopt});
+    toggle("at a degenerate case (point on an edge or a vertex, cocircular test)",
+           {BreakKind::Degenerate, std::nullopt});
     toggle("at a duplicate point", {BreakKind::Duplicate, std::nullopt});
     toggle("after each whole insertion", {BreakKind::Insertion, std::nullopt});
     ImGui::SetNextItemWidth(90);
@@ -95,15 +100,17 @@ void ShowBreakpointsButton(AppState& state) {
         run.breakpoints.push_back({{BreakKind::Insert, state.dialogs.breakVertex}, true});
     }
     ImGui::SetNextItemWidth(90);
-    if (state.selection.corner != kNone && state.dialogs.breakCorner < 0) state.dialogs.breakCorner = state.selection.corner;
+    if (state.selection.corner != kNone && state.dialogs.breakCorner < 0)
+        state.dialogs.breakCorner = state.selection.corner;
     ImGui::InputInt("##corner", &state.dialogs.breakCorner);
     ImGui::SameLine();
     if (ImGui::Button("when corner c changes (V[c] or O[c])")) {
         run.breakpoints.push_back({{BreakKind::Corner, state.dialogs.breakCorner}, true});
     }
     ImGui::SetNextItemWidth(200);
-    const bool enter = ImGui::InputTextWithHint("##text", "flip, insert:5, corner:17, op:120, incircle:0...",
-                                                &state.dialogs.breakText, ImGuiInputTextFlags_EnterReturnsTrue);
+    const bool enter =
+        ImGui::InputTextWithHint("##text", "flip, insert:5, corner:17, op:120, incircle:0...",
+                                 &state.dialogs.breakText, ImGuiInputTextFlags_EnterReturnsTrue);
     ImGui::SameLine();
     if (ImGui::Button("Add") || enter) {
         std::string error;
@@ -120,7 +127,8 @@ void ShowBreakpointsButton(AppState& state) {
         ImGui::PushID(static_cast<int>(i));
         ImGui::Checkbox("##on", &run.breakpoints[i].enabled);
         ImGui::SameLine();
-        ImGui::Text("%s  (%s)", toString(run.breakpoints[i].bp).c_str(), explain(run.breakpoints[i].bp).c_str());
+        ImGui::Text("%s  (%s)", toString(run.breakpoints[i].bp).c_str(),
+                    explain(run.breakpoints[i].bp).c_str());
         ImGui::SameLine();
         const bool remove = ImGui::SmallButton("x");
         ImGui::PopID();
@@ -170,31 +178,44 @@ void ShowToolbar(AppState& state) {
         run.opsPerSecond = RunControl::kFullSpeed;
     }
     ImGui::SameLine();
-    if (ToolButton(state, run.running ? "Pause###run" : "Run###run", "Run or pause the animation (Space)", canStep && (run.running || !atEnd))) {
+    if (ToolButton(state, run.running ? "Pause###run" : "Run###run",
+                   "Run or pause the animation (Space)", canStep && (run.running || !atEnd))) {
         run.running = !run.running;
     }
     ImGui::SameLine();
     ImGui::SetNextItemWidth(150);
     const bool full = run.opsPerSecond >= RunControl::kFullSpeed;
-    ImGui::SliderFloat("##speed", &run.opsPerSecond, 0.5f, RunControl::kFullSpeed, full ? "full speed" : "%.1f ops/s",
-                       ImGuiSliderFlags_Logarithmic);
-    if (ImGui::IsItemHovered()) ImGui::SetTooltip("Animation speed in operations per second (right end: as fast as possible)");
+    ImGui::SliderFloat("##speed", &run.opsPerSecond, 0.5f, RunControl::kFullSpeed,
+                       full ? "full speed" : "%.1f ops/s", ImGuiSliderFlags_Logarithmic);
+    if (ImGui::IsItemHovered())
+        ImGui::SetTooltip(
+            "Animation speed in operations per second (right end: as fast as possible)");
     ImGui::SameLine();
     ShowBreakpointsButton(state);
 
     ImGui::SameLine(0, 24);
     InsertOptions o = e.options();
     bool changed = EnumCombo("Boundary", o.boundary, {Boundary::Exact, Boundary::Super}, 80);
-    if (ImGui::IsItemHovered()) ImGui::SetTooltip("exact: a ghost vertex, the true Delaunay triangulation with its convex hull\nsuper: the paper's finite super-triangle (can lose hull triangles)");
+    if (ImGui::IsItemHovered())
+        ImGui::SetTooltip(
+            "exact: a ghost vertex, the true Delaunay triangulation with its convex hull\nsuper: "
+            "the paper's finite super-triangle (can lose hull triangles)");
     ImGui::SameLine();
     if (e.hasGl()) {  // the GL ID buffer draws on this window's context
-        changed |= EnumCombo("Locate", o.locator, {LocatorKind::Walk, LocatorKind::Naive, LocatorKind::Grid, LocatorKind::IdBufferCpu,
-                                                   LocatorKind::IdBufferGl, LocatorKind::IdBufferGlBatched}, 175);
+        changed |= EnumCombo(
+            "Locate", o.locator,
+            {LocatorKind::Walk, LocatorKind::Naive, LocatorKind::Grid, LocatorKind::IdBufferCpu,
+             LocatorKind::IdBufferGl, LocatorKind::IdBufferGlBatched},
+            175);
     } else {
-        changed |= EnumCombo("Locate", o.locator, {LocatorKind::Walk, LocatorKind::Naive, LocatorKind::Grid, LocatorKind::IdBufferCpu}, 120);
+        changed |= EnumCombo(
+            "Locate", o.locator,
+            {LocatorKind::Walk, LocatorKind::Naive, LocatorKind::Grid, LocatorKind::IdBufferCpu},
+            120);
     }
     ImGui::SameLine();
-    changed |= EnumCombo("Order", o.order, {OrderKind::Input, OrderKind::Random, OrderKind::Brio}, 80);
+    changed |=
+        EnumCombo("Order", o.order, {OrderKind::Input, OrderKind::Random, OrderKind::Brio}, 80);
     if (o.order != OrderKind::Input) {
         ImGui::SameLine();
         int seed = static_cast<int>(o.seed);
@@ -212,8 +233,9 @@ void ShowCaption(AppState& state) {
     ImGui::PushFont(fonts().caption);
     char prefix[64];
     if (e.batch()) {
-        ImGui::TextUnformatted(("batch result: " + std::to_string(e.mesh().numTriangles()) + " triangles, " +
-                                std::to_string(e.points().size()) + " points (no stepping above " +
+        ImGui::TextUnformatted(("batch result: " + std::to_string(e.mesh().numTriangles()) +
+                                " triangles, " + std::to_string(e.points().size()) +
+                                " points (no stepping above " +
                                 std::to_string(Engine::kHistoryLimit) + " points)")
                                    .c_str());
     } else if (const Op* op = e.current()) {
@@ -222,11 +244,13 @@ void ShowCaption(AppState& state) {
         ImGui::SameLine(0, 0);
         ImGui::TextUnformatted(describe(*op, e.inserter()).c_str());
     } else {
-        ImGui::TextDisabled("%zu points ready: press Right (or >) to take the first step. F1 lists every shortcut.",
-                            e.points().size());
+        ImGui::TextDisabled(
+            "%zu points ready: press Right (or >) to take the first step. F1 lists every shortcut.",
+            e.points().size());
     }
     ImGui::PopFont();
-    if (!state.run.stopReason.empty() && !state.run.running && state.run.stopPosition == e.position()) {
+    if (!state.run.stopReason.empty() && !state.run.running &&
+        state.run.stopPosition == e.position()) {
         ImGui::SameLine();
         ImGui::TextDisabled("(stopped: %s)", state.run.stopReason.c_str());
     }
@@ -240,8 +264,8 @@ void ShowTimeline(AppState& state) {
     ImGui::SetNextItemWidth(-1);
     char fmt[96];
     const bool complete = e.recorded() > 0 && e.journal()->ops().back().type == OpType::Finalize;
-    std::snprintf(fmt, sizeof fmt, "op %%d of %d%s   |   %zu insertions done", total, complete ? "" : "+ (recorded so far)",
-                  e.insertionsDone());
+    std::snprintf(fmt, sizeof fmt, "op %%d of %d%s   |   %zu insertions done", total,
+                  complete ? "" : "+ (recorded so far)", e.insertionsDone());
     if (ImGui::SliderInt("##timeline", &pos, 0, std::max(total, 1), fmt)) {
         state.run.running = false;
         e.seek(static_cast<std::size_t>(std::max(0, pos)));
@@ -287,24 +311,32 @@ void AdvanceRun(AppState& state, double dt) {
     };
     if (run.opsPerSecond >= RunControl::kFullSpeed) {
         const auto t0 = std::chrono::steady_clock::now();
-        const double nowMs = std::chrono::duration<double, std::milli>(t0.time_since_epoch()).count();
+        const double nowMs =
+            std::chrono::duration<double, std::milli>(t0.time_since_epoch()).count();
         // The rest of the last frame: from the previous call to this one, less its stepping.
         double budget = run.frameBudgetMs;
         if (run.lastAdvanceMs >= 0) {
             const double rest = nowMs - run.lastAdvanceMs - run.lastStepMs;
-            if (rest >= 0 && rest < 1000) budget = std::clamp(run.targetFrameMs - rest, 2.0, run.frameBudgetMs);
+            if (rest >= 0 && rest < 1000)
+                budget = std::clamp(run.targetFrameMs - rest, 2.0, run.frameBudgetMs);
         }
         run.lastAdvanceMs = nowMs;
         struct Stepped {
             RunControl& run;
             std::chrono::steady_clock::time_point t0;
-            ~Stepped() { run.lastStepMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count(); }
+            ~Stepped() {
+                run.lastStepMs =
+                    std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0)
+                        .count();
+            }
         } stepped{run, t0};
         // Check the clock every 64 ops: cheap, and a frame stays within its budget.
         for (int i = 0;; ++i) {
             if (!stepOnce()) return;
             if ((i & 63) == 63) {
-                const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+                const double ms =
+                    std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0)
+                        .count();
                 if (ms > budget) break;
             }
         }

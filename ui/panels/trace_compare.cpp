@@ -20,7 +20,8 @@ constexpr std::size_t kMaxComparedPoints = 20000;
 
 bool stale(const AppState& st) {
     const auto& tc = st.traceCompare;
-    return !tc.student || st.engine.points() != tc.points || !sameRun(st.engine.options(), tc.options);
+    return !tc.student || st.engine.points() != tc.points ||
+           !sameRun(st.engine.options(), tc.options);
 }
 
 // The next (dir > 0) or previous mesh-changing op of a trace from op index `from` (exclusive);
@@ -46,12 +47,14 @@ void stepBoth(AppState& st, int dir) {
     const std::size_t oursAt = st.engine.position() == 0 ? none : st.engine.position() - 1;
     const std::size_t studentAt = tc.studentPos == 0 ? none : tc.studentPos - 1;
     if (dir > 0) {
-        const std::size_t a = nextChange(*tc.ours, oursAt, 1, none), b = nextChange(*tc.student, studentAt, 1, none);
+        const std::size_t a = nextChange(*tc.ours, oursAt, 1, none),
+                          b = nextChange(*tc.student, studentAt, 1, none);
         if (a != none) st.engine.seek(a + 1);
         if (b != none) tc.studentPos = b + 1;
     } else {
         const std::size_t a = oursAt == none ? none : nextChange(*tc.ours, oursAt, -1, none);
-        const std::size_t b = studentAt == none ? none : nextChange(*tc.student, studentAt, -1, none);
+        const std::size_t b =
+            studentAt == none ? none : nextChange(*tc.student, studentAt, -1, none);
         st.engine.seek(a == none ? 0 : a + 1);
         tc.studentPos = b == none ? 0 : b + 1;
     }
@@ -69,12 +72,15 @@ void goToDifference(AppState& st) {
 
 bool OpenStudentTrace(AppState& st, const std::string& path) {
     if (st.engine.points().size() > kMaxComparedPoints) {
-        FileError(st, path + ": comparing a trace in the GUI takes at most " + std::to_string(kMaxComparedPoints) +
+        FileError(st, path + ": comparing a trace in the GUI takes at most " +
+                          std::to_string(kMaxComparedPoints) +
                           " points (dtlab diff-trace takes any number)");
         return false;
     }
     if (st.engine.idBufferGl()) {
-        FileError(st, path + ": choose a CPU locator before comparing a trace (the GL ID buffer's run is not replayed)");
+        FileError(st, path +
+                          ": choose a CPU locator before comparing a trace (the GL ID buffer's run "
+                          "is not replayed)");
         return false;
     }
     std::shared_ptr<TraceFile> student, ours;
@@ -97,10 +103,13 @@ bool OpenStudentTrace(AppState& st, const std::string& path) {
     if (tc.diff.equal) {
         st.engine.seek(tc.ours->ops.size());
         tc.studentPos = tc.student->ops.size();
-        st.log(Message::Level::Info, path + ": the same run as ours (" + std::to_string(tc.diff.compared) + " operations compared)");
+        st.log(Message::Level::Info, path + ": the same run as ours (" +
+                                         std::to_string(tc.diff.compared) +
+                                         " operations compared)");
     } else {
         goToDifference(st);
-        st.log(Message::Level::Warning, path + ": " + tc.diff.what + " (" + summarize(*tc.student, tc.diff.studentOp) + ")");
+        st.log(Message::Level::Warning,
+               path + ": " + tc.diff.what + " (" + summarize(*tc.student, tc.diff.studentOp) + ")");
     }
     return true;
 }
@@ -112,20 +121,26 @@ bool StudentTraceSelectTab(AppState& st) { return std::exchange(st.traceCompare.
 void ShowTraceCompare(AppState& st) {
     auto& tc = st.traceCompare;
     if (!tc.student) {
-        ImGui::TextWrapped("Compare a student's run with ours: open their trace (a .jsonl file, one JSON object per "
-                           "operation, at least \"op\" and \"triangles\") with File > Open or drop it on the window. "
-                           "Load the student's points and options first.");
-        ImGui::TextDisabled("The same comparison on the command line: dtlab diff-trace REF STUDENT");
+        ImGui::TextWrapped(
+            "Compare a student's run with ours: open their trace (a .jsonl file, one JSON object "
+            "per "
+            "operation, at least \"op\" and \"triangles\") with File > Open or drop it on the "
+            "window. "
+            "Load the student's points and options first.");
+        ImGui::TextDisabled(
+            "The same comparison on the command line: dtlab diff-trace REF STUDENT");
         return;
     }
     if (stale(st)) {
-        ImGui::TextColored(ImVec4(0.8f, 0.4f, 0.0f, 1), "The points or options changed since the trace was opened.");
+        ImGui::TextColored(ImVec4(0.8f, 0.4f, 0.0f, 1),
+                           "The points or options changed since the trace was opened.");
         if (ImGui::Button("Close the comparison")) CloseStudentTrace(st);
         return;
     }
     ImGui::TextWrapped("%s", tc.student->name.c_str());
     if (tc.diff.equal) {
-        ImGui::TextColored(ImVec4(0.1f, 0.55f, 0.2f, 1), "The same run as ours: %zu operations compared.", tc.diff.compared);
+        ImGui::TextColored(ImVec4(0.1f, 0.55f, 0.2f, 1),
+                           "The same run as ours: %zu operations compared.", tc.diff.compared);
     } else {
         ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(0.8f, 0.1f, 0.1f, 1));
         ImGui::TextWrapped("First difference: %s", tc.diff.what.c_str());
@@ -148,18 +163,23 @@ void ShowTraceCompare(AppState& st) {
     ImGui::Separator();
     // Side by side: the last op of each run, and what comes next.
     const std::size_t ours = st.engine.position();
-    if (ImGui::BeginTable("##sidebyside", 2, ImGuiTableFlags_BordersInnerV | ImGuiTableFlags_SizingStretchSame)) {
+    if (ImGui::BeginTable("##sidebyside", 2,
+                          ImGuiTableFlags_BordersInnerV | ImGuiTableFlags_SizingStretchSame)) {
         ImGui::TableSetupColumn("Ours");
         ImGui::TableSetupColumn("The student's");
         ImGui::TableHeadersRow();
         auto cell = [](const TraceFile& f, std::size_t done, std::size_t diffAt, bool different) {
             ImGui::PushTextWrapPos(0);
             if (done == 0) ImGui::TextDisabled("(the start)");
-            for (std::size_t k = done >= 3 ? done - 3 : 0; k < std::min(done + 2, f.ops.size()); ++k) {
+            for (std::size_t k = done >= 3 ? done - 3 : 0; k < std::min(done + 2, f.ops.size());
+                 ++k) {
                 const bool last = k + 1 == done;
                 const bool bad = different && k == diffAt;
-                if (bad) ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(0.8f, 0.1f, 0.1f, 1));
-                else if (!last) ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
+                if (bad)
+                    ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(0.8f, 0.1f, 0.1f, 1));
+                else if (!last)
+                    ImGui::PushStyleColor(ImGuiCol_Text,
+                                          ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
                 ImGui::TextWrapped("%s%s", last ? "> " : "  ", summarize(f, k).c_str());
                 if (bad || !last) ImGui::PopStyleColor();
             }
@@ -182,13 +202,15 @@ void DrawTraceCompareOverlay(AppState& st) {
     // The student's mesh after their ops so far, replayed when their position changes.
     if (tc.studentTrianglesAt != tc.studentPos) {
         TraceReplay replay;
-        for (std::size_t k = 0; k < tc.studentPos && k < tc.student->ops.size(); ++k) replay.apply(tc.student->ops[k]);
+        for (std::size_t k = 0; k < tc.studentPos && k < tc.student->ops.size(); ++k)
+            replay.apply(tc.student->ops[k]);
         tc.studentTriangles = replay.triangles();
         tc.studentTrianglesAt = tc.studentPos;
     }
     if (tc.ourTrianglesVersion != st.engine.version()) {
         tc.ourTriangles.clear();
-        for (std::int32_t t = 0; t < m.numTriangles(); ++t) tc.ourTriangles.push_back(canonical(m.V[3 * t], m.V[3 * t + 1], m.V[3 * t + 2]));
+        for (std::int32_t t = 0; t < m.numTriangles(); ++t)
+            tc.ourTriangles.push_back(canonical(m.V[3 * t], m.V[3 * t + 1], m.V[3 * t + 2]));
         std::sort(tc.ourTriangles.begin(), tc.ourTriangles.end());
         tc.ourTrianglesVersion = st.engine.version();
     }
@@ -201,7 +223,8 @@ void DrawTraceCompareOverlay(AppState& st) {
         bool ok = true;
         ImVec2 p[3];
         for (int k = 0; k < 3; ++k) {
-            ok &= t[k] >= 0 && t[k] < m.numVertices() && static_cast<std::size_t>(t[k]) < st.engine.points().size();
+            ok &= t[k] >= 0 && t[k] < m.numVertices() &&
+                  static_cast<std::size_t>(t[k]) < st.engine.points().size();
             if (ok) p[k] = toIm(view.toScreen(m.G[t[k]]));
         }
         if (!ok || !CanvasHasRoom(st, dl, 40)) continue;

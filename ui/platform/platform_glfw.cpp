@@ -31,7 +31,9 @@ public:
     const char* name() const override { return "glfw"; }
     bool headless() const override { return false; }
     GlProc procAddress(const char* name) override { return glfwGetProcAddress(name); }
-    void framebufferSize(int& width, int& height) const override { glfwGetFramebufferSize(m_window, &width, &height); }
+    void framebufferSize(int& width, int& height) const override {
+        glfwGetFramebufferSize(m_window, &width, &height);
+    }
     void initImGui() override { ImGui_ImplGlfw_InitForOpenGL(m_window, true); }
     void shutdownImGui() override { ImGui_ImplGlfw_Shutdown(); }
     bool newFrame() override {
@@ -42,7 +44,9 @@ public:
     void present() override { glfwSwapBuffers(m_window); }
     void waitForEvents(double seconds) override { glfwWaitEventsTimeout(seconds); }
     std::vector<std::string> takeDroppedFiles() override { return std::exchange(m_dropped, {}); }
-    void setTitle(const std::string& title) override { glfwSetWindowTitle(m_window, title.c_str()); }
+    void setTitle(const std::string& title) override {
+        glfwSetWindowTitle(m_window, title.c_str());
+    }
     GLFWwindow* window() const { return m_window; }
 
 private:
@@ -53,7 +57,9 @@ private:
 }  // namespace
 
 std::unique_ptr<Platform> makeGlfwPlatform(const WindowOptions& options, std::string& error) {
-    glfwSetErrorCallback([](int code, const char* text) { g_glfwError = "GLFW error " + std::to_string(code) + ": " + text; });
+    glfwSetErrorCallback([](int code, const char* text) {
+        g_glfwError = "GLFW error " + std::to_string(code) + ": " + text;
+    });
     const char* display = std::getenv("DISPLAY");
     const char* wayland = std::getenv("WAYLAND_DISPLAY");
     if ((!display || !*display) && (!wayland || !*wayland)) {
@@ -67,7 +73,8 @@ std::unique_ptr<Platform> makeGlfwPlatform(const WindowOptions& options, std::st
     glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 2);
     glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 1);
     glfwWindowHint(GLFW_MAXIMIZED, options.maximized ? GLFW_TRUE : GLFW_FALSE);
-    GLFWwindow* window = glfwCreateWindow(options.width, options.height, options.title.c_str(), nullptr, nullptr);
+    GLFWwindow* window =
+        glfwCreateWindow(options.width, options.height, options.title.c_str(), nullptr, nullptr);
     if (!window) {
         error = g_glfwError.empty() ? "GLFW could not open a window" : g_glfwError;
         glfwTerminate();

@@ -17,7 +17,9 @@ public:
     ~OsmesaPlatform() override { OSMesaDestroyContext(m_ctx); }
     const char* name() const override { return "osmesa"; }
     bool headless() const override { return true; }
-    GlProc procAddress(const char* name) override { return reinterpret_cast<GlProc>(OSMesaGetProcAddress(name)); }
+    GlProc procAddress(const char* name) override {
+        return reinterpret_cast<GlProc>(OSMesaGetProcAddress(name));
+    }
     void framebufferSize(int& width, int& height) const override {
         width = m_width;
         height = m_height;
@@ -27,14 +29,17 @@ public:
         io.BackendPlatformName = "dlab_headless";
         // Key indices are GLFW's key codes (ui/platform/keys.h), as in the real window.
         for (int k = 0; k < ImGuiKey_COUNT; ++k) io.KeyMap[k] = -1;
-        const int map[][2] = {{ImGuiKey_Tab, 258},       {ImGuiKey_LeftArrow, 263}, {ImGuiKey_RightArrow, 262},
-                              {ImGuiKey_UpArrow, 265},   {ImGuiKey_DownArrow, 264}, {ImGuiKey_PageUp, 266},
-                              {ImGuiKey_PageDown, 267},  {ImGuiKey_Home, 268},      {ImGuiKey_End, 269},
-                              {ImGuiKey_Insert, 260},    {ImGuiKey_Delete, 261},    {ImGuiKey_Backspace, 259},
-                              {ImGuiKey_Space, 32},      {ImGuiKey_Enter, 257},     {ImGuiKey_Escape, 256},
-                              {ImGuiKey_KeyPadEnter, 335}, {ImGuiKey_A, 'A'},       {ImGuiKey_C, 'C'},
-                              {ImGuiKey_V, 'V'},         {ImGuiKey_X, 'X'},         {ImGuiKey_Y, 'Y'},
-                              {ImGuiKey_Z, 'Z'}};
+        const int map[][2] = {{ImGuiKey_Tab, 258},        {ImGuiKey_LeftArrow, 263},
+                              {ImGuiKey_RightArrow, 262}, {ImGuiKey_UpArrow, 265},
+                              {ImGuiKey_DownArrow, 264},  {ImGuiKey_PageUp, 266},
+                              {ImGuiKey_PageDown, 267},   {ImGuiKey_Home, 268},
+                              {ImGuiKey_End, 269},        {ImGuiKey_Insert, 260},
+                              {ImGuiKey_Delete, 261},     {ImGuiKey_Backspace, 259},
+                              {ImGuiKey_Space, 32},       {ImGuiKey_Enter, 257},
+                              {ImGuiKey_Escape, 256},     {ImGuiKey_KeyPadEnter, 335},
+                              {ImGuiKey_A, 'A'},          {ImGuiKey_C, 'C'},
+                              {ImGuiKey_V, 'V'},          {ImGuiKey_X, 'X'},
+                              {ImGuiKey_Y, 'Y'},          {ImGuiKey_Z, 'Z'}};
         for (const auto& m : map) io.KeyMap[m[0]] = m[1];
     }
     void shutdownImGui() override {}
@@ -49,7 +54,8 @@ public:
     bool resize(int width, int height) override {
         if (width < 1 || height < 1 || width > 16384 || height > 16384) return false;
         m_buffer.assign(static_cast<std::size_t>(width) * height * 4, 0);
-        if (!OSMesaMakeCurrent(m_ctx, m_buffer.data(), GL_UNSIGNED_BYTE, width, height)) return false;
+        if (!OSMesaMakeCurrent(m_ctx, m_buffer.data(), GL_UNSIGNED_BYTE, width, height))
+            return false;
         OSMesaPixelStore(OSMESA_Y_UP, 1);  // row 0 at the bottom, as glReadPixels reads
         m_width = width;
         m_height = height;
@@ -66,8 +72,17 @@ private:
 
 std::unique_ptr<Platform> makeOsmesaPlatform(int width, int height, std::string& error) {
     // A compatibility context: ImGui's OpenGL2 backend and our renderers use the fixed pipeline.
-    const int attribs[] = {OSMESA_FORMAT, OSMESA_RGBA, OSMESA_DEPTH_BITS, 0, OSMESA_STENCIL_BITS, 0,
-                           OSMESA_ACCUM_BITS, 0, OSMESA_PROFILE, OSMESA_COMPAT_PROFILE, 0};
+    const int attribs[] = {OSMESA_FORMAT,
+                           OSMESA_RGBA,
+                           OSMESA_DEPTH_BITS,
+                           0,
+                           OSMESA_STENCIL_BITS,
+                           0,
+                           OSMESA_ACCUM_BITS,
+                           0,
+                           OSMESA_PROFILE,
+                           OSMESA_COMPAT_PROFILE,
+                           0};
     OSMesaContext ctx = OSMesaCreateContextAttribs(attribs, nullptr);
     if (!ctx) {
         error = "OSMesa: cannot create a software GL context";
@@ -77,7 +92,8 @@ std::unique_ptr<Platform> makeOsmesaPlatform(int width, int height, std::string&
     int w = 0, h = 0;
     platform->framebufferSize(w, h);
     if (w != width || h != height) {
-        error = "OSMesa: cannot make a " + std::to_string(width) + "x" + std::to_string(height) + " buffer current";
+        error = "OSMesa: cannot make a " + std::to_string(width) + "x" + std::to_string(height) +
+                " buffer current";
         return nullptr;
     }
     return platform;
