@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The scaling table of issue 2: for n = 2^10 ... 2^20 uniform points in the paper's 1600x1600 box,
+# The scaling table: for n = 2^10 ... 2^20 uniform points in the paper's 1600x1600 box,
 # dtlab bench's ns/point, flips/point and walk steps/point with the default options (exact
 # boundary, brio order, walk locator) and with the paper's baseline (--locate naive --order
 # input), as a Markdown table; then the CGAL comparison at 2^20 (.ci/bench_compare.sh).

@@ -74,23 +74,23 @@ int main(int argc, char** argv) {
     if (input.empty()) {
         state.setOptions(dlab::ui::demoOptions());
         state.loadPoints(dlab::demoPoints(), "built-in demo");
-    } else if (!dlab::ui::OpenFile(state, input)) {
+    } else if (!dlab::ui::openFile(state, input)) {
         std::cerr << "delaunay-lab: " << state.files.notice << "\n";
         state.loadPoints(dlab::demoPoints(), "built-in demo");
     }
     // The user's points are autosaved after every change; a session that did not exit cleanly
     // left its autosave behind, and the first frame offers it.
     const std::string autosaveFolder =
-        noAutosave ? std::string() : dlab::ui::DefaultAutosaveFolder();
-    dlab::ui::OfferRecovery(state, autosaveFolder);
-    dlab::ui::EnableAutosave(state, autosaveFolder);
+        noAutosave ? std::string() : dlab::ui::defaultAutosaveFolder();
+    dlab::ui::offerRecovery(state, autosaveFolder);
+    dlab::ui::enableAutosave(state, autosaveFolder);
     gui.captureFrames(!screenshot.empty());
     for (int frame = 1;; ++frame) {
         for (const std::string& dropped : platform->takeDroppedFiles())
-            dlab::ui::OpenFile(state, dropped);
+            dlab::ui::openFile(state, dropped);
         platform->setTitle("Delaunay Lab - " + state.source);
         if (!gui.frame()) break;
-        dlab::ui::ServiceCaptures(gui);  // F12 screenshots, GIF exports
+        dlab::ui::serviceCaptures(gui);  // F12 screenshots, GIF exports
         if (frames > 0 && frame >= frames) break;
         if (!state.run.running) platform->waitForEvents(0.25);
     }
@@ -103,7 +103,7 @@ int main(int argc, char** argv) {
             std::cout << "wrote " << screenshot << "\n";
         }
     }
-    dlab::ui::RemoveAutosave(state);  // a clean exit: nothing to recover
+    dlab::ui::removeAutosave(state);  // a clean exit: nothing to recover
     dlab::ui::windowPlacement(*platform, window);
     if (!dlab::ui::saveSettings(settingsPath, state, window, error))
         std::cerr << "delaunay-lab: " << error << "\n";

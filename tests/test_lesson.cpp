@@ -125,7 +125,7 @@ INSTANTIATE_TEST_SUITE_P(Lessons, EveryLesson, testing::ValuesIn(lessonFiles()),
                              return name;
                          });
 
-TEST(Lessons, TheNineLessonsOfIssue6AreThere) {
+TEST(Lessons, ShippedLessonsLoadAndAskQuestions) {
     const auto files = lessonFiles();
     EXPECT_GE(files.size(), 9u);
     std::size_t withQuestions = 0;

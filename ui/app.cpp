@@ -43,9 +43,9 @@ float Splitter(const char* id, bool vertical, float thickness, float length) {
 
 void ShowApplication(AppState& state) {
     ImGuiIO& io = ImGui::GetIO();
-    HandleShortcuts(state);
-    AdvanceRun(state, io.DeltaTime);
-    UpdateDebugPanels(state);  // watches (may pause the run), checks, autosave
+    handleShortcuts(state);
+    advanceRun(state, io.DeltaTime);
+    updateDebugPanels(state);  // watches (may pause the run), checks, autosave
     if (std::string notice = state.engine.takeNotice(); !notice.empty()) {
         state.run.running = false;
         state.log(Message::Level::Warning, notice);
@@ -116,7 +116,7 @@ void ShowApplication(AppState& state) {
         ImGui::BeginChild("##tabs", ImVec2(0, showInspector ? sideH - inspH - kBar : sideH), false,
                           ImGuiWindowFlags_NoScrollbar);
         if (ImGui::BeginTabBar("##sidetabs")) {
-            const bool traceOpened = StudentTraceSelectTab(state);
+            const bool traceOpened = studentTraceSelectTab(state);
             for (const SideTab& tab : kSideTabs) {
                 if (tab.id && !lessonWantsPanel(state, tab.id)) continue;
                 const bool select =
@@ -178,7 +178,7 @@ void RecordItem(AppState& state, const char* name) {
     state.itemRects[name] = {a.x, a.y, b.x, b.y};
 }
 
-void HandleShortcuts(AppState& state) {
+void handleShortcuts(AppState& state) {
     const ImGuiIO& io = ImGui::GetIO();
     if (io.WantTextInput || ImGui::IsAnyItemActive()) return;
     auto pressed = [](int k) { return ImGui::IsKeyPressed(k, true); };
@@ -187,7 +187,7 @@ void HandleShortcuts(AppState& state) {
     const bool ctrl = io.KeyCtrl, shift = io.KeyShift;
 
     if (once(key::kF1)) state.showHelp = !state.showHelp;
-    if (once(key::kF12)) state.files.screenshotRequested = true;  // ServiceCaptures writes it
+    if (once(key::kF12)) state.files.screenshotRequested = true;  // serviceCaptures writes it
     if (once(key::kEscape)) {
         if (state.showHelp)
             state.showHelp = false;

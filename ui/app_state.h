@@ -92,7 +92,7 @@ struct RunControl {
     // last frame (drawing, the mesh rebuild, the GL render): large meshes stay interactive.
     double targetFrameMs = 24;
     double lastStepMs = 0;         // the stepping part of the last frame
-    double lastAdvanceMs = -1;     // when AdvanceRun last ran (steady clock ms), -1: not yet
+    double lastAdvanceMs = -1;     // when advanceRun last ran (steady clock ms), -1: not yet
     std::string stopReason;        // why the last run stopped ("end", "breakpoint: next flip", ...)
     std::size_t stopPosition = 0;  // where it stopped (the caption shows the reason only there)
 };
@@ -103,7 +103,7 @@ struct FrameStats {
     std::size_t visibleEdges = 0;
     bool denseMesh = false;      // drawn as a CPU raster
     std::size_t opsStepped = 0;  // operations the run advanced this frame
-    bool canvasFull = false;     // some overlay shapes were left out (CanvasHasRoom)
+    bool canvasFull = false;     // some overlay shapes were left out (canvasHasRoom)
 };
 
 struct Message {
@@ -129,7 +129,7 @@ struct DialogState {
     std::string breakText;
 };
 
-// ---- Issue 5: the debugging panels and files -------------------------------------------------
+// ---- The debugging panels and files ----------------------------------------------------------
 
 // One line of the expression console: what was typed and what it gave.
 struct ExprLine {
@@ -228,7 +228,7 @@ struct FileState {
     std::string notice;                // a file error, shown over the canvas until dismissed
     bool screenshotRequested = false;  // F12: main loop / tests call ServiceCaptures
     std::string screenshotFolder;      // empty: the current directory
-    std::optional<GifRequest> gif;     // a GIF to render (ServiceCaptures)
+    std::optional<GifRequest> gif;     // a GIF to render (serviceCaptures)
     enum class Dialog : std::uint8_t {
         None,
         SavePoints,
@@ -271,14 +271,14 @@ struct AppState {
     // Undo/redo of edits to the point set (never lose a user's points).
     std::vector<std::vector<Vec2>> undoPoints, redoPoints;
 
-    // Issue 5: expression console and watches, predicate inspector, ID-buffer view, statistics,
-    // files and sessions.
+    // The side tabs (expression console and watches, predicate inspector, ID-buffer view,
+    // statistics), files and sessions.
     ExpressionState expressions;
     PredicateState predicates;
     IdBufferViewState idBuffer;
     StatisticsState statistics;
     FileState files;
-    // Issue 6: a student's trace compared with this run (trace_compare.cpp).
+    // A student's trace compared with this run (trace_compare.cpp).
     struct TraceCompare {
         std::shared_ptr<const TraceFile> ours, student;  // null: no comparison open
         TraceDiff diff;

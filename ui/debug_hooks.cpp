@@ -1,4 +1,4 @@
-// The per-frame work and canvas drawing of issue 5's panels, which must happen whichever side
+// The per-frame work and canvas drawing of the debugging panels, which must happen whichever side
 // tab is open: watches, validate(), frame times and autosave; the expression path and the
 // violations over the canvas.
 #include "ui/files/files.h"
@@ -6,10 +6,10 @@
 
 namespace dlab::ui {
 
-void UpdateDebugPanels(AppState& state) {
-    CheckWatches(state);
-    UpdateStatistics(state);
-    Autosave(state);
+void updateDebugPanels(AppState& state) {
+    checkWatches(state);
+    updateStatistics(state);
+    saveAutosave(state);
 }
 
 void DrawDebugOverlays(AppState& state) {

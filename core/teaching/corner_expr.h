@@ -1,6 +1,6 @@
 // Corner expressions: `r(o(n(7)))`, `c.n.o.r`, `V[n(o(c))] == V[p(c)]` parsed once and evaluated
 // against a Mesh, with the path of corners visited (for drawing) or a precise error. Shared by
-// the GUI's expression console and watches (issue 5) and by lesson questions.
+// the GUI's expression console and watches, and by lesson questions.
 //
 // Grammar (spaces anywhere between tokens):
 //   expr     := chain [ ("==" | "=" | "!=") chain ]

@@ -1,4 +1,4 @@
-// Fuzz target: session files (JSON), the bug report a user attaches; LoadSessionText end to end.
+// Fuzz target: session files (JSON), the bug report a user attaches; loadSessionText end to end.
 //
 // The bytes are the session's text. Either outcome is checked: refused, the error is one line
 // that names the file and the state is exactly as before (points, options, step, mesh);
@@ -54,7 +54,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     st.engine.seek(7);
     const Fingerprint before = fingerprintOf(st);
     std::string error;
-    if (!ui::LoadSessionText(st, text, kName, error)) {
+    if (!ui::loadSessionText(st, text, kName, error)) {
         require(!error.empty() && oneLine(error), "a refused session gives one line", error);
         require(error.find(kName) != std::string::npos, "a refused session's error names the file",
                 error);
@@ -71,10 +71,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     require(st.engine.batch() || st.engine.position() <= st.engine.recorded(),
             "the step is within the recorded run");
     const Fingerprint loaded = fingerprintOf(st);
-    const std::string again = ui::SessionText(st);
+    const std::string again = ui::sessionText(st);
     ui::AppState other;
     std::string error2;
-    require(ui::LoadSessionText(other, again, "again.json", error2),
+    require(ui::loadSessionText(other, again, "again.json", error2),
             "a session written back loads again", error2);
     require(fingerprintOf(other) == loaded, "a session written back loads to the same state");
     return 0;

@@ -113,7 +113,7 @@ TEST(Files, ASessionErrorQuotingAControlCharacterStaysOneLine) {
   "options": {"boundary": "sup\nper\r"}})";
     std::string error;
     const auto before = st.engine.points();
-    ASSERT_FALSE(dlab::ui::LoadSessionText(st, text, "bad.json", error));
+    ASSERT_FALSE(dlab::ui::loadSessionText(st, text, "bad.json", error));
     EXPECT_EQ(error.find('\n'), std::string::npos) << error;
     EXPECT_EQ(error.find('\r'), std::string::npos) << error;
     EXPECT_EQ(error.rfind("bad.json:2:", 0), 0u) << error;
@@ -127,15 +127,15 @@ TEST(Files, PointsRoundTripBitExactAsNodeAndCsv) {
     auto& st = h.state();
     ASSERT_TRUE(st.loadPoints(awkwardPoints(), "awkward"));
     for (const char* name : {"p.node", "p.csv"}) {
-        ASSERT_TRUE(dlab::ui::SavePoints(st, dir / name)) << st.files.notice;
+        ASSERT_TRUE(dlab::ui::savePoints(st, dir / name)) << st.files.notice;
         const dlab::PointSet back = dlab::readPointsFile(dir / name);
         EXPECT_TRUE(sameBits(back.points, awkwardPoints())) << name;
     }
     // Opened again through the GUI (as a dropped file is): the same points, bit for bit.
     ASSERT_TRUE(st.loadPoints(dlab::demoPoints(), "demo"));
-    ASSERT_TRUE(dlab::ui::OpenFile(st, dir / "p.csv"));
+    ASSERT_TRUE(dlab::ui::openFile(st, dir / "p.csv"));
     EXPECT_TRUE(sameBits(st.engine.points(), awkwardPoints()));
-    EXPECT_FALSE(dlab::ui::SavePoints(st, dir / "p.xyz"));  // unknown format: refused, said
+    EXPECT_FALSE(dlab::ui::savePoints(st, dir / "p.xyz"));  // unknown format: refused, said
     EXPECT_NE(st.files.notice.find("p.xyz"), std::string::npos);
 }
 
@@ -147,7 +147,7 @@ TEST(Files, MeshExportsReadBackAsTheMesh) {
     const dlab::Mesh& m = st.engine.mesh();
     ASSERT_GT(m.numTriangles(), 10);
 
-    ASSERT_TRUE(dlab::ui::ExportMesh(st, dir / "m.ele", dlab::ui::MeshFormat::Triangle));
+    ASSERT_TRUE(dlab::ui::exportMesh(st, dir / "m.ele", dlab::ui::MeshFormat::Triangle));
     const dlab::PointSet node = dlab::readPointsFile(dir / "m.node");
     EXPECT_TRUE(sameBits(node.points, m.G));
     const auto ele = fields(dir / "m.ele");
@@ -163,7 +163,7 @@ TEST(Files, MeshExportsReadBackAsTheMesh) {
         }
     }
 
-    ASSERT_TRUE(dlab::ui::ExportMesh(st, dir / "m.off", dlab::ui::MeshFormat::Off));
+    ASSERT_TRUE(dlab::ui::exportMesh(st, dir / "m.off", dlab::ui::MeshFormat::Off));
     const auto off = fields(dir / "m.off");
     ASSERT_EQ(off[0][0], "OFF");
     ASSERT_EQ(std::stoi(off[1][0]), m.numVertices());
@@ -183,7 +183,7 @@ TEST(Files, MeshExportsReadBackAsTheMesh) {
     dlab::computeOpposites(fromOff);  // the triangles alone rebuild the same neighbours
     EXPECT_EQ(fromOff.O, m.O);
 
-    ASSERT_TRUE(dlab::ui::ExportMesh(st, dir / "m.obj", dlab::ui::MeshFormat::Obj));
+    ASSERT_TRUE(dlab::ui::exportMesh(st, dir / "m.obj", dlab::ui::MeshFormat::Obj));
     std::vector<Vec2> objV;
     std::vector<std::int32_t> objF;
     for (const auto& f : fields(dir / "m.obj")) {
@@ -199,13 +199,13 @@ TEST(Files, MeshExportsReadBackAsTheMesh) {
     // consistent.
     st.engine.seek(60);
     ASSERT_FALSE(st.engine.inserter().done());
-    ASSERT_TRUE(dlab::ui::ExportMesh(st, dir / "mid.off", dlab::ui::MeshFormat::Off));
+    ASSERT_TRUE(dlab::ui::exportMesh(st, dir / "mid.off", dlab::ui::MeshFormat::Off));
     const auto mid = fields(dir / "mid.off");
     std::int32_t real = 0;
     for (std::int32_t t = 0; t < st.engine.mesh().numTriangles(); ++t)
         real += !st.engine.inserter().isVirtualTriangle(t);
     EXPECT_EQ(std::stoi(mid[1][1]), real);
-    const dlab::Mesh em = dlab::ui::ExportableMesh(st.engine);
+    const dlab::Mesh em = dlab::ui::exportableMesh(st.engine);
     dlab::ValidateOptions combinatorial;
     combinatorial.delaunay = false;  // mid-insertion some edges still wait for their flip
     EXPECT_TRUE(dlab::validate(em, combinatorial).empty());
@@ -218,7 +218,7 @@ TEST(Files, ViewSvgHasEveryVisibleEdgeAndPointWhereTheCanvasDrawsThem) {
     st.engine.seek(70);
     h.scroll(st.view.origin.x + st.view.size.x * 0.4f, st.view.origin.y + st.view.size.y * 0.5f,
              2.0f);  // zoom in: some edges leave the view
-    ASSERT_TRUE(dlab::ui::ExportViewSvg(st, dir / "v.svg"));
+    ASSERT_TRUE(dlab::ui::exportViewSvg(st, dir / "v.svg"));
     const std::string svg = slurp(dir / "v.svg");
     std::smatch mm;
     ASSERT_TRUE(std::regex_search(svg, mm, std::regex("viewBox=\"0 0 (\\d+) (\\d+)\"")));
@@ -277,7 +277,7 @@ TEST(Files, F12WritesAPngOfTheWindow) {
     h.frames(2);
     h.press(key::kF12);
     ASSERT_TRUE(st.files.screenshotRequested);
-    dlab::ui::ServiceCaptures(h.gui());
+    dlab::ui::serviceCaptures(h.gui());
     EXPECT_FALSE(st.files.screenshotRequested);
     std::vector<fs::path> pngs;
     for (const auto& e : fs::directory_iterator(dir.path)) pngs.push_back(e.path());
@@ -310,7 +310,7 @@ TEST(Files, AnimatedGifHasOneFramePerStepAsRendered) {
     req.every = 10;
     req.delayMs = 300;
     st.files.gif = req;
-    dlab::ui::ServiceCaptures(h.gui());
+    dlab::ui::serviceCaptures(h.gui());
     EXPECT_FALSE(st.files.gif.has_value());
     EXPECT_EQ(st.engine.position(), 5u);  // back where it was
     int err = 0;
@@ -356,7 +356,7 @@ TEST(Files, AnimatedGifHasOneFramePerStepAsRendered) {
     req.to = 100000;
     req.every = 1;
     st.files.gif = req;
-    dlab::ui::ServiceCaptures(h.gui());
+    dlab::ui::serviceCaptures(h.gui());
     EXPECT_NE(st.files.notice.find("steps.gif"), std::string::npos) << st.files.notice;
 }
 
@@ -389,19 +389,19 @@ TEST(Files, SessionRoundTripRestoresTheSameStateAtTheSameStep) {
         st.view.scale = 0.75;
         st.overlays.voronoi = true;
         st.overlays.cornerIds = false;
-        ASSERT_TRUE(dlab::ui::AddWatch(st, "o(o(c)) == c"));
+        ASSERT_TRUE(dlab::ui::addWatch(st, "o(o(c)) == c"));
         st.expressions.watches.back().enabled = false;
-        ASSERT_TRUE(dlab::ui::EvaluateExpression(st, "c.n"));
+        ASSERT_TRUE(dlab::ui::evaluateExpression(st, "c.n"));
         st.run.breakpoints.push_back({*dlab::parseBreakpoint("insert:5"), true});
         h.frames(1);
-        ASSERT_TRUE(dlab::ui::SaveSessionFile(st, path));
+        ASSERT_TRUE(dlab::ui::saveSessionFile(st, path));
         fingerprint = dlab::ui::MeshFingerprint(st.engine.mesh());
         savedPoints = st.engine.points();
         bps = st.run.breakpoints;
     }
     UiHarness h;
     auto& st = h.state();
-    ASSERT_TRUE(dlab::ui::OpenFile(st, path)) << st.files.notice;
+    ASSERT_TRUE(dlab::ui::openFile(st, path)) << st.files.notice;
     h.frames(2);
     EXPECT_TRUE(sameBits(st.engine.points(), savedPoints));
     EXPECT_EQ(st.engine.options().order, dlab::OrderKind::Random);
@@ -424,7 +424,7 @@ TEST(Files, SessionRoundTripRestoresTheSameStateAtTheSameStep) {
     for (const auto& msg : st.messages)
         EXPECT_NE(msg.level, dlab::ui::Message::Level::Warning) << msg.text;
     // Saving again gives the same file: nothing was lost or invented on the way.
-    ASSERT_TRUE(dlab::ui::SaveSessionFile(st, dir / "again.json"));
+    ASSERT_TRUE(dlab::ui::saveSessionFile(st, dir / "again.json"));
     std::string a = slurp(path), b = slurp(dir / "again.json");
     const std::regex source("\"source\": \"[^\"]*\"");
     EXPECT_EQ(std::regex_replace(a, source, ""), std::regex_replace(b, source, ""));
@@ -435,11 +435,11 @@ TEST(Files, ASessionWhoseMeshDiffersSaysSo) {
     UiHarness h;
     auto& st = h.state();
     st.engine.seek(40);
-    std::string text = dlab::ui::SessionText(st);
+    std::string text = dlab::ui::sessionText(st);
     const auto at = text.find("\"fingerprint\": \"") + 16;
     text.replace(at, 16, "0123456789abcdef");
     std::string error;
-    ASSERT_TRUE(dlab::ui::LoadSessionText(st, text, "report.json", error)) << error;
+    ASSERT_TRUE(dlab::ui::loadSessionText(st, text, "report.json", error)) << error;
     EXPECT_EQ(st.engine.position(), 40u);
     ASSERT_FALSE(st.messages.empty());
     EXPECT_EQ(st.messages.back().level, dlab::ui::Message::Level::Warning);
@@ -457,7 +457,7 @@ TEST(Files, ABadFileChangesNothingAndShowsOneLineNamingFileAndLine) {
     const auto points = st.engine.points();
     const auto view = st.view;
     const auto options = st.engine.options();
-    const std::string good = dlab::ui::SessionText(st);
+    const std::string good = dlab::ui::sessionText(st);
     auto lineOf = [&](const std::string& text, const std::string& needle) {
         const auto at = text.find(needle);
         return 1 + static_cast<int>(std::count(
@@ -495,7 +495,7 @@ TEST(Files, ABadFileChangesNothingAndShowsOneLineNamingFileAndLine) {
         std::ofstream(path) << c.text;
         st.files.notice.clear();
         const std::size_t before = st.messages.size();
-        EXPECT_FALSE(dlab::ui::OpenFile(st, path)) << c.name;
+        EXPECT_FALSE(dlab::ui::openFile(st, path)) << c.name;
         EXPECT_TRUE(sameBits(st.engine.points(), points)) << c.name;
         EXPECT_EQ(st.engine.position(), 33u) << c.name;
         EXPECT_EQ(st.engine.options().locator, options.locator) << c.name;
@@ -529,7 +529,7 @@ TEST(Files, DISABLED_RecoveryChildEditsUntilKilled) {
     ASSERT_NE(dir, nullptr);
     UiHarness h;
     auto& st = h.state();
-    dlab::ui::EnableAutosave(st, dir);
+    dlab::ui::enableAutosave(st, dir);
     const auto canvas = h.rect("canvas");
     std::ofstream progress(std::string(dir) + "/progress.txt");
     for (int i = 0; i < 400; ++i) {
@@ -580,7 +580,7 @@ TEST(Files, RecoveryAfterKillRestoresEveryPoint) {
     // point the child had added (and perhaps the one it was adding when it died).
     UiHarness h;
     auto& st = h.state();
-    ASSERT_TRUE(dlab::ui::OfferRecovery(st, dir.path.string()));
+    ASSERT_TRUE(dlab::ui::offerRecovery(st, dir.path.string()));
     h.frames(2);
     h.clickItem("recover");
     EXPECT_TRUE(st.files.recoveryPath.empty());
@@ -594,7 +594,7 @@ TEST(Files, RecoveryAfterKillRestoresEveryPoint) {
         EXPECT_EQ(pts[demo + k], (Vec2{x, y})) << "point " << k;
     }
     // The dead instance's autosave is gone; a clean exit of this one leaves nothing behind.
-    dlab::ui::EnableAutosave(st, dir.path.string());
+    dlab::ui::enableAutosave(st, dir.path.string());
     std::vector<Vec2> more = pts;
     more.push_back({1, 1});
     ASSERT_TRUE(st.editPoints(more));
@@ -604,9 +604,9 @@ TEST(Files, RecoveryAfterKillRestoresEveryPoint) {
         autosaves += e.path().filename().string().rfind("autosave-", 0) == 0;
     EXPECT_EQ(autosaves, 1);
     ASSERT_TRUE(fs::exists(st.files.autosavePath));
-    dlab::ui::RemoveAutosave(st);
+    dlab::ui::removeAutosave(st);
     EXPECT_FALSE(fs::exists(st.files.autosavePath));
-    EXPECT_FALSE(dlab::ui::OfferRecovery(st, dir.path.string()));
+    EXPECT_FALSE(dlab::ui::offerRecovery(st, dir.path.string()));
 }
 
 TEST(Files, DiscardingTheRecoveryDeletesTheAutosave) {
@@ -615,11 +615,11 @@ TEST(Files, DiscardingTheRecoveryDeletesTheAutosave) {
     std::string autosave = dir / "autosave-999999999.json";
     {
         UiHarness h;
-        std::ofstream(autosave) << dlab::ui::SessionText(h.state());
+        std::ofstream(autosave) << dlab::ui::sessionText(h.state());
     }
     UiHarness h;
     auto& st = h.state();
-    ASSERT_TRUE(dlab::ui::OfferRecovery(st, dir.path.string()));
+    ASSERT_TRUE(dlab::ui::offerRecovery(st, dir.path.string()));
     EXPECT_EQ(st.files.recoveryPoints, dlab::demoPoints().size());
     h.frames(2);
     h.clickItem("discard-recovery");

@@ -25,7 +25,7 @@ namespace {
 // A corner of the current mesh whose label is on the canvas.
 std::int32_t visibleCorner(UiHarness& h, float& x, float& y, std::int32_t from = 0) {
     for (std::int32_t c = from; c < h.state().engine.mesh().numCorners(); ++c) {
-        if (dlab::ui::CornerAnchor(h.state(), c, x, y)) return c;
+        if (dlab::ui::cornerAnchor(h.state(), c, x, y)) return c;
     }
     return kNone;
 }
@@ -363,7 +363,7 @@ TEST(Gui, ABadFileShowsAnErrorAndChangesNothing) {
     const auto points = st.engine.points();
     const std::filesystem::path bad = std::filesystem::temp_directory_path() / "dlab_gui_bad.csv";
     std::ofstream(bad) << "1,2\n3,nan\n";
-    EXPECT_FALSE(dlab::ui::LoadPointFile(st, bad.string()));
+    EXPECT_FALSE(dlab::ui::loadPointFile(st, bad.string()));
     EXPECT_EQ(st.engine.points(), points);
     EXPECT_EQ(st.engine.position(), 20u);
     ASSERT_FALSE(st.messages.empty());

@@ -1,4 +1,4 @@
-// GUI robustness (issue 7): long seeded random sequences of user actions on the real UI, headless,
+// GUI robustness: long seeded random sequences of user actions on the real UI, headless,
 // with the mesh's invariants checked after every action, and undo back to the original points.
 //
 // Each seed drives one UiHarness through clicks, drags, keys, step buttons, zoom and pan, option
@@ -341,7 +341,7 @@ private:
         std::vector<std::pair<std::int32_t, std::pair<float, float>>> labelled;
         for (std::int32_t c = 0; c < st.engine.mesh().numCorners(); ++c) {
             float x = 0, y = 0;
-            if (ui::CornerAnchor(st, c, x, y)) labelled.push_back({c, {x, y}});
+            if (ui::cornerAnchor(st, c, x, y)) labelled.push_back({c, {x, y}});
         }
         if (labelled.empty()) return pressKey();
         const auto& [c, at] = labelled[below(labelled.size())];
@@ -548,7 +548,7 @@ private:
              fs::path(path).filename().string());
         const Before b = before();
         const std::size_t messages = st.messages.size();
-        const bool loaded = viaOpen ? ui::OpenFile(st, path) : ui::LoadPointFile(st, path);
+        const bool loaded = viaOpen ? ui::openFile(st, path) : ui::loadPointFile(st, path);
         m_h.frames(2);
         if (loaded) return "the bad file " + path + " was accepted";
         if (std::string failure = unchanged(b, "a bad file"); !failure.empty()) return failure;

@@ -1,4 +1,4 @@
-// Issue 5's debugging panels driven as a user drives them: an expression typed into the console
+// The debugging panels driven as a user drives them: an expression typed into the console
 // (its value and the path drawn on the canvas), watches that pause a run, the predicate
 // inspector's warning on a near-degenerate in-circle test where plain floating point is wrong,
 // the ID-buffer view hovered and checked against the core's locator, and the statistics.
@@ -45,7 +45,7 @@ void openTab(UiHarness& h, const char* name) {
 }
 
 bool anchorOf(UiHarness& h, std::int32_t c, float& x, float& y) {
-    return dlab::ui::CornerAnchor(h.state(), c, x, y);
+    return dlab::ui::cornerAnchor(h.state(), c, x, y);
 }
 
 std::array<float, 4> around(float x, float y, float r) { return {x - r, y - r, x + r, y + r}; }
@@ -144,7 +144,7 @@ TEST(Panels, TheDrawnPathFollowsEveryStep) {
     }
     ASSERT_NE(c, kNone);
     st.select(c);
-    ASSERT_TRUE(dlab::ui::EvaluateExpression(st, "c.n"));
+    ASSERT_TRUE(dlab::ui::evaluateExpression(st, "c.n"));
     h.frames(1);
     const auto before = st.expressions.path;
     h.press(key::kRight);
@@ -159,8 +159,8 @@ TEST(Panels, AWatchPausesTheRunAtTheFirstOperationThatBreaksIt) {
     UiHarness h;
     auto& st = h.state();
     // "No corner's vertex is 7" breaks exactly when vertex 7 enters the mesh.
-    ASSERT_TRUE(dlab::ui::AddWatch(st, "V[c] != 7"));
-    ASSERT_FALSE(dlab::ui::AddWatch(st, "c.n.o"));  // not a comparison: refused, logged
+    ASSERT_TRUE(dlab::ui::addWatch(st, "V[c] != 7"));
+    ASSERT_FALSE(dlab::ui::addWatch(st, "c.n.o"));  // not a comparison: refused, logged
     h.press(key::kEnd);                             // full speed: many operations per frame
     for (int i = 0; i < 200 && st.run.running; ++i) h.frames(1);
     ASSERT_FALSE(st.run.running);
@@ -200,8 +200,8 @@ TEST(Panels, OnALargeMeshAWatchChecksTheChangedCornersAndStillStopsAtTheRightOpe
     // 1500 points in input order: about 9000 corners, beyond where every corner is checked.
     ASSERT_TRUE(
         st.loadPoints(dlab::generatePoints(dlab::Generator::Uniform, 1500, 4), "uniform 1500"));
-    ASSERT_TRUE(dlab::ui::AddWatch(st, "V[c] != 1400"));
-    ASSERT_TRUE(dlab::ui::AddWatch(st, "o(o(c)) == c"));
+    ASSERT_TRUE(dlab::ui::addWatch(st, "V[c] != 1400"));
+    ASSERT_TRUE(dlab::ui::addWatch(st, "o(o(c)) == c"));
     h.press(key::kEnd);
     for (int i = 0; i < 2000 && st.run.running; ++i) h.frames(1);
     ASSERT_FALSE(st.run.running);
@@ -221,7 +221,7 @@ TEST(Panels, TheStandardWatchesHoldThroughAWholeRun) {
     ASSERT_TRUE(st.loadPoints(dlab::generatePoints(dlab::Generator::Grid, 64, 3),
                               "grid"));  // cocircular quadruples
     openTab(h, "Expressions");
-    for (const char* w : dlab::standardWatches()) ASSERT_TRUE(dlab::ui::AddWatch(st, w));
+    for (const char* w : dlab::standardWatches()) ASSERT_TRUE(dlab::ui::addWatch(st, w));
     h.press(key::kEnd);
     for (int i = 0; i < 500 && st.run.running; ++i) h.frames(1);
     EXPECT_TRUE(st.engine.atEnd()) << st.run.stopReason;
@@ -267,7 +267,7 @@ NearDegenerate findNearDegenerate() {
         if (!e.reset({a, b, c, d}, dlab::ui::demoOptions(), error)) continue;
         while (e.forward()) {
             if (e.current()->type != OpType::InCircleTest) continue;
-            for (const auto& call : dlab::ui::CurrentPredicateCalls(e)) {
+            for (const auto& call : dlab::ui::currentPredicateCalls(e)) {
                 if (call.inCircle && call.report.naiveSign != call.report.exactSign)
                     return {{a, b, c, d}, e.position()};
             }
@@ -286,7 +286,7 @@ TEST(Panels, PredicateInspectorWarnsWhereFloatingPointIsWrong) {
     openTab(h, "Predicates");
     // An ordinary in-circle test of the demo first: no warning.
     while (st.engine.forward() && st.engine.current()->type != OpType::InCircleTest) {}
-    const auto calls = dlab::ui::CurrentPredicateCalls(st.engine);
+    const auto calls = dlab::ui::currentPredicateCalls(st.engine);
     ASSERT_FALSE(calls.empty());
     if (calls[0].report.naiveSign == calls[0].report.exactSign) {
         EXPECT_FALSE(drawnNow(h, "predicate-warning"));
@@ -298,7 +298,7 @@ TEST(Panels, PredicateInspectorWarnsWhereFloatingPointIsWrong) {
     for (int i = 0; i < 20 && st.engine.position() < nd.position; ++i)
         h.clickItem("predicate-next");
     ASSERT_EQ(st.engine.position(), nd.position);
-    const auto now = dlab::ui::CurrentPredicateCalls(st.engine);
+    const auto now = dlab::ui::currentPredicateCalls(st.engine);
     ASSERT_EQ(now.size(), 1u);
     ASSERT_TRUE(now[0].inCircle);
     EXPECT_NE(now[0].report.naiveSign, now[0].report.exactSign);
@@ -319,10 +319,10 @@ TEST(Panels, PredicateInspectorWarnsWhereFloatingPointIsWrong) {
         typed[k] = buf;
     }
     Vec2 q;
-    ASSERT_TRUE(dlab::ui::ParsePointText(typed[3], q));
+    ASSERT_TRUE(dlab::ui::parsePointText(typed[3], q));
     EXPECT_EQ(q, p[3]);  // 17 digits read back exactly
-    EXPECT_FALSE(dlab::ui::ParsePointText("1, nan", q));
-    EXPECT_FALSE(dlab::ui::ParsePointText("1, 2, 3", q));
+    EXPECT_FALSE(dlab::ui::parsePointText("1, nan", q));
+    EXPECT_FALSE(dlab::ui::parsePointText("1, 2, 3", q));
     ASSERT_TRUE(drawnNow(h, "predicate-warning"));
 }
 

@@ -1,4 +1,4 @@
-// A student's trace in the GUI (issue 6): opened like any file, it is compared with our run on
+// A student's trace in the GUI: opened like any file, it is compared with our run on
 // the same points and options; the view goes to the first difference, and both runs step side by
 // side from there.
 #include "core/engine/inserter.h"
@@ -54,7 +54,7 @@ TEST(TraceCompare, AStudentWhoMissedAFlipIsShownAtThatFlipAndBothRunsStepTogethe
     const std::string path = writeLines("dlab_student_missed_flip.jsonl", student);
     const std::vector<dlab::Vec2> points = st.engine.points();
 
-    ASSERT_TRUE(dlab::ui::OpenFile(st, path)) << st.messages.back().text;
+    ASSERT_TRUE(dlab::ui::openFile(st, path)) << st.messages.back().text;
     h.frames(3);
     const auto& tc = st.traceCompare;
     ASSERT_TRUE(tc.student);
@@ -90,7 +90,7 @@ TEST(TraceCompare, TheSameRunIsSaidToBeTheSame) {
     UiHarness h;
     auto& st = h.state();
     const std::string path = writeLines("dlab_student_same.jsonl", traceLines(st));
-    ASSERT_TRUE(dlab::ui::OpenFile(st, path));
+    ASSERT_TRUE(dlab::ui::openFile(st, path));
     EXPECT_TRUE(st.traceCompare.diff.equal) << st.traceCompare.diff.what;
     EXPECT_TRUE(st.engine.atEnd());
     EXPECT_NE(st.messages.back().text.find("the same run"), std::string::npos)
@@ -105,7 +105,7 @@ TEST(TraceCompare, ABadTraceChangesNothingAndNamesTheFileAndLine) {
     st.engine.seek(10);
     const std::string path = writeLines(
         "dlab_student_bad.jsonl", {"{\"op\":\"Split\",\"triangles\":[[0,0,1,2]]}", "{\"op\": 17}"});
-    EXPECT_FALSE(dlab::ui::OpenFile(st, path));
+    EXPECT_FALSE(dlab::ui::openFile(st, path));
     EXPECT_FALSE(st.traceCompare.student);
     EXPECT_EQ(st.engine.position(), 10u);
     EXPECT_NE(st.messages.back().text.find("dlab_student_bad.jsonl:2"), std::string::npos)

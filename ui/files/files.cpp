@@ -55,7 +55,7 @@ bool looksLikeJson(const std::string& path) {
     return false;
 }
 
-// Runs a writer; a failure becomes one FileError line.
+// Runs a writer; a failure becomes one fileError line.
 bool writeFile(AppState& st, const std::string& path,
                const std::function<void(std::ostream&)>& body) {
     try {
@@ -64,7 +64,7 @@ bool writeFile(AppState& st, const std::string& path,
         if (!parent.empty()) fs::create_directories(parent, ec);
         writeTextFile(path, body);
     } catch (const std::exception& e) {
-        FileError(st, e.what());
+        fileError(st, e.what());
         return false;
     }
     return true;
@@ -76,19 +76,19 @@ bool writeFile(AppState& st, const std::string& path,
 // [SECTION] Errors, opening, saving points and sessions
 // ============================================================================================
 
-void FileError(AppState& st, const std::string& line) {
+void fileError(AppState& st, const std::string& line) {
     st.log(Message::Level::Error, line);
     st.files.notice = line;
 }
 
-bool OpenFile(AppState& st, const std::string& path) {
+bool openFile(AppState& st, const std::string& path) {
     std::error_code ec;
     if (!fs::exists(path, ec)) {
-        FileError(st, path + ": no such file");
+        fileError(st, path + ": no such file");
         return false;
     }
     if (fs::is_directory(path, ec)) {
-        FileError(st, path + ": is a folder, not a file");
+        fileError(st, path + ": is a folder, not a file");
         return false;
     }
     bool ok = false;
@@ -99,15 +99,15 @@ bool OpenFile(AppState& st, const std::string& path) {
             st.files.notice =
                 st.messages.size() > before ? st.messages.back().text : path + ": cannot be read";
     } else if (lowerExtension(path) == ".jsonl") {
-        ok = OpenStudentTrace(st, path);  // it reported its own error
+        ok = openStudentTrace(st, path);  // it reported its own error
     } else if (lowerExtension(path) == ".json" || looksLikeJson(path)) {
         std::string error;
-        ok = LoadSession(st, path, error);
-        if (!ok) FileError(st, error + " (nothing was changed)");
+        ok = loadSession(st, path, error);
+        if (!ok) fileError(st, error + " (nothing was changed)");
     } else {
         const std::size_t before = st.messages.size();
-        ok = LoadPointFile(st, path);
-        // LoadPointFile logged the error line: show it over the canvas too.
+        ok = loadPointFile(st, path);
+        // loadPointFile logged the error line: show it over the canvas too.
         if (!ok)
             st.files.notice =
                 st.messages.size() > before ? st.messages.back().text : path + ": cannot be read";
@@ -116,7 +116,7 @@ bool OpenFile(AppState& st, const std::string& path) {
     return ok;
 }
 
-bool SavePoints(AppState& st, const std::string& path) {
+bool savePoints(AppState& st, const std::string& path) {
     const std::vector<Vec2>& pts = st.engine.points();
     const std::string ext = lowerExtension(path);
     bool ok = false;
@@ -136,7 +136,7 @@ bool SavePoints(AppState& st, const std::string& path) {
             }
         });
     } else {
-        FileError(st, path + ": unknown point format \"" + ext + "\" (save as .node or .csv)");
+        fileError(st, path + ": unknown point format \"" + ext + "\" (save as .node or .csv)");
         return false;
     }
     if (ok)
@@ -144,10 +144,10 @@ bool SavePoints(AppState& st, const std::string& path) {
     return ok;
 }
 
-bool SaveSessionFile(AppState& st, const std::string& path) {
+bool saveSessionFile(AppState& st, const std::string& path) {
     std::string error;
-    if (!SaveSession(st, path, error)) {
-        FileError(st, error);
+    if (!saveSession(st, path, error)) {
+        fileError(st, error);
         return false;
     }
     st.log(Message::Level::Info, "saved the session (" + std::to_string(st.engine.points().size()) +
@@ -160,7 +160,7 @@ bool SaveSessionFile(AppState& st, const std::string& path) {
 // [SECTION] Mesh exports
 // ============================================================================================
 
-Mesh ExportableMesh(const Engine& e) {
+Mesh exportableMesh(const Engine& e) {
     const Mesh& m = e.mesh();
     const Inserter& ins = e.inserter();
     if (ins.done()) return m;
@@ -175,12 +175,12 @@ Mesh ExportableMesh(const Engine& e) {
     return out;
 }
 
-bool ExportMesh(AppState& st, const std::string& path, MeshFormat format) {
+bool exportMesh(AppState& st, const std::string& path, MeshFormat format) {
     Mesh m;
     try {
-        m = ExportableMesh(st.engine);
+        m = exportableMesh(st.engine);
     } catch (const std::exception& e) {
-        FileError(st, path + ": cannot export this mesh: " + e.what());
+        fileError(st, path + ": cannot export this mesh: " + e.what());
         return false;
     }
     std::string what;
@@ -280,7 +280,7 @@ struct SvgScene {
 
 }  // namespace
 
-void WriteViewSvg(std::ostream& os, const AppState& st) {
+void writeViewSvg(std::ostream& os, const AppState& st) {
     const Engine& e = st.engine;
     const Mesh& m = e.mesh();
     const View& view = st.view;
@@ -400,8 +400,8 @@ void WriteViewSvg(std::ostream& os, const AppState& st) {
     os << "</svg>\n";
 }
 
-bool ExportViewSvg(AppState& st, const std::string& path) {
-    const bool ok = writeFile(st, path, [&](std::ostream& os) { WriteViewSvg(os, st); });
+bool exportViewSvg(AppState& st, const std::string& path) {
+    const bool ok = writeFile(st, path, [&](std::ostream& os) { writeViewSvg(os, st); });
     if (ok) st.log(Message::Level::Info, "wrote the view to " + path);
     return ok;
 }
@@ -410,7 +410,7 @@ bool ExportViewSvg(AppState& st, const std::string& path) {
 // [SECTION] Captures (PNG, GIF)
 // ============================================================================================
 
-bool SaveScreenshotFile(Gui& gui, std::string path) {
+bool saveScreenshotFile(Gui& gui, std::string path) {
     AppState& st = gui.state();
     if (path.empty()) {
         const std::time_t now = std::time(nullptr);
@@ -426,26 +426,26 @@ bool SaveScreenshotFile(Gui& gui, std::string path) {
     }
     std::string error;
     if (!gui.saveScreenshot(path, error)) {
-        FileError(st, error.find(path) == std::string::npos ? path + ": " + error : error);
+        fileError(st, error.find(path) == std::string::npos ? path + ": " + error : error);
         return false;
     }
     st.log(Message::Level::Info, "screenshot: " + path);
     return true;
 }
 
-void ServiceCaptures(Gui& gui) {
+void serviceCaptures(Gui& gui) {
     AppState& st = gui.state();
     if (st.files.screenshotRequested) {
         st.files.screenshotRequested = false;
-        SaveScreenshotFile(gui);
+        saveScreenshotFile(gui);
     }
     if (st.files.gif) {
         const GifRequest req = *st.files.gif;
         st.files.gif.reset();
         std::string error;
-        const int frames = ExportStepsGif(gui, req, error);
+        const int frames = exportStepsGif(gui, req, error);
         if (frames == 0)
-            FileError(st, error);
+            fileError(st, error);
         else
             st.log(Message::Level::Info, "wrote " + req.path + ": " + std::to_string(frames) +
                                              " frames, operations " + std::to_string(req.from) +
@@ -479,7 +479,7 @@ bool instanceAlive(long pid) {
 
 }  // namespace
 
-std::string DefaultAutosaveFolder() {
+std::string defaultAutosaveFolder() {
     if (const char* x = std::getenv("XDG_CACHE_HOME"); x && *x)
         return std::string(x) + "/delaunay-lab";
     if (const char* h = std::getenv("HOME"); h && *h)
@@ -487,7 +487,7 @@ std::string DefaultAutosaveFolder() {
     return {};
 }
 
-void EnableAutosave(AppState& st, const std::string& folder) {
+void enableAutosave(AppState& st, const std::string& folder) {
     FileState& f = st.files;
     if (folder.empty()) {
         f.autosavePath.clear();
@@ -500,7 +500,7 @@ void EnableAutosave(AppState& st, const std::string& folder) {
     f.autosaved = st.engine.points();
 }
 
-void Autosave(AppState& st) {
+void saveAutosave(AppState& st) {
     FileState& f = st.files;
     if (f.autosavePath.empty() || !f.recoveryPath.empty()) return;
     const std::vector<Vec2>& pts = st.engine.points();
@@ -516,14 +516,14 @@ void Autosave(AppState& st) {
     if (pts == f.autosaved) return;
     f.autosaved = pts;  // also on failure: one warning per change, not one per frame
     try {
-        const std::string body = SessionText(st);
+        const std::string body = sessionText(st);
         writeTextFile(f.autosavePath, [&](std::ostream& os) { os << body; });
     } catch (const std::exception& e) {
         st.log(Message::Level::Warning, std::string("autosave failed: ") + e.what());
     }
 }
 
-bool OfferRecovery(AppState& st, const std::string& folder) {
+bool offerRecovery(AppState& st, const std::string& folder) {
     FileState& f = st.files;
     std::error_code ec;
     if (folder.empty() || !fs::is_directory(folder, ec)) return false;
@@ -545,7 +545,7 @@ bool OfferRecovery(AppState& st, const std::string& folder) {
     if (best.empty()) return false;
     SessionSummary summary;
     std::string error;
-    if (!PeekSession(best.string(), summary, error)) {
+    if (!peekSession(best.string(), summary, error)) {
         st.log(Message::Level::Warning,
                "an autosave from a crashed session cannot be read: " + error);
         return false;
@@ -556,13 +556,13 @@ bool OfferRecovery(AppState& st, const std::string& folder) {
     return true;
 }
 
-bool AcceptRecovery(AppState& st) {
+bool acceptRecovery(AppState& st) {
     FileState& f = st.files;
     if (f.recoveryPath.empty()) return false;
     const std::string path = f.recoveryPath;
     std::string error;
-    if (!LoadSession(st, path, error)) {
-        FileError(st, error + " (nothing was changed)");
+    if (!loadSession(st, path, error)) {
+        fileError(st, error + " (nothing was changed)");
         return false;
     }
     std::error_code ec;
@@ -574,7 +574,7 @@ bool AcceptRecovery(AppState& st) {
     return true;
 }
 
-void DeclineRecovery(AppState& st) {
+void declineRecovery(AppState& st) {
     FileState& f = st.files;
     if (f.recoveryPath.empty()) return;
     std::error_code ec;
@@ -583,7 +583,7 @@ void DeclineRecovery(AppState& st) {
     f.recoveryPath.clear();
 }
 
-void RemoveAutosave(AppState& st) {
+void removeAutosave(AppState& st) {
     if (st.files.autosavePath.empty()) return;
     std::error_code ec;
     fs::remove(st.files.autosavePath, ec);

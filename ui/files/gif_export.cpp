@@ -237,7 +237,7 @@ std::vector<std::uint8_t> CaptureRegion(Gui& gui, bool wholeWindow, int& width, 
     return out;
 }
 
-int ExportStepsGif(Gui& gui, const GifRequest& req, std::string& error) {
+int exportStepsGif(Gui& gui, const GifRequest& req, std::string& error) {
     AppState& st = gui.state();
     Engine& e = st.engine;
     if (e.batch()) {

@@ -39,7 +39,7 @@ private:
 // Renders operations request.from .. request.to (every request.every) through `gui` and writes
 // them to request.path; the run goes back to where it was. Returns the number of frames, 0 with
 // a one-line `error` on failure.
-int ExportStepsGif(Gui& gui, const GifRequest& request, std::string& error);
+int exportStepsGif(Gui& gui, const GifRequest& request, std::string& error);
 
 // The pixels of the last frame inside the canvas (or the whole frame), RGBA, top row first.
 std::vector<std::uint8_t> CaptureRegion(Gui& gui, bool wholeWindow, int& width, int& height);

@@ -421,7 +421,7 @@ std::uint64_t MeshFingerprint(const Mesh& m) {
     return h;
 }
 
-std::string SessionText(const AppState& st) {
+std::string sessionText(const AppState& st) {
     const Engine& e = st.engine;
     const InsertOptions& o = e.options();
     Json j;
@@ -474,9 +474,9 @@ std::string SessionText(const AppState& st) {
     return out;
 }
 
-bool SaveSession(const AppState& st, const std::string& path, std::string& error) {
+bool saveSession(const AppState& st, const std::string& path, std::string& error) {
     try {
-        const std::string body = SessionText(st);
+        const std::string body = sessionText(st);
         writeTextFile(path, [&](std::ostream& os) { os << body; });
     } catch (const std::exception& e) {
         error = e.what();
@@ -485,7 +485,7 @@ bool SaveSession(const AppState& st, const std::string& path, std::string& error
     return true;
 }
 
-bool LoadSessionText(AppState& st, std::string_view textIn, const std::string& name,
+bool loadSessionText(AppState& st, std::string_view textIn, const std::string& name,
                      std::string& error) {
     Session s;
     try {
@@ -577,7 +577,7 @@ bool LoadSessionText(AppState& st, std::string_view textIn, const std::string& n
     return true;
 }
 
-bool LoadSession(AppState& st, const std::string& path, std::string& error) {
+bool loadSession(AppState& st, const std::string& path, std::string& error) {
     std::ifstream in(path, std::ios::binary);
     if (!in) {
         error = path + ": cannot open the file";
@@ -594,10 +594,10 @@ bool LoadSession(AppState& st, const std::string& path, std::string& error) {
         error = path + ": larger than " + std::to_string(kMaxFileBytes >> 20) + " MiB";
         return false;
     }
-    return LoadSessionText(st, body, path, error);
+    return loadSessionText(st, body, path, error);
 }
 
-bool PeekSession(const std::string& path, SessionSummary& out, std::string& error) {
+bool peekSession(const std::string& path, SessionSummary& out, std::string& error) {
     std::ifstream in(path, std::ios::binary);
     if (!in) {
         error = path + ": cannot open the file";

@@ -32,16 +32,16 @@ inline constexpr int kSessionVersion = 1;
 inline constexpr const char* kSessionFormat = "delaunay-lab session";
 
 // The session as JSON text (pretty-printed, one point per line).
-std::string SessionText(const AppState& state);
+std::string sessionText(const AppState& state);
 // Writes the session atomically; logs; on failure false with a one-line reason in `error`.
-bool SaveSession(const AppState& state, const std::string& path, std::string& error);
+bool saveSession(const AppState& state, const std::string& path, std::string& error);
 
 // Parses and applies a session. On any error returns false with one line in `error` and leaves
 // the state as it was. `name` names the file in messages. Warnings (a different mesh at the
 // saved step, a step beyond the run's end) go to the message log.
-bool LoadSessionText(AppState& state, std::string_view text, const std::string& name,
+bool loadSessionText(AppState& state, std::string_view text, const std::string& name,
                      std::string& error);
-bool LoadSession(AppState& state, const std::string& path, std::string& error);
+bool loadSession(AppState& state, const std::string& path, std::string& error);
 
 // A few facts about a session file without applying it (the recovery offer).
 struct SessionSummary {
@@ -49,7 +49,7 @@ struct SessionSummary {
     std::size_t position = 0;
     std::string source;
 };
-bool PeekSession(const std::string& path, SessionSummary& out, std::string& error);
+bool peekSession(const std::string& path, SessionSummary& out, std::string& error);
 
 // FNV-1a over G (bits), V and O: equal meshes, equal fingerprints.
 std::uint64_t MeshFingerprint(const Mesh& mesh);

@@ -25,7 +25,7 @@ namespace dlab::ui {
 
 // Up to this many points, points are drawn as ImDrawList circles with ids; above, by GL.
 // Up to this many points are drawn as ImGui circles (with ids when asked); beyond, our GL renderer
-// draws them: each circle costs ~50 of a draw list's 65536 vertices (CanvasHasRoom).
+// draws them: each circle costs ~50 of a draw list's 65536 vertices (canvasHasRoom).
 constexpr std::size_t kFewPoints = 600;
 constexpr unsigned kVerticesPerPoint = 64;
 constexpr int kSkippedDrawn = 300;  // crosses for skipped duplicates when there are many points
@@ -90,7 +90,7 @@ Palette palette(bool presentation) {
 }
 
 // Clips segment ab to the rectangle [lo, hi] (Liang-Barsky); false when nothing is left.
-bool ClipSegment(ImVec2& a, ImVec2& b, ImVec2 lo, ImVec2 hi) {
+bool clipSegment(ImVec2& a, ImVec2& b, ImVec2 lo, ImVec2 hi) {
     const double dx = static_cast<double>(b.x) - a.x, dy = static_cast<double>(b.y) - a.y;
     double t0 = 0, t1 = 1;
     const double p[4] = {-dx, dx, -dy, dy};
@@ -119,7 +119,7 @@ bool ClipSegment(ImVec2& a, ImVec2& b, ImVec2 lo, ImVec2 hi) {
 // millions of pixels long on screen (a dash each would exhaust memory).
 void DashedLine(ImDrawList* dl, ImVec2 a, ImVec2 b, ImU32 col, float thickness, float dash = 7,
                 float gap = 5) {
-    if (!ClipSegment(a, b, dl->GetClipRectMin(), dl->GetClipRectMax())) return;
+    if (!clipSegment(a, b, dl->GetClipRectMin(), dl->GetClipRectMax())) return;
     const float dx = b.x - a.x, dy = b.y - a.y, len = std::sqrt(dx * dx + dy * dy);
     if (len < 1e-3f) return;
     const float ux = dx / len, uy = dy / len;
@@ -166,7 +166,7 @@ struct Scene {
 
     ImVec2 screen(std::int32_t v) const { return toIm(view.toScreen(m.G[v])); }
     bool virtualTri(std::int32_t t) const { return running && ins.isVirtualTriangle(t); }
-    bool room(unsigned vertices) const { return CanvasHasRoom(st, dl, vertices); }
+    bool room(unsigned vertices) const { return canvasHasRoom(st, dl, vertices); }
     // Labels leave this much room for the points, drawn after them (on top).
     unsigned pointReserve() const {
         return kVerticesPerPoint *
@@ -603,7 +603,7 @@ std::int32_t pendingPointAt(const AppState& st, ImVec2 mouse) {
     return best;
 }
 
-void HandleInput(AppState& st, CanvasCache& cache, bool hovered) {
+void handleInput(AppState& st, CanvasCache& cache, bool hovered) {
     ImGuiIO& io = ImGui::GetIO();
     View& view = st.view;
     const ImVec2 mouse = io.MousePos;
@@ -671,7 +671,7 @@ void HandleInput(AppState& st, CanvasCache& cache, bool hovered) {
 
 }  // namespace
 
-bool CanvasHasRoom(AppState& st, const ImDrawList* dl, unsigned vertices) {
+bool canvasHasRoom(AppState& st, const ImDrawList* dl, unsigned vertices) {
     // Room is kept for the notice, the timeline below the canvas and the selection on top.
     constexpr unsigned kBudget = 56000;
     if (dl->_VtxCurrentIdx + vertices <= kBudget) return true;
@@ -693,7 +693,7 @@ void ShowCanvasNotice(AppState& st) {
     dl->AddText(p, IM_COL32(120, 70, 0, 255), text);
 }
 
-bool CornerAnchor(const AppState& st, std::int32_t c, float& x, float& y) {
+bool cornerAnchor(const AppState& st, std::int32_t c, float& x, float& y) {
     const Engine& e = st.engine;
     // A read-only scene (no draw list: room() is never asked).
     const Scene scene{const_cast<AppState&>(st),
@@ -810,7 +810,7 @@ void ShowCanvas(AppState& st) {
                dragTo);
     DrawSelection(scene);
     dl->PopClipRect();
-    HandleInput(st, cache, hovered);
+    handleInput(st, cache, hovered);
     if (hovered && hoveredCorner != kNone && cache.drag == CanvasCache::Drag::None) {
         ImGui::SetTooltip("corner %d (click to select)", hoveredCorner);
     }

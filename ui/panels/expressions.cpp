@@ -208,7 +208,7 @@ ImVec2 PathArrow(ImDrawList* dl, ImVec2 a, ImVec2 b, ImU32 col, float w) {
 
 }  // namespace
 
-bool EvaluateExpression(AppState& st, const std::string& text) {
+bool evaluateExpression(AppState& st, const std::string& text) {
     ExpressionState& ex = st.expressions;
     ExprLine line;
     line.text = text;
@@ -242,7 +242,7 @@ bool EvaluateExpression(AppState& st, const std::string& text) {
     return ok;
 }
 
-bool AddWatch(AppState& st, const std::string& text) {
+bool addWatch(AppState& st, const std::string& text) {
     ExprError err;
     auto expr = CornerExpr::parse(text, &err);
     if (!expr) {
@@ -266,7 +266,7 @@ bool AddWatch(AppState& st, const std::string& text) {
     return true;
 }
 
-void CheckWatches(AppState& st) {
+void checkWatches(AppState& st) {
     ExpressionState& ex = st.expressions;
     Engine& e = st.engine;
     refreshLive(st);
@@ -340,7 +340,7 @@ void DrawExpressionOverlay(AppState& st) {
     const float w = st.presentation ? 4.0f : 3.0f;
     auto anchor = [&](std::int32_t c, ImVec2& out) {
         float x = 0, y = 0;
-        if (!CornerAnchor(st, c, x, y)) return false;
+        if (!cornerAnchor(st, c, x, y)) return false;
         out = ImVec2(x, y);
         return true;
     };
@@ -353,7 +353,7 @@ void DrawExpressionOverlay(AppState& st) {
     int stepNo = 0;
     for (const PathStep& s : ex.path) {
         ++stepNo;
-        if (!CanvasHasRoom(st, dl, 200)) break;
+        if (!canvasHasRoom(st, dl, 200)) break;
         ImVec2 a, b;
         switch (s.op) {
             case 't':
@@ -441,7 +441,7 @@ void ShowExpressions(AppState& st) {
     const bool eval = ImGui::Button("Eval");
     RecordItem(st, "expr-eval");
     if ((enter || eval) && !ex.input.empty()) {
-        EvaluateExpression(st, ex.input);
+        evaluateExpression(st, ex.input);
         ex.input.clear();
         ImGui::SetKeyboardFocusHere(-1);
     }
@@ -532,11 +532,11 @@ void ShowExpressions(AppState& st) {
     RecordItem(st, "watch-input");
     ImGui::SameLine();
     if ((ImGui::Button("Add") || addEnter) && !ex.watchInput.empty()) {
-        if (AddWatch(st, ex.watchInput)) ex.watchInput.clear();
+        if (addWatch(st, ex.watchInput)) ex.watchInput.clear();
     }
     ImGui::SameLine();
     if (ImGui::Button("Standard")) {
-        for (const char* s : standardWatches()) AddWatch(st, s);
+        for (const char* s : standardWatches()) addWatch(st, s);
     }
     if (ImGui::IsItemHovered())
         ImGui::SetTooltip("Add the identities every corner table satisfies");

@@ -124,19 +124,19 @@ void DialogFields(AppState& st, const DialogInfo& d) {
 }
 
 // The dialog's action; true when it succeeded (the dialog closes).
-bool RunDialog(AppState& st, const DialogInfo& d) {
+bool runDialog(AppState& st, const DialogInfo& d) {
     FileState& f = st.files;
     const std::string path = f.dialogPath;
     switch (d.kind) {
-        case FileState::Dialog::OpenFile: return OpenFile(st, path);
-        case FileState::Dialog::SavePoints: return SavePoints(st, path);
-        case FileState::Dialog::SaveSession: return SaveSessionFile(st, path);
-        case FileState::Dialog::ExportSvg: return ExportViewSvg(st, path);
+        case FileState::Dialog::OpenFile: return openFile(st, path);
+        case FileState::Dialog::SavePoints: return savePoints(st, path);
+        case FileState::Dialog::SaveSession: return saveSessionFile(st, path);
+        case FileState::Dialog::ExportSvg: return exportViewSvg(st, path);
         case FileState::Dialog::ExportMesh:
-            return ExportMesh(st, path, static_cast<MeshFormat>(f.meshFormat));
+            return exportMesh(st, path, static_cast<MeshFormat>(f.meshFormat));
         case FileState::Dialog::ExportGif:
             f.gifDraft.path = path;
-            f.gif = f.gifDraft;  // rendered by ServiceCaptures after this frame
+            f.gif = f.gifDraft;  // rendered by serviceCaptures after this frame
             return true;
         case FileState::Dialog::None: break;
     }
@@ -182,12 +182,12 @@ void ShowRecoveryOffer(AppState& st) {
     if (!f.recoverySource.empty()) ImGui::Text("(from %s).", f.recoverySource.c_str());
     ImGui::TextDisabled("%s", f.recoveryPath.c_str());
     if (ImGui::Button("Recover them")) {
-        if (AcceptRecovery(st)) ImGui::CloseCurrentPopup();
+        if (acceptRecovery(st)) ImGui::CloseCurrentPopup();
     }
     RecordItem(st, "recover");
     ImGui::SameLine();
     if (ImGui::Button("Discard")) {
-        DeclineRecovery(st);
+        declineRecovery(st);
         ImGui::CloseCurrentPopup();
     }
     RecordItem(st, "discard-recovery");
@@ -224,7 +224,7 @@ void ShowFileDialogs(AppState& st) {
         RecordItem(st, "dialog-ok");
         ImGui::SameLine();
         const bool cancel = ImGui::Button("Cancel");
-        if (cancel || (ok && RunDialog(st, d))) ImGui::CloseCurrentPopup();
+        if (cancel || (ok && runDialog(st, d))) ImGui::CloseCurrentPopup();
         ImGui::EndPopup();
     }
 }

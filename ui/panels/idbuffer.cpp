@@ -2,7 +2,7 @@
 // a colour that encodes its id) as false colour or as the true encoded colours, drawn as a
 // texture; the pixel under the mouse decoded to its triangle id and checked against exact
 // containment; and whether the last locate hit (its hint already contained the point) or had to
-// walk. The buffer is read through ReadIdBuffer() only, so that another buffer (the GL one) plugs
+// walk. The buffer is read through readIdBuffer() only, so that another buffer (the GL one) plugs
 // in beside the CPU one.
 #include "core/engine/predicates.h"
 #include "ui/gl/idbuffer_gl.h"
@@ -113,7 +113,7 @@ LocateSummary lastLocate(const Engine& e) {
     return s;
 }
 
-void HexColour(const char* label, std::int32_t id) {
+void hexColour(const char* label, std::int32_t id) {
     const auto c = encodeTriangleId(id);
     ImGui::Text("%sRGBA %02X %02X %02X %02X", label, c[0], c[1], c[2], c[3]);
 }
@@ -132,7 +132,7 @@ std::uint32_t IdFalseColour(std::int32_t id) {
                     static_cast<int>(b * 255 + 0.5f), 255);
 }
 
-bool ReadIdBuffer(const Engine& e, IdBufferFrame& out, IdBufferCopy& copy) {
+bool readIdBuffer(const Engine& e, IdBufferFrame& out, IdBufferCopy& copy) {
     if (IdBufferGl* gl = e.idBufferGl()) {
         if (!gl->ready()) return false;
         // Reading back paints what is pending first (and bumps its version): read when the run
@@ -175,7 +175,7 @@ void IdBufferBody(AppState& st) {
     if (!vs.cache) vs.cache = std::make_shared<IdBufferView>();
     IdBufferView& v = *vs.cache;
     IdBufferFrame f;
-    if (!ReadIdBuffer(e, f, v.copy)) {
+    if (!readIdBuffer(e, f, v.copy)) {
         ImGui::TextWrapped("The run's locator is \"%s\": it keeps no ID buffer.",
                            toString(e.options().locator));
         ImGui::TextWrapped(
@@ -362,7 +362,7 @@ void IdBufferBody(AppState& st) {
         ImGui::TextUnformatted("id: none");
     else
         ImGui::Text("id: t%d", h.id);
-    HexColour("", h.id);
+    hexColour("", h.id);
     ImGui::PopFont();
     ImGui::PushTextWrapPos(ImGui::GetCursorPosX() + sideW);
     if (h.agrees) {

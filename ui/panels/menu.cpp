@@ -39,7 +39,7 @@ constexpr GeneratorChoice kGenerators[] = {
 
 }  // namespace
 
-bool LoadPointFile(AppState& st, const std::string& path) {
+bool loadPointFile(AppState& st, const std::string& path) {
     try {
         PointSet set = readPointsFile(path);
         for (const std::string& w : set.warnings) st.log(Message::Level::Warning, w);

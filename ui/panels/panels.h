@@ -35,29 +35,29 @@ void ShowLesson(AppState& state);       // lesson.cpp: the lesson's text and que
 
 // Loads a point file into the run; on bad input logs one line (file:line: what) and changes
 // nothing (menu.cpp).
-bool LoadPointFile(AppState& state, const std::string& path);
+bool loadPointFile(AppState& state, const std::string& path);
 
 // Where corner c's label sits on the canvas (screen pixels); false when its triangle is not
 // drawn or too small for a label (canvas.cpp).
-bool CornerAnchor(const AppState& state, std::int32_t corner, float& x, float& y);
+bool cornerAnchor(const AppState& state, std::int32_t corner, float& x, float& y);
 
 // ImGui 1.86's OpenGL2 backend draws each draw list with 16-bit indices (at most 65536
 // vertices): the mesh itself is our GL code, and every overlay loop on the canvas asks here
 // before adding about `vertices` more. Past the budget it answers false and the canvas says
 // that shapes were left out (zoom in), instead of aborting (canvas.cpp).
-bool CanvasHasRoom(AppState& state, const ImDrawList* drawList, unsigned vertices);
-// Says so on the canvas when CanvasHasRoom left shapes out this frame (after all overlays).
+bool canvasHasRoom(AppState& state, const ImDrawList* drawList, unsigned vertices);
+// Says so on the canvas when canvasHasRoom left shapes out this frame (after all overlays).
 void ShowCanvasNotice(AppState& state);
 
 // Remembers the last ImGui item's rectangle under `name` in state.itemRects (app.cpp).
 void RecordItem(AppState& state, const char* name);
 
 // Keyboard shortcuts (app.cpp); ignored while a text field has the keyboard.
-void HandleShortcuts(AppState& state);
+void handleShortcuts(AppState& state);
 // Advances a running animation by this frame's share of operations (toolbar.cpp).
-void AdvanceRun(AppState& state, double dtSeconds);
+void advanceRun(AppState& state, double dtSeconds);
 
-// ---- Issue 5: debugging panels (side tabs), files and sessions --------------------------------
+// ---- Debugging panels (side tabs), files and sessions -----------------------------------------
 void ShowExpressions(AppState& state);  // expressions.cpp: console, path on the canvas, watches
 void ShowPredicates(AppState& state);   // predicates.cpp: the current test's determinant and signs
 void ShowIdBuffer(AppState& state);     // idbuffer.cpp: the colour-ID buffer, pixel under the mouse
@@ -65,29 +65,29 @@ void ShowStatistics(AppState& state);   // statistics.cpp: counts, flips plot, f
 void ShowTraceCompare(AppState& state);  // trace_compare.cpp: a student's trace beside our run
 
 // A student's trace (.jsonl) compared with this run (same points and options): opens at the
-// first difference. On a bad file: one FileError line, nothing changed (trace_compare.cpp).
-bool OpenStudentTrace(AppState& state, const std::string& path);
-void CloseStudentTrace(AppState& state);
+// first difference. On a bad file: one fileError line, nothing changed (trace_compare.cpp).
+bool openStudentTrace(AppState& state, const std::string& path);
+void closeStudentTrace(AppState& state);
 // True once after a trace was opened: the side column shows its tab.
-bool StudentTraceSelectTab(AppState& state);
+bool studentTraceSelectTab(AppState& state);
 // The student's triangles that are not ours, over the canvas.
 void DrawTraceCompareOverlay(AppState& state);
 void ShowFileDialogs(AppState& state);  // files.cpp: save/export/GIF dialogs, recovery, notices
 
 // Per-frame work of those panels whichever tab is open: watches (pausing a run that breaks
 // one), validate(), frame times, autosave (debug_hooks.cpp; ShowApplication calls it).
-void UpdateDebugPanels(AppState& state);
+void updateDebugPanels(AppState& state);
 // What they draw on the canvas, over it: the expression's path, violations (after ShowCanvas).
 void DrawDebugOverlays(AppState& state);
 
 // Expression console (expressions.cpp). Evaluates `text` with c = the selected corner,
 // adds a history line and draws the path; true when it gave a value.
-bool EvaluateExpression(AppState& state, const std::string& text);
+bool evaluateExpression(AppState& state, const std::string& text);
 // Adds a watch (a comparison, e.g. o(o(c)) == c); logs why not when it cannot.
-bool AddWatch(AppState& state, const std::string& text);
+bool addWatch(AppState& state, const std::string& text);
 // Checks the watches if the mesh changed; a run that broke one is stopped at the first
 // operation that did, and the failure is logged with that operation and corner.
-void CheckWatches(AppState& state);
+void checkWatches(AppState& state);
 void DrawExpressionOverlay(AppState& state);
 
 // Predicate inspector (predicates.cpp): the predicate calls the current operation made.
@@ -98,9 +98,9 @@ struct PredicateCall {
     std::array<std::int32_t, 4> v{kNone, kNone, kNone, kNone};  // their vertex ids (kNone: typed)
     PredicateReport report;
 };
-std::vector<PredicateCall> CurrentPredicateCalls(const Engine& engine);
+std::vector<PredicateCall> currentPredicateCalls(const Engine& engine);
 // "x, y" (or "(x, y)", "x y"): two finite decimal numbers, read exactly.
-bool ParsePointText(std::string_view text, Vec2& out);
+bool parsePointText(std::string_view text, Vec2& out);
 
 // ID-buffer view (idbuffer.cpp). What the view shows of a locator's ID buffer, read by
 // one function: the CPU buffer in place, the GL buffer read back into a copy.
@@ -116,17 +116,17 @@ struct IdBufferCopy {
     std::uint64_t engineVersion = ~std::uint64_t{0}, bufferVersion = ~std::uint64_t{0};
 };
 // False when the run's locator keeps no ID buffer (or it has none yet).
-bool ReadIdBuffer(const Engine& engine, IdBufferFrame& out, IdBufferCopy& copy);
+bool readIdBuffer(const Engine& engine, IdBufferFrame& out, IdBufferCopy& copy);
 // The false colour of a triangle id (kNone: light grey), as the view draws it.
 std::uint32_t IdFalseColour(std::int32_t id);  // ImU32, as IM_COL32 packs it
 
 // Statistics (statistics.cpp).
-void UpdateStatistics(AppState& state);
+void updateStatistics(AppState& state);
 // The counts over the journal up to the current position, brought up to date (stepping mode).
 const RunCounts& UpdateRunCounts(AppState& state);
 void DrawViolationOverlay(AppState& state);
 
-// A side-column tab: issue 5's debugging panels slot in here.
+// A side-column tab: the debugging panels slot in here.
 struct SideTab {
     const char* name;
     void (*show)(AppState&);

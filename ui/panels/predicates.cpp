@@ -160,7 +160,7 @@ PredicateCall makeCall(const Mesh& m, bool inCircle, std::string what,
 
 }  // namespace
 
-bool ParsePointText(std::string_view text, Vec2& out) {
+bool parsePointText(std::string_view text, Vec2& out) {
     // "x, y", "x y" or "(x, y)": two decimal numbers, read exactly as the file readers do.
     std::string s(text);
     for (char& ch : s) {
@@ -182,7 +182,7 @@ bool ParsePointText(std::string_view text, Vec2& out) {
     return true;
 }
 
-std::vector<PredicateCall> CurrentPredicateCalls(const Engine& e) {
+std::vector<PredicateCall> currentPredicateCalls(const Engine& e) {
     std::vector<PredicateCall> calls;
     const Op* op = e.current();
     if (!op) return calls;
@@ -239,7 +239,7 @@ std::vector<PredicateCall> CurrentPredicateCalls(const Engine& e) {
 
 void ShowPredicates(AppState& st) {
     Engine& e = st.engine;
-    const std::vector<PredicateCall> calls = CurrentPredicateCalls(e);
+    const std::vector<PredicateCall> calls = currentPredicateCalls(e);
     ImGui::TextUnformatted("The current operation");
     ImGui::SameLine();
     ImGui::TextDisabled("(?)");
@@ -289,7 +289,7 @@ void ShowPredicates(AppState& st) {
         ImGui::SetNextItemWidth(-30);
         ImGui::InputText(kLabels[k], &st.predicates.points[k]);
         RecordItem(st, (std::string("predicate-point-") + kLabels[k]).c_str());
-        if (!ParsePointText(st.predicates.points[k], p[k])) {
+        if (!parsePointText(st.predicates.points[k], p[k])) {
             ok = false;
             ImGui::SameLine();
             ImGui::TextColored(ImVec4(0.8f, 0.1f, 0.1f, 1), "?");

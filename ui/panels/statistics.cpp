@@ -154,7 +154,7 @@ const RunCounts& UpdateRunCounts(AppState& st) {
     return st.statistics.counts;
 }
 
-void UpdateStatistics(AppState& st) {
+void updateStatistics(AppState& st) {
     StatisticsState& s = st.statistics;
     s.frameMs.push_back(ImGui::GetIO().DeltaTime * 1000.0f);
     if (s.frameMs.size() > StatisticsState::kFrames) s.frameMs.erase(s.frameMs.begin());
@@ -191,15 +191,15 @@ void DrawViolationOverlay(AppState& st) {
     for (const Violation& v : s.violations) {
         const std::int32_t c = v.corner;
         if (c < 0 || c >= m.numCorners()) continue;
-        if (!CanvasHasRoom(st, dl, 120)) break;
+        if (!canvasHasRoom(st, dl, 120)) break;
         const std::int32_t a = m.V[next(c)], b = m.V[prev(c)];
         if (drawable(a) && drawable(b))
             dl->AddLine(toIm(view.toScreen(m.G[a])), toIm(view.toScreen(m.G[b])), col, w);
         float x = 0, y = 0;
-        if (CornerAnchor(st, c, x, y)) dl->AddCircle(ImVec2(x, y), 14, col, 0, 3);
+        if (cornerAnchor(st, c, x, y)) dl->AddCircle(ImVec2(x, y), 14, col, 0, 3);
     }
     for (std::int32_t v : s.hullDents) {
-        if (!CanvasHasRoom(st, dl, 100)) break;
+        if (!canvasHasRoom(st, dl, 100)) break;
         if (drawable(v)) dl->AddCircle(toIm(view.toScreen(m.G[v])), 12, kViolationColour, 0, 3);
     }
     dl->PopClipRect();

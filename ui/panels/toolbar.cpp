@@ -274,7 +274,7 @@ void ShowTimeline(AppState& state) {
     if (ImGui::IsItemHovered()) ImGui::SetTooltip("Timeline: drag to any recorded operation");
 }
 
-void AdvanceRun(AppState& state, double dt) {
+void advanceRun(AppState& state, double dt) {
     RunControl& run = state.run;
     Engine& e = state.engine;
     const std::size_t startPos = e.position();

@@ -1,4 +1,4 @@
-// Student trace (issue 6): a student's run, as a trace (JSON Lines), compared with ours on the
+// Student trace: a student's run, as a trace (JSON Lines), compared with ours on the
 // same points and options. Opens at the first operation where the runs differ, shows both
 // operations and the evidence, steps both runs side by side (one mesh change at a time), and
 // draws the student's triangles that are not ours over the canvas.
@@ -70,15 +70,15 @@ void goToDifference(AppState& st) {
 
 }  // namespace
 
-bool OpenStudentTrace(AppState& st, const std::string& path) {
+bool openStudentTrace(AppState& st, const std::string& path) {
     if (st.engine.points().size() > kMaxComparedPoints) {
-        FileError(st, path + ": comparing a trace in the GUI takes at most " +
+        fileError(st, path + ": comparing a trace in the GUI takes at most " +
                           std::to_string(kMaxComparedPoints) +
                           " points (dtlab diff-trace takes any number)");
         return false;
     }
     if (st.engine.idBufferGl()) {
-        FileError(st, path +
+        fileError(st, path +
                           ": choose a CPU locator before comparing a trace (the GL ID buffer's run "
                           "is not replayed)");
         return false;
@@ -89,7 +89,7 @@ bool OpenStudentTrace(AppState& st, const std::string& path) {
         Inserter ins(st.engine.points(), st.engine.options());
         ours = std::make_shared<TraceFile>(traceOfRun(ins, "ours"));
     } catch (const std::exception& e) {
-        FileError(st, std::string(e.what()) + " (nothing was changed)");
+        fileError(st, std::string(e.what()) + " (nothing was changed)");
         return false;
     }
     auto& tc = st.traceCompare;
@@ -114,9 +114,9 @@ bool OpenStudentTrace(AppState& st, const std::string& path) {
     return true;
 }
 
-void CloseStudentTrace(AppState& st) { st.traceCompare = {}; }
+void closeStudentTrace(AppState& st) { st.traceCompare = {}; }
 
-bool StudentTraceSelectTab(AppState& st) { return std::exchange(st.traceCompare.selectTab, false); }
+bool studentTraceSelectTab(AppState& st) { return std::exchange(st.traceCompare.selectTab, false); }
 
 void ShowTraceCompare(AppState& st) {
     auto& tc = st.traceCompare;
@@ -134,7 +134,7 @@ void ShowTraceCompare(AppState& st) {
     if (stale(st)) {
         ImGui::TextColored(ImVec4(0.8f, 0.4f, 0.0f, 1),
                            "The points or options changed since the trace was opened.");
-        if (ImGui::Button("Close the comparison")) CloseStudentTrace(st);
+        if (ImGui::Button("Close the comparison")) closeStudentTrace(st);
         return;
     }
     ImGui::TextWrapped("%s", tc.student->name.c_str());
@@ -157,7 +157,7 @@ void ShowTraceCompare(AppState& st) {
     RecordItem(st, "trace-difference");
     ImGui::SameLine();
     if (ImGui::SmallButton("Close")) {
-        CloseStudentTrace(st);
+        closeStudentTrace(st);
         return;
     }
     ImGui::Separator();
@@ -227,7 +227,7 @@ void DrawTraceCompareOverlay(AppState& st) {
                   static_cast<std::size_t>(t[k]) < st.engine.points().size();
             if (ok) p[k] = toIm(view.toScreen(m.G[t[k]]));
         }
-        if (!ok || !CanvasHasRoom(st, dl, 40)) continue;
+        if (!ok || !canvasHasRoom(st, dl, 40)) continue;
         dl->AddTriangle(p[0], p[1], p[2], kStudentColour, w);
     }
     dl->PopClipRect();
