@@ -39,7 +39,7 @@ TEST_FUZZ_SECONDS ?= 20
 DEB_PACKAGES := \
 	build-essential cmake pkg-config \
 	libimgui-dev libglfw3-dev libglm-dev libosmesa6-dev libstb-dev libgif-dev \
-	libcli11-dev libtomlplusplus-dev nlohmann-json3-dev libgmp-dev \
+	libcli11-dev libtomlplusplus-dev nlohmann-json3-dev libgmp-dev libfast-float-dev libfmt-dev \
 	libgtest-dev libbenchmark-dev clang-format \
 	xvfb xauth fonts-dejavu-core \
 	libcgal-dev time jq
@@ -105,7 +105,7 @@ bench: build
 	bash .ci/bench_compare.sh $(BUILD_DIR)
 
 format:
-	git ls-files '*.cpp' '*.h' | grep -v '/corpus/' | xargs clang-format -i
+	git ls-files -co --exclude-standard '*.cpp' '*.h' | grep -v '/corpus/' | xargs clang-format -i
 
 clean:
 	rm -rf $(BUILD_DIR) $(ASAN_DIR) build-release $(FUZZ_DIR)

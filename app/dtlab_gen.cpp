@@ -20,12 +20,6 @@ struct GenArgs {
     std::string output;
 };
 
-void appendNumber(std::string& s, double x) {
-    char buf[32];
-    const auto r = std::to_chars(buf, buf + sizeof buf, x);
-    s.append(buf, r.ptr);
-}
-
 void runGen(const GenArgs& args) {
     const auto kind = parseGenerator(args.kind);
     if (!kind) fail("unknown point set '" + args.kind + "' (one of: " + generatorNames() + ")");
@@ -39,9 +33,9 @@ void runGen(const GenArgs& args) {
             if (ext == ".pts") s = std::to_string(pts.size()) + "\n";
             if (ext == ".csv") s = "x,y\n";
             for (const Vec2& p : pts) {
-                appendNumber(s, p.x);
+                appendShortest(s, p.x);
                 s += ext == ".xy" || ext == ".txt" ? ' ' : ',';
-                appendNumber(s, p.y);
+                appendShortest(s, p.y);
                 s += '\n';
             }
             os << s;

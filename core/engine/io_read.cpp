@@ -10,6 +10,8 @@
 // [SECTION] Files and format sniffing
 #include "core/engine/io_read.h"
 
+#include "core/engine/numbers.h"
+
 #include <algorithm>
 #include <cerrno>
 #include <charconv>
@@ -280,18 +282,18 @@ std::size_t splitFields(std::string_view line, Sep sep, std::vector<std::string_
 // [SECTION] Numbers
 //-----------------------------------------------------------------------------------------------
 
-// from_chars rejects a leading '+', which many writers emit; accept exactly one.
+// parseDouble (like from_chars) rejects a leading '+', which many writers emit; accept exactly one.
 std::string_view dropPlus(std::string_view f) {
     if (f.size() >= 2 && f[0] == '+' && f[1] != '+' && f[1] != '-') f.remove_prefix(1);
     return f;
 }
 
-// A field counts as numeric when from_chars consumes all of it, even if the value is out of
+// A field counts as numeric when parseDouble consumes all of it, even if the value is out of
 // range or not finite: such a line is data with a bad value, not a header.
 bool isNumeric(std::string_view f) {
     f = dropPlus(f);
     double v = 0.0;
-    const auto r = std::from_chars(f.data(), f.data() + f.size(), v);
+    const auto r = parseDouble(f.data(), f.data() + f.size(), v);
     return r.ec != std::errc::invalid_argument && r.ptr == f.data() + f.size() && !f.empty();
 }
 
@@ -314,14 +316,14 @@ bool isUnsignedDigits(std::string_view f) {
 
 enum class ValueKind { Coordinate, Attribute };
 
-// Parses one decimal floating-point field exactly (std::from_chars rounds correctly), refusing
+// Parses one decimal floating-point field exactly (parseDouble rounds correctly), refusing
 // everything else with a message that names the field.
 double parseReal(std::string_view field, const std::string& name, LineNo line,
                  const std::string& what, ValueKind kind, Sep sep) {
     if (field.empty()) fail(name, line, "missing " + what + " (empty field)");
     const std::string_view f = dropPlus(field);
     double v = 0.0;
-    const auto r = std::from_chars(f.data(), f.data() + f.size(), v);
+    const auto r = parseDouble(f.data(), f.data() + f.size(), v);
     if (r.ec == std::errc::invalid_argument) {
         fail(name, line, "malformed number " + quoted(field) + " for " + what);
     }

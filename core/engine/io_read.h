@@ -2,8 +2,8 @@
 //
 // Every reader is strict and fuzz-safe: any byte sequence either yields a PointSet or throws
 // InputError ("FILE:LINE: message"); nothing else escapes, nothing is undefined, and the work is
-// linear in the input size. Coordinates are read with std::from_chars, so every finite double
-// written with enough digits (17 significant, or the shortest round-trip form) comes back
+// linear in the input size. Coordinates are read with parseDouble (numbers.h), so every finite
+// double written with enough digits (17 significant, or the shortest round-trip form) comes back
 // bit-for-bit, subnormals and ±DBL_MAX included.
 //
 // Formats (comments start with '#' anywhere on a line; blank lines are ignored; lines may end

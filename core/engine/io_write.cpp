@@ -69,13 +69,6 @@ void checkTriangles(const Mesh& m, const char* who) {
 
 }  // namespace
 
-void appendShortest(std::string& out, double x) {
-    // The longest shortest-form double is 24 characters ("-2.2250738585072014e-308").
-    char buf[32];
-    const auto r = std::to_chars(buf, buf + sizeof buf, x);
-    out.append(buf, r.ptr);
-}
-
 //-----------------------------------------------------------------------------------------------
 // [SECTION] Files
 //-----------------------------------------------------------------------------------------------
@@ -292,12 +285,12 @@ bool isFinite(Vec2 p) { return std::isfinite(p.x) && std::isfinite(p.y); }
 // Pixel coordinates: two decimals are plenty on screen; far-off values (circumcircles of needle
 // triangles) switch to the exponent form, which SVG numbers allow.
 void appendPx(std::string& out, double v) {
-    char buf[48];
     if (v == 0.0) v = 0.0;  // no "-0.00"
-    const auto r = std::fabs(v) < 1e9
-                       ? std::to_chars(buf, buf + sizeof buf, v, std::chars_format::fixed, 2)
-                       : std::to_chars(buf, buf + sizeof buf, v, std::chars_format::general, 9);
-    out.append(buf, r.ptr);
+    if (std::fabs(v) < 1e9) {
+        appendFixed(out, v, 2);
+    } else {
+        appendGeneral(out, v, 9);
+    }
 }
 
 // XML text and attribute content: markup characters escaped; bytes XML 1.0 forbids (control

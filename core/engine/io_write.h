@@ -2,13 +2,14 @@
 //
 // Every writer takes a std::ostream& and writes text only; failures show in the stream's state
 // (writeTextFile checks it). Coordinates are written in the shortest form that reads back to the
-// same double (std::to_chars), so a .node written here and read by parseNode is bit-exact,
+// same double (appendShortest), so a .node written here and read by parseNode is bit-exact,
 // subnormals and ±DBL_MAX included. Ids are in indexBase (0 or 1; anything else throws
 // std::invalid_argument); "no neighbour" / "ray" is -1 whatever the base, as in Triangle.
 #pragma once
 
 #include "core/engine/geometry.h"
 #include "core/engine/mesh.h"
+#include "core/engine/numbers.h"  // appendShortest
 #include "core/engine/voronoi.h"
 
 #include <cstdint>
@@ -24,10 +25,6 @@ namespace dlab {
 // PATH: <strerror>") when the file cannot be created, written or renamed; the temporary is
 // removed then, and also when body throws (the exception is passed on).
 void writeTextFile(const std::string& path, const std::function<void(std::ostream&)>& body);
-
-// Appends the shortest decimal form of x that reads back bit-exact ("0.1", "1e-300",
-// "-1.7976931348623157e+308"; non-finite values as "inf", "-inf", "nan").
-void appendShortest(std::string& out, double x);
 
 // Triangle .node: "N 2 0 0", then "i x y" per point.
 void writeNode(std::ostream& os, const std::vector<Vec2>& points, int indexBase = 0);

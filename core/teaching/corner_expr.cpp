@@ -2,6 +2,8 @@
 // checks every index before it reads the mesh.
 #include "core/teaching/corner_expr.h"
 
+#include "core/engine/numbers.h"
+
 #include "core/engine/text_util.h"
 
 #include <algorithm>
@@ -23,11 +25,7 @@ bool isCornerOp(char op) {
 }
 
 // Shortest text that reads back to the same double.
-std::string formatDouble(double x) {
-    char buf[64];
-    const auto [end, ec] = std::to_chars(buf, buf + sizeof buf, x);
-    return ec == std::errc() ? std::string(buf, end) : std::string("?");
-}
+std::string formatDouble(double x) { return shortest(x); }
 
 }  // namespace
 

@@ -3,6 +3,7 @@
 #include "core/teaching/lesson.h"
 
 #include "core/engine/io_read.h"
+#include "core/engine/numbers.h"
 #include "core/engine/predicates.h"
 #include "core/engine/text_util.h"
 #include "core/engine/voronoi.h"
@@ -177,11 +178,7 @@ std::optional<std::vector<TextBlock>> parseLessonText(std::string_view text, std
 
 namespace {
 
-std::string formatNumber(double x) {
-    char buf[64];
-    const auto [end, ec] = std::to_chars(buf, buf + sizeof buf, x);
-    return ec == std::errc() ? std::string(buf, end) : "?";
-}
+std::string formatNumber(double x) { return shortest(x); }
 
 // Non-negative integers written in s, in order ("edge 4-9" -> 4, 9).
 std::vector<std::int64_t> digitRuns(std::string_view s) {
@@ -206,7 +203,7 @@ std::vector<double> realRuns(std::string_view s) {
     std::vector<double> out;
     for (std::size_t i = 0; i < s.size();) {
         double v = 0;
-        const auto [end, ec] = std::from_chars(s.data() + i, s.data() + s.size(), v);
+        const auto [end, ec] = parseDouble(s.data() + i, s.data() + s.size(), v);
         if (ec == std::errc() && end != s.data() + i) {
             out.push_back(v);
             i = static_cast<std::size_t>(end - s.data());

@@ -172,7 +172,7 @@ bool parsePointText(std::string_view text, Vec2& out) {
     for (double& x : v) {
         while (p < end && *p == ' ') ++p;
         if (p < end && *p == '+') ++p;
-        const auto [q, ec] = std::from_chars(p, end, x);
+        const auto [q, ec] = parseDouble(p, end, x);
         if (ec != std::errc() || !std::isfinite(x)) return false;
         p = q;
     }
