@@ -92,7 +92,7 @@ std::shared_ptr<ui::GlContext> headlessGl() {
     if (!context.gl) {
         std::string error;
         context.platform = ui::makeOsmesaPlatform(16, 16, error);
-        if (context.platform) context.gl = ui::GlContext::load(*context.platform, error);
+        if (context.platform) context.gl = ui::GlContext::fromCurrent(error);
         if (!context.gl) fail("--locate idbuffer-gl: " + error);
     }
     return context.gl;

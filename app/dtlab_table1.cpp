@@ -5,9 +5,9 @@
 
 #include "core/engine/generators.h"
 #include "ui/gl/idbuffer_gl.h"
+#include "ui/gl/imgui_gl.h"
 #include "ui/gui.h"
 
-#include <backends/imgui_impl_opengl2.h>
 #include <imgui.h>
 
 #include <algorithm>
@@ -296,12 +296,11 @@ void drawPlot(ImDrawList* dl, ImFont* font, ImFont* small, float W, float H,
 }
 
 // Renders the plot headlessly into a framebuffer object on the process' OSMesa context (ImGui's
-// OpenGL2 backend draws into whatever framebuffer is bound) and writes it as a PNG.
+// OpenGL3 backend, as in the GUI) and writes it as a PNG.
 void writePlot(const std::string& path, const std::vector<Series>& series, const std::string& title,
                const std::string& subtitle) {
     const int W = 1400, H = 900;
-    const auto gl = headlessGl();
-    const ui::GlApi& a = gl->api();
+    headlessGl();  // the context, current
     ImGuiContext* previous = ImGui::GetCurrentContext();
     ImGuiContext* ctx = ImGui::CreateContext();
     ImGui::SetCurrentContext(ctx);
@@ -323,40 +322,18 @@ void writePlot(const std::string& path, const std::vector<Series>& series, const
         font = io.Fonts->AddFontDefault();
         small = font;
     }
-    ImGui_ImplOpenGL2_Init();
-    ImGui_ImplOpenGL2_NewFrame();
+    std::string error;
+    if (!ui::initImGuiGl(error)) fail("the plot: " + error);
+    ui::newFrameImGuiGl();
     ImGui::NewFrame();
     drawPlot(ImGui::GetBackgroundDrawList(), font, small, W, H, series, title, subtitle);
     ImGui::Render();
-
-    GLuint tex = 0, fbo = 0;
-    glGenTextures(1, &tex);
-    glBindTexture(GL_TEXTURE_2D, tex);
-    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, W, H, 0, GL_RGBA, GL_UNSIGNED_BYTE, nullptr);
-    glBindTexture(GL_TEXTURE_2D, 0);
-    a.genFramebuffers(1, &fbo);
-    a.bindFramebuffer(GL_FRAMEBUFFER, fbo);
-    a.framebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, tex, 0);
-    glViewport(0, 0, W, H);
-    glClearColor(1, 1, 1, 1);
-    glClear(GL_COLOR_BUFFER_BIT);
-    ImGui_ImplOpenGL2_RenderDrawData(ImGui::GetDrawData());
-    std::vector<std::uint8_t> rgba(static_cast<std::size_t>(W) * H * 4);
-    glPixelStorei(GL_PACK_ALIGNMENT, 1);
-    glReadPixels(0, 0, W, H, GL_RGBA, GL_UNSIGNED_BYTE, rgba.data());
-    a.bindFramebuffer(GL_FRAMEBUFFER, 0);
-    a.deleteFramebuffers(1, &fbo);
-    glDeleteTextures(1, &tex);
-    ImGui_ImplOpenGL2_Shutdown();
+    static constexpr float kWhite[4] = {1, 1, 1, 1};
+    const std::vector<std::uint8_t> rgba =
+        ui::renderImGuiOffscreenGl(ImGui::GetDrawData(), W, H, kWhite);
+    ui::shutdownImGuiGl();
     ImGui::DestroyContext(ctx);
     ImGui::SetCurrentContext(previous);
-
-    const std::size_t row = static_cast<std::size_t>(W) * 4;  // GL rows start at the bottom
-    for (int y = 0; y < H / 2; ++y) {
-        std::swap_ranges(rgba.begin() + y * row, rgba.begin() + (y + 1) * row,
-                         rgba.begin() + (H - 1 - y) * row);
-    }
-    std::string error;
     if (!ui::writePng(path, rgba, W, H, error)) fail(error);
 }
 

@@ -48,12 +48,14 @@ public:
     bool resetAt(std::vector<Vec2> points, const InsertOptions& options, std::size_t position,
                  std::string& error);
 
-    // The GL context that the GL ID-buffer locators draw on (the window's, or OSMesa headless).
-    // Without one, idbuffer-gl is refused with a message. The owner of the context detaches it
-    // before destroying the context; a GL locator still running then stops drawing.
+    // The GL context that the GL ID-buffer locators and the mesh renderer draw on (the window's,
+    // or OSMesa headless). Without one, idbuffer-gl is refused with a message. The owner of the
+    // context detaches it before destroying the context; a GL locator still running then stops
+    // drawing.
     void attachGl(std::shared_ptr<GlContext> gl);
     void detachGl();
     bool hasGl() const;
+    const std::shared_ptr<GlContext>& glContext() const { return m_gl; }
     // The run's GL ID buffer when the locator is one, else nullptr (the ID-buffer view panel).
     IdBufferGl* idBufferGl() const { return m_idBufferGl; }
 

@@ -2,9 +2,8 @@
 #include "ui/gui.h"
 
 #include "ui/gl/gl_api.h"
+#include "ui/gl/imgui_gl.h"
 
-#include <GL/gl.h>
-#include <backends/imgui_impl_opengl2.h>
 #include <imgui.h>
 #include <stb_image_write.h>
 
@@ -42,11 +41,15 @@ Gui::Gui(Platform& platform, AppState& state) : m_platform(platform), m_state(st
     io.IniFilename = nullptr;  // the layout is ours (settings.json), not ImGui's window list
     io.ConfigWindowsMoveFromTitleBarOnly = true;
     m_platform.initImGui();
-    ImGui_ImplOpenGL2_Init();
-    // The GL ID-buffer locators draw on this context (an old driver without FBOs: they are
-    // refused).
+    // The platform made a context that runs our shaders (OpenGL 3.3 core, or ES 3.0): ImGui,
+    // the mesh renderer and the GL ID-buffer locators draw on it.
     std::string glError;
-    if (auto gl = GlContext::load(m_platform, glError)) m_state.engine.attachGl(std::move(gl));
+    m_glReady = initImGuiGl(glError);
+    if (m_glReady) {
+        m_state.engine.attachGl(GlContext::fromCurrent(glError));
+    } else {
+        m_state.log(Message::Level::Error, std::string(m_platform.name()) + ": " + glError);
+    }
     loadFonts();
     applyTheme();
     m_lastTime = nowMs();
@@ -54,7 +57,7 @@ Gui::Gui(Platform& platform, AppState& state) : m_platform(platform), m_state(st
 
 Gui::~Gui() {
     m_state.engine.detachGl();  // the context may go away with us
-    ImGui_ImplOpenGL2_Shutdown();
+    if (m_glReady) shutdownImGuiGl();
     m_platform.shutdownImGui();
     ImGui::DestroyContext();
     g_fonts = {};
@@ -90,8 +93,7 @@ void Gui::loadFonts() {
     if (!m_fonts.mono) m_fonts.mono = m_fonts.ui;
     if (!m_fonts.bold) m_fonts.bold = m_fonts.ui;
     io.FontDefault = m_fonts.ui;
-    ImGui_ImplOpenGL2_DestroyFontsTexture();
-    ImGui_ImplOpenGL2_CreateFontsTexture();
+    if (m_glReady) reloadImGuiFontsGl();
     m_presentationApplied = m_state.presentation;
 }
 
@@ -128,17 +130,15 @@ bool Gui::frame() {
     m_lastTime = t0;
     const bool open = m_platform.newFrame();
     g_fonts = m_fonts;
-    ImGui_ImplOpenGL2_NewFrame();
+    if (m_glReady) newFrameImGuiGl();
     ImGui::NewFrame();
     ShowApplication(m_state);
     ImGui::Render();
     const double t1 = nowMs();
     int w = 0, h = 0;
     m_platform.framebufferSize(w, h);
-    glViewport(0, 0, w, h);
-    glClearColor(0.95f, 0.95f, 0.96f, 1.0f);
-    glClear(GL_COLOR_BUFFER_BIT);
-    ImGui_ImplOpenGL2_RenderDrawData(ImGui::GetDrawData());
+    static constexpr float kBackground[4] = {0.95f, 0.95f, 0.96f, 1.0f};
+    if (m_glReady) renderImGuiGl(ImGui::GetDrawData(), w, h, kBackground);
     if (m_capture) readFramebuffer();
     m_pixelsStale = !m_capture;
     m_platform.present();
@@ -150,17 +150,7 @@ bool Gui::frame() {
 void Gui::readFramebuffer() {
     int w = 0, h = 0;
     m_platform.framebufferSize(w, h);
-    glFinish();
-    m_pixels.resize(static_cast<std::size_t>(w) * h * 4);
-    glPixelStorei(GL_PACK_ALIGNMENT, 1);
-    glReadBuffer(m_platform.headless() ? GL_FRONT : GL_BACK);
-    glReadPixels(0, 0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, m_pixels.data());
-    // GL rows start at the bottom: flip to top-first.
-    const std::size_t row = static_cast<std::size_t>(w) * 4;
-    for (int y = 0; y < h / 2; ++y) {
-        std::swap_ranges(m_pixels.begin() + y * row, m_pixels.begin() + (y + 1) * row,
-                         m_pixels.begin() + (h - 1 - y) * row);
-    }
+    readFramebufferGl(w, h, m_platform.headless(), m_pixels);
     m_pixelsW = w;
     m_pixelsH = h;
     m_pixelsStale = false;

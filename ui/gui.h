@@ -55,6 +55,7 @@ private:
     Platform& m_platform;
     AppState& m_state;
     Fonts m_fonts;
+    bool m_glReady = false;  // ImGui's GL renderer runs on the platform's context
     bool m_presentationApplied = false;
     bool m_capture = false;
     std::vector<std::uint8_t> m_pixels;

@@ -182,7 +182,7 @@ TEST(Gui, TheCanvasDrawsTheMeshEdges) {
     EXPECT_EQ(dark, tested);
 }
 
-// ImGui 1.86's OpenGL2 backend aborts on a draw list over 65536 vertices: every overlay at
+// ImGui aborts on a draw list over 65536 vertices (16-bit indices): every overlay at
 // once over a few thousand points must leave shapes out and say so, not crash; zoomed in,
 // everything is drawn again and the notice goes.
 TEST(Gui, EveryOverlayOnAThousandsOfPointsStaysWithinTheDrawListAndSaysWhatIsLeftOut) {

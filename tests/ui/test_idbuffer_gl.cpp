@@ -33,7 +33,7 @@ protected:
         std::string error;
         m_platform = ui::makeOsmesaPlatform(16, 16, error);
         ASSERT_TRUE(m_platform) << error;
-        m_gl = ui::GlContext::load(*m_platform, error);
+        m_gl = ui::GlContext::fromCurrent(error);
         ASSERT_TRUE(m_gl) << error;
         glGetIntegerv(GL_SUBPIXEL_BITS, &m_subpixelBits);
     }
@@ -567,53 +567,64 @@ struct GlSnapshot {
 
 GlSnapshot snapshot() {
     GlSnapshot s;
+    auto ints = [&](GLenum e, int count) {
+        GLint v[4] = {0, 0, 0, 0};
+        glGetIntegerv(e, v);
+        s.ints.insert(s.ints.end(), v, v + count);
+    };
     for (GLenum e : {GL_DRAW_FRAMEBUFFER_BINDING,
                      GL_READ_FRAMEBUFFER_BINDING,
                      GL_ARRAY_BUFFER_BINDING,
                      GL_PIXEL_PACK_BUFFER_BINDING,
                      GL_PIXEL_UNPACK_BUFFER_BINDING,
                      GL_CURRENT_PROGRAM,
-                     GL_TEXTURE_BINDING_2D,
+                     GL_VERTEX_ARRAY_BINDING,
+                     GL_ELEMENT_ARRAY_BUFFER_BINDING,
                      GL_ACTIVE_TEXTURE,
-                     GL_CLIENT_ACTIVE_TEXTURE,
-                     GL_MATRIX_MODE,
-                     GL_SHADE_MODEL,
-                     GL_BLEND_SRC,
-                     GL_BLEND_DST,
+                     GL_TEXTURE_BINDING_2D,
+                     GL_BLEND_SRC_RGB,
+                     GL_BLEND_DST_RGB,
+                     GL_BLEND_SRC_ALPHA,
+                     GL_BLEND_DST_ALPHA,
+                     GL_BLEND_EQUATION_RGB,
+                     GL_BLEND_EQUATION_ALPHA,
                      GL_PACK_ALIGNMENT,
                      GL_PACK_ROW_LENGTH,
+                     GL_PACK_SKIP_ROWS,
                      GL_UNPACK_ALIGNMENT,
-                     GL_READ_BUFFER,
-                     GL_DRAW_BUFFER,
-                     GL_VERTEX_ARRAY_SIZE,
-                     GL_VERTEX_ARRAY_STRIDE,
-                     GL_COLOR_ARRAY_SIZE,
-                     GL_POLYGON_MODE,
-                     GL_TEXTURE_ENV_MODE}) {
-        GLint v[4] = {0, 0, 0, 0};
-        if (e == GL_TEXTURE_ENV_MODE)
-            glGetTexEnviv(GL_TEXTURE_ENV, GL_TEXTURE_ENV_MODE, v);
-        else
-            glGetIntegerv(e, v);
-        s.ints.insert(s.ints.end(), v, v + (e == GL_POLYGON_MODE ? 2 : 1));
+                     GL_UNPACK_ROW_LENGTH,
+                     GL_UNPACK_SKIP_PIXELS}) {
+        ints(e, 1);
     }
-    GLint vp[4], sc[4];
-    glGetIntegerv(GL_VIEWPORT, vp);
-    glGetIntegerv(GL_SCISSOR_BOX, sc);
-    s.ints.insert(s.ints.end(), vp, vp + 4);
-    s.ints.insert(s.ints.end(), sc, sc + 4);
-    GLvoid* ptr = nullptr;
-    glGetPointerv(GL_VERTEX_ARRAY_POINTER, &ptr);
-    s.ints.push_back(static_cast<GLint>(reinterpret_cast<std::uintptr_t>(ptr) & 0x7FFFFFFF));
-    for (GLenum e : {GL_PROJECTION_MATRIX, GL_MODELVIEW_MATRIX, GL_TEXTURE_MATRIX,
-                     GL_COLOR_CLEAR_VALUE, GL_CURRENT_COLOR, GL_POINT_SIZE}) {
-        GLfloat v[16] = {};
+    ints(GL_POLYGON_MODE, 2);
+    ints(GL_VIEWPORT, 4);
+    ints(GL_SCISSOR_BOX, 4);
+    // The caller's vertex array: what its attributes point at.
+    for (GLuint a : {0u, 1u}) {
+        for (GLenum e : {GL_VERTEX_ATTRIB_ARRAY_ENABLED, GL_VERTEX_ATTRIB_ARRAY_SIZE,
+                         GL_VERTEX_ATTRIB_ARRAY_STRIDE, GL_VERTEX_ATTRIB_ARRAY_BUFFER_BINDING,
+                         GL_VERTEX_ATTRIB_ARRAY_DIVISOR}) {
+            GLint v = 0;
+            glGetVertexAttribiv(a, e, &v);
+            s.ints.push_back(v);
+        }
+    }
+    // Texture unit 0 (ours), whichever unit is active: its texture and sampler.
+    GLint active = GL_TEXTURE0, unit0[2] = {0, 0};
+    glGetIntegerv(GL_ACTIVE_TEXTURE, &active);
+    glActiveTexture(GL_TEXTURE0);
+    glGetIntegerv(GL_TEXTURE_BINDING_2D, &unit0[0]);
+    glGetIntegerv(GL_SAMPLER_BINDING, &unit0[1]);
+    glActiveTexture(static_cast<GLenum>(active));
+    s.ints.insert(s.ints.end(), unit0, unit0 + 2);
+    for (GLenum e : {GL_COLOR_CLEAR_VALUE, GL_POINT_SIZE, GL_LINE_WIDTH}) {
+        GLfloat v[4] = {};
         glGetFloatv(e, v);
-        s.floats.insert(s.floats.end(), v, v + 16);
+        s.floats.insert(s.floats.end(), v, v + 4);
     }
-    for (GLenum e : {GL_BLEND, GL_SCISSOR_TEST, GL_TEXTURE_2D, GL_DITHER, GL_CULL_FACE,
-                     GL_DEPTH_TEST, GL_LIGHTING, GL_VERTEX_ARRAY, GL_COLOR_ARRAY,
-                     GL_TEXTURE_COORD_ARRAY, GL_MULTISAMPLE, GL_ALPHA_TEST}) {
+    for (GLenum e : {GL_BLEND, GL_SCISSOR_TEST, GL_DITHER, GL_CULL_FACE, GL_DEPTH_TEST,
+                     GL_STENCIL_TEST, GL_MULTISAMPLE, GL_COLOR_LOGIC_OP, GL_FRAMEBUFFER_SRGB,
+                     GL_PROGRAM_POINT_SIZE, GL_RASTERIZER_DISCARD, GL_SAMPLE_ALPHA_TO_COVERAGE}) {
         s.enables.push_back(glIsEnabled(e));
     }
     GLboolean mask[4];
@@ -622,42 +633,60 @@ GlSnapshot snapshot() {
     return s;
 }
 
+// A caller's program: anything that is not ours.
+GLuint callerProgram() {
+    std::string error;
+    const GLuint p = ui::buildProgram(
+        "layout(location = 0) in vec2 aPos;\nvoid main() { gl_Position = vec4(aPos, 0.0, 1.0); }\n",
+        "out vec4 c;\nvoid main() { c = vec4(1.0); }\n", error);
+    EXPECT_NE(p, 0u) << error;
+    return p;
+}
+
 }  // namespace
 
 TEST_F(IdBufferGlTest, LeavesTheCallersGlStateAsItFoundIt) {
-    const ui::GlApi& a = m_gl->api();
     // A caller's state in the middle of drawing: an unusual one on purpose.
-    GLuint tex = 0, vbo = 0;
-    glGenTextures(1, &tex);
-    glBindTexture(GL_TEXTURE_2D, tex);
-    glTexEnvi(GL_TEXTURE_ENV, GL_TEXTURE_ENV_MODE, GL_MODULATE);
-    a.genBuffers(1, &vbo);
-    a.bindBuffer(GL_ARRAY_BUFFER, vbo);
-    static const float verts[8] = {0, 0, 1, 0, 1, 1, 0, 1};
-    a.bindBuffer(GL_ARRAY_BUFFER, 0);
-    glEnableClientState(GL_VERTEX_ARRAY);
-    glVertexPointer(2, GL_FLOAT, 8, verts);
-    a.bindBuffer(GL_ARRAY_BUFFER, vbo);
+    GLuint tex[2] = {0, 0}, buffers[2] = {0, 0}, vao = 0, sampler = 0, readFbo = 0;
+    glGenTextures(2, tex);
+    glGenBuffers(2, buffers);
+    glGenVertexArrays(1, &vao);
+    glGenSamplers(1, &sampler);
+    glGenFramebuffers(1, &readFbo);
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, readFbo);
+    glBindTexture(GL_TEXTURE_2D, tex[0]);  // unit 0
+    glBindSampler(0, sampler);
+    glActiveTexture(GL_TEXTURE3);
+    glBindTexture(GL_TEXTURE_2D, tex[1]);
+    const GLuint program = callerProgram();
+    glUseProgram(program);
+    glBindVertexArray(vao);
+    glBindBuffer(GL_ARRAY_BUFFER, buffers[0]);
+    glEnableVertexAttribArray(0);
+    glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 12, nullptr);
+    glVertexAttribDivisor(0, 2);
+    glBindBuffer(GL_PIXEL_PACK_BUFFER, buffers[1]);  // a read would land in it
+    glBindBuffer(GL_PIXEL_UNPACK_BUFFER, buffers[1]);
     glEnable(GL_BLEND);
-    glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
+    glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ZERO);
+    glBlendEquation(GL_FUNC_REVERSE_SUBTRACT);
     glEnable(GL_SCISSOR_TEST);
     glScissor(1, 2, 3, 4);
-    glEnable(GL_TEXTURE_2D);
     glViewport(3, 4, 5, 6);
-    glMatrixMode(GL_PROJECTION);
-    glLoadIdentity();
-    glOrtho(0, 7, 0, 9, -1, 1);
-    glMatrixMode(GL_MODELVIEW);
-    glTranslatef(1, 2, 0);
-    glColor4f(0.25f, 0.5f, 0.75f, 1.0f);
     glClearColor(0.1f, 0.2f, 0.3f, 0.4f);
     glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glPixelStorei(GL_PACK_ROW_LENGTH, 7);
+    glPixelStorei(GL_PACK_SKIP_ROWS, 2);
     glPixelStorei(GL_UNPACK_ALIGNMENT, 2);
+    glPixelStorei(GL_UNPACK_ROW_LENGTH, 9);
+    glPixelStorei(GL_UNPACK_SKIP_PIXELS, 1);
     glPointSize(3);
     glPolygonMode(GL_FRONT_AND_BACK, GL_LINE);
     glColorMask(GL_TRUE, GL_FALSE, GL_TRUE, GL_FALSE);
     glDisable(GL_DITHER);
     glEnable(GL_CULL_FACE);
+    glEnable(GL_COLOR_LOGIC_OP);
+    glLogicOp(GL_XOR);
     while (glGetError() != GL_NO_ERROR) {}
     const GlSnapshot before = snapshot();
 
@@ -678,8 +707,15 @@ TEST_F(IdBufferGlTest, LeavesTheCallersGlStateAsItFoundIt) {
         expectMatchesCpu(r.gl->readAll(), *r.ins, *r.gl, Bounds::of(points), m_subpixelBits,
                          toString(mode));
     }
-    a.deleteBuffers(1, &vbo);
-    glDeleteTextures(1, &tex);
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+    glDeleteFramebuffers(1, &readFbo);
+    glBindVertexArray(0);
+    glDeleteVertexArrays(1, &vao);
+    glUseProgram(0);
+    glDeleteProgram(program);
+    glDeleteSamplers(1, &sampler);
+    glDeleteBuffers(2, buffers);
+    glDeleteTextures(2, tex);
 }
 
 // ============================================================================================

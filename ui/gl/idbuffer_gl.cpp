@@ -3,7 +3,6 @@
 //
 // Index:
 //   [SECTION] Encoding and options
-//   [SECTION] Scope: save, set and restore the GL state we touch
 //   [SECTION] GL objects
 //   [SECTION] Painting
 //   [SECTION] Reading
@@ -11,6 +10,7 @@
 #include "ui/gl/idbuffer_gl.h"
 
 #include "core/engine/inserter.h"
+#include "ui/gl/shaders.h"
 
 #include <algorithm>
 #include <chrono>
@@ -47,14 +47,10 @@ float toPixel(double v) {
     return static_cast<float>(v);
 }
 
-// Draw into `fbo` (w x h pixels) with pixel coordinates: x in [0, w), y in [0, h), y up.
-void drawInto(const GlApi& gl, GLuint fbo, int w, int h) {
-    gl.bindFramebuffer(GL_FRAMEBUFFER, fbo);
+// Draw into `fbo` (w x h pixels); the shaders map pixel coordinates (y up) themselves.
+void drawInto(GLuint fbo, int w, int h) {
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo);
     glViewport(0, 0, w, h);
-    glMatrixMode(GL_PROJECTION);
-    glLoadIdentity();
-    glOrtho(0, w, 0, h, -1, 1);
-    glMatrixMode(GL_MODELVIEW);
 }
 
 std::uint32_t packColour(std::int32_t id) {
@@ -62,6 +58,17 @@ std::uint32_t packColour(std::int32_t id) {
     std::uint32_t v;
     std::memcpy(&v, c.data(), 4);  // memory order r, g, b, a: what GL reads from the array
     return v;
+}
+
+// Waits until the fence's commands are done. WebGL2 cannot wait (its fences signal only between
+// tasks of the page): there, reading the buffer waits for the drawing instead.
+void waitFor(GLsync fence) {
+#if defined(__EMSCRIPTEN__)
+    (void)fence;
+#else
+    while (glClientWaitSync(fence, GL_SYNC_FLUSH_COMMANDS_BIT, 1'000'000'000) ==
+           GL_TIMEOUT_EXPIRED) {}
+#endif
 }
 
 // Charges the GL state saving and restoring around a read to the painting side, so that
@@ -118,155 +125,6 @@ std::int32_t decodeTriangleId(const std::uint8_t* c) {
 }
 
 // ============================================================================================
-// [SECTION] Scope: save, set and restore the GL state we touch
-// ============================================================================================
-
-// In the GUI the locator runs while ImGui is mid-frame (and the mesh renderer's arrays and
-// ImGui's texture are set): everything changed here goes back exactly as it was. Bindings that
-// the attribute stacks do not cover (framebuffers, buffers, program, vertex array, sampler) are
-// saved by hand; the framebuffers are rebound before the attribute pop, because the pop restores
-// the draw and read buffers of whatever framebuffer is bound then.
-class IdBufferGl::Scope {
-public:
-    Scope(const GlApi& gl, bool texturing) : m_gl(gl), m_texturing(texturing) {
-        glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &m_drawFbo);
-        glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &m_readFbo);
-        glGetIntegerv(GL_ARRAY_BUFFER_BINDING, &m_arrayBuffer);
-        glGetIntegerv(GL_PIXEL_PACK_BUFFER_BINDING, &m_packBuffer);
-        glGetIntegerv(GL_PIXEL_UNPACK_BUFFER_BINDING, &m_unpackBuffer);
-        glGetIntegerv(GL_CURRENT_PROGRAM, &m_program);
-        glGetIntegerv(GL_SHADE_MODEL, &m_shadeModel);
-        glGetIntegerv(GL_MATRIX_MODE, &m_matrixMode);
-        if (m_gl.bindVertexArray) {
-            // Vertex array 0 is where our client arrays go; bound before the client push, so
-            // that the push and pop act on it and the caller's vertex array is never touched.
-            glGetIntegerv(GL_VERTEX_ARRAY_BINDING, &m_vertexArray);
-            if (m_vertexArray != 0) m_gl.bindVertexArray(0);
-        }
-        if (m_texturing) {
-            glGetIntegerv(GL_ACTIVE_TEXTURE, &m_activeTexture);
-            glGetIntegerv(GL_CLIENT_ACTIVE_TEXTURE, &m_clientActiveTexture);
-            m_gl.activeTexture(GL_TEXTURE0);
-            m_gl.clientActiveTexture(GL_TEXTURE0);
-            glGetIntegerv(GL_TEXTURE_BINDING_2D, &m_texture2d);
-            if (m_gl.bindSampler) {
-                glGetIntegerv(GL_SAMPLER_BINDING, &m_sampler);
-                if (m_sampler != 0) m_gl.bindSampler(0, 0);
-            }
-        }
-        glPushAttrib(GL_ENABLE_BIT | GL_COLOR_BUFFER_BIT | GL_CURRENT_BIT | GL_VIEWPORT_BIT |
-                     GL_POLYGON_BIT | GL_PIXEL_MODE_BIT | GL_POINT_BIT |
-                     (m_texturing ? GL_TEXTURE_BIT : 0));
-        glPushClientAttrib(GL_CLIENT_VERTEX_ARRAY_BIT | GL_CLIENT_PIXEL_STORE_BIT);
-        for (GLenum mode : {GL_PROJECTION, GL_MODELVIEW, GL_TEXTURE}) {
-            if (mode == GL_TEXTURE && !m_texturing) continue;
-            glMatrixMode(mode);
-            glPushMatrix();
-            glLoadIdentity();
-        }
-        m_gl.bindBuffer(GL_ARRAY_BUFFER, 0);
-        m_gl.bindBuffer(GL_PIXEL_PACK_BUFFER, 0);
-        m_gl.bindBuffer(GL_PIXEL_UNPACK_BUFFER, 0);
-        if (m_program != 0) m_gl.useProgram(0);
-        // Exact integer colours: nothing between the vertex colour and the pixel may change it.
-        for (GLenum cap : {GL_BLEND,
-                           GL_DITHER,
-                           GL_SCISSOR_TEST,
-                           GL_DEPTH_TEST,
-                           GL_STENCIL_TEST,
-                           GL_ALPHA_TEST,
-                           GL_CULL_FACE,
-                           GL_LIGHTING,
-                           GL_FOG,
-                           GL_TEXTURE_1D,
-                           GL_TEXTURE_2D,
-                           GL_TEXTURE_3D,
-                           GL_TEXTURE_CUBE_MAP,
-                           GL_TEXTURE_GEN_S,
-                           GL_TEXTURE_GEN_T,
-                           GL_TEXTURE_GEN_R,
-                           GL_TEXTURE_GEN_Q,
-                           GL_COLOR_LOGIC_OP,
-                           GL_POLYGON_SMOOTH,
-                           GL_POLYGON_STIPPLE,
-                           GL_MULTISAMPLE,
-                           GL_SAMPLE_ALPHA_TO_COVERAGE,
-                           GL_COLOR_SUM,
-                           GL_FRAMEBUFFER_SRGB,
-                           GL_POINT_SMOOTH,
-                           GL_POINT_SPRITE,
-                           GL_VERTEX_PROGRAM_POINT_SIZE,
-                           GL_CLIP_PLANE0,
-                           GL_CLIP_PLANE1,
-                           GL_CLIP_PLANE2,
-                           GL_CLIP_PLANE3,
-                           GL_CLIP_PLANE4,
-                           GL_CLIP_PLANE5}) {
-            glDisable(cap);
-        }
-        glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-        glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
-        glShadeModel(GL_FLAT);
-        glPointSize(1.0f);
-        glPixelTransferi(GL_MAP_COLOR, GL_FALSE);
-        for (GLenum scale : {GL_RED_SCALE, GL_GREEN_SCALE, GL_BLUE_SCALE, GL_ALPHA_SCALE})
-            glPixelTransferf(scale, 1.0f);
-        for (GLenum bias : {GL_RED_BIAS, GL_GREEN_BIAS, GL_BLUE_BIAS, GL_ALPHA_BIAS})
-            glPixelTransferf(bias, 0.0f);
-        glPixelStorei(GL_PACK_ALIGNMENT, 4);
-        glPixelStorei(GL_PACK_ROW_LENGTH, 0);
-        glPixelStorei(GL_PACK_SKIP_ROWS, 0);
-        glPixelStorei(GL_PACK_SKIP_PIXELS, 0);
-        glPixelStorei(GL_PACK_SWAP_BYTES, GL_FALSE);
-        glPixelStorei(GL_PACK_LSB_FIRST, GL_FALSE);
-        for (GLenum array :
-             {GL_NORMAL_ARRAY, GL_COLOR_ARRAY, GL_INDEX_ARRAY, GL_TEXTURE_COORD_ARRAY,
-              GL_EDGE_FLAG_ARRAY, GL_FOG_COORD_ARRAY, GL_SECONDARY_COLOR_ARRAY}) {
-            glDisableClientState(array);
-        }
-        glEnableClientState(GL_VERTEX_ARRAY);
-    }
-
-    void target(GLuint fbo, int w, int h) { drawInto(m_gl, fbo, w, h); }
-
-    ~Scope() {
-        for (GLenum mode : {GL_TEXTURE, GL_MODELVIEW, GL_PROJECTION}) {
-            if (mode == GL_TEXTURE && !m_texturing) continue;
-            glMatrixMode(mode);
-            glPopMatrix();
-        }
-        m_gl.bindFramebuffer(GL_DRAW_FRAMEBUFFER, static_cast<GLuint>(m_drawFbo));
-        m_gl.bindFramebuffer(GL_READ_FRAMEBUFFER, static_cast<GLuint>(m_readFbo));
-        glPopClientAttrib();
-        glPopAttrib();
-        glShadeModel(static_cast<GLenum>(m_shadeModel));
-        glMatrixMode(static_cast<GLenum>(m_matrixMode));
-        m_gl.bindBuffer(GL_ARRAY_BUFFER, static_cast<GLuint>(m_arrayBuffer));
-        m_gl.bindBuffer(GL_PIXEL_PACK_BUFFER, static_cast<GLuint>(m_packBuffer));
-        m_gl.bindBuffer(GL_PIXEL_UNPACK_BUFFER, static_cast<GLuint>(m_unpackBuffer));
-        if (m_program != 0) m_gl.useProgram(static_cast<GLuint>(m_program));
-        if (m_vertexArray != 0) m_gl.bindVertexArray(static_cast<GLuint>(m_vertexArray));
-        if (m_texturing) {
-            glBindTexture(GL_TEXTURE_2D, static_cast<GLuint>(m_texture2d));
-            if (m_sampler != 0) m_gl.bindSampler(0, static_cast<GLuint>(m_sampler));
-            m_gl.clientActiveTexture(static_cast<GLenum>(m_clientActiveTexture));
-            m_gl.activeTexture(static_cast<GLenum>(m_activeTexture));
-        }
-    }
-
-    Scope(const Scope&) = delete;
-    Scope& operator=(const Scope&) = delete;
-
-private:
-    const GlApi& m_gl;
-    bool m_texturing;
-    GLint m_drawFbo = 0, m_readFbo = 0, m_arrayBuffer = 0, m_packBuffer = 0, m_unpackBuffer = 0;
-    GLint m_program = 0, m_shadeModel = GL_SMOOTH, m_matrixMode = GL_MODELVIEW, m_vertexArray = 0;
-    GLint m_activeTexture = GL_TEXTURE0, m_clientActiveTexture = GL_TEXTURE0, m_texture2d = 0,
-          m_sampler = 0;
-};
-
-// ============================================================================================
 // [SECTION] GL objects
 // ============================================================================================
 
@@ -285,11 +143,10 @@ IdBufferGl::IdBufferGl(std::shared_ptr<GlContext> gl, const IdBufferGlOptions& o
                                  std::to_string(limit) + " per side)");
     }
     while (glGetError() != GL_NO_ERROR) {}  // earlier errors are not ours
-    const GlApi& a = m_gl->api();
     std::string problem;
     {
-        Scope scope(a, true);
-        auto makeTarget = [&](unsigned& tex, unsigned& fbo, int w, int h) {
+        const GlStateScope scope;
+        auto makeTarget = [&](GLuint& tex, GLuint& fbo, int w, int h) {
             glGenTextures(1, &tex);
             glBindTexture(GL_TEXTURE_2D, tex);
             glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
@@ -298,30 +155,45 @@ IdBufferGl::IdBufferGl(std::shared_ptr<GlContext> gl, const IdBufferGlOptions& o
             glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
             glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, 0);
             glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, w, h, 0, GL_RGBA, GL_UNSIGNED_BYTE, nullptr);
-            a.genFramebuffers(1, &fbo);
-            a.bindFramebuffer(GL_FRAMEBUFFER, fbo);
-            a.framebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, tex, 0);
-            glDrawBuffer(GL_COLOR_ATTACHMENT0);  // framebuffer state: set once here
+            glGenFramebuffers(1, &fbo);
+            glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+            glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, tex, 0);
+            const GLenum attachment = GL_COLOR_ATTACHMENT0;
+            glDrawBuffers(1, &attachment);  // framebuffer state: set once here
             glReadBuffer(GL_COLOR_ATTACHMENT0);
-            const GLenum status = a.checkFramebufferStatus(GL_FRAMEBUFFER);
+            const GLenum status = glCheckFramebufferStatus(GL_FRAMEBUFFER);
             if (status != GL_FRAMEBUFFER_COMPLETE && problem.empty()) {
                 char hex[16];
                 std::snprintf(hex, sizeof hex, "0x%04x", status);
                 problem = std::string("framebuffer incomplete (status ") + hex + ")";
             }
+            glViewport(0, 0, w, h);
             glClearColor(1, 1, 1, 1);  // the "no triangle" colour
             glClear(GL_COLOR_BUFFER_BIT);
         };
         makeTarget(m_tex, m_fbo, m_opt.width, m_opt.height);
-        a.genBuffers(1, &m_vbo);
+        glGenVertexArrays(1, &m_vao);
+        glGenBuffers(1, &m_vbo);
+        m_paintProgram =
+            buildProgram(shaders::kPaintVertexShader, shaders::kFlatFragmentShader, problem);
+        if (m_paintProgram) m_uPaintTarget = glGetUniformLocation(m_paintProgram, "uTarget");
         if (m_opt.readback != GlReadback::OnePixel) {
             m_gatherRows = (m_opt.batch + kGatherWidth - 1) / kGatherWidth;
             makeTarget(m_gatherTex, m_gatherFbo, kGatherWidth, m_gatherRows);
-            a.genBuffers(1, &m_pbo);
-            a.bindBuffer(GL_PIXEL_PACK_BUFFER, m_pbo);
-            a.bufferData(GL_PIXEL_PACK_BUFFER,
+            glGenBuffers(1, &m_gatherVbo);
+            glGenBuffers(1, &m_pbo);
+            glBindBuffer(GL_PIXEL_PACK_BUFFER, m_pbo);
+            glBufferData(GL_PIXEL_PACK_BUFFER,
                          static_cast<GLsizeiptr>(kGatherWidth) * m_gatherRows * 4, nullptr,
                          GL_STREAM_READ);
+            if (problem.empty()) {
+                m_gatherProgram = buildProgram(shaders::kGatherVertexShader,
+                                               shaders::kFlatFragmentShader, problem);
+            }
+            if (m_gatherProgram) {
+                m_uGatherTarget = glGetUniformLocation(m_gatherProgram, "uTarget");
+                m_uGatherIds = glGetUniformLocation(m_gatherProgram, "uIds");
+            }
         }
     }
     if (const GLenum err = glGetError(); err != GL_NO_ERROR && problem.empty()) {
@@ -330,22 +202,31 @@ IdBufferGl::IdBufferGl(std::shared_ptr<GlContext> gl, const IdBufferGlOptions& o
         problem = std::string("GL error ") + hex + " while creating the buffer";
     }
     if (!problem.empty()) {
-        this->~IdBufferGl();  // a throwing constructor runs no destructor: free the GL objects
+        releaseGl();  // a throwing constructor runs no destructor
         throw std::runtime_error("idbuffer-gl: " + problem);
     }
 }
 
-IdBufferGl::~IdBufferGl() {
+IdBufferGl::~IdBufferGl() { releaseGl(); }
+
+void IdBufferGl::releaseGl() {
     if (!m_gl || !m_gl->alive()) return;  // the context is gone, and its objects with it
-    const GlApi& a = m_gl->api();
     dropPending();
-    if (m_pbo) a.deleteBuffers(1, &m_pbo);
-    if (m_vbo) a.deleteBuffers(1, &m_vbo);
-    if (m_gatherFbo) a.deleteFramebuffers(1, &m_gatherFbo);
-    if (m_fbo) a.deleteFramebuffers(1, &m_fbo);
-    if (m_gatherTex) glDeleteTextures(1, &m_gatherTex);
-    if (m_tex) glDeleteTextures(1, &m_tex);
-    m_pbo = m_vbo = m_gatherFbo = m_fbo = m_gatherTex = m_tex = 0;
+    for (GLuint* buffer : {&m_pbo, &m_vbo, &m_gatherVbo}) {
+        if (*buffer) glDeleteBuffers(1, buffer);
+    }
+    for (GLuint* fbo : {&m_gatherFbo, &m_fbo}) {
+        if (*fbo) glDeleteFramebuffers(1, fbo);
+    }
+    for (GLuint* tex : {&m_gatherTex, &m_tex}) {
+        if (*tex) glDeleteTextures(1, tex);
+    }
+    if (m_vao) glDeleteVertexArrays(1, &m_vao);
+    for (GLuint* program : {&m_paintProgram, &m_gatherProgram}) {
+        if (*program) glDeleteProgram(*program);
+    }
+    m_pbo = m_vbo = m_gatherVbo = m_gatherFbo = m_fbo = m_gatherTex = m_tex = m_vao = 0;
+    m_paintProgram = m_gatherProgram = 0;
 }
 
 bool IdBufferGl::ready() const { return m_reset && m_gl && m_gl->alive(); }
@@ -416,29 +297,30 @@ void IdBufferGl::growShadow(std::int32_t triangles) {
     }
 }
 
-// One draw call for the queued triangles, through a buffer object (llvmpipe takes client arrays
-// about half as fast).
+// One draw call for the queued triangles, from a buffer object.
 void IdBufferGl::submit() {
     if (m_vertices.empty()) return;
-    const GlApi& a = m_gl->api();
-    a.bindBuffer(GL_ARRAY_BUFFER, m_vbo);
-    a.bufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(m_vertices.size() * sizeof(Vertex)),
+    glUseProgram(m_paintProgram);
+    glUniform2f(m_uPaintTarget, static_cast<float>(m_opt.width), static_cast<float>(m_opt.height));
+    glBindVertexArray(m_vao);
+    glBindBuffer(GL_ARRAY_BUFFER, m_vbo);
+    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(m_vertices.size() * sizeof(Vertex)),
                  m_vertices.data(), GL_STREAM_DRAW);
-    glEnableClientState(GL_COLOR_ARRAY);
-    glVertexPointer(2, GL_FLOAT, sizeof(Vertex),
-                    reinterpret_cast<const void*>(offsetof(Vertex, x)));
-    glColorPointer(4, GL_UNSIGNED_BYTE, sizeof(Vertex),
-                   reinterpret_cast<const void*>(offsetof(Vertex, rgba)));
+    glEnableVertexAttribArray(0);
+    glEnableVertexAttribArray(1);
+    glVertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, sizeof(Vertex),
+                          reinterpret_cast<const void*>(offsetof(Vertex, x)));
+    glVertexAttribPointer(1, 4, GL_UNSIGNED_BYTE, GL_TRUE, sizeof(Vertex),
+                          reinterpret_cast<const void*>(offsetof(Vertex, rgba)));
     glDrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(m_vertices.size()));
-    glDisableClientState(GL_COLOR_ARRAY);
-    a.bindBuffer(GL_ARRAY_BUFFER, 0);
     ++m_glStats.draws;
     m_glStats.trianglesPainted += m_vertices.size() / 3;
     m_vertices.clear();
     ++m_version;
 }
 
-// Brings every pixel up to the mesh: all changed triangles in one draw call (inside a Scope).
+// Brings every pixel up to the mesh: all changed triangles in one draw call (inside a
+// GlStateScope, with the ID buffer as the target).
 //
 // Without a shrinking hull the new shapes of the changed triangles cover every pixel whose id
 // changed, so painting them is enough. When the covered area shrinks (triangles removed, or a
@@ -504,8 +386,8 @@ std::int32_t IdBufferGl::readOne(int i, int j) {
 
 std::int32_t IdBufferGl::idAt(int i, int j) {
     if (!ready() || i < 0 || j < 0 || i >= m_opt.width || j >= m_opt.height) return kNone;
-    Scope scope(m_gl->api(), false);
-    scope.target(m_fbo, m_opt.width, m_opt.height);
+    const GlStateScope scope;
+    drawInto(m_fbo, m_opt.width, m_opt.height);
     paintPending();
     return readOne(i, j);
 }
@@ -515,8 +397,8 @@ std::vector<std::int32_t> IdBufferGl::readAll() {
     const std::size_t n = static_cast<std::size_t>(m_opt.width) * m_opt.height;
     std::vector<std::uint8_t> rgba(4 * n);
     {
-        Scope scope(m_gl->api(), false);
-        scope.target(m_fbo, m_opt.width, m_opt.height);
+        const GlStateScope scope;
+        drawInto(m_fbo, m_opt.width, m_opt.height);
         paintPending();
         glReadPixels(0, 0, m_opt.width, m_opt.height, GL_RGBA, GL_UNSIGNED_BYTE, rgba.data());
     }
@@ -535,64 +417,63 @@ std::int32_t IdBufferGl::batchCount(std::int32_t start) const {
 }
 
 // The ids under the points [start, start + count) of the insertion order, in one draw and one
-// read: each point is a GL point at its own pixel of the gather target that samples the ID
-// texture (nearest texel, colour replaced by the texel: exact). The read goes into the PBO; a
-// fence marks it, and takeBatch() maps it when the ids are needed.
+// read: each point is a GL point at its own pixel of the gather target that carries the ID
+// texture's texel under the point (shaders::kGatherVertexShader). The read goes into the
+// pixel-buffer object; a fence marks it, and takeBatch() fetches it when the ids are needed.
 void IdBufferGl::requestBatch(std::int32_t start) {
     const auto t0 = Clock::now();
-    const GlApi& a = m_gl->api();
     const std::int32_t count = batchCount(start);
-    m_gatherXy.resize(2 * static_cast<std::size_t>(count));
-    m_gatherUv.resize(2 * static_cast<std::size_t>(count));
+    m_gatherTexels.resize(2 * static_cast<std::size_t>(count));
     for (std::int32_t k = 0; k < count; ++k) {
         int i = 0, j = 0;
         m_map.pixel(m_order[start + k], m_opt.width, m_opt.height, i, j);  // outside: pixel (0, 0)
-        m_gatherXy[2 * k] = static_cast<float>(k % kGatherWidth) + 0.5f;
-        m_gatherXy[2 * k + 1] = static_cast<float>(k / kGatherWidth) + 0.5f;
-        m_gatherUv[2 * k] = (static_cast<float>(i) + 0.5f) / static_cast<float>(m_opt.width);
-        m_gatherUv[2 * k + 1] = (static_cast<float>(j) + 0.5f) / static_cast<float>(m_opt.height);
+        m_gatherTexels[2 * k] = i;
+        m_gatherTexels[2 * k + 1] = j;
     }
     const int rows = (count + kGatherWidth - 1) / kGatherWidth;
-    drawInto(a, m_gatherFbo, kGatherWidth, m_gatherRows);
-    glEnable(GL_TEXTURE_2D);
-    glBindTexture(GL_TEXTURE_2D, m_tex);
-    glTexEnvi(GL_TEXTURE_ENV, GL_TEXTURE_ENV_MODE, GL_REPLACE);
-    glEnableClientState(GL_TEXTURE_COORD_ARRAY);
-    glVertexPointer(2, GL_FLOAT, 0, m_gatherXy.data());
-    glTexCoordPointer(2, GL_FLOAT, 0, m_gatherUv.data());
+    drawInto(m_gatherFbo, kGatherWidth, m_gatherRows);
+    glUseProgram(m_gatherProgram);
+    glUniform2i(m_uGatherTarget, kGatherWidth, m_gatherRows);
+    glUniform1i(m_uGatherIds, 0);
+    glBindTexture(GL_TEXTURE_2D, m_tex);  // unit 0 (GlStateScope)
+    glBindVertexArray(m_vao);
+    glBindBuffer(GL_ARRAY_BUFFER, m_gatherVbo);
+    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(m_gatherTexels.size() * sizeof(GLint)),
+                 m_gatherTexels.data(), GL_STREAM_DRAW);
+    glDisableVertexAttribArray(1);
+    glEnableVertexAttribArray(0);
+    glVertexAttribIPointer(0, 2, GL_INT, 0, nullptr);
     glDrawArrays(GL_POINTS, 0, count);
-    glDisableClientState(GL_TEXTURE_COORD_ARRAY);
-    glDisable(GL_TEXTURE_2D);
-    a.bindBuffer(GL_PIXEL_PACK_BUFFER, m_pbo);
+    glBindBuffer(GL_PIXEL_PACK_BUFFER, m_pbo);
     glReadPixels(0, 0, kGatherWidth, rows, GL_RGBA, GL_UNSIGNED_BYTE, nullptr);
-    a.bindBuffer(GL_PIXEL_PACK_BUFFER, 0);
+    glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
     m_pending.start = start;
     m_pending.count = count;
     m_pending.readAt = m_paintedAt;  // the pixels show the mesh as it was then
-    m_pending.fence = a.fenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
+    m_pending.fence = glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
     glFlush();  // the fence must reach the GPU, or a wait on it from another point never ends
     ++m_glStats.reads;
     m_glStats.readbackMs += msSince(t0);
 }
 
+// The ids of the pending read, copied out of the pixel-buffer object (glGetBufferSubData: the
+// same call on desktop GL and WebGL2, which cannot map buffers for reading).
 void IdBufferGl::takeBatch() {
     const auto t0 = Clock::now();
-    const GlApi& a = m_gl->api();
     if (m_pending.fence) {
         const auto fence = static_cast<GLsync>(m_pending.fence);
-        while (a.clientWaitSync(fence, GL_SYNC_FLUSH_COMMANDS_BIT, 1'000'000'000) ==
-               GL_TIMEOUT_EXPIRED) {}
-        a.deleteSync(fence);
+        waitFor(fence);
+        glDeleteSync(fence);
         m_pending.fence = nullptr;
     }
-    a.bindBuffer(GL_PIXEL_PACK_BUFFER, m_pbo);
-    const auto* p = static_cast<const std::uint8_t*>(a.mapBufferRange(
-        GL_PIXEL_PACK_BUFFER, 0, static_cast<GLsizeiptr>(m_pending.count) * 4, GL_MAP_READ_BIT));
+    m_readback.resize(4 * static_cast<std::size_t>(m_pending.count));
+    glBindBuffer(GL_PIXEL_PACK_BUFFER, m_pbo);
+    glGetBufferSubData(GL_PIXEL_PACK_BUFFER, 0, static_cast<GLsizeiptr>(m_readback.size()),
+                       m_readback.data());
+    glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
     m_windowIds.resize(static_cast<std::size_t>(m_pending.count));
     for (std::int32_t k = 0; k < m_pending.count; ++k)
-        m_windowIds[k] = p ? decodeTriangleId(p + 4 * k) : kNone;
-    if (p) a.unmapBuffer(GL_PIXEL_PACK_BUFFER);
-    a.bindBuffer(GL_PIXEL_PACK_BUFFER, 0);
+        m_windowIds[k] = decodeTriangleId(&m_readback[4 * static_cast<std::size_t>(k)]);
     m_window = m_pending;
     m_pending = {};
     m_glStats.pixelsRead += static_cast<std::uint64_t>(m_window.count);
@@ -601,7 +482,7 @@ void IdBufferGl::takeBatch() {
 
 void IdBufferGl::dropPending() {
     if (m_pending.fence && m_gl && m_gl->alive())
-        m_gl->api().deleteSync(static_cast<GLsync>(m_pending.fence));
+        glDeleteSync(static_cast<GLsync>(m_pending.fence));
     m_pending = {};
 }
 
@@ -669,8 +550,8 @@ bool IdBufferGl::findInOrder(Vec2 p) {
 std::int32_t IdBufferGl::windowId(int& age) {
     if (m_next < m_window.start || m_next >= m_window.start + m_window.count) {
         const GlTimer timer(m_glStats);
-        Scope scope(m_gl->api(), true);
-        scope.target(m_fbo, m_opt.width, m_opt.height);
+        const GlStateScope scope;
+        drawInto(m_fbo, m_opt.width, m_opt.height);
         if (m_pending.count > 0 && m_pending.start == m_next) {
             takeBatch();
         } else {
@@ -682,7 +563,7 @@ std::int32_t IdBufferGl::windowId(int& age) {
         if (m_opt.readback == GlReadback::Pipelined) {
             const std::int32_t after = m_window.start + m_window.count;
             if (after < static_cast<std::int32_t>(m_order.size())) requestBatch(after);
-            scope.target(m_fbo, m_opt.width, m_opt.height);
+            drawInto(m_fbo, m_opt.width, m_opt.height);
             paintPending();
             glFlush();  // to the rasterizer now: it draws while the CPU inserts the next K points
         }
@@ -702,8 +583,8 @@ std::int32_t IdBufferGl::hint(Vec2 p, std::int32_t lastTriangle) {
         ++m_next;
     } else if (int i = 0, j = 0; pixelOf(p, i, j)) {
         const GlTimer timer(m_glStats);
-        Scope scope(m_gl->api(), false);
-        scope.target(m_fbo, m_opt.width, m_opt.height);
+        const GlStateScope scope;
+        drawInto(m_fbo, m_opt.width, m_opt.height);
         paintPending();
         const auto t0 = Clock::now();
         id = readOne(i, j);

@@ -26,8 +26,10 @@
 //              threads) draws while the CPU inserts. Ids are about 2K to 3K insertions old.
 //
 // The locator draws on whatever context is current when it is called: an OSMesa context in
-// dtlab and the UI tests, the window's context in the GUI (mid-frame: every piece of GL state it
-// touches is saved and restored). The id is only a hint: the inserter checks containment exactly.
+// dtlab and the UI tests, the window's context in the GUI, WebGL2 in the browser (mid-frame:
+// every piece of GL state it touches is saved and restored, GlStateScope). Shaders paint and
+// gather (GLSL 3.30 core or ES 3.00); the batch comes back through glGetBufferSubData, which
+// desktop GL and WebGL2 share. The id is only a hint: the inserter checks containment exactly.
 #pragma once
 
 #include "core/engine/locator.h"
@@ -121,13 +123,13 @@ public:
     const IdBufferGlStats& glStats() const { return m_glStats; }
 
 private:
-    class Scope;
     struct Batch {
         std::int32_t start = 0, count = 0;  // positions in the insertion order
         std::uint64_t readAt = 0;           // hints served before the read
         void* fence = nullptr;              // Pipelined: GLsync of the pending read
     };
 
+    void releaseGl();
     bool paintable(std::int32_t t) const;
     void corners(std::int32_t t, float* xy) const;  // pixel coordinates, as GL gets them
     void growShadow(std::int32_t triangles);
@@ -138,7 +140,7 @@ private:
     std::int32_t batchCount(std::int32_t start) const;
     std::int32_t readOne(int i, int j);     // inside a Scope, painted
     void requestBatch(std::int32_t start);  // inside a Scope: gather + read into the PBO
-    void takeBatch();                       // map the PBO into m_window
+    void takeBatch();                       // the PBO's ids into m_window
     void dropPending();
     bool findInOrder(Vec2 p);
     std::int32_t windowId(int& age);
@@ -148,7 +150,9 @@ private:
     LocatorContext m_ctx;
     bool m_reset = false;
     PixelMap m_map;
-    unsigned m_tex = 0, m_fbo = 0, m_gatherTex = 0, m_gatherFbo = 0, m_pbo = 0, m_vbo = 0;
+    GLuint m_tex = 0, m_fbo = 0, m_gatherTex = 0, m_gatherFbo = 0, m_pbo = 0;
+    GLuint m_vao = 0, m_vbo = 0, m_gatherVbo = 0, m_paintProgram = 0, m_gatherProgram = 0;
+    GLint m_uPaintTarget = -1, m_uGatherTarget = -1, m_uGatherIds = -1;
     int m_gatherRows = 0;
 
     // What was painted: per triangle its pixel-space corners (6 floats) and whether it is shown.
@@ -170,11 +174,12 @@ private:
     std::int32_t m_next = 0;  // predicted position of the next hint
     Batch m_window;           // ids at hand: positions [start, start + count)
     std::vector<std::int32_t> m_windowIds;
-    Batch m_pending;  // Pipelined: issued, not mapped yet (count > 0)
-    std::vector<float> m_gatherXy, m_gatherUv;
-    std::uint64_t m_hints = 0;      // hints served since reset()
-    std::uint64_t m_paintedAt = 0;  // m_hints at the last paint: the pixels' age
-    int m_lastAge = -1;             // age of the last hint's id (-1: no pixel)
+    Batch m_pending;                       // Pipelined: issued, not mapped yet (count > 0)
+    std::vector<GLint> m_gatherTexels;     // per point of a batch: its ID-buffer pixel (i, j)
+    std::vector<std::uint8_t> m_readback;  // a batch's pixels as read
+    std::uint64_t m_hints = 0;             // hints served since reset()
+    std::uint64_t m_paintedAt = 0;         // m_hints at the last paint: the pixels' age
+    int m_lastAge = -1;                    // age of the last hint's id (-1: no pixel)
 
     std::uint64_t m_version = 0;
     IdBufferGlStats m_glStats;

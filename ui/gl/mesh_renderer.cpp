@@ -1,7 +1,9 @@
 // MeshRenderer: the mesh in screen space, as GL vertex arrays (sparse) or a CPU raster (dense).
 #include "ui/gl/mesh_renderer.h"
 
-#include <GL/gl.h>
+#include "ui/gl/gl_api.h"
+#include "ui/gl/shaders.h"
+
 #include <imgui.h>
 
 #include <algorithm>
@@ -23,11 +25,6 @@ bool sameStyle(const MeshStyle& a, const MeshStyle& b) {
            a.drawVirtual == b.drawVirtual && a.drawPoints == b.drawPoints;
 }
 
-void colour(std::uint32_t c) {
-    glColor4ub(static_cast<GLubyte>(c & 0xFF), static_cast<GLubyte>((c >> 8) & 0xFF),
-               static_cast<GLubyte>((c >> 16) & 0xFF), static_cast<GLubyte>((c >> 24) & 0xFF));
-}
-
 // Screen positions can be anywhere (a vertex far off the canvas at high zoom): clamp to a range
 // where float arithmetic and the rasterizer's loops stay sane; culling drops what is outside.
 float clampCoord(double v) { return static_cast<float>(std::clamp(v, -1e7, 1e7)); }
@@ -35,12 +32,14 @@ float clampCoord(double v) { return static_cast<float>(std::clamp(v, -1e7, 1e7))
 }  // namespace
 
 bool MeshRenderer::update(const Engine& engine, const View& view, const MeshStyle& style) {
+    m_context = engine.glContext();
     if (engine.version() == m_version && sameView(view, m_view) && sameStyle(style, m_style))
         return false;
     const auto t0 = std::chrono::steady_clock::now();
     m_version = engine.version();
     m_view = view;
     m_style = style;
+    ++m_built;
     m_fill.clear();
     m_edges.clear();
     m_virtualEdges.clear();
@@ -203,95 +202,186 @@ void MeshRenderer::drawCallback(const ImDrawList*, const void* cmdPtr) {
                 y0 = (self->m_clip[1] - dd->DisplayPos.y) * fbScaleY;
     const float x1 = (self->m_clip[2] - dd->DisplayPos.x) * fbScaleX,
                 y1 = (self->m_clip[3] - dd->DisplayPos.y) * fbScaleY;
-    // ImGui's OpenGL2 backend sets its array pointers once per draw list, so everything we
-    // change must be put back exactly: push the client arrays and the server state we touch.
-    glPushClientAttrib(GL_CLIENT_VERTEX_ARRAY_BIT);
-    glPushAttrib(GL_ENABLE_BIT | GL_CURRENT_BIT | GL_LINE_BIT | GL_POINT_BIT | GL_SCISSOR_BIT |
-                 GL_TEXTURE_BIT);
+    // ImGui's OpenGL3 backend goes on with its own program, vertex array and blending after
+    // the callback: everything we set is put back.
+    const GlStateScope scope;
+    if (!self->prepareGl()) return;
     glEnable(GL_SCISSOR_TEST);
     glScissor(static_cast<GLint>(x0), static_cast<GLint>(fbH - y1), static_cast<GLsizei>(x1 - x0),
               static_cast<GLsizei>(y1 - y0));
-    glDisable(GL_TEXTURE_2D);
-    glDisableClientState(GL_TEXTURE_COORD_ARRAY);
-    glDisableClientState(GL_COLOR_ARRAY);
-    glEnableClientState(GL_VERTEX_ARRAY);
-    const MeshStyle& s = self->m_style;
-    if (data->pass == Pass::Fill) {
-        if (!self->m_dense && !self->m_fill.empty()) {
-            colour(s.fill);
-            glVertexPointer(2, GL_FLOAT, 0, self->m_fill.data());
-            glDrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(self->m_fill.size() / 2));
-        }
-    } else if (self->m_dense) {
-        self->drawRaster();
-    } else {
-        self->drawLines();
+    glEnable(GL_BLEND);  // as ImGui blends
+    glBlendEquation(GL_FUNC_ADD);
+    glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+    const float screen[4] = {dd->DisplayPos.x, dd->DisplayPos.y, dd->DisplaySize.x,
+                             dd->DisplaySize.y};
+    self->drawPass(data->pass, screen);
+}
+
+// ============================================================================================
+// The GL side
+// ============================================================================================
+
+namespace {
+
+enum Shape : GLint { kTriangles = 0, kSegments = 1, kSquares = 2, kImage = 3 };
+
+// Where each array starts in the one vertex buffer, in floats.
+struct BufferLayout {
+    std::size_t fill, virtualEdges, edges, pending, points, total;
+};
+
+BufferLayout layoutOf(const std::vector<float>& fill, const std::vector<float>& virtualEdges,
+                      const std::vector<float>& edges, const std::vector<float>& pending,
+                      const std::vector<float>& points) {
+    BufferLayout l{};
+    l.fill = 0;
+    l.virtualEdges = l.fill + fill.size();
+    l.edges = l.virtualEdges + virtualEdges.size();
+    l.pending = l.edges + edges.size();
+    l.points = l.pending + pending.size();
+    l.total = l.points + points.size();
+    return l;
+}
+
+const void* floatOffset(std::size_t floats) {
+    return reinterpret_cast<const void*>(floats * sizeof(float));
+}
+
+}  // namespace
+
+MeshRenderer::~MeshRenderer() { releaseGl(); }
+
+// Deletes the GL objects while their context lives (the renderer may outlive it: then they went
+// with it).
+void MeshRenderer::releaseGl() {
+    if (m_gl.context && m_gl.context->alive()) {
+        if (m_gl.texture) glDeleteTextures(1, &m_gl.texture);
+        if (m_gl.buffer) glDeleteBuffers(1, &m_gl.buffer);
+        if (m_gl.vertexArray) glDeleteVertexArrays(1, &m_gl.vertexArray);
+        if (m_gl.program) glDeleteProgram(m_gl.program);
     }
-    glPopAttrib();
-    glPopClientAttrib();
+    m_gl = {};
+}
+
+// The program, vertex array and buffer of the engine's context, made on the first draw on it;
+// false when there is no live context or the program did not build.
+bool MeshRenderer::prepareGl() {
+    if (!m_context || !m_context->alive()) return false;
+    if (m_gl.context != m_context) {
+        releaseGl();
+        m_gl.context = m_context;
+        std::string error;
+        m_gl.program =
+            buildProgram(shaders::kMeshVertexShader, shaders::kMeshFragmentShader, error);
+        m_gl.failed = m_gl.program == 0;
+        if (m_gl.failed) return false;
+        glGenVertexArrays(1, &m_gl.vertexArray);
+        glGenBuffers(1, &m_gl.buffer);
+        const GLuint p = m_gl.program;
+        m_gl.uShape = glGetUniformLocation(p, "uShape");
+        m_gl.uScreen = glGetUniformLocation(p, "uScreen");
+        m_gl.uSize = glGetUniformLocation(p, "uSize");
+        m_gl.uRect = glGetUniformLocation(p, "uRect");
+        m_gl.uColour = glGetUniformLocation(p, "uColour");
+        m_gl.uImage = glGetUniformLocation(p, "uImage");
+    }
+    if (m_gl.failed) return false;
+    glUseProgram(m_gl.program);
+    glBindVertexArray(m_gl.vertexArray);
+    glBindBuffer(GL_ARRAY_BUFFER, m_gl.buffer);
+    if (m_gl.uploaded != m_built) upload();
+    return true;
+}
+
+// The arrays of the last rebuild into the one vertex buffer (sparse), or the raster into the
+// texture (dense).
+void MeshRenderer::upload() {
+    m_gl.uploaded = m_built;
+    if (m_dense) {
+        if (m_rasterDirty) {
+            uploadRgbaTexture(m_gl.texture, m_gl.textureW, m_gl.textureH, m_rasterW, m_rasterH,
+                              m_raster.data());
+            m_rasterDirty = false;
+        }
+        return;
+    }
+    const BufferLayout l = layoutOf(m_fill, m_virtualEdges, m_edges, m_pending, m_points);
+    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(l.total * sizeof(float)), nullptr,
+                 GL_DYNAMIC_DRAW);
+    auto part = [](std::size_t offset, const std::vector<float>& v) {
+        if (v.empty()) return;
+        glBufferSubData(GL_ARRAY_BUFFER, static_cast<GLintptr>(offset * sizeof(float)),
+                        static_cast<GLsizeiptr>(v.size() * sizeof(float)), v.data());
+    };
+    part(l.fill, m_fill);
+    part(l.virtualEdges, m_virtualEdges);
+    part(l.edges, m_edges);
+    part(l.pending, m_pending);
+    part(l.points, m_points);
+}
+
+void MeshRenderer::drawPass(Pass pass, const float screen[4]) {
+    glUniform4f(m_gl.uScreen, screen[0], screen[1], screen[2], screen[3]);
+    const MeshStyle& s = m_style;
+    if (pass == Pass::Fill) {
+        if (m_dense || m_fill.empty()) return;
+        glUniform1i(m_gl.uShape, kTriangles);
+        setColourUniform(m_gl.uColour, s.fill);
+        glDisableVertexAttribArray(1);
+        glEnableVertexAttribArray(0);
+        glVertexAttribDivisor(0, 0);
+        glVertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, 0, floatOffset(0));
+        glDrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(m_fill.size() / 2));
+        return;
+    }
+    if (m_dense) {
+        drawRaster();
+        return;
+    }
+    const BufferLayout l = layoutOf(m_fill, m_virtualEdges, m_edges, m_pending, m_points);
+    drawSegments(l.virtualEdges, m_virtualEdges.size() / 4, s.virtualEdge, s.edgeWidth);
+    drawSegments(l.edges, m_edges.size() / 4, s.edge, s.edgeWidth);
+    drawSquares(l.pending, m_pending.size() / 2, s.pending, s.pointSize);
+    drawSquares(l.points, m_points.size() / 2, s.point, s.pointSize);
+}
+
+void MeshRenderer::drawSegments(std::size_t offset, std::size_t count, std::uint32_t colour,
+                                float width) {
+    if (count == 0) return;
+    glUniform1i(m_gl.uShape, kSegments);
+    glUniform1f(m_gl.uSize, width);
+    setColourUniform(m_gl.uColour, colour);
+    glDisableVertexAttribArray(0);
+    glEnableVertexAttribArray(1);
+    glVertexAttribDivisor(1, 1);
+    glVertexAttribPointer(1, 4, GL_FLOAT, GL_FALSE, 0, floatOffset(offset));
+    glDrawArraysInstanced(GL_TRIANGLES, 0, 6, static_cast<GLsizei>(count));
+}
+
+void MeshRenderer::drawSquares(std::size_t offset, std::size_t count, std::uint32_t colour,
+                               float size) {
+    if (count == 0) return;
+    glUniform1i(m_gl.uShape, kSquares);
+    glUniform1f(m_gl.uSize, size);
+    setColourUniform(m_gl.uColour, colour);
+    glDisableVertexAttribArray(1);
+    glEnableVertexAttribArray(0);
+    glVertexAttribDivisor(0, 1);
+    glVertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, 0, floatOffset(offset));
+    glDrawArraysInstanced(GL_TRIANGLES, 0, 6, static_cast<GLsizei>(count));
 }
 
 void MeshRenderer::drawRaster() {
-    if (m_texture == 0) glGenTextures(1, &m_texture);
-    glBindTexture(GL_TEXTURE_2D, m_texture);
-    if (m_rasterDirty) {
-        glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
-        glPixelStorei(GL_UNPACK_ROW_LENGTH, 0);
-        if (m_textureW != m_rasterW || m_textureH != m_rasterH) {
-            glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-            glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-            glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA, m_rasterW, m_rasterH, 0, GL_RGBA,
-                         GL_UNSIGNED_BYTE, m_raster.data());
-            m_textureW = m_rasterW;
-            m_textureH = m_rasterH;
-        } else {
-            glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, m_rasterW, m_rasterH, GL_RGBA, GL_UNSIGNED_BYTE,
-                            m_raster.data());
-        }
-        m_rasterDirty = false;
-    }
-    glEnable(GL_TEXTURE_2D);
-    glTexEnvi(GL_TEXTURE_ENV, GL_TEXTURE_ENV_MODE, GL_REPLACE);
-    glEnable(GL_BLEND);
-    glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
+    if (m_gl.texture == 0) return;
+    glUniform1i(m_gl.uShape, kImage);
+    glUniform1i(m_gl.uImage, 0);
     const float x = static_cast<float>(m_view.origin.x), y = static_cast<float>(m_view.origin.y);
-    const float w = static_cast<float>(m_rasterW), h = static_cast<float>(m_rasterH);
-    glBegin(GL_QUADS);
-    glTexCoord2f(0, 0);
-    glVertex2f(x, y);
-    glTexCoord2f(1, 0);
-    glVertex2f(x + w, y);
-    glTexCoord2f(1, 1);
-    glVertex2f(x + w, y + h);
-    glTexCoord2f(0, 1);
-    glVertex2f(x, y + h);
-    glEnd();
-}
-
-void MeshRenderer::drawLines() const {
-    const MeshStyle& s = m_style;
-    glLineWidth(s.edgeWidth);
-    if (!m_virtualEdges.empty()) {
-        colour(s.virtualEdge);
-        glVertexPointer(2, GL_FLOAT, 0, m_virtualEdges.data());
-        glDrawArrays(GL_LINES, 0, static_cast<GLsizei>(m_virtualEdges.size() / 2));
-    }
-    if (!m_edges.empty()) {
-        colour(s.edge);
-        glVertexPointer(2, GL_FLOAT, 0, m_edges.data());
-        glDrawArrays(GL_LINES, 0, static_cast<GLsizei>(m_edges.size() / 2));
-    }
-    glPointSize(s.pointSize);
-    if (!m_pending.empty()) {
-        colour(s.pending);
-        glVertexPointer(2, GL_FLOAT, 0, m_pending.data());
-        glDrawArrays(GL_POINTS, 0, static_cast<GLsizei>(m_pending.size() / 2));
-    }
-    if (!m_points.empty()) {
-        colour(s.point);
-        glVertexPointer(2, GL_FLOAT, 0, m_points.data());
-        glDrawArrays(GL_POINTS, 0, static_cast<GLsizei>(m_points.size() / 2));
-    }
+    glUniform4f(m_gl.uRect, x, y, x + static_cast<float>(m_rasterW),
+                y + static_cast<float>(m_rasterH));
+    glBindTexture(GL_TEXTURE_2D, m_gl.texture);
+    glDisableVertexAttribArray(0);
+    glDisableVertexAttribArray(1);
+    glDrawArrays(GL_TRIANGLES, 0, 6);
 }
 
 }  // namespace dlab::ui

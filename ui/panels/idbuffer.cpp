@@ -5,11 +5,11 @@
 // walk. The buffer is read through readIdBuffer() only, so that another buffer (the GL one) plugs
 // in beside the CPU one.
 #include "core/engine/predicates.h"
+#include "ui/gl/gl_api.h"
 #include "ui/gl/idbuffer_gl.h"
 #include "ui/gui.h"
 #include "ui/panels/panels.h"
 
-#include <GL/gl.h>
 #include <imgui.h>
 
 #include <algorithm>
@@ -20,8 +20,9 @@ namespace dlab::ui {
 
 // The texture the view shows and what it was made from.
 struct IdBufferView {
-    unsigned texture = 0;  // GL name; freed with the context, as the canvas' texture is
+    GLuint texture = 0;  // GL name; freed with the context, as the canvas' texture is
     int texW = 0, texH = 0;
+    int glW = 0, glH = 0;  // the texture's storage
     std::uint64_t version = ~std::uint64_t{0};
     bool trueColours = false;
     int bufW = 0, bufH = 0;
@@ -73,14 +74,7 @@ void rebuildTexture(IdBufferView& v, const IdBufferFrame& f, bool trueColours) {
             px[3] = 255;  // the encoded alpha is data, not transparency
         }
     }
-    if (v.texture == 0) glGenTextures(1, &v.texture);
-    glBindTexture(GL_TEXTURE_2D, v.texture);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-    glPixelStorei(GL_UNPACK_ROW_LENGTH, 0);
-    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA, v.texW, v.texH, 0, GL_RGBA, GL_UNSIGNED_BYTE,
-                 v.rgba.data());
+    uploadRgbaTexture(v.texture, v.glW, v.glH, v.texW, v.texH, v.rgba.data());
     v.bufW = f.width;
     v.bufH = f.height;
 }

@@ -41,9 +41,9 @@ bool loadPointFile(AppState& state, const std::string& path);
 // drawn or too small for a label (canvas.cpp).
 bool cornerAnchor(const AppState& state, std::int32_t corner, float& x, float& y);
 
-// ImGui 1.86's OpenGL2 backend draws each draw list with 16-bit indices (at most 65536
-// vertices): the mesh itself is our GL code, and every overlay loop on the canvas asks here
-// before adding about `vertices` more. Past the budget it answers false and the canvas says
+// ImGui draws each draw list with 16-bit indices (at most 65536 vertices, on every target:
+// ui/gl/imgui_gl.h): the mesh itself is our GL code, and every overlay loop on the canvas asks
+// here before adding about `vertices` more. Past the budget it answers false and the canvas says
 // that shapes were left out (zoom in), instead of aborting (canvas.cpp).
 bool canvasHasRoom(AppState& state, const ImDrawList* drawList, unsigned vertices);
 // Says so on the canvas when canvasHasRoom left shapes out this frame (after all overlays).

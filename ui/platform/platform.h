@@ -1,4 +1,5 @@
-// What the UI needs from a window system: a current GL context, frames, and input for ImGui.
+// What the UI needs from a window system: a current GL context that runs our shaders (OpenGL 3.3
+// core; ui/gl/gl_api.h), frames, and input for ImGui.
 //
 // Two implementations, one file each, each in its own library because each brings its own GL
 // provider: platform_glfw.cpp (a real window, libGL) and platform_osmesa.cpp (headless, OSMesa;
@@ -11,15 +12,11 @@
 
 namespace dlab::ui {
 
-using GlProc = void (*)();
-
 class Platform {
 public:
     virtual ~Platform() = default;
     virtual const char* name() const = 0;
     virtual bool headless() const = 0;
-    // A GL entry point of the current context (for functions beyond GL 1.1), or nullptr.
-    virtual GlProc procAddress(const char* name) = 0;
     virtual void framebufferSize(int& width, int& height) const = 0;
     // Called after ImGui::CreateContext: install the ImGui platform backend (keyboard, mouse).
     virtual void initImGui() = 0;
@@ -37,7 +34,8 @@ public:
     virtual bool resize(int /*width*/, int /*height*/) { return false; }
 };
 
-// Headless, OSMesa. Returns nullptr and sets `error` when no context can be made.
+// Headless, OSMesa: a core-profile context (3.3 asked for; Mesa gives 4.5). Returns nullptr and
+// sets `error` when no context can be made.
 std::unique_ptr<Platform> makeOsmesaPlatform(int width, int height, std::string& error);
 
 struct WindowOptions {
@@ -46,8 +44,8 @@ struct WindowOptions {
     bool maximized = false;
     std::string title = "Delaunay Lab";
 };
-// A GLFW window with a GL compatibility context. Returns nullptr and sets `error` when there
-// is no display or no context.
+// A GLFW window with an OpenGL 3.3 core, forward-compatible context (the only kind macOS gives).
+// Returns nullptr and sets `error` when there is no display or no such context.
 std::unique_ptr<Platform> makeGlfwPlatform(const WindowOptions& options, std::string& error);
 
 // Where the GLFW window is now (to remember it between runs); false on other platforms.

@@ -1,6 +1,7 @@
-// The windowed platform: GLFW with a GL compatibility context, ImGui's GLFW backend for input.
+// The windowed platform: GLFW with an OpenGL 3.3 core context, ImGui's GLFW backend for input.
 #include "ui/platform/platform.h"
 
+#define GLFW_INCLUDE_NONE  // GL comes from ui/gl/gl_api.h, never from here
 #include <GLFW/glfw3.h>
 #include <backends/imgui_impl_glfw.h>
 #include <imgui.h>
@@ -30,7 +31,6 @@ public:
     }
     const char* name() const override { return "glfw"; }
     bool headless() const override { return false; }
-    GlProc procAddress(const char* name) override { return glfwGetProcAddress(name); }
     void framebufferSize(int& width, int& height) const override {
         glfwGetFramebufferSize(m_window, &width, &height);
     }
@@ -70,8 +70,10 @@ std::unique_ptr<Platform> makeGlfwPlatform(const WindowOptions& options, std::st
         error = g_glfwError.empty() ? "GLFW could not initialise" : g_glfwError;
         return nullptr;
     }
-    glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 2);
-    glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 1);
+    glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
+    glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
+    glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
+    glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
     glfwWindowHint(GLFW_MAXIMIZED, options.maximized ? GLFW_TRUE : GLFW_FALSE);
     GLFWwindow* window =
         glfwCreateWindow(options.width, options.height, options.title.c_str(), nullptr, nullptr);

@@ -17,9 +17,6 @@ public:
     ~OsmesaPlatform() override { OSMesaDestroyContext(m_ctx); }
     const char* name() const override { return "osmesa"; }
     bool headless() const override { return true; }
-    GlProc procAddress(const char* name) override {
-        return reinterpret_cast<GlProc>(OSMesaGetProcAddress(name));
-    }
     void framebufferSize(int& width, int& height) const override {
         width = m_width;
         height = m_height;
@@ -71,7 +68,7 @@ private:
 }  // namespace
 
 std::unique_ptr<Platform> makeOsmesaPlatform(int width, int height, std::string& error) {
-    // A compatibility context: ImGui's OpenGL2 backend and our renderers use the fixed pipeline.
+    // A core profile, as in the window and close to WebGL2: what runs here runs there.
     const int attribs[] = {OSMESA_FORMAT,
                            OSMESA_RGBA,
                            OSMESA_DEPTH_BITS,
@@ -81,11 +78,15 @@ std::unique_ptr<Platform> makeOsmesaPlatform(int width, int height, std::string&
                            OSMESA_ACCUM_BITS,
                            0,
                            OSMESA_PROFILE,
-                           OSMESA_COMPAT_PROFILE,
+                           OSMESA_CORE_PROFILE,
+                           OSMESA_CONTEXT_MAJOR_VERSION,
+                           3,
+                           OSMESA_CONTEXT_MINOR_VERSION,
+                           3,
                            0};
     OSMesaContext ctx = OSMesaCreateContextAttribs(attribs, nullptr);
     if (!ctx) {
-        error = "OSMesa: cannot create a software GL context";
+        error = "OSMesa: cannot create a software OpenGL 3.3 core context";
         return nullptr;
     }
     auto platform = std::make_unique<OsmesaPlatform>(ctx, width, height);
