@@ -38,7 +38,7 @@ TEST_FUZZ_SECONDS ?= 20
 # fonts-dejavu-core gives the GUI a readable font (it falls back to ImGui's own without it).
 DEB_PACKAGES := \
 	build-essential cmake pkg-config \
-	libimgui-dev libglfw3-dev libglm-dev libosmesa6-dev libstb-dev libgif-dev \
+	libimgui-dev libglfw3-dev libgl-dev libglm-dev libosmesa6-dev libstb-dev libgif-dev \
 	libcli11-dev libtomlplusplus-dev nlohmann-json3-dev libgmp-dev libfast-float-dev libfmt-dev \
 	libgtest-dev libbenchmark-dev clang-format \
 	xvfb xauth fonts-dejavu-core \
