@@ -1,9 +1,9 @@
 // The GL layer on OSMesa's core-profile context: the context it asks for, and every shader
 // program built in both shader languages we ship to (GLSL 3.30 core here and in the window,
 // GLSL ES 3.00 in the browser: desktop GL 4.3 and later compile it too).
+#include "tests/ui/ui_harness.h"
 #include "ui/gl/gl_api.h"
 #include "ui/gl/shaders.h"
-#include "ui/platform/platform.h"
 
 #include <gtest/gtest.h>
 
@@ -17,13 +17,9 @@ class GlTest : public ::testing::Test {
 protected:
     void SetUp() override {
         std::string error;
-        m_platform = ui::makeOsmesaPlatform(16, 16, error);
-        ASSERT_TRUE(m_platform) << error;
-        m_gl = ui::GlContext::fromCurrent(error);
-        ASSERT_TRUE(m_gl) << error;
+        ASSERT_TRUE(m_headless.open(error)) << error;
     }
-    std::unique_ptr<ui::Platform> m_platform;
-    std::shared_ptr<ui::GlContext> m_gl;
+    test::HeadlessGl m_headless;
 };
 
 }  // namespace
@@ -31,7 +27,7 @@ protected:
 TEST_F(GlTest, TheHeadlessContextIsACoreProfile) {
     GLint mask = 0;
     glGetIntegerv(GL_CONTEXT_PROFILE_MASK, &mask);
-    EXPECT_TRUE(mask & GL_CONTEXT_CORE_PROFILE_BIT) << m_gl->version();
+    EXPECT_TRUE(mask & GL_CONTEXT_CORE_PROFILE_BIT) << m_headless.gl->version();
     // Fixed-function calls do not exist there: the one renderer cannot lean on them.
     glGetError();
     glEnable(0x0B50);  // GL_LIGHTING, compatibility only

@@ -7,7 +7,6 @@
 #include "tests/ui/ui_harness.h"
 #include "ui/gl/gl_api.h"
 #include "ui/gl/idbuffer_gl.h"
-#include "ui/platform/platform.h"
 
 #include <gtest/gtest.h>
 
@@ -31,10 +30,8 @@ class IdBufferGlTest : public ::testing::Test {
 protected:
     void SetUp() override {
         std::string error;
-        m_platform = ui::makeOsmesaPlatform(16, 16, error);
-        ASSERT_TRUE(m_platform) << error;
-        m_gl = ui::GlContext::fromCurrent(error);
-        ASSERT_TRUE(m_gl) << error;
+        ASSERT_TRUE(m_headless.open(error)) << error;
+        m_gl = m_headless.gl;
         glGetIntegerv(GL_SUBPIXEL_BITS, &m_subpixelBits);
     }
 
@@ -51,7 +48,7 @@ protected:
         return r;
     }
 
-    std::unique_ptr<ui::Platform> m_platform;
+    test::HeadlessGl m_headless;
     std::shared_ptr<ui::GlContext> m_gl;
     GLint m_subpixelBits = 4;
 };

@@ -2,6 +2,7 @@
 #include "tests/ui/ui_harness.h"
 
 #include "core/engine/generators.h"
+#include "ui/gl/gl_api.h"
 
 #include <gtest/gtest.h>
 #include <imgui.h>
@@ -9,6 +10,12 @@
 #include <stdexcept>
 
 namespace dlab::test {
+
+bool HeadlessGl::open(std::string& error) {
+    platform = ui::makeOsmesaPlatform(16, 16, error);
+    if (platform) gl = ui::GlContext::fromCurrent(error);
+    return gl != nullptr;
+}
 
 UiHarness::UiHarness(int width, int height) {
     std::string error;

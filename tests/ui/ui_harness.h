@@ -10,7 +10,19 @@
 #include <memory>
 #include <string>
 
+namespace dlab::ui {
+class GlContext;
+}
+
 namespace dlab::test {
+
+// A headless GL context (OSMesa, 16 x 16), current, for tests of the GL layer without the GUI.
+struct HeadlessGl {
+    std::unique_ptr<ui::Platform> platform;
+    std::shared_ptr<ui::GlContext> gl;
+    // False and a reason when no context can be made.
+    bool open(std::string& error);
+};
 
 class UiHarness {
 public:

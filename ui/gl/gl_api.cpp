@@ -53,20 +53,29 @@ void setCap(GLenum cap, bool on) {
         glDisable(cap);
 }
 
+// Whether a shader compiled (or a program linked): the status, else the log in `error`.
+template <typename GetIv, typename GetLog>
+bool succeeded(GLuint object, GLenum status, GetIv getIv, GetLog getLog, const char* what,
+               std::string& error) {
+    GLint ok = GL_FALSE;
+    getIv(object, status, &ok);
+    if (ok == GL_TRUE) return true;
+    GLint length = 0;
+    getIv(object, GL_INFO_LOG_LENGTH, &length);
+    std::vector<char> log(static_cast<std::size_t>(std::max(length, 1)), '\0');
+    getLog(object, static_cast<GLsizei>(log.size()), nullptr, log.data());
+    error = std::string(what) + ": " + log.data();
+    return false;
+}
+
 GLuint compile(GLenum stage, const char* preamble, const char* body, std::string& error) {
     const GLuint shader = glCreateShader(stage);
     const char* sources[2] = {preamble, body};
     glShaderSource(shader, 2, sources, nullptr);
     glCompileShader(shader);
-    GLint ok = GL_FALSE;
-    glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
-    if (ok == GL_TRUE) return shader;
-    GLint length = 0;
-    glGetShaderiv(shader, GL_INFO_LOG_LENGTH, &length);
-    std::vector<char> log(static_cast<std::size_t>(std::max(length, 1)), '\0');
-    glGetShaderInfoLog(shader, static_cast<GLsizei>(log.size()), nullptr, log.data());
-    error =
-        std::string(stage == GL_VERTEX_SHADER ? "vertex" : "fragment") + " shader: " + log.data();
+    const char* what = stage == GL_VERTEX_SHADER ? "vertex shader" : "fragment shader";
+    if (succeeded(shader, GL_COMPILE_STATUS, glGetShaderiv, glGetShaderInfoLog, what, error))
+        return shader;
     glDeleteShader(shader);
     return 0;
 }
@@ -108,14 +117,9 @@ GLuint buildProgram(const char* vertexBody, const char* fragmentBody, std::strin
     glLinkProgram(program);
     glDeleteShader(vs);  // flagged: freed with the program
     glDeleteShader(fs);
-    GLint ok = GL_FALSE;
-    glGetProgramiv(program, GL_LINK_STATUS, &ok);
-    if (ok == GL_TRUE) return program;
-    GLint length = 0;
-    glGetProgramiv(program, GL_INFO_LOG_LENGTH, &length);
-    std::vector<char> log(static_cast<std::size_t>(std::max(length, 1)), '\0');
-    glGetProgramInfoLog(program, static_cast<GLsizei>(log.size()), nullptr, log.data());
-    error = std::string("shader program: ") + log.data();
+    if (succeeded(program, GL_LINK_STATUS, glGetProgramiv, glGetProgramInfoLog, "shader program",
+                  error))
+        return program;
     glDeleteProgram(program);
     return 0;
 }

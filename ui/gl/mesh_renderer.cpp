@@ -339,35 +339,26 @@ void MeshRenderer::drawPass(Pass pass, const float screen[4]) {
         return;
     }
     const BufferLayout l = layoutOf(m_fill, m_virtualEdges, m_edges, m_pending, m_points);
-    drawSegments(l.virtualEdges, m_virtualEdges.size() / 4, s.virtualEdge, s.edgeWidth);
-    drawSegments(l.edges, m_edges.size() / 4, s.edge, s.edgeWidth);
-    drawSquares(l.pending, m_pending.size() / 2, s.pending, s.pointSize);
-    drawSquares(l.points, m_points.size() / 2, s.point, s.pointSize);
+    drawInstances(kSegments, l.virtualEdges, m_virtualEdges.size() / 4, s.virtualEdge, s.edgeWidth);
+    drawInstances(kSegments, l.edges, m_edges.size() / 4, s.edge, s.edgeWidth);
+    drawInstances(kSquares, l.pending, m_pending.size() / 2, s.pending, s.pointSize);
+    drawInstances(kSquares, l.points, m_points.size() / 2, s.point, s.pointSize);
 }
 
-void MeshRenderer::drawSegments(std::size_t offset, std::size_t count, std::uint32_t colour,
-                                float width) {
+// Edges (segments) or points (squares) as instanced quads: six vertices an instance, the
+// instance's floats from `offset` in the vertex buffer.
+void MeshRenderer::drawInstances(int shape, std::size_t offset, std::size_t count,
+                                 std::uint32_t colour, float size) {
     if (count == 0) return;
-    glUniform1i(m_gl.uShape, kSegments);
-    glUniform1f(m_gl.uSize, width);
-    setColourUniform(m_gl.uColour, colour);
-    glDisableVertexAttribArray(0);
-    glEnableVertexAttribArray(1);
-    glVertexAttribDivisor(1, 1);
-    glVertexAttribPointer(1, 4, GL_FLOAT, GL_FALSE, 0, floatOffset(offset));
-    glDrawArraysInstanced(GL_TRIANGLES, 0, 6, static_cast<GLsizei>(count));
-}
-
-void MeshRenderer::drawSquares(std::size_t offset, std::size_t count, std::uint32_t colour,
-                               float size) {
-    if (count == 0) return;
-    glUniform1i(m_gl.uShape, kSquares);
+    const GLuint attribute = shape == kSegments ? 1 : 0, other = 1 - attribute;
+    glUniform1i(m_gl.uShape, shape);
     glUniform1f(m_gl.uSize, size);
     setColourUniform(m_gl.uColour, colour);
-    glDisableVertexAttribArray(1);
-    glEnableVertexAttribArray(0);
-    glVertexAttribDivisor(0, 1);
-    glVertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, 0, floatOffset(offset));
+    glDisableVertexAttribArray(other);
+    glEnableVertexAttribArray(attribute);
+    glVertexAttribDivisor(attribute, 1);
+    glVertexAttribPointer(attribute, shape == kSegments ? 4 : 2, GL_FLOAT, GL_FALSE, 0,
+                          floatOffset(offset));
     glDrawArraysInstanced(GL_TRIANGLES, 0, 6, static_cast<GLsizei>(count));
 }
 

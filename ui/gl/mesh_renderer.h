@@ -71,8 +71,8 @@ private:
     bool prepareGl();
     void upload();
     void drawPass(Pass pass, const float screen[4]);
-    void drawSegments(std::size_t offset, std::size_t count, std::uint32_t colour, float width);
-    void drawSquares(std::size_t offset, std::size_t count, std::uint32_t colour, float size);
+    void drawInstances(int shape, std::size_t offset, std::size_t count, std::uint32_t colour,
+                       float size);
     void drawRaster();
     void releaseGl();
     void rasterLine(float x0, float y0, float x1, float y1, std::uint32_t colour);
