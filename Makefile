@@ -9,7 +9,8 @@
 #   make deps    install missing Debian packages (root), or print the apt-get command and fail
 #   make asan    deps, configure build-asan/ (Debug, ASan + UBSan), build, ctest
 #   make fuzz    deps, build the libFuzzer targets (clang, build-fuzz/), fuzz each FUZZ_SECONDS
-#   make bench   build, then dtlab vs CGAL on 2^20 uniform points, and dtlab's peak memory
+#   make bench   build, then dtlab vs CGAL on 2^20 points of each distribution and larger uniform
+#                sets, with peak memory (.ci/bench_compare.sh; BENCH_* variables; ~20 min)
 #   make format  clang-format every C++ source (make test checks the format: Style.Format)
 #   make clean   remove build/, build-asan/, build-release/, build-fuzz/
 #

@@ -1,98 +1,133 @@
 #!/usr/bin/env bash
-# `make bench`: dtlab against CGAL's Delaunay_triangulation_2 on 2^20 uniform points in the
-# paper's 1600x1600 box, then dtlab's peak memory (GNU time). Needs jq and /usr/bin/time.
+# `make bench`: dtlab against CGAL's Delaunay_triangulation_2 (Epick, range insert) on 2^20 points
+# of every distribution of dtlab gen that users load (files made by `dtlab gen` with fixed seeds),
+# then uniform points at 2^22 and 2^24; a Markdown table of medians, ratios, ns/point, walk steps,
+# predicate calls by stage and the peak memory of `dtlab triangulate` and of CGAL's run, and the
+# geometric mean of the ratios. Needs jq and /usr/bin/time; ~20 minutes on 2 quiet cores.
 #
 # usage: bash .ci/bench_compare.sh [BUILD_DIR]      (default: build)
-# Environment: BENCH_N (points, default 1048576), BENCH_ROUNDS (alternating rounds, default 7),
-# BENCH_SEED (default 1).
+# Environment:
+#   BENCH_KINDS         distributions at BENCH_N (default: uniform gaussian clusters
+#                       uneven-clusters kuzmin log-radial grid rotated-grid disc-in-box curves)
+#   BENCH_N             their size (default 1048576 = 2^20)
+#   BENCH_LARGE         sizes of uniform points after them (default "4194304 16777216"; "" none)
+#   BENCH_ROUNDS        alternating rounds at BENCH_N (default 7)
+#   BENCH_ROUNDS_LARGE  alternating rounds at the large sizes (default 3)
+#   BENCH_SEED          seed of every generated file (default 1)
+#   BENCH_MEMORY=0      skip the peak-memory runs
 set -euo pipefail
 
 build=${1:-build}
+kinds=${BENCH_KINDS:-uniform gaussian clusters uneven-clusters kuzmin log-radial grid rotated-grid disc-in-box curves}
 n=${BENCH_N:-1048576}
+large=${BENCH_LARGE-4194304 16777216}
 rounds=${BENCH_ROUNDS:-7}
+rounds_large=${BENCH_ROUNDS_LARGE:-3}
 seed=${BENCH_SEED:-1}
+memory=${BENCH_MEMORY:-1}
 dtlab=$build/app/dtlab
 cgal=$build/app/cgal_baseline
 dir=$build/bench
-if [[ $n == 1048576 ]]; then input=$dir/uniform_1m.node; else input=$dir/uniform_$n.node; fi
 
 for tool in jq /usr/bin/time "$dtlab"; do
     command -v "$tool" >/dev/null || { echo "bench: $tool not found (run make deps / make build)" >&2; exit 1; }
 done
+have_cgal=1
+[[ -x $cgal ]] || { have_cgal=0; echo "bench: $cgal was not built (apt-get install libcgal-dev): dtlab alone" >&2; }
 mkdir -p "$dir"
 
-if [[ -s $input ]]; then
-    echo "bench: reusing $input"
-else
-    echo "bench: generating $input"
-    "$dtlab" gen uniform "$n" --seed "$seed" -o "$input"
-fi
-
-# The last JSON value a tool printed on stdout (pretty or on one line); fails unless an object.
+# The last JSON value a tool printed on stdout; fails unless it is an object.
 json_of() { jq -ces 'last | if type == "object" then . else error("no JSON object") end' <<<"$1"; }
 field() { jq -r --arg k "$2" '.[$k] // "n/a"' <<<"$1"; }
+median() { printf '%s\n' "$@" | sort -g | awk '{ v[NR] = $1 } END { printf "%.1f", NR % 2 ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2 }'; }
+calc() { awk "BEGIN { printf \"$1\", $2 }"; }
 
-# The VM's load drifts from second to second: the two tools run in alternation, one timed run
-# each per round (after each process's own warm-up run), so that both medians cover the same
-# span of time. A ratio from two back-to-back blocks of runs swung by +-20% here.
-median_min() {
-    printf '%s\n' "$@" | sort -g | awk '{ v[NR] = $1 } END {
-        m = NR % 2 ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2; printf "%.1f %.1f", m, v[1] }'
+# Predicate calls per point by the stage that decided them, from dtlab bench's "predicates"
+# object ({"orient2d": {"filter": calls, "stage_b": calls, ...}, "incircle": {...}}, counts of
+# one timed run); "n/a" when this dtlab does not report them.
+predicates() {
+    jq -r --argjson n "$2" 'if (.predicates | type) != "object" then "n/a" else
+        [.predicates | to_entries[] | select(.value | type == "object") |
+         "\(.key) " + ([.value | to_entries[] | select(.value | type == "number") |
+                       "\(.key) \(.value / $n * 1000 | round / 1000)"] | join(", "))] | join("; ")
+        end' <<<"$1"
 }
 
-have_cgal=0
-if [[ -x $cgal ]]; then have_cgal=1; else
-    echo "bench: $cgal was not built (CGAL not found: apt-get install libcgal-dev); no comparison"
-fi
-echo
-echo "== $rounds rounds: dtlab bench --input $input --repeat 1 --json; cgal_baseline $input --repeat 1 --json"
-dt_ms=()
-cg_ms=()
-dt_json=""
-for (( r = 1; r <= rounds; ++r )); do
-    dt_json=$(json_of "$("$dtlab" bench --input "$input" --repeat 1 --json)")
-    dt_ms+=("$(field "$dt_json" median_ms)")
-    line=$(printf 'round %d: dtlab %9.1f ms' "$r" "${dt_ms[-1]}")
+# Peak resident set of one command in MiB (GNU time), its output thrown away.
+peak_mib() {
+    local log=$dir/time.txt
+    /usr/bin/time -v -o "$log" "$@" >/dev/null
+    awk -F': *' '/Maximum resident set size/ { printf "%.0f", $2 / 1024 }' "$log"
+}
+
+input_for() { echo "$dir/$1_$2.node"; }
+
+# One row: alternating rounds (dtlab first in odd rounds, CGAL first in even ones: the VM's load
+# drifts, so both medians cover the same span of time), then the peak memory of each tool.
+ratios=()
+bench_row() {
+    local kind=$1 size=$2 nrounds=$3 input dt_json="" cg_json="" dt_ms=() cg_ms=() r
+    input=$(input_for "$kind" "$size")
+    [[ -s $input ]] || "$dtlab" gen "$kind" "$size" --seed "$seed" -o "$input" >/dev/null
+    for (( r = 1; r <= nrounds; ++r )); do
+        if (( have_cgal && r % 2 == 0 )); then
+            cg_json=$(json_of "$("$cgal" "$input" --repeat 1 --json)")
+            cg_ms+=("$(field "$cg_json" median_ms)")
+        fi
+        dt_json=$(json_of "$("$dtlab" bench --input "$input" --repeat 1 --json)")
+        dt_ms+=("$(field "$dt_json" median_ms)")
+        if (( have_cgal && r % 2 == 1 )); then
+            cg_json=$(json_of "$("$cgal" "$input" --repeat 1 --json)")
+            cg_ms+=("$(field "$cg_json" median_ms)")
+        fi
+        if (( have_cgal )); then
+            echo "  $kind $size round $r: dtlab ${dt_ms[-1]} ms, cgal ${cg_ms[-1]} ms" >&2
+        else
+            echo "  $kind $size round $r: dtlab ${dt_ms[-1]} ms" >&2
+        fi
+    done
+    local dt cg="n/a" ratio="n/a" dt_mem="-" cg_mem="-" count
+    count=$(field "$dt_json" n)
+    dt=$(median "${dt_ms[@]}")
     if (( have_cgal )); then
-        cg_json=$(json_of "$("$cgal" "$input" --repeat 1 --json)")
-        cg_ms+=("$(field "$cg_json" median_ms)")
-        line+=$(printf '   cgal %9.1f ms   ratio %.2f' "${cg_ms[-1]}" "$(awk -v a="${dt_ms[-1]}" -v b="${cg_ms[-1]}" 'BEGIN { print a / b }')")
+        cg=$(median "${cg_ms[@]}")
+        ratio=$(calc "%.2f" "$dt / $cg")
+        ratios+=("$size $ratio")
+        # Both tools must have made the same triangulation (CGAL counts finite faces).
+        if [[ $(field "$dt_json" triangles) != $(field "$cg_json" faces) ]]; then
+            echo "bench: $kind: dtlab made $(field "$dt_json" triangles) triangles, CGAL $(field "$cg_json" faces)" >&2
+        fi
     fi
-    echo "$line"
-done
-echo "dtlab (last round): $dt_json"
+    if [[ $memory != 0 ]]; then
+        dt_mem=$(peak_mib "$dtlab" triangulate "$input" -o "$dir/out" -q)
+        rm -f "$dir/out".{node,ele,neigh}
+        (( have_cgal )) && cg_mem=$(peak_mib "$cgal" "$input" --repeat 1)
+    fi
+    printf '| %s | %s | %s | %s | **%s** | %s | %s | %s | %s | %s |\n' "$kind" "$count" "$dt" "$cg" "$ratio" \
+        "$(calc "%.0f" "$dt * 1e6 / $count")" "$(calc "%.2f" "$(field "$dt_json" walk_steps_per_point)")" \
+        "$(predicates "$dt_json" "$count")" "$dt_mem" "$cg_mem"
+}
 
-read -r dt_med dt_min <<<"$(median_min "${dt_ms[@]}")"
+model=$(lscpu 2>/dev/null | awk -F: '/^Model name/ { sub(/^[ \t]+/, "", $2); print $2; exit }')
+build_type=$(awk -F= '/^CMAKE_BUILD_TYPE:/ { print $2 }' "$build/CMakeCache.txt" 2>/dev/null || true)
+small=$(input_for uniform 1024)
+[[ -s $small ]] || "$dtlab" gen uniform 1024 --seed "$seed" -o "$small" >/dev/null
+cgal_version="no CGAL"
+(( have_cgal )) && cgal_version="CGAL $(field "$(json_of "$("$cgal" "$small" --repeat 1 --json)")" cgal_version)"
+echo "Machine: ${model:-unknown CPU}, $(nproc) cores, load average $(cut -d' ' -f1-3 /proc/loadavg); build ${build_type:-?}; $(date -u +%Y-%m-%d)"
+echo "Triangulation only (no I/O): dtlab bench (exact boundary, brio order, walk) and $cgal_version"
+echo "Delaunay_triangulation_2<Epick> range insert, one warm-up and one timed run per process;"
+echo "medians of $rounds alternating rounds at n = $n ($rounds_large at larger n). Peak memory:"
+echo "dtlab triangulate IN -o BASE (read, triangulate, write) and cgal_baseline IN --repeat 1."
 echo
-echo "== summary (n = $(field "$dt_json" n), $rounds alternating rounds)"
-printf '%-8s %12s %10s %14s %16s %20s\n' tool median_ms min_ms ns_per_point flips_per_point walk_steps_per_point
-printf '%-8s %12s %10s %14.1f %16.3f %20.3f\n' dtlab "$dt_med" "$dt_min" \
-    "$(awk -v m="$dt_med" -v n="$n" 'BEGIN { print m * 1e6 / n }')" \
-    "$(field "$dt_json" flips_per_point)" "$(field "$dt_json" walk_steps_per_point)"
-if (( have_cgal )); then
-    read -r cg_med cg_min <<<"$(median_min "${cg_ms[@]}")"
-    printf '%-8s %12s %10s %14.1f %16s %20s\n' cgal "$cg_med" "$cg_min" \
-        "$(awk -v m="$cg_med" -v n="$n" 'BEGIN { print m * 1e6 / n }')" "-" "-"
-    awk -v a="$dt_med" -v b="$cg_med" -v am="$dt_min" -v bm="$cg_min" 'BEGIN {
-        printf "ratio dtlab/cgal (median): %.2f\n", a / b;
-        printf "ratio dtlab/cgal (min):    %.2f\n", am / bm;
-    }'
-fi
+echo "| distribution | n | dtlab ms | CGAL ms | dtlab/CGAL | dtlab ns/point | walk steps/point | predicate calls/point by stage | dtlab peak MiB | CGAL peak MiB |"
+echo "|---|---:|---:|---:|---:|---:|---:|---|---:|---:|"
+for kind in $kinds; do bench_row "$kind" "$n" "$rounds"; done
+for size in $large; do bench_row uniform "$size" "$rounds_large"; done
 
-echo
-echo "== peak memory: dtlab triangulate $input -o $dir/out"
-timelog=$dir/time_triangulate.txt
-/usr/bin/time -v -o "$timelog" "$dtlab" triangulate "$input" -o "$dir/out" >/dev/null
-rss_kb=$(awk -F': *' '/Maximum resident set size/ { print $2 }' "$timelog")
-wall=$(awk -F': ' '/Elapsed \(wall clock\) time/ { print $2 }' "$timelog")
-awk -v kb="$rss_kb" -v n="$n" -v wall="$wall" 'BEGIN {
-    printf "dtlab triangulate: Maximum resident set size %d kB (%.1f MiB, %.0f bytes/point), wall %s\n",
-           kb, kb / 1024, kb * 1024 / n, wall;
-}'
-if [[ -x $cgal ]]; then
-    /usr/bin/time -v -o "$dir/time_cgal.txt" "$cgal" "$input" --repeat 1 >/dev/null
-    awk -F': *' -v n="$n" '/Maximum resident set size/ {
-        printf "cgal_baseline --repeat 1 (for scale; no output written): Maximum resident set size %d kB (%.1f MiB, %.0f bytes/point)\n",
-               $2, $2 / 1024, $2 * 1024 / n;
-    }' "$dir/time_cgal.txt"
+if (( have_cgal )) && (( ${#ratios[@]} )); then
+    echo
+    printf '%s\n' "${ratios[@]}" | awk -v n="$n" '
+        $1 == n { s += log($2); c += 1; if ($2 > worst) worst = $2 }
+        END { if (c) printf "Geometric mean of dtlab/CGAL over the %d distributions at n = %d: %.2f (worst %.2f)\n", c, n, exp(s / c), worst }'
 fi

@@ -2,7 +2,7 @@
 # The scaling table: for n = 2^10 ... 2^20 uniform points in the paper's 1600x1600 box,
 # dtlab bench's ns/point, flips/point and walk steps/point with the default options (exact
 # boundary, brio order, walk locator) and with the paper's baseline (--locate naive --order
-# input), as a Markdown table; then the CGAL comparison at 2^20 (.ci/bench_compare.sh).
+# input), as a Markdown table; then the CGAL comparison (.ci/bench_compare.sh).
 #
 # The naive walk costs O(sqrt n) steps per point: each size's time is estimated from the sizes
 # before it, and a size whose estimate is over BENCH_TABLE_LIMIT_S is not run (the table says so).
@@ -10,7 +10,7 @@
 # usage: bash .ci/bench_table.sh [BUILD_DIR]      (default: build)
 # Environment: BENCH_TABLE_FROM, BENCH_TABLE_TO (exponents, default 10 and 20),
 #   BENCH_TABLE_LIMIT_S (default 120), BENCH_SEED (default 1),
-#   BENCH_COMPARE=0 (skip the CGAL comparison), BENCH_ROUNDS (passed on to bench_compare.sh).
+#   BENCH_COMPARE=0 (skip the CGAL comparison), BENCH_ROUNDS etc. (passed on to bench_compare.sh).
 set -euo pipefail
 
 build=${1:-build}
@@ -27,10 +27,8 @@ for tool in jq "$dtlab"; do
 done
 mkdir -p "$dir"
 
-# The input of size n (2^20 shares bench_compare.sh's file).
-input_for() {
-    if [[ $1 == 1048576 ]]; then echo "$dir/uniform_1m.node"; else echo "$dir/uniform_$1.node"; fi
-}
+# The input of size n (the files bench_compare.sh makes and uses).
+input_for() { echo "$dir/uniform_$1.node"; }
 
 # Timed runs: enough for a stable median at small sizes, few at large ones.
 repeats_for() {
@@ -91,6 +89,6 @@ done
 
 if [[ ${BENCH_COMPARE:-1} != 0 ]]; then
     echo
-    echo "## CGAL comparison at 2^20 (.ci/bench_compare.sh)"
-    BENCH_N=1048576 BENCH_SEED=$seed bash "$here/bench_compare.sh" "$build"
+    echo "## CGAL comparison (.ci/bench_compare.sh)"
+    BENCH_SEED=$seed bash "$here/bench_compare.sh" "$build"
 fi

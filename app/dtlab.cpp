@@ -1,4 +1,5 @@
-// dtlab: the headless command line of Delaunay Lab (triangulate, trace, bench, gen, demo).
+// dtlab and dtlab-gl: the headless command line of Delaunay Lab (triangulate, trace, bench, gen,
+// demo, ...); dtlab hands the commands that need GL to dtlab-gl (dtlab_common.h).
 #include "app/dtlab_common.h"
 
 #include <CLI/CLI.hpp>
@@ -8,6 +9,7 @@
 #include <iostream>
 
 int main(int argc, char** argv) {
+    dlab::cli::rememberCommandLine(argc, argv);
     CLI::App app{"dtlab: exact incremental Delaunay triangulation on a corner table (headless)"};
     app.require_subcommand(1);
     app.set_help_all_flag("--help-all", "Show the help of every subcommand");

@@ -2,7 +2,6 @@
 #include "app/dtlab_common.h"
 
 #include "core/engine/io_read.h"
-#include "ui/platform/platform.h"
 
 #include <iostream>
 
@@ -10,7 +9,12 @@ namespace dlab::cli {
 
 namespace {
 int g_exitCode = 0;
-}
+std::vector<char*> g_commandLine;
+}  // namespace
+
+void rememberCommandLine(int argc, char** argv) { g_commandLine.assign(argv, argv + argc); }
+
+const std::vector<char*>& commandLine() { return g_commandLine; }
 
 void EngineFlags::add(CLI::App& cmd) {
     cmd.add_option(
@@ -19,6 +23,9 @@ void EngineFlags::add(CLI::App& cmd) {
            "(the GL ones on a headless OSMesa context)")
         ->check(CLI::IsMember(
             {"naive", "walk", "grid", "idbuffer-cpu", "idbuffer-gl", "idbuffer-gl-batched"}))
+        ->each([](const std::string& value) {
+            if (needsGl(*parseLocatorKind(value))) needGl();
+        })
         ->capture_default_str();
     cmd.add_option("--order", order, "Insertion order: input | random | brio")
         ->check(CLI::IsMember({"input", "random", "brio"}))
@@ -56,46 +63,10 @@ InsertOptions EngineFlags::options() const {
     return o;
 }
 
-ui::IdBufferGlOptions EngineFlags::glOptions() const {
-    const InsertOptions o = options();
-    ui::IdBufferGlOptions g = ui::IdBufferGlOptions::from(o.locator, o.locatorOptions);
-    if (readback == "pipelined") g.readback = ui::GlReadback::Pipelined;
-    return g;
-}
-
 std::unique_ptr<Inserter> EngineFlags::makeInserter(std::vector<Vec2> points) const {
     const InsertOptions o = options();
     if (!needsGl(o.locator)) return std::make_unique<Inserter>(std::move(points), o);
-    auto locator = std::make_unique<ui::IdBufferGl>(headlessGl(), glOptions());
-    ui::IdBufferGl* gl = locator.get();
-    auto ins = std::make_unique<Inserter>(std::move(points), o, std::move(locator));
-    gl->followOrder(*ins);  // the batched readback reads ahead along the insertion order
-    return ins;
-}
-
-namespace {
-
-// One OSMesa context for the whole process. The buffer it renders into is tiny: the GL
-// locators draw into their own framebuffer objects.
-struct HeadlessContext {
-    std::unique_ptr<ui::Platform> platform;
-    std::shared_ptr<ui::GlContext> gl;
-    ~HeadlessContext() {
-        if (gl) gl->lose();
-    }
-};
-
-}  // namespace
-
-std::shared_ptr<ui::GlContext> headlessGl() {
-    static HeadlessContext context;
-    if (!context.gl) {
-        std::string error;
-        context.platform = ui::makeOsmesaPlatform(16, 16, error);
-        if (context.platform) context.gl = ui::GlContext::fromCurrent(error);
-        if (!context.gl) fail("--locate idbuffer-gl: " + error);
-    }
-    return context.gl;
+    return makeGlInserter(std::move(points));
 }
 
 void fail(const std::string& message, int code) {

@@ -1,5 +1,10 @@
 // Shared pieces of dtlab's subcommands: option sets, loading with one-line errors, and the
 // registration function of each subcommand (one file each).
+//
+// Two executables share these sources: dtlab-gl links the headless GL context (OSMesa, whose
+// LLVM alone keeps ~50 MB resident), dtlab does not. dtlab runs every command that needs no GL
+// itself and re-runs the others (render, table1, --locate idbuffer-gl*) in dtlab-gl beside it:
+// the pieces that differ are in dtlab_gl.cpp and dtlab_no_gl.cpp.
 #pragma once
 
 #include "core/engine/inserter.h"
@@ -27,13 +32,21 @@ struct EngineFlags {
     InsertOptions options() const;
     ui::IdBufferGlOptions glOptions() const;
     // An Inserter for these flags. The GL locators (--locate idbuffer-gl[-batched]) need a GL
-    // context, which core cannot make: they are built here on the headless OSMesa context.
+    // context, which core cannot make: they are built on the headless OSMesa context.
     std::unique_ptr<Inserter> makeInserter(std::vector<Vec2> points) const;
+    std::unique_ptr<Inserter> makeGlInserter(std::vector<Vec2> points) const;  // dtlab-gl only
 };
 
 // The process' headless GL context (OSMesa, made current on first use); fail()s when there is
-// none. GL locators on it must be destroyed before main returns.
+// none. GL locators on it must be destroyed before main returns. dtlab-gl only.
 std::shared_ptr<ui::GlContext> headlessGl();
+
+// The command line as main() received it, for dtlab to hand on to dtlab-gl.
+void rememberCommandLine(int argc, char** argv);
+const std::vector<char*>& commandLine();
+// The command line asks for GL (called while it is parsed, before any work): nothing in
+// dtlab-gl; dtlab replaces itself with dtlab-gl on the same command line.
+void needGl();
 
 // Loads a point file; on bad input prints "dtlab: error: FILE:LINE: what" and throws Exit.
 struct LoadedPoints {

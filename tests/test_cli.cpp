@@ -8,6 +8,10 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -74,7 +78,56 @@ dlab::Mesh readTriangleOutput(const std::string& base) {
     return m;
 }
 
+// Runs dtlab with these arguments (no shell, output discarded); returns its peak resident set
+// in KiB, or -1 when it did not exit with status 0.
+long peakKibOfDtlab(std::vector<std::string> args) {
+    args.insert(args.begin(), DLAB_DTLAB_PATH);
+    std::vector<char*> argv;
+    for (std::string& a : args) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    const pid_t pid = fork();
+    if (pid == 0) {
+        if (!freopen("/dev/null", "w", stdout)) _exit(126);
+        execv(argv[0], argv.data());
+        _exit(127);
+    }
+    int status = 0;
+    rusage usage{};
+    if (pid < 0 || wait4(pid, &status, 0, &usage) != pid) return -1;
+    return WIFEXITED(status) && WEXITSTATUS(status) == 0 ? usage.ru_maxrss : -1;
+}
+
 }  // namespace
+
+TEST(Cli, TriangulatePeaksNearTheCornerTableFloor) {
+    // G, V and O take ~64 bytes a point, the points permuted for the batch 16 more. The GL
+    // libraries (OSMesa's LLVM: ~50 MB resident from the start) stay out of this process.
+    const fs::path dir = tempDir();
+    const std::string in = (dir / "peak.node").string();
+    constexpr long kPoints = 1 << 18;
+    ASSERT_EQ(dtlab("gen uniform " + std::to_string(kPoints) + " -o " + in).status, 0);
+    const long kib = peakKibOfDtlab({"triangulate", in, "-o", (dir / "peak_out").string()});
+    ASSERT_GT(kib, 0);
+    EXPECT_LT(kib * 1024, kPoints * 100 + (16l << 20)) << kib << " KiB";
+}
+
+TEST(Cli, CommandsThatNeedGlRunInDtlabGl) {
+    const fs::path dir = tempDir();
+    const std::string in = (dir / "gl.node").string();
+    ASSERT_EQ(dtlab("gen uniform 500 --seed 2 -o " + in).status, 0);
+    const std::string base = (dir / "gl_out").string();
+    const Result r = dtlab("triangulate " + in + " -o " + base + " --locate=idbuffer-gl-batched");
+    ASSERT_EQ(r.status, 0) << r.out;
+    EXPECT_NE(r.out.find("locate idbuffer-gl-batched"), std::string::npos) << r.out;
+    EXPECT_EQ(checkDelaunayExact(readTriangleOutput(base)), "");
+    // render's own help (its options), under the name the user typed.
+    const Result help = dtlab("render --help");
+    EXPECT_EQ(help.status, 0) << help.out;
+    EXPECT_NE(help.out.find("--steps"), std::string::npos) << help.out;
+    EXPECT_EQ(help.out.find("dtlab-gl"), std::string::npos) << help.out;
+    // Bad options reach dtlab-gl's parser and fail there as they would anywhere.
+    EXPECT_NE(dtlab("render --no-such-option -o x.png").status, 0);
+}
 
 TEST(Cli, TriangulateWritesAValidDelaunayTriangulationForEveryLocator) {
     const fs::path dir = tempDir();

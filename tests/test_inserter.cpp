@@ -115,6 +115,11 @@ TEST(Inserter, LargerRandomSetsAreDelaunay) {
     }
 }
 
+TEST(Inserter, EveryDistributionIsExactlyDelaunayAt2To14Points) {
+    for (Generator g : allGenerators())
+        expectExactDelaunay(generatePoints(g, 1 << 14, 5), {}, toString(g));
+}
+
 TEST(Inserter, TriangleCountMatchesEuler) {
     // t = 2n - h - 2 for n distinct points with h of them on the hull (collinear ones included).
     auto pts = generatePoints(Generator::Grid, 100, 1);  // 10 x 10 lattice: 36 hull points
@@ -395,17 +400,4 @@ TEST(Locators, BrioWalkIsShort) {
     ins.run();
     EXPECT_LT(static_cast<double>(ins.stats().walkSteps) / 20000, 4.0);
     EXPECT_LT(static_cast<double>(ins.stats().flips) / 20000, 4.0);
-}
-
-TEST(Order, BrioIsAPermutation) {
-    const auto pts = generatePoints(Generator::Clusters, 5000, 1);
-    for (OrderKind k : {OrderKind::Input, OrderKind::Random, OrderKind::Brio}) {
-        auto order = insertionOrder(pts, k, 3);
-        std::sort(order.begin(), order.end());
-        for (std::int32_t i = 0; i < 5000; ++i) ASSERT_EQ(order[i], i);
-    }
-    EXPECT_EQ(hilbertIndex(0, 0, 1), 0u);
-    EXPECT_EQ(hilbertIndex(0, 1, 1), 1u);
-    EXPECT_EQ(hilbertIndex(1, 1, 1), 2u);
-    EXPECT_EQ(hilbertIndex(1, 0, 1), 3u);
 }

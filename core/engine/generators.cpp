@@ -3,22 +3,71 @@
 
 #include "core/engine/order.h"
 
+#include <algorithm>
+#include <bit>
 #include <cmath>
+#include <iterator>
 #include <numbers>
 
 namespace dlab {
 
 namespace {
-constexpr const char* kNames[] = {"uniform",       "clusters",     "grid",      "rotated-grid",
-                                  "ngon",          "circle",       "collinear", "near-duplicates",
-                                  "huge-tiny-box", "all-collinear"};
-constexpr int kCount = 10;
+constexpr const char* kNames[] = {
+    "uniform",   "clusters",        "grid",          "rotated-grid",  "ngon",     "circle",
+    "collinear", "near-duplicates", "huge-tiny-box", "all-collinear", "gaussian", "uneven-clusters",
+    "kuzmin",    "log-radial",      "disc-in-box",   "curves"};
+constexpr int kCount = static_cast<int>(std::size(kNames));
 
 double gaussian(SplitMix64& rng) {
     // Box-Muller; the first uniform is kept away from 0.
     const double u = (rng.next() >> 11) * 0x1.0p-53 + 0x1.0p-54;
     const double v = rng.uniform01();
     return std::sqrt(-2.0 * std::log(u)) * std::cos(2 * std::numbers::pi * v);
+}
+
+Vec2 onCircle(SplitMix64& rng, double r) {
+    const double t = 2 * std::numbers::pi * rng.uniform01();
+    return {r * std::cos(t), r * std::sin(t)};
+}
+
+// k clusters, cluster j drawing a point with probability 2^-(j+1) (the last takes the rest);
+// their spreads are log-spaced from 100 down to 0.001 and dealt to the clusters at random, so
+// sizes and densities differ by decades in every pairing.
+void unevenClusters(std::vector<Vec2>& pts, std::size_t n, SplitMix64& rng) {
+    const int k = std::max(1, static_cast<int>(std::bit_width(n)) - 1);
+    std::vector<Vec2> centres;
+    std::vector<double> sigma;
+    for (int j = 0; j < k; ++j) {
+        centres.push_back({rng.uniform01() * 1600, rng.uniform01() * 1600});
+        sigma.push_back(std::pow(10.0, 2 - 5.0 * j / std::max(1, k - 1)));
+    }
+    for (int j = k - 1; j > 0; --j)
+        std::swap(sigma[j], sigma[rng.below(static_cast<std::uint32_t>(j + 1))]);
+    for (std::size_t i = 0; i < n; ++i) {
+        const int j = std::min(std::countr_zero(rng.next() | (1ull << 63)), k - 1);
+        pts.push_back(
+            {centres[j].x + gaussian(rng) * sigma[j], centres[j].y + gaussian(rng) * sigma[j]});
+    }
+}
+
+// A line, a circle and a spiral; the parameter of each is u^3 or u^2 for a uniform u, so that
+// the points crowd towards one end of the curve.
+Vec2 onCurve(SplitMix64& rng) {
+    const double u = rng.uniform01();
+    switch (rng.below(3)) {
+        case 0: {
+            const double t = u * u * u;
+            return {100 + 1400 * t, 100 + 600 * t};
+        }
+        case 1: {
+            const double t = 2 * std::numbers::pi * u * u;
+            return {800 + 600 * std::cos(t), 800 + 600 * std::sin(t)};
+        }
+        default: {
+            const double t = u * u * u, r = 20 + 500 * t, a = 6 * std::numbers::pi * t;
+            return {800 + r * std::cos(a), 800 + r * std::sin(a)};
+        }
+    }
 }
 }  // namespace
 
@@ -35,6 +84,12 @@ std::string generatorNames() {
     std::string s;
     for (int i = 0; i < kCount; ++i) s += (i ? ", " : "") + std::string(kNames[i]);
     return s;
+}
+
+std::vector<Generator> allGenerators() {
+    std::vector<Generator> all;
+    for (int i = 0; i < kCount; ++i) all.push_back(static_cast<Generator>(i));
+    return all;
 }
 
 std::vector<Vec2> generatePoints(Generator kind, std::size_t n, std::uint64_t seed) {
@@ -123,6 +178,35 @@ std::vector<Vec2> generatePoints(Generator kind, std::size_t n, std::uint64_t se
                 const double t = double(rng.below(100000));
                 pts.push_back({t, 0.5 * t + 3});
             }
+            break;
+        case Generator::Gaussian:
+            for (std::size_t i = 0; i < n; ++i)
+                pts.push_back({800 + 200 * gaussian(rng), 800 + 200 * gaussian(rng)});
+            break;
+        case Generator::UnevenClusters: unevenClusters(pts, n, rng); break;
+        case Generator::Kuzmin:
+            for (std::size_t i = 0; i < n; ++i) {
+                // The inverse of the mass function; 1 - s > 0, so r is finite (at most ~2^53).
+                const double s = rng.uniform01();
+                pts.push_back(onCircle(rng, std::sqrt(1 / ((1 - s) * (1 - s)) - 1)));
+            }
+            break;
+        case Generator::LogRadial:
+            for (std::size_t i = 0; i < n; ++i)
+                pts.push_back(onCircle(rng, std::pow(10.0, -12 * rng.uniform01())));
+            break;
+        case Generator::DiscInBox:
+            for (std::size_t i = 0; i < n; ++i) {
+                if (rng.below(10) == 0) {
+                    pts.push_back({rng.uniform01() * box, rng.uniform01() * box});
+                } else {
+                    const Vec2 d = onCircle(rng, 4 * std::sqrt(rng.uniform01()));
+                    pts.push_back({800 + d.x, 800 + d.y});
+                }
+            }
+            break;
+        case Generator::Curves:
+            for (std::size_t i = 0; i < n; ++i) pts.push_back(onCurve(rng));
             break;
     }
     return pts;

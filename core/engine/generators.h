@@ -22,11 +22,20 @@ enum class Generator : std::uint8_t {
     NearDuplicates,  // clusters of points 1-4 ulps apart, and exact duplicates
     HugeTinyBox,     // a 64 x 64 box at coordinates around 1e15 (ulp 0.125: tiny relative extent)
     AllCollinear,    // every point on one line (no triangle exists)
+    // Uneven density: what a fixed grid over the bounding box sorts badly.
+    Gaussian,        // one normal distribution (sigma 200) around the box's centre
+    UnevenClusters,  // clusters whose sizes and spreads differ by orders of magnitude
+    Kuzmin,          // Kuzmin's disc (PBBS): mass within r is 1 - 1/sqrt(1 + r^2), heavy-tailed
+    LogRadial,       // around the origin, the radius log-uniform over 12 decades (1e-12 ... 1)
+    DiscInBox,       // 90 % in a disc of radius 4, 10 % spread over the 1600 x 1600 box
+    Curves,          // on a line, a circle and a spiral, bunched towards one end of each
 };
 
 const char* toString(Generator g);
 std::optional<Generator> parseGenerator(std::string_view name);
 std::string generatorNames();  // "uniform, clusters, ..." for help texts
+// Every kind, in the order of generatorNames().
+std::vector<Generator> allGenerators();
 
 std::vector<Vec2> generatePoints(Generator kind, std::size_t n, std::uint64_t seed);
 

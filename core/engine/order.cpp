@@ -1,6 +1,7 @@
 // Insertion orders. BRIO (Amenta, Choi, Rote): rounds of geometrically growing size drawn at
 // random, each round sorted along a Hilbert curve, so that consecutive points are close (short
-// walks) while the rounds keep the expected-case guarantees of a random order.
+// walks) while the rounds keep the expected-case guarantees of a random order. The curve's grid
+// is refined wherever points crowd, so the order stays close whatever the density.
 #include "core/engine/order.h"
 
 #include <algorithm>
@@ -67,19 +68,51 @@ constexpr std::array<std::uint16_t, 4 * 256> kHilbertNibbles = [] {
     return table;
 }();
 
-// hilbertIndex(x, y, 16) by table.
-std::uint32_t hilbertIndex16(std::uint32_t x, std::uint32_t y) {
-    std::uint32_t state = 0, d = 0;
-    for (int i = 12; i >= 0; i -= 4) {
+// A digit and the state before it determine the sub-square, hence the next state.
+constexpr std::array<std::uint8_t, 16> kNextState = [] {
+    std::array<std::uint8_t, 16> next{};
+    for (std::uint32_t state = 0; state < 4; ++state) {
+        for (std::uint32_t bits = 0; bits < 4; ++bits) {
+            const HilbertLevel level = hilbertLevel(state, bits >> 1, bits & 1u);
+            next[(state << 2) | level.digit] = static_cast<std::uint8_t>(level.state);
+        }
+    }
+    return next;
+}();
+
+// The first 4 * nibbles levels of the curve through (x, y), entered in `state`: digits, and the
+// state the curve has in the sub-square they lead to.
+struct HilbertPrefix {
+    std::uint64_t index;
+    std::uint32_t state;
+};
+
+HilbertPrefix hilbertNibbles(std::uint32_t x, std::uint32_t y, std::uint32_t state, int nibbles) {
+    std::uint64_t d = 0;
+    for (int i = 4 * (nibbles - 1); i >= 0; i -= 4) {
         const std::uint32_t e =
             kHilbertNibbles[(state << 8) | (((x >> i) & 15u) << 4) | ((y >> i) & 15u)];
         d = (d << 8) | (e & 0xFFu);
         state = e >> 8;
     }
-    return d;
+    return {d, state};
+}
+
+std::uint32_t stateAfter(std::uint32_t state, std::uint64_t index, int levels) {
+    for (int i = 2 * (levels - 1); i >= 0; i -= 2)
+        state = kNextState[(state << 2) | ((index >> i) & 3u)];
+    return state;
 }
 
 }  // namespace
+
+std::uint32_t hilbertStateAfter(std::uint32_t state, std::uint32_t index, int levels) {
+    return stateAfter(state, index, levels);
+}
+
+std::uint32_t hilbertIndex16(std::uint32_t x, std::uint32_t y, std::uint32_t state) {
+    return static_cast<std::uint32_t>(hilbertNibbles(x, y, state, 4).index);
+}
 
 std::uint32_t hilbertIndex(std::uint32_t x, std::uint32_t y, int bits) {
     std::uint32_t state = 0, d = 0;
@@ -100,19 +133,28 @@ void shuffle(std::vector<std::int32_t>& v, SplitMix64& rng) {
     }
 }
 
-// Stable LSD radix sort of (key << 32 | index) records by their upper 32 bits, in three
-// passes of 11, 11 and 10 bits; returns the indices. Three passes over 2048 buckets beat two
-// over 65536: those scatter into more open cache lines than the L2 holds. count[pass] must hold
-// the digit histograms of rec (the caller fills them while it makes the keys).
+// Records (key << 32 | index): sorted by key, ties by index. Sorts are stable and the records
+// are made in increasing index, so equal keys keep the input order.
+using Record = std::uint64_t;
+constexpr std::uint32_t keyOf(Record r) { return static_cast<std::uint32_t>(r >> 32); }
+constexpr std::int32_t indexOf(Record r) { return static_cast<std::int32_t>(r & 0xFFFFFFFFu); }
+
+// Stable LSD radix sort of records by their upper 32 bits, in three passes of 11, 11 and 10
+// bits. Three passes over 2048 buckets beat two over 65536: those scatter into more open cache
+// lines than the L2 holds. count[pass] must hold the digit histograms of rec.
 constexpr int kRadixBits = 11;
 constexpr std::uint32_t kRadixMask = (1u << kRadixBits) - 1;
 using RadixCounts = std::array<std::array<std::uint32_t, 1u << kRadixBits>, 3>;
 
-std::uint32_t radixDigit(std::uint64_t r, int pass) {
+std::uint32_t radixDigit(Record r, int pass) {
     return static_cast<std::uint32_t>(r >> (32 + kRadixBits * pass)) & kRadixMask;
 }
 
-std::vector<std::int32_t> radixSortByKey(std::vector<std::uint64_t>& rec, RadixCounts& count) {
+void countDigits(Record r, RadixCounts& count) {
+    for (int pass = 0; pass < 3; ++pass) ++count[pass][radixDigit(r, pass)];
+}
+
+void radixSort(std::vector<Record>& rec, RadixCounts& count) {
     for (auto& c : count) {  // exclusive prefix sums: each bucket's first slot
         std::uint32_t sum = 0;
         for (std::uint32_t& x : c) {
@@ -121,62 +163,247 @@ std::vector<std::int32_t> radixSortByKey(std::vector<std::uint64_t>& rec, RadixC
             sum += k;
         }
     }
-    std::vector<std::uint64_t> tmp(rec.size());
-    for (std::uint64_t r : rec) tmp[count[0][radixDigit(r, 0)]++] = r;
-    for (std::uint64_t r : tmp) rec[count[1][radixDigit(r, 1)]++] = r;
-    tmp = {};
-    std::vector<std::int32_t> order(rec.size());
-    for (std::uint64_t r : rec)
-        order[count[2][radixDigit(r, 2)]++] = static_cast<std::int32_t>(r & 0xFFFFFFFFu);
-    return order;
+    std::vector<Record> tmp(rec.size());
+    for (Record r : rec) tmp[count[0][radixDigit(r, 0)]++] = r;
+    for (Record r : tmp) rec[count[1][radixDigit(r, 1)]++] = r;
+    for (Record r : rec) tmp[count[2][radixDigit(r, 2)]++] = r;
+    rec.swap(tmp);
+}
+
+// A box mapped onto a 2^32 x 2^32 grid, each axis on its own (a flat set still fills the grid).
+// Spans are differences of halves, so they cannot overflow near the largest doubles; the scale
+// is capped, so a subnormal span cannot make it inf (0 * inf is a NaN cell).
+class CellGrid {
+public:
+    CellGrid(Vec2 lo, Vec2 hi)
+        : m_loX(lo.x / 2),
+          m_loY(lo.y / 2),
+          m_sx(scale(hi.x / 2 - m_loX)),
+          m_sy(scale(hi.y / 2 - m_loY)) {}
+
+    // The grid over the bounding box of points[id(i)] for i in [0, m).
+    template <class Id>
+    static CellGrid around(const std::vector<Vec2>& points, const Id& id, std::size_t m) {
+        Vec2 lo = points[id(0)], hi = lo;
+        for (std::size_t i = 1; i < m; ++i) {
+            const Vec2 p = points[id(i)];
+            lo = {std::min(lo.x, p.x), std::min(lo.y, p.y)};
+            hi = {std::max(hi.x, p.x), std::max(hi.y, p.y)};
+        }
+        return {lo, hi};
+    }
+
+    struct Cell {
+        std::uint32_t x, y;
+    };
+    Cell cellOf(Vec2 p) const {  // below 2^32 a double holds the integer part exactly
+        return {static_cast<std::uint32_t>(std::clamp((p.x / 2 - m_loX) * m_sx, 0.0, kCells)),
+                static_cast<std::uint32_t>(std::clamp((p.y / 2 - m_loY) * m_sy, 0.0, kCells))};
+    }
+
+private:
+    static constexpr double kCells = 4294967295.0;  // 2^32 - 1
+    static double scale(double halfSpan) {
+        return halfSpan > 0 ? std::min(kCells / halfSpan, std::numeric_limits<double>::max()) : 0.0;
+    }
+    double m_loX, m_loY, m_sx, m_sy;
+};
+
+// BRIO's first sort keys each point by its cell on a 2^14 x 2^14 grid (the top 14 levels of the
+// curve through the 2^32 grid: a 28-bit key, three radix passes) and keeps the next 16 levels'
+// cell for points that turn out to crowd a cell.
+constexpr int kTopLevels = 14;
+constexpr int kFineLevels = 16;
+constexpr int kBoxLevels = 16;  // of the curve through a grid around a crowd's points
+std::uint32_t topKey(CellGrid::Cell c) {
+    constexpr int kDrop = 32 - kTopLevels;
+    return hilbertIndex16((c.x >> kDrop) << 2, (c.y >> kDrop) << 2, 0) >> 4;
+}
+std::uint32_t fineCell(CellGrid::Cell c) {
+    constexpr int kDrop = 32 - kTopLevels - kFineLevels;
+    return ((c.x >> kDrop) & 0xFFFFu) << 16 | ((c.y >> kDrop) & 0xFFFFu);
+}
+
+// A cell of the curve holding more points than this is split further: its points would keep
+// their input order, and a walk from one to the next crosses every triangle in between.
+constexpr std::size_t kMaxPerCell = 8;
+// At most this many levels of the curve (4^6 = 4096 sub-cells) in one counting pass: the
+// counts stay in the L1 cache.
+constexpr int kMaxLevelsPerPass = 6;
+// Gathers read this many points ahead: the reads are random, and waiting for each in turn
+// costs more than the rest of the refinement.
+constexpr std::size_t kAhead = 16;
+
+// Sorts the points of a crowded cell of the first grid along the curve inside it. A cell is
+// split into 4^L sub-cells at once (one stable counting pass; L levels, enough for its count)
+// until each holds at most kMaxPerCell points. When a cell's levels are used up (the 16 fine
+// levels first), its points go on on a 2^16 grid over the bounding box of their own points,
+// entered as the curve enters the cell: the curve stays continuous, and each step shrinks the
+// box by 2^16 per axis, so a few steps part points of any density. Only crowded points are read
+// again, once per step.
+class CellRefiner {
+public:
+    explicit CellRefiner(const std::vector<Vec2>& points) : m_points(points) {}
+
+    // items[0, m): the points of one cell of the first grid, keyed on the fine grid inside it,
+    // the curve entering the cell in `state`.
+    void sortCell(Record* items, std::size_t m, std::uint32_t state) {
+        m_items = items;
+        m_work.push_back({0, m, 0, kFineLevels, state, false});
+        while (!m_work.empty()) {
+            const Span span = m_work.back();
+            m_work.pop_back();
+            if (span.end - span.begin <= kMaxPerCell) {
+                finish(span);
+                continue;
+            }
+            if (span.depth < span.levels)
+                split(span);
+            else
+                descend(span);
+        }
+    }
+
+private:
+    using Item = Record;  // (key << 32 | id): the position on the curve through the span's grid
+    // m_items[begin, end): points whose keys (of `levels` levels, for the curve entering the
+    // grid's cell in `state`) share the first `depth` levels. `boxed`: the grid was made around
+    // exactly these points.
+    struct Span {
+        std::size_t begin, end;
+        int depth, levels;
+        std::uint32_t state;
+        bool boxed;
+    };
+
+    // One stable counting pass over the next L levels; sub-cells still crowded are pushed.
+    void split(const Span& span) {
+        const std::size_t m = span.end - span.begin;
+        int levels = 1;
+        while (levels < kMaxLevelsPerPass && span.depth + levels < span.levels &&
+               (std::size_t{1} << (2 * levels)) * kMaxPerCell < 2 * m)
+            ++levels;
+        const int shift = 2 * (span.levels - span.depth - levels);
+        const std::uint32_t buckets = 1u << (2 * levels);
+        const auto digit = [&](Item it) { return (keyOf(it) >> shift) & (buckets - 1); };
+        Item* items = m_items + span.begin;
+        m_start.assign(buckets + 1, 0);
+        for (std::size_t i = 0; i < m; ++i) ++m_start[digit(items[i]) + 1];
+        for (std::uint32_t d = 0; d < buckets; ++d) m_start[d + 1] += m_start[d];
+        m_next.assign(m_start.begin(), m_start.end() - 1);
+        m_tmp.resize(m);
+        for (std::size_t i = 0; i < m; ++i) m_tmp[m_next[digit(items[i])]++] = items[i];
+        std::copy(m_tmp.begin(), m_tmp.begin() + static_cast<std::ptrdiff_t>(m), items);
+        for (std::uint32_t d = 0; d < buckets; ++d) {
+            Span sub = span;
+            sub.begin = span.begin + m_start[d];
+            sub.end = span.begin + m_start[d + 1];
+            sub.depth = span.depth + levels;
+            sub.boxed = span.boxed && sub.end - sub.begin == m;
+            if (sub.end - sub.begin > kMaxPerCell)
+                m_work.push_back(sub);
+            else
+                finish(sub);
+        }
+    }
+
+    // A few points: in the order of their keys (the grid's full precision), ties by input index.
+    void finish(const Span& span) {
+        if (span.end - span.begin > 1) std::sort(m_items + span.begin, m_items + span.end);
+    }
+
+    // The span is one cell of its grid: key its points on a grid around them, in that cell.
+    void descend(const Span& span) {
+        // One cell of a grid around exactly these points: they are equal, or too close for the
+        // grid's arithmetic to part. They stay as they are.
+        if (span.boxed) return;
+        const std::size_t m = span.end - span.begin;
+        Item* items = m_items + span.begin;
+        const std::uint32_t inner = stateAfter(span.state, keyOf(items[0]), span.levels);
+        m_gathered.resize(m);
+        for (std::size_t i = 0; i < m; ++i) {
+            if (i + kAhead < m) __builtin_prefetch(&m_points[indexOf(items[i + kAhead])]);
+            m_gathered[i] = m_points[indexOf(items[i])];
+        }
+        const CellGrid grid = CellGrid::around(
+            m_gathered, [](std::size_t i) { return i; }, m);
+        for (std::size_t i = 0; i < m; ++i) {
+            const CellGrid::Cell c = grid.cellOf(m_gathered[i]);
+            items[i] = Record{hilbertIndex16(c.x >> 16, c.y >> 16, inner)} << 32 |
+                       static_cast<std::uint32_t>(indexOf(items[i]));
+        }
+        m_work.push_back({span.begin, span.end, 0, kBoxLevels, inner, true});
+    }
+
+    const std::vector<Vec2>& m_points;
+    Item* m_items = nullptr;
+    std::vector<Item> m_tmp;
+    std::vector<Vec2> m_gathered;
+    std::vector<std::uint32_t> m_start, m_next;
+    std::vector<Span> m_work;
+};
+
+// Each point draws its round: the last round (15) with probability 1/2, the one before with
+// 1/4, ..., round 0 takes the rest. The records' key is (round, cell on the first grid), so one
+// radix sort over the points in input order (no random gathers, which cost more than everything
+// else at a million points) gives the order wherever that grid parts the points. fine[i] gets
+// point i's cell on the grid inside its cell.
+std::vector<Record> sortByRoundAndCell(const std::vector<Vec2>& points, SplitMix64& rng,
+                                       std::vector<std::uint32_t>& fine) {
+    const std::size_t n = points.size();
+    const CellGrid grid = CellGrid::around(
+        points, [](std::size_t i) { return i; }, n);
+    std::vector<Record> rec(n);
+    RadixCounts count{};
+    for (std::size_t i = 0; i < n; ++i) {
+        const std::uint64_t r = rng.next();
+        const int zeros = r == 0 ? 64 : std::countr_zero(r);
+        const std::uint32_t round = 15u - static_cast<std::uint32_t>(std::min(zeros, 15));
+        const CellGrid::Cell cell = grid.cellOf(points[i]);
+        fine[i] = fineCell(cell);
+        rec[i] = Record{(round << 28) | topKey(cell)} << 32 | static_cast<std::uint32_t>(i);
+        countDigits(rec[i], count);
+    }
+    radixSort(rec, count);
+    return rec;
+}
+
+// Points that share a cell of the first grid (in one round) are keyed again on the fine grid
+// inside it and sorted there. The reads of fine[] are random: the loop reads ahead across cells.
+void sortSharedCells(const std::vector<Vec2>& points, const std::vector<std::uint32_t>& fine,
+                     std::vector<Record>& rec) {
+    const std::size_t n = rec.size();
+    CellRefiner refiner(points);
+    for (std::size_t i = 0, j = 0; i < n; i = j) {
+        const std::uint32_t key = keyOf(rec[i]);
+        for (j = i + 1; j < n && keyOf(rec[j]) == key; ++j) {}
+        if (j - i == 1) continue;
+        // (the round's bits above the cell's do not change the curve's state)
+        const std::uint32_t state = stateAfter(0, key & 0x0FFFFFFFu, kTopLevels);
+        for (std::size_t k = i; k < j; ++k) {
+            if (k + kAhead < n) __builtin_prefetch(&fine[indexOf(rec[k + kAhead])]);
+            const std::int32_t id = indexOf(rec[k]);
+            const std::uint32_t f = fine[id];
+            rec[k] = Record{hilbertIndex16(f >> 16, f & 0xFFFFu, state)} << 32 |
+                     static_cast<std::uint32_t>(id);
+        }
+        refiner.sortCell(rec.data() + i, j - i, state);
+    }
 }
 
 std::vector<std::int32_t> brio(const std::vector<Vec2>& points, SplitMix64& rng) {
     const std::size_t n = points.size();
+    std::vector<std::int32_t> order(n);
     if (n < 64) {
-        std::vector<std::int32_t> order(n);
         std::iota(order.begin(), order.end(), 0);
         shuffle(order, rng);
         return order;
     }
-    double minX = points[0].x, maxX = minX, minY = points[0].y, maxY = minY;
-    for (const Vec2& p : points) {
-        minX = std::min(minX, p.x);
-        maxX = std::max(maxX, p.x);
-        minY = std::min(minY, p.y);
-        maxY = std::max(maxY, p.y);
-    }
-    // Each point draws its round: the last round (15) with probability 1/2, the one before
-    // with 1/4, ..., round 0 takes the rest. The sort key is (round, Hilbert index on a
-    // 2^14 x 2^14 grid), so one radix sort over the points in input order (no random
-    // gathers, which cost more than everything else at a million points) gives the order.
-    constexpr int kBits = 14;
-    static constexpr double kCells = (1 << kBits) - 1;
-    // Scale each axis to [0, 2^14 - 1]; the span is computed as a difference of halves so
-    // that it cannot overflow for coordinates near the largest doubles.
-    const double spanX = maxX / 2 - minX / 2, spanY = maxY / 2 - minY / 2;
-    // Capped: a subnormal span (points near 1e-310) would make the scale inf, and 0 * inf a NaN
-    // cell whose conversion to an integer is undefined.
-    constexpr double kMaxScale = std::numeric_limits<double>::max();
-    const double sx = spanX > 0 ? std::min(kCells / 2 / spanX, kMaxScale) : 0.0;
-    const double sy = spanY > 0 ? std::min(kCells / 2 / spanY, kMaxScale) : 0.0;
-    auto cell = [](double v) { return static_cast<std::uint32_t>(std::clamp(v, 0.0, kCells)); };
-
-    // hilbertIndex(x, y, 14) is hilbertIndex16(4x, 4y) without its last two levels.
-    std::vector<std::uint64_t> rec(n);
-    RadixCounts count{};
-    for (std::size_t i = 0; i < n; ++i) {
-        const Vec2& p = points[i];
-        const std::uint64_t r = rng.next();
-        const int zeros = r == 0 ? 64 : std::countr_zero(r);
-        const std::uint32_t round = 15u - static_cast<std::uint32_t>(std::min(zeros, 15));
-        const std::uint32_t cx = cell((p.x / 2 - minX / 2) * sx),
-                            cy = cell((p.y / 2 - minY / 2) * sy);
-        const std::uint32_t key = (round << 28) | (hilbertIndex16(cx << 2, cy << 2) >> 4);
-        rec[i] = (std::uint64_t{key} << 32) | static_cast<std::uint32_t>(i);
-        for (int pass = 0; pass < 3; ++pass) ++count[pass][radixDigit(rec[i], pass)];
-    }
-    return radixSortByKey(rec, count);
+    std::vector<std::uint32_t> fine(n);
+    std::vector<Record> rec = sortByRoundAndCell(points, rng, fine);
+    sortSharedCells(points, fine, rec);
+    for (std::size_t i = 0; i < n; ++i) order[i] = indexOf(rec[i]);
+    return order;
 }
 
 }  // namespace

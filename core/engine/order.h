@@ -1,5 +1,5 @@
 // Insertion orders: input, seeded random, and BRIO (biased randomized insertion order) with a
-// Hilbert sort inside each round.
+// Hilbert sort inside each round that refines the grid wherever points crowd.
 #pragma once
 
 #include "core/engine/geometry.h"
@@ -21,8 +21,16 @@ std::optional<OrderKind> parseOrderKind(std::string_view name);
 std::vector<std::int32_t> insertionOrder(const std::vector<Vec2>& points, OrderKind kind,
                                          std::uint64_t seed);
 
-// Position of (x, y) along a Hilbert curve filling a 2^bits x 2^bits grid (bits <= 16).
+// Position of (x, y) along a Hilbert curve filling a 2^bits x 2^bits grid (bits <= 16), one
+// level at a time.
 std::uint32_t hilbertIndex(std::uint32_t x, std::uint32_t y, int bits);
+// The same for bits = 16, four levels a table lookup; `state` (0..3) is the orientation the
+// curve enters the grid in (0: from the lower left, leaving at the lower right), so that a cell's
+// points can be sorted along the piece of the curve that passes through it.
+std::uint32_t hilbertIndex16(std::uint32_t x, std::uint32_t y, std::uint32_t state = 0);
+// The state the curve, entered in `state`, has inside the sub-square at `index` of a
+// 2^levels x 2^levels grid: hilbertIndex16 of a point in that sub-square continues with it.
+std::uint32_t hilbertStateAfter(std::uint32_t state, std::uint32_t index, int levels);
 
 // SplitMix64: a tiny, well-mixed, portable generator for seeds and shuffles.
 class SplitMix64 {

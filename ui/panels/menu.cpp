@@ -35,6 +35,12 @@ constexpr GeneratorChoice kGenerators[] = {
     {Generator::NearDuplicates, "Near-duplicates (1-4 ulps apart)", 60},
     {Generator::HugeTinyBox, "Tiny box at huge coordinates", 60},
     {Generator::AllCollinear, "All on one line", 20},
+    {Generator::Gaussian, "Gaussian", 300},
+    {Generator::UnevenClusters, "Clusters of very different sizes", 400},
+    {Generator::Kuzmin, "Kuzmin (heavy-tailed)", 300},
+    {Generator::LogRadial, "Radii over 12 decades", 300},
+    {Generator::DiscInBox, "Dense disc in a sparse box", 300},
+    {Generator::Curves, "On curves, bunched", 200},
 };
 
 }  // namespace
