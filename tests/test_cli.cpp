@@ -198,6 +198,21 @@ TEST(Cli, BenchJsonHasTheAdvertisedFields) {
     EXPECT_GT(j.at("flips_per_point").get<double>(), 1.0);
 }
 
+TEST(Cli, BenchJsonSaysWhichStageDecidedThePredicates) {
+    const fs::path dir = tempDir();
+    const std::string in = (dir / "g.node").string();
+    ASSERT_EQ(dtlab("gen grid 4096 -o " + in).status, 0);
+    const Result r = dtlab("bench --input " + in + " --repeat 2 --json");
+    ASSERT_EQ(r.status, 0) << r.out;
+    const auto stages = nlohmann::json::parse(r.out).at("predicates_past_filter");
+    // A lattice: every quadrilateral cocircular, every difference exact, so the calls the
+    // filter leaves are all decided by the zero-tail stage, none by expansions.
+    EXPECT_GT(stages.at("incircle").at("zero-tail").get<std::int64_t>(), 1000);
+    EXPECT_EQ(stages.at("incircle").at("expansion").get<std::int64_t>(), 0);
+    EXPECT_EQ(stages.at("incircle").at("big-integer").get<std::int64_t>(), 0);
+    EXPECT_TRUE(stages.at("orient2d").contains("stage-b"));
+}
+
 TEST(Cli, BadInputGivesOneLineNamingTheFileAndLine) {
     const fs::path dir = tempDir();
     struct Case {
