@@ -458,43 +458,76 @@ Inserter::HullEdge Inserter::hullEdgeOf(std::int32_t c0) const {
 void Inserter::beginLocate() {
     std::int32_t t = m_locator->hint(currentPoint(), m_ctl.lastTri);
     if (t < 0 || t >= m_mesh.numTriangles()) t = 0;
-    m_ctl.walkTri = t;
-    m_ctl.walkEntry = kNone;
-    m_ctl.walkSteps = 0;
-    m_ctl.straight = true;
+    m_ctl.walk = {t, kNone, 0, true, m_ctl.walk.origin};
     m_ctl.where = Where::None;
     m_ctl.whereCorner = kNone;
 }
 
-// One step: true when walkTri contains the point (closed); otherwise moves to a neighbour.
+// The start triangle of the line walk: L runs from q, the centroid, to p. When q is strictly
+// inside t, L leaves t through one edge (its start right of L, its end left) and p on L not
+// beyond that edge lies in the closed triangle, so one test of p decides. Returns false when q
+// is not strictly inside (a needle): then the visibility walk takes over, with L's origin kept.
+[[gnu::always_inline]] inline Inserter::StartStep Inserter::walkStart(WalkState& w, Vec2 p) {
+    const auto& G = m_mesh.G;
+    const auto& V = m_mesh.V;
+    const std::int32_t c0 = 3 * w.tri;
+    const Vec2 v[3] = {G[V[c0]], G[V[c0 + 1]], G[V[c0 + 2]]};
+    const Vec2 q{v[0].x / 3 + v[1].x / 3 + v[2].x / 3, v[0].y / 3 + v[1].y / 3 + v[2].y / 3};
+    if (!(orient2d(v[0], v[1], q) > 0 && orient2d(v[1], v[2], q) > 0 &&
+          orient2d(v[2], v[0], q) > 0)) {
+        return StartStep::Undecided;
+    }
+    // Only one edge goes from right of L to left of L (three vertices in a cycle): when v0 is
+    // right and v1 left it is v0->v1 (opposite corner 2), and v2 needs no test.
+    const bool left0 = orient2d(q, p, v[0]) >= 0, left1 = orient2d(q, p, v[1]) >= 0;
+    int k = 2;
+    if (left0 || !left1) {
+        const bool left[3] = {left0, left1, orient2d(q, p, v[2]) >= 0};
+        for (k = 0; k < 3 && !(!left[kNext[k]] && left[kPrev[k]]); ++k) {}
+        // No exit edge: p == q (both sides of L hold a vertex of a triangle around q
+        // otherwise), strictly inside t; the side tests say so.
+        if (k == 3) return StartStep::Undecided;
+    }
+    const int s = orient2d(v[kNext[k]], v[kPrev[k]], p);
+    if (s >= 0) {
+        walkFound(w.tri, c0 + k, s, kNone, 0);
+        return StartStep::Found;
+    }
+    w.origin = q;
+    walkMove(w, c0 + k, true);
+    return StartStep::Moved;
+}
+
+[[gnu::always_inline]] inline bool Inserter::walkFound(std::int32_t t, std::int32_t c1, int s1,
+                                                       std::int32_t c2, int s2) {
+    m_known = {t, {kUnknownSide, kUnknownSide, kUnknownSide}};
+    if (c1 != kNone) m_known.side[c1 - 3 * t] = static_cast<std::int8_t>(s1);
+    if (c2 != kNone) m_known.side[c2 - 3 * t] = static_cast<std::int8_t>(s2);
+    return true;
+}
+
+[[gnu::always_inline]] inline bool Inserter::walkMove(WalkState& w, std::int32_t corner,
+                                                      bool keepEntry) {
+    const std::int32_t o = m_mesh.O[corner];
+    w.tri = tri(o);
+    w.entry = keepEntry ? o : kNone;
+    ++w.steps;
+    return false;
+}
+
+// One step: true when w.tri contains the point (closed); otherwise moves to a neighbour.
 //
 // The line walk follows L from q (inside the start triangle) to p. Entering triangle t through
 // the edge opposite corner e, its third vertex w = V[e] is left or right of L: L leaves through
 // the edge on the far side of w (c.l or c.r in the paper). A vertex exactly on L counts as left,
 // the same as moving L an infinitesimal amount to the right, so every decision stays consistent.
-// One step of the walk on a copy of its state (the batch path keeps it in registers while it
-// walks many steps; walkStep() does one and stores it back).
+// A step in the line walk costs two orientation tests: the edge it entered through is never
+// tested again (p is strictly beyond it, seen from the triangle before).
 [[gnu::always_inline]] inline bool Inserter::walkOnce(WalkState& w, Vec2 p) {
     const auto& G = m_mesh.G;
     const auto& V = m_mesh.V;
-    const auto& O = m_mesh.O;
     const std::int32_t t = w.tri;
     const std::int32_t c0 = 3 * t;
-    auto moveTo = [&](std::int32_t corner, bool keepEntry) {
-        const std::int32_t o = O[corner];
-        w.tri = tri(o);
-        w.entry = keepEntry ? o : kNone;
-        ++w.steps;
-        return false;
-    };
-    // The walk ends in t: keep the signs it already knows for classify().
-    auto found = [&](std::int32_t c1, int s1, std::int32_t c2, int s2, std::int32_t c3, int s3) {
-        m_known = {t, {kUnknownSide, kUnknownSide, kUnknownSide}};
-        if (c1 != kNone) m_known.side[c1 - c0] = static_cast<std::int8_t>(s1);
-        if (c2 != kNone) m_known.side[c2 - c0] = static_cast<std::int8_t>(s2);
-        if (c3 != kNone) m_known.side[c3 - c0] = static_cast<std::int8_t>(s3);
-        return true;
-    };
     m_known.tri = kNone;
 
     // Corners are c0 + k; the edge opposite c0 + k runs from c0 + kNext[k] to c0 + kPrev[k]
@@ -504,13 +537,13 @@ void Inserter::beginLocate() {
         const std::int32_t g = c0 + k;
         const int s = orient2d(x, y, p);
         if (s > 0 || (s == 0 && (onOpenSegment(x, y, p) || p == x || p == y))) {
-            return found(g, s, kNone, 0, kNone, 0);
+            return walkFound(t, g, s, kNone, 0);
         }
         // Not beyond this hull edge: restart the walk inside the mesh, across the edge.
-        return moveTo(g, false);
+        return walkMove(w, g, false);
     }
 
-    // We entered t across the edge opposite walkEntry because p is strictly beyond it: seen
+    // We entered t across the edge opposite w.entry because p is strictly beyond it: seen
     // from t, p is strictly inside that edge (orient2d is exact, hence antisymmetric).
     const std::int32_t entry = w.entry;
     if (w.straight && entry != kNone) {
@@ -521,89 +554,48 @@ void Inserter::beginLocate() {
         const std::int32_t exitCorner = c0 + (left ? kNext[k] : kPrev[k]);
         const Vec2 from = left ? c : a, to = left ? a : b;
         const int s = orient2d(from, to, p);
-        if (s < 0) return moveTo(exitCorner, true);
-        return found(entry, 1, exitCorner, s, kNone, 0);
+        if (s < 0) return walkMove(w, exitCorner, true);
+        return walkFound(t, entry, 1, exitCorner, s);
     }
-
-    // Start triangle of the line walk: L runs from q, strictly inside t, to p. L leaves t
-    // through one edge; p on L not beyond that edge lies in the closed triangle, so one test
-    // of p decides (plus three for q and three for the sides of L).
-    Vec2 q{};
-    bool qInside = false;
     if (w.straight) {
-        const Vec2 a = G[V[c0]], b = G[V[c0 + 1]], c = G[V[c0 + 2]];
-        q = {a.x / 3 + b.x / 3 + c.x / 3, a.y / 3 + b.y / 3 + c.y / 3};
-        qInside = orient2d(a, b, q) > 0 && orient2d(b, c, q) > 0 && orient2d(c, a, q) > 0;
-        if (qInside) {
-            bool left[3];
-            for (int k = 0; k < 3; ++k) left[k] = orient2d(q, p, G[V[c0 + k]]) >= 0;
-            for (int k = 0; k < 3; ++k) {
-                // Exit edge n(c)->p(c): its start right of L, its end left of L.
-                if (!left[kNext[k]] && left[kPrev[k]]) {
-                    const std::int32_t c = c0 + k;
-                    const int s = orient2d(G[V[c0 + kNext[k]]], G[V[c0 + kPrev[k]]], p);
-                    if (s >= 0) return found(c, s, kNone, 0, kNone, 0);
-                    w.origin = q;
-                    return moveTo(c, true);
-                }
-            }
-            // No exit edge: p == q, inside t; the side tests below say so.
-        }
+        const StartStep start = walkStart(w, p);
+        if (start != StartStep::Undecided) return start == StartStep::Found;
     }
 
-    // The visibility walk (or a start triangle whose centroid test failed): every side.
+    // The visibility walk (or a start triangle whose centroid test failed): every side but the
+    // one we came through.
     int side[3];
     for (int k = 0; k < 3; ++k) {
         const std::int32_t c = c0 + k;
-        if (c == entry) {
-            side[k] = 1;
-            continue;
-        }  // we came from there
-        side[k] = orient2d(G[V[c0 + kNext[k]]], G[V[c0 + kPrev[k]]], p);
+        side[k] = c == entry ? 1 : orient2d(G[V[c0 + kNext[k]]], G[V[c0 + kPrev[k]]], p);
     }
-    if (side[0] >= 0 && side[1] >= 0 && side[2] >= 0)
-        return found(c0, side[0], c0 + 1, side[1], c0 + 2, side[2]);
-    if (w.straight) {
-        if (qInside) w.origin = q;
-        w.straight = false;  // needle triangle or a degenerate case: walk by visibility
+    if (side[0] >= 0 && side[1] >= 0 && side[2] >= 0) {
+        m_known = {t,
+                   {static_cast<std::int8_t>(side[0]), static_cast<std::int8_t>(side[1]),
+                    static_cast<std::int8_t>(side[2])}};
+        return true;
     }
+    w.straight = false;  // needle triangle or a degenerate case: walk by visibility
     for (int k = 0; k < 3; ++k) {
-        if (side[k] < 0) return moveTo(c0 + k, true);
+        if (side[k] < 0) return walkMove(w, c0 + k, true);
     }
     return true;
 }
 
-Inserter::WalkState Inserter::walkState() const {
-    return {m_ctl.walkTri, m_ctl.walkEntry, m_ctl.walkSteps, m_ctl.straight, m_ctl.walkOrigin};
-}
-
-void Inserter::setWalkState(const WalkState& w) {
-    m_ctl.walkTri = w.tri;
-    m_ctl.walkEntry = w.entry;
-    m_ctl.walkSteps = w.steps;
-    m_ctl.straight = w.straight;
-    m_ctl.walkOrigin = w.origin;
-}
-
-bool Inserter::walkStep() {
-    WalkState w = walkState();
-    const bool found = walkOnce(w, currentPoint());
-    setWalkState(w);
-    return found;
-}
-
-void Inserter::walkToTarget() {
-    WalkState w = walkState();
+bool Inserter::walk(bool oneStep) {
     const Vec2 p = currentPoint();
-    while (!walkOnce(w, p)) {}
-    setWalkState(w);
+    WalkState w = m_ctl.walk;  // a local copy: the batch path keeps it in registers
+    bool found = walkOnce(w, p);
+    while (!found && !oneStep) found = walkOnce(w, p);
+    m_ctl.walk = w;
+    return found;
 }
 
 void Inserter::classify() {
     const auto& G = m_mesh.G;
     const auto& V = m_mesh.V;
     const Vec2 p = currentPoint();
-    const std::int32_t t = m_ctl.walkTri, c0 = 3 * t;
+    const std::int32_t t = m_ctl.walk.tri, c0 = 3 * t;
     // The side of p for the edge opposite c0 + k: from the walk when it knows it.
     const bool known = m_known.tri == t;
     m_known.tri = kNone;
@@ -740,7 +732,7 @@ void Inserter::doPlace(Rec& rec, Op& op) {
             keepFirstOccurrence(rec, c, v);
             ++m_stats.duplicates;
             ++m_ctl.cursor;
-            m_ctl.walkTri = kNone;
+            m_ctl.walk.tri = kNone;
             m_ctl.phase = m_ctl.cursor < m_numInput ? Phase::Locate : Phase::Finalize;
             return;
     }
@@ -804,18 +796,18 @@ Op Inserter::stepImpl(Rec& rec) {
             doStart(rec, op);
             break;
         case Phase::Locate: {
-            if (m_ctl.walkTri == kNone) beginLocate();
-            const std::int32_t from = m_ctl.walkTri;
+            if (m_ctl.walk.tri == kNone) beginLocate();
+            const std::int32_t from = m_ctl.walk.tri;
             op.a = from;
-            if (!walkStep()) {
+            if (!walk(true)) {
                 op.type = OpType::LocateStep;
-                op.b = m_ctl.walkTri;
+                op.b = m_ctl.walk.tri;
                 ++m_stats.walkSteps;
                 break;
             }
             classify();
             if (m_ctl.where == Where::None) {  // cannot happen with exact predicates; stay safe
-                m_ctl.straight = false;
+                m_ctl.walk.straight = false;
                 op.type = OpType::LocateStep;
                 op.b = from;
                 break;
@@ -823,7 +815,7 @@ Op Inserter::stepImpl(Rec& rec) {
             op.type = OpType::Located;
             op.where = m_ctl.where;
             op.b = m_ctl.whereCorner;
-            m_locator->located(currentPoint(), m_ctl.walkTri, m_ctl.walkSteps);
+            m_locator->located(currentPoint(), m_ctl.walk.tri, m_ctl.walk.steps);
             m_ctl.phase = Phase::Place;
             break;
         }
@@ -865,7 +857,7 @@ Op Inserter::stepImpl(Rec& rec) {
             m_ctl.lastTri = t;
             ++m_stats.inserted;
             ++m_ctl.cursor;
-            m_ctl.walkTri = kNone;
+            m_ctl.walk.tri = kNone;
             m_ctl.phase = m_ctl.cursor < m_numInput ? Phase::Locate : Phase::Finalize;
             break;
         }
@@ -931,7 +923,7 @@ void Inserter::run() {
     if (m_ctl.phase == Phase::Start) permuteForBatch();
     // Finish whatever the state machine was in the middle of.
     while (m_ctl.phase != Phase::Done &&
-           !(m_ctl.phase == Phase::Locate && m_ctl.walkTri == kNone)) {
+           !(m_ctl.phase == Phase::Locate && m_ctl.walk.tri == kNone)) {
         if (m_ctl.phase == Phase::Finalize) break;
         stepImpl(rec);
     }
@@ -948,13 +940,13 @@ void Inserter::run() {
         for (; m_ctl.cursor < n; ++m_ctl.cursor) {
             beginLocate();
             while (true) {
-                walkToTarget();
+                walk(false);
                 classify();
                 if (m_ctl.where != Where::None) break;
-                m_ctl.straight = false;
+                m_ctl.walk.straight = false;
             }
-            m_stats.walkSteps += m_ctl.walkSteps;
-            m_locator->located(currentPoint(), m_ctl.walkTri, m_ctl.walkSteps);
+            m_stats.walkSteps += m_ctl.walk.steps;
+            m_locator->located(currentPoint(), m_ctl.walk.tri, m_ctl.walk.steps);
             // Permuted (a batch from the start): vertex id = insertion rank; a run finishing a
             // recorded one mid-way keeps the input ids.
             const std::int32_t v = vertexAt(m_ctl.cursor);
@@ -982,7 +974,7 @@ void Inserter::run() {
             m_ctl.lastTri = m_mesh.numTriangles() - 1;
             ++m_stats.inserted;
         }
-        m_ctl.walkTri = kNone;
+        m_ctl.walk.tri = kNone;
         m_ctl.phase = Phase::Finalize;
     }
     if (m_ctl.phase == Phase::Finalize) {

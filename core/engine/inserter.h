@@ -65,15 +65,20 @@ struct CellChange {
 
 enum class Phase : std::uint8_t { Start, Locate, Place, Test, Flip, Finish, Finalize, Done };
 
+// The walk towards the point being inserted.
+struct WalkState {
+    std::int32_t tri = kNone;    // current triangle of the walk (kNone: not started)
+    std::int32_t entry = kNone;  // corner of tri facing the edge we entered through
+    std::int32_t steps = 0;
+    bool straight = true;  // the paper's line walk (false: visibility-walk fallback)
+    Vec2 origin{};         // q, the start of the line L = q->p of the straight walk
+};
+
 // Everything the state machine needs besides the mesh and the flip stack.
 struct Control {
     Phase phase = Phase::Start;
-    std::int32_t cursor = 0;         // position in the insertion order of the current point
-    std::int32_t walkTri = kNone;    // current triangle of the walk
-    std::int32_t walkEntry = kNone;  // corner of walkTri facing the edge we entered through
-    std::int32_t walkSteps = 0;
-    bool straight = true;              // the paper's line walk (false: visibility-walk fallback)
-    Vec2 walkOrigin{};                 // q, the start of the line L = q->p of the straight walk
+    std::int32_t cursor = 0;  // position in the insertion order of the current point
+    WalkState walk;
     Where where = Where::None;         // classification once located
     std::int32_t whereCorner = kNone;  // Located: corner facing the edge / at the vertex
     std::int32_t flipCorner = kNone;   // the edge (opposite this corner) a positive test flips
@@ -197,20 +202,16 @@ private:
         Vec2 x, y;  // the hull edge opposite it
     };
     HullEdge hullEdgeOf(std::int32_t c0) const;
-    // The walk's part of Control, as locals while it runs.
-    struct WalkState {
-        std::int32_t tri;
-        std::int32_t entry;
-        std::int32_t steps;
-        bool straight;
-        Vec2 origin;
-    };
-    WalkState walkState() const;
-    void setWalkState(const WalkState& w);
+    // The walk: one step (the recorded path) or every step until found (the batch path); true
+    // when m_ctl.walk.tri contains the current point.
+    bool walk(bool oneStep);
     bool walkOnce(WalkState& w, Vec2 p);  // one step; true when w.tri contains p
-    bool walkStep();      // one step of the walk; true when the walk has found the triangle
-    void walkToTarget();  // walkStep() until it returns true, with the state in registers
-    void classify();      // sets where / whereCorner for walkTri
+    enum class StartStep : std::uint8_t { Found, Moved, Undecided };
+    StartStep walkStart(WalkState& w, Vec2 p);  // the first step of the line walk
+    // The walk stops in t: the sides of p it knows (corner, sign; kNone for none) for classify().
+    bool walkFound(std::int32_t t, std::int32_t c1, int s1, std::int32_t c2, int s2);
+    bool walkMove(WalkState& w, std::int32_t corner, bool keepEntry);  // across that edge
+    void classify();                         // sets where / whereCorner for m_ctl.walk.tri
     int inCircleSign(std::int32_t c) const;  // is V[c] inside the circle across the edge?
     bool onOpenSegment(Vec2 a, Vec2 b, Vec2 p) const;
     void notifyChanged(const std::int32_t* tris, int count);
@@ -239,7 +240,7 @@ private:
     Control m_ctl;
     // Signs of orient2d(edge opposite corner 3*tri+k, p) that the walk computed (or derived
     // exactly) when it stopped in tri, so that classify() does not evaluate them again. Valid
-    // only between a walkStep() that returns true and the classify() right after it.
+    // only between a walk that returns true and the classify() right after it.
     static constexpr std::int8_t kUnknownSide = 2;
     struct KnownSides {
         std::int32_t tri = kNone;
