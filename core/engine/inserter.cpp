@@ -786,7 +786,6 @@ void Inserter::doFinalize(Rec& rec, Op& op) {
 template <class Rec>
 Op Inserter::stepImpl(Rec& rec) {
     Op op;
-    op.before = m_ctl;
     op.vertex = currentVertex();
     op.trianglesBefore = m_mesh.numTriangles();
     op.verticesBefore = m_mesh.numVertices();
@@ -875,11 +874,12 @@ Op Inserter::stepImpl(Rec& rec) {
 Op Inserter::step(Journal* journal) {
     JournalRec rec{journal};
     const std::uint32_t first = journal ? journal->changeCount() : 0;
+    const Control before = m_ctl;
     Op op = stepImpl(rec);
     if (journal) {
         op.firstChange = first;
         op.numChanges = journal->changeCount() - first;
-        journal->push(op);
+        journal->push(op, before);
     }
     return op;
 }
@@ -1002,7 +1002,7 @@ int pushesOf(const Op& op) {
 
 }  // namespace
 
-void Inserter::undo(const Op& op, const std::vector<CellChange>& changes) {
+void Inserter::undo(const Op& op, const std::vector<CellChange>& changes, const Control& before) {
     const std::size_t big =
         3 * static_cast<std::size_t>(std::max(op.trianglesBefore, op.trianglesAfter));
     m_mesh.V.resize(big, kNone);
@@ -1034,7 +1034,7 @@ void Inserter::undo(const Op& op, const std::vector<CellChange>& changes) {
         case OpType::Inserted: --m_stats.inserted; break;
         default: break;
     }
-    m_ctl = op.before;
+    m_ctl = before;
     if (m_locatorWantsChanges && !m_bulk && op.type != OpType::Finalize) {
         std::vector<std::int32_t> tris;
         for (std::uint32_t i = 0; i < op.numChanges; ++i) {
@@ -1114,10 +1114,46 @@ void Inserter::redo(const Op& op, const std::vector<CellChange>& changes, const 
 // [SECTION] Journal
 // ============================================================================================
 
+void Journal::push(Op op, const Control& before) {
+    if (hasControlSnapshot(op.type)) {
+        op.control = static_cast<std::uint32_t>(m_controls.size());
+        m_controls.push_back(before);
+    } else {
+        // Back to this insertion's Place op: the ops between are tests, flips and Inserted.
+        std::size_t place = m_ops.size();
+        while (place > 0 && !hasControlSnapshot(m_ops[place - 1].type)) --place;
+        op.control = static_cast<std::uint32_t>(m_ops.size() - (place - 1));
+    }
+    m_ops.push_back(op);
+    ++m_pos;
+}
+
+namespace {
+Phase phaseBefore(OpType t) {
+    switch (t) {
+        case OpType::InCircleTest: return Phase::Test;
+        case OpType::Flip: return Phase::Flip;
+        case OpType::Inserted: return Phase::Finish;
+        default: return Phase::Place;
+    }
+}
+}  // namespace
+
+Control Journal::controlBefore(std::size_t i) const {
+    const Op& op = m_ops[i];
+    if (hasControlSnapshot(op.type)) return m_controls[op.control];
+    // After the Place op (a split: SkipDuplicate is followed by a walk or Finalize) only the
+    // phase and the flip corner change until the next point.
+    Control c = m_controls[m_ops[i - op.control].control];
+    c.phase = phaseBefore(op.type);
+    c.flipCorner = op.type == OpType::Flip ? op.a : kNone;
+    return c;
+}
+
 const Op* Journal::forward() {
     if (m_pos < m_ops.size()) {
         const Op& op = m_ops[m_pos];
-        const Control& after = m_pos + 1 < m_ops.size() ? m_ops[m_pos + 1].before : m_tip;
+        const Control after = m_pos + 1 < m_ops.size() ? controlBefore(m_pos + 1) : m_tip;
         m_ins->redo(op, m_changes, after);
         ++m_pos;
         return &op;
@@ -1131,7 +1167,7 @@ const Op* Journal::back() {
     if (m_pos == 0) return nullptr;
     if (m_pos == m_ops.size()) m_tip = m_ins->control();
     --m_pos;
-    m_ins->undo(m_ops[m_pos], m_changes);
+    m_ins->undo(m_ops[m_pos], m_changes, controlBefore(m_pos));
     return &m_ops[m_pos];
 }
 

@@ -98,8 +98,18 @@ struct Op {
     std::int32_t verticesAfter = 0;
     std::uint32_t firstChange = 0;  // range in Journal::changes()
     std::uint32_t numChanges = 0;
-    Control before;  // control state before the op, for exact undo
+    // The control state before the op, for exact undo (Journal::controlBefore): ops that start
+    // or move a walk, end it, or place the point (hasControlSnapshot) keep a snapshot, this is
+    // its index in the Journal; the in-circle tests, flips and Inserted of an insertion differ
+    // from the snapshot before their Place op only in phase and flip corner, this is how many
+    // ops back that Place op is.
+    std::uint32_t control = 0;
 };
+
+// Ops whose control state before cannot be derived from an earlier op's (see Op::control).
+inline bool hasControlSnapshot(OpType t) {
+    return t != OpType::InCircleTest && t != OpType::Flip && t != OpType::Inserted;
+}
 
 struct InsertOptions {
     Boundary boundary = Boundary::Exact;
@@ -160,8 +170,9 @@ public:
     // The point currently being inserted (kNone when none).
     std::int32_t currentVertex() const;
 
-    // Journal support: revert / re-apply one recorded op.
-    void undo(const Op& op, const std::vector<CellChange>& changes);
+    // Journal support: revert / re-apply one recorded op; `before` and `after` are the control
+    // states around it.
+    void undo(const Op& op, const std::vector<CellChange>& changes, const Control& before);
     // Bulk mode (long seeks): undo/redo stop notifying the locator; leaving it rebuilds the
     // locator's index once from the current mesh.
     void setBulk(bool on);
@@ -257,7 +268,7 @@ class Journal {
 public:
     explicit Journal(Inserter& inserter) : m_ins(&inserter) {}
     // Reserves room for this many ops and cell changes up front: a vector doubling at millions
-    // of ops (96 bytes each) copies hundreds of megabytes in one step, a visible stall.
+    // of ops copies hundreds of megabytes in one step, a visible stall.
     Journal(Inserter& inserter, std::size_t expectedOps, std::size_t expectedChanges)
         : m_ins(&inserter) {
         m_ops.reserve(expectedOps);
@@ -274,18 +285,24 @@ public:
     const std::vector<Op>& ops() const { return m_ops; }
     const std::vector<CellChange>& changes() const { return m_changes; }
     const Op* current() const { return m_pos > 0 ? &m_ops[m_pos - 1] : nullptr; }
+    // The inserter's control state before recorded op i (i < recorded()).
+    Control controlBefore(std::size_t i) const;
+    // Memory the record holds: ops, control snapshots and cell changes (sizes, not capacities).
+    std::size_t bytesUsed() const {
+        return m_ops.size() * sizeof(Op) + m_controls.size() * sizeof(Control) +
+               m_changes.size() * sizeof(CellChange);
+    }
+    std::size_t controlSnapshots() const { return m_controls.size(); }
 
     // Used by the inserter while recording.
     void record(const CellChange& c) { m_changes.push_back(c); }
     std::uint32_t changeCount() const { return static_cast<std::uint32_t>(m_changes.size()); }
-    void push(const Op& op) {
-        m_ops.push_back(op);
-        ++m_pos;
-    }
+    void push(Op op, const Control& before);
 
 private:
     Inserter* m_ins;
     std::vector<Op> m_ops;
+    std::vector<Control> m_controls;  // snapshots, see Op::control
     std::vector<CellChange> m_changes;
     std::size_t m_pos = 0;
     Control m_tip;  // the inserter's control state after the last recorded op
