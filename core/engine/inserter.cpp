@@ -2,6 +2,7 @@
 // each a recorded operation that the Journal can undo exactly.
 #include "core/engine/inserter.h"
 
+#include "core/engine/checks.h"
 #include "core/engine/predicates.h"
 
 #include <algorithm>
@@ -269,6 +270,8 @@ void Inserter::setBulk(bool on) {
 //          a -------b              a ------- b
 template <class Rec>
 void Inserter::split(Rec& rec, std::int32_t t, std::int32_t v) {
+    DLAB_ASSERT(t >= 0 && t < m_mesh.numTriangles() && m_mesh.V[3 * t] != kNone,
+                "split of a triangle that is not in the mesh");
     const std::int32_t c0 = 3 * t, c1 = c0 + 1, c2 = c0 + 2;
     const std::int32_t a = m_mesh.V[c0], b = m_mesh.V[c1], c = m_mesh.V[c2];
     const std::int32_t oa = m_mesh.O[c0], ob = m_mesh.O[c1];
@@ -298,6 +301,10 @@ void Inserter::split(Rec& rec, std::int32_t t, std::int32_t v) {
 //   u = (D, B, A) becomes (D, B, v), appended u' = (D, v, A).
 template <class Rec>
 void Inserter::splitEdge(Rec& rec, std::int32_t c, std::int32_t v) {
+    DLAB_ASSERT(c >= 0 && c < m_mesh.numCorners() && m_mesh.V[c] != kNone,
+                "edge split at a corner that is not in the mesh");
+    DLAB_ASSERT(m_mesh.O[c] == kNone || m_mesh.O[m_mesh.O[c]] == c,
+                "edge split across corners that are not opposite");
     const std::int32_t cn = next(c), cp = prev(c);
     const std::int32_t d = m_mesh.O[c];
     const std::int32_t C = m_mesh.V[c], B = m_mesh.V[cp];
@@ -351,6 +358,8 @@ void Inserter::splitEdge(Rec& rec, std::int32_t c, std::int32_t v) {
 template <class Rec>
 void Inserter::flip(Rec& rec, std::int32_t c) {
     const std::int32_t d = m_mesh.O[c];
+    DLAB_ASSERT(d != kNone && m_mesh.O[d] == c, "flip of corners that are not opposite");
+    DLAB_ASSERT(tri(c) != tri(d), "flip of two corners of one triangle");
     const std::int32_t cn = next(c), cp = prev(c), dn = next(d), dp = prev(d);
     const std::int32_t P = m_mesh.V[c], D = m_mesh.V[d];
     const std::int32_t ocn = m_mesh.O[cn], odn = m_mesh.O[dn];
@@ -437,9 +446,14 @@ bool Inserter::onOpenSegment(Vec2 a, Vec2 b, Vec2 p) const {
         w = B;
     }
     const int s = orient2d(G[u], G[w], G[P]);
-    if (s > 0) return 1;
-    if (s == 0 && onOpenSegment(G[u], G[w], G[P])) return 1;
-    return -1;
+    // P on the open hull edge u-w cannot happen: the walk finds a point on a hull edge (from the
+    // triangle inside with a zero side, or from the ghost outside with orient2d 0 on the open
+    // segment) and splits that edge, so the edge no longer exists when P's flips test it, and
+    // every other point is on it only if it was located there. Were it reachable, P would be in
+    // the ghost's "circle" (the open segment belongs to it) and the answer 1.
+    DLAB_ASSERT(s != 0 || !onOpenSegment(G[u], G[w], G[P]),
+                "new vertex on a hull edge that should have been split");
+    return s > 0 ? 1 : -1;
 }
 
 // ============================================================================================
@@ -509,6 +523,28 @@ void Inserter::beginLocate() {
 [[gnu::always_inline]] inline bool Inserter::walkMove(WalkState& w, std::int32_t corner,
                                                       bool keepEntry) {
     const std::int32_t o = m_mesh.O[corner];
+    DLAB_ASSERT(o != kNone, "the walk leaves the mesh");
+#if DLAB_CHECKS_ON
+    // A straight walk crosses each triangle at most once (its line meets a triangle in one
+    // segment): a revisit means inconsistent orientation decisions. The list restarts with every
+    // line (the start triangle, or inside again after a ghost) and with another point or inserter.
+    static thread_local struct {
+        const Inserter* owner = nullptr;
+        std::int32_t cursor = kNone;
+        std::vector<std::int32_t> tris;
+    } visited;
+    if (visited.owner != this || visited.cursor != m_ctl.cursor || w.entry == kNone) {
+        visited.owner = this;
+        visited.cursor = m_ctl.cursor;
+        visited.tris.assign(1, w.tri);
+    }
+    if (w.straight && keepEntry) {
+        DLAB_ASSERT(
+            std::find(visited.tris.begin(), visited.tris.end(), tri(o)) == visited.tris.end(),
+            "the straight walk enters a triangle it has left");
+        visited.tris.push_back(tri(o));
+    }
+#endif
     w.tri = tri(o);
     w.entry = keepEntry ? o : kNone;
     ++w.steps;
