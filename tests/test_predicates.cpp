@@ -266,6 +266,11 @@ TEST(Predicates, EveryStageDecidesSomeCallsAndAgreesWithGmp) {
         const Vec2 e = g(), f = g();
         tallyOrient(t, e, f, Vec2{2 * f.x - e.x, 2 * f.y - e.y});
         tallyIncircle(t, e, Vec2{f.x, e.y}, f, Vec2{e.x, f.y});
+        // Stretched to about 18 bits: exact differences, too long for incircle in plain doubles.
+        const double v = 16385;
+        tallyOrient(t, {e.x * v, e.y}, {f.x * v, f.y}, {(2 * f.x - e.x) * v, 2 * f.y - e.y});
+        tallyIncircle(t, {e.x * v, e.y * 3}, {f.x * v, e.y * 3}, {f.x * v, f.y * 3},
+                      {e.x * v, f.y * 3});
         // The same on a lattice of wide span (2^40 steps): exact differences too long for the
         // plain double evaluation, so the zero-tail stage uses expansions.
         const double w = 0x1p40 + 1;
