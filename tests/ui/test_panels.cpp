@@ -495,7 +495,7 @@ TEST(Panels, TheGlIdBufferShowsInTheSameViewAndAgreesWithItsOwnReadback) {
     while (!st.engine.toEnd(1 << 20)) {}
     h.frames(3);
     ASSERT_TRUE(drawnNow(h, "idbuffer-image"));
-    dlab::ui::IdBufferGl* gl = st.engine.idBufferGl();
+    auto* gl = static_cast<dlab::ui::IdBufferGl*>(st.engine.idBufferGl());
     ASSERT_NE(gl, nullptr);
     const auto img = h.rect("idbuffer-image");
     const dlab::Mesh& m = st.engine.mesh();

@@ -1,4 +1,4 @@
-// A headless instance of the whole GUI (OSMesa) driven with synthetic input, as a user would:
+// A headless instance of the whole GUI driven with synthetic input, as a user would:
 // ImGui 1.86 has no input-event API, so the harness sets io.MousePos, io.MouseDown[],
 // io.MouseWheel and io.KeysDown[] (GLFW key codes, as in the real window) between frames.
 #pragma once
@@ -16,7 +16,12 @@ class GlContext;
 
 namespace dlab::test {
 
-// A headless GL context (OSMesa, 16 x 16), current, for tests of the GL layer without the GUI.
+// The platform the harness runs on: OSMesa in dlab_ui_tests (harness_gl.cpp), the null platform
+// (no GL, no pixels) in dlab_ui_logic_tests (harness_null.cpp).
+std::unique_ptr<ui::Platform> makeTestPlatform(int width, int height, std::string& error);
+
+// A headless GL context (OSMesa, 16 x 16), current, for tests of the GL layer without the GUI
+// (dlab_ui_tests only).
 struct HeadlessGl {
     std::unique_ptr<ui::Platform> platform;
     std::shared_ptr<ui::GlContext> gl;
