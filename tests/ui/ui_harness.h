@@ -7,14 +7,41 @@
 
 #include <array>
 #include <cstdint>
+#include <cstring>
+#include <filesystem>
 #include <memory>
 #include <string>
+#include <vector>
+
+#include <unistd.h>
 
 namespace dlab::ui {
 class GlContext;
 }
 
 namespace dlab::test {
+
+// A fresh folder per test, removed at the end.
+struct TempDir {
+    std::filesystem::path path;
+    explicit TempDir(const std::string& name) {
+        path = std::filesystem::temp_directory_path() /
+               ("dlab_files_" + name + "_" + std::to_string(::getpid()));
+        std::filesystem::remove_all(path);
+        std::filesystem::create_directories(path);
+    }
+    ~TempDir() {
+        std::error_code ec;
+        std::filesystem::remove_all(path, ec);
+    }
+    std::string operator/(const std::string& f) const { return (path / f).string(); }
+};
+
+// Same coordinates, bit for bit.
+inline bool sameBits(const std::vector<Vec2>& a, const std::vector<Vec2>& b) {
+    return a.size() == b.size() &&
+           (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(Vec2)) == 0);
+}
 
 // The platform the harness runs on: OSMesa in dlab_ui_tests (harness_gl.cpp), the null platform
 // (no GL, no pixels) in dlab_ui_logic_tests (harness_null.cpp).
