@@ -2,6 +2,7 @@
 #include "app/dtlab_common.h"
 
 #include "core/engine/generators.h"
+#include "ui/gl/mesh_renderer.h"
 #include "ui/gui.h"
 #include "ui/lesson_player.h"
 #include "ui/panels/panels.h"
@@ -10,6 +11,7 @@
 
 #include <chrono>
 #include <cstdio>
+#include <ctime>
 #include <filesystem>
 #include <iostream>
 
@@ -85,6 +87,45 @@ void benchFrames(ui::Gui& gui, ui::AppState& state, int frames) {
     io.MouseWheel = 0;
     std::printf("frame ms, scrolling the corner table (%d rows): mean %.1f, worst %.1f\n",
                 state.engine.mesh().numCorners(), scrolling.first, scrolling.second);
+}
+
+double processCpuMs() {
+    timespec t{};
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+    return static_cast<double>(t.tv_sec) * 1e3 + static_cast<double>(t.tv_nsec) / 1e6;
+}
+
+// The drawing of a changing mesh alone: before each frame the run moves `ops` operations on
+// (outside the frame's time), from the same position with the raster patched and redrawn whole.
+// Wall-clock and process CPU ms (all threads, llvmpipe's included: steadier on a loaded machine).
+void benchChangingFrames(ui::Gui& gui, ui::AppState& state, int frames, std::size_t ops) {
+    if (state.engine.batch()) return;
+    state.run.running = false;
+    const std::size_t was = state.engine.position();
+    const std::size_t start = state.engine.recorded() / 2;
+    for (const bool patch : {true, false}) {
+        ui::MeshRenderer::setPatching(patch);
+        state.engine.seek(start);
+        gui.frame();
+        double wall = 0, cpu = 0, build = 0;
+        for (int i = 0; i < frames; ++i) {
+            state.engine.seek(state.engine.position() + ops);
+            const auto t0 = std::chrono::steady_clock::now();
+            const double c0 = processCpuMs();
+            gui.frame();
+            cpu += processCpuMs() - c0;
+            wall += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0)
+                        .count();
+            build += state.frameStats.meshBuildMs;
+        }
+        std::printf(
+            "frame ms, %zu more operations each, %s: wall mean %.1f, cpu mean %.1f "
+            "(mesh update %.1f ms wall)\n",
+            ops, patch ? "raster patched" : "raster redrawn whole", wall / frames, cpu / frames,
+            build / frames);
+    }
+    ui::MeshRenderer::setPatching(true);
+    state.engine.seek(was);
 }
 
 void runRender(const RenderArgs& args) {
@@ -163,7 +204,11 @@ void runRender(const RenderArgs& args) {
     state.pendingTab = args.tab;
     // ImGui lays out in the first frames (tables measure their columns): render a few.
     for (int i = 0; i < 3; ++i) gui.frame();
-    if (args.benchFrames > 0) benchFrames(gui, state, args.benchFrames);
+    if (args.benchFrames > 0) {
+        benchFrames(gui, state, args.benchFrames);
+        for (const std::size_t ops : {std::size_t{1}, std::size_t{20000}})
+            benchChangingFrames(gui, state, args.benchFrames, ops);
+    }
     if (!gui.saveScreenshot(args.output, error)) fail(error);
     std::cout << "wrote " << args.output << " (" << width << "x" << height << ", operation "
               << state.engine.position() << " of " << state.engine.recorded() << ", "

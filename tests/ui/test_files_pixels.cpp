@@ -14,10 +14,16 @@
 #include <imgui.h>
 #include <stb_image.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <regex>
+#include <string>
+#include <vector>
 
 using dlab::Vec2;
 using dlab::test::sameBits;

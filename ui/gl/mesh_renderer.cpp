@@ -29,6 +29,8 @@ bool sameStyle(const MeshStyle& a, const MeshStyle& b) {
 // where float arithmetic and the rasterizer's loops stay sane; culling drops what is outside.
 float clampCoord(double v) { return static_cast<float>(std::clamp(v, -1e7, 1e7)); }
 
+bool g_patching = true;
+
 // The edges and triangles the renderer draws, over the screen positions of the last update.
 struct MeshScan {
     const Mesh& m;
@@ -77,6 +79,8 @@ struct MeshScan {
 
 }  // namespace
 
+void MeshRenderer::setPatching(bool on) { g_patching = on; }
+
 bool MeshRenderer::update(const Engine& engine, const View& view, const MeshStyle& style) {
     // The engine's device is a GlContext wherever a MeshRenderer exists (the GL renderer made
     // both).
@@ -101,7 +105,7 @@ bool MeshRenderer::update(const Engine& engine, const View& view, const MeshStyl
     m_visibleEdges = 0;
     m_patched = false;
     if (m_dense) {
-        m_patched = sameLook && wasDense && patchRaster(engine);
+        m_patched = g_patching && sameLook && wasDense && patchRaster(engine);
         if (!m_patched) drawRasterAll(engine, false);
     } else {
         buildArrays(engine);

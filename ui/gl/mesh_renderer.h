@@ -53,6 +53,8 @@ public:
     // Dense mode: the canvas' pixels (RGBA, row 0 at the top), as the next draw shows them.
     const std::vector<std::uint32_t>& raster() const { return m_raster; }
     static constexpr int kTile = 32;  // the raster is patched in tiles of kTile x kTile pixels
+    // Patching on (the default) or off: every change redraws the raster whole (benchmarks).
+    static void setPatching(bool on);
 
 private:
     struct PassData {
