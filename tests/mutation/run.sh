@@ -47,8 +47,9 @@ nice -n 15 cmake -S "$src" -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DDLAB_
 
 build_tests() { nice -n 15 make -C "$build" -j2 dlab_core_tests >"$work/build.log" 2>&1; }
 run_tests() {
+    # The subshell's own stderr too: the shell's "Aborted" notice for a failed DLAB_ASSERT.
     (cd "$build/tests" && timeout "$timeout_s" ./dlab_core_tests --gtest_fail_fast \
-        --gtest_brief=1 >"$work/test.log" 2>&1)
+        --gtest_brief=1 >"$work/test.log" 2>&1) 2>>"$work/test.log"
 }
 
 echo "baseline: building and running the unmutated tests"
@@ -93,8 +94,8 @@ while IFS=$'\t' read -r name file original replacement || [[ -n $name ]]; do
     if ! build_tests; then
         verdict="killed (does not compile)"
     elif ! run_tests; then
-        why=$(grep -m1 -oE '\[  FAILED  \] [A-Za-z0-9_./]+|DLAB_ASSERT\([^)]*\)' \
-            "$work/test.log" || true)
+        why=$(grep -m1 -oE '\[  FAILED  \] [A-Za-z0-9_./]+|\) failed: .*' "$work/test.log" |
+            sed 's/^) failed: /DLAB_ASSERT: /' || true)
         verdict="killed (${why:-crash or timeout})"
     else
         verdict="SURVIVED"
