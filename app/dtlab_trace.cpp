@@ -1,9 +1,9 @@
 // dtlab trace: one JSON object per operation (JSON Lines), as documented in core/teaching/trace.h.
 #include "app/dtlab_common.h"
 
+#include "core/engine/io_write.h"
 #include "core/teaching/trace.h"
 
-#include <fstream>
 #include <iostream>
 
 namespace dlab::cli {
@@ -18,20 +18,23 @@ struct TraceArgs {
 };
 
 void runTrace(const TraceArgs& args) {
+    try {
+        checkOutputFiles({{args.output, {}}}, {args.input});
+    } catch (const std::runtime_error& e) {
+        fail(e.what(), 2);
+    }
     LoadedPoints loaded = loadPoints(args.input);
     const auto made =
         args.engine.makeInserter(std::move(loaded.points));  // GL locators need a context
     Inserter& ins = *made;
     Journal journal(ins);
-    std::ofstream out(args.output, std::ios::binary);
-    if (!out) fail("cannot write " + args.output);
     long long count = 0;
-    while ((args.limit < 0 || count < args.limit) && journal.forward()) {
-        out << toJsonLine(traceRecord(journal, journal.position() - 1, ins.mesh())) << '\n';
-        ++count;
-    }
-    out.flush();
-    if (!out) fail("cannot write " + args.output + " (disk full?)");
+    writeTextFile(args.output, [&](std::ostream& out) {
+        while ((args.limit < 0 || count < args.limit) && journal.forward()) {
+            out << toJsonLine(traceRecord(journal, journal.position() - 1, ins.mesh())) << '\n';
+            ++count;
+        }
+    });
     std::cout << "wrote " << count << " operations to " << args.output
               << (ins.done() ? "" : " (stopped at --limit before the end)") << "\n";
 }
@@ -43,7 +46,8 @@ void addTrace(CLI::App& app) {
     CLI::App* cmd = app.add_subcommand("trace", "Write every operation of a run as JSON Lines");
     cmd->add_option("input", args->input, "Point file (.node, .csv, .xy, .pts)")->required();
     cmd->add_option("-o,--output", args->output, "Trace file (.jsonl)")->required();
-    cmd->add_option("--limit", args->limit, "Stop after this many operations");
+    cmd->add_option("--limit", args->limit, "Stop after this many operations (default: none)")
+        ->check(CLI::NonNegativeNumber);
     args->engine.add(*cmd);
     cmd->callback([args] { guarded([&] { runTrace(*args); }); });
 }
