@@ -34,6 +34,12 @@ void runTrace(const TraceArgs& args) {
             out << toJsonLine(traceRecord(journal, journal.position() - 1, ins.mesh())) << '\n';
             ++count;
         }
+        if (journal.budgetReached()) {  // no file rather than a trace cut short silently
+            fail("the run passes the history's memory budget (" +
+                 std::to_string(journal.budget() >> 20) + " MiB) after " + std::to_string(count) +
+                 " operations: nothing written; use --limit, or the brio order (it walks far "
+                 "less)");
+        }
     });
     std::cout << "wrote " << count << " operations to " << args.output
               << (ins.done() ? "" : " (stopped at --limit before the end)") << "\n";

@@ -218,8 +218,14 @@ public:
             }
             ++m_line;
             std::string_view content = m_text.substr(start, end - start);
-            if (const std::size_t hash = content.find('#'); hash != std::string_view::npos) {
+            // A '#' glued to a number ("1.#INF", "1.#QNAN": old MSVC output) is part of the
+            // field, which then fails as a number; elsewhere it starts a comment.
+            for (std::size_t hash = content.find('#'); hash != std::string_view::npos;
+                 hash = content.find('#', hash + 1)) {
+                const char before = hash > 0 ? content[hash - 1] : ' ';
+                if ((before >= '0' && before <= '9') || before == '.') continue;
                 content = content.substr(0, hash);
+                break;
             }
             content = trim(content);
             if (!content.empty()) {
@@ -789,14 +795,21 @@ PointSet readPointsFile(const std::string& path) {
 
     checkText(text, path);  // sniff only text that passed the same checks the parsers make
     const Format format = sniffFormat(text);
-    PointSet ps = format == Format::Node  ? parseNode(text, path)
-                  : format == Format::Pts ? parsePts(text, path)
-                                          : parseXY(text, path);
     const char* guess = format == Format::Node  ? "Triangle .node"
                         : format == Format::Pts ? "Rossignac .pts"
                                                 : "XY";
     const std::string shown =
         ext.empty() ? "no extension" : "unknown extension '" + printable(ext, 20, false) + "'";
+    PointSet ps;
+    try {
+        ps = format == Format::Node  ? parseNode(text, path)
+             : format == Format::Pts ? parsePts(text, path)
+                                     : parseXY(text, path);
+    } catch (const InputError& e) {  // say what the file was taken for, and how to choose
+        throw InputError(e.file(), e.line(),
+                         e.message() + " (" + shown + ": read as " + guess +
+                             " by its content; name it .node, .csv, .xy or .pts to choose)");
+    }
     ps.warnings.insert(ps.warnings.begin(), shown + ": read as " + guess + " by its content");
     return ps;
 }

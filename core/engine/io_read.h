@@ -6,7 +6,8 @@
 // double written with enough digits (17 significant, or the shortest round-trip form) comes back
 // bit-for-bit, subnormals and ±DBL_MAX included.
 //
-// Formats (comments start with '#' anywhere on a line; blank lines are ignored; lines may end
+// Formats (comments start with '#' anywhere on a line, except one glued to a number, as in
+// MSVC's "1.#INF", which is refused as a number; blank lines are ignored; lines may end
 // in \n, \r\n or a lone \r; a UTF-8 byte-order mark at the start is skipped):
 //
 //   .node  Shewchuk's Triangle. First line: <#vertices> [<dimension = 2> [<#attributes>

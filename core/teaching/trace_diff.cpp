@@ -164,6 +164,13 @@ TraceFile traceOfRun(Inserter& ins, const std::string& name) {
     std::stringstream text;
     while (journal.forward())
         text << toJsonLine(traceRecord(journal, journal.position() - 1, ins.mesh())) << '\n';
+    if (journal.budgetReached()) {
+        throw InputError(name, 0,
+                         "the reference run passes the history's memory budget (" +
+                             std::to_string(journal.budget() >> 20) + " MiB) after " +
+                             std::to_string(journal.recorded()) +
+                             " operations: compare a smaller or a brio-order run");
+    }
     return parseTraceText(text, name);
 }
 
