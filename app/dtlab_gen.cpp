@@ -28,7 +28,7 @@ void runGen(const GenArgs& args) {
     std::string ext = std::filesystem::path(args.output).extension().string();
     for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
     if (args.output.empty() || std::filesystem::path(args.output).filename().empty())
-        fail("-o " + args.output + ": give a file name for the points, e.g. -o points.node", 2);
+        fail("-o \"" + args.output + "\": give a file name for the points, e.g. -o points.node", 2);
     writeTextFile(args.output, [&](std::ostream& os) {
         if (ext == ".csv" || ext == ".xy" || ext == ".txt" || ext == ".pts") {
             std::string s;

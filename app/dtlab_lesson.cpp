@@ -101,7 +101,7 @@ void runShow(const LessonArgs& args) {
             }
         }
     } catch (const LessonError& e) {
-        fail(e.what());
+        fail(e.what(), 2);  // bad input
     }
 }
 

@@ -188,7 +188,12 @@ void addRender(CLI::App& app) {
     cmd->add_flag("--to-end", args->toEnd, "Run to the end before the screenshot")->excludes(steps);
     cmd->add_option("--size", args->size, "Window size WIDTHxHEIGHT")->capture_default_str();
     cmd->add_option("--select", args->select, "Select this corner (inspector, highlights)")
-        ->check(CLI::NonNegativeNumber);
+        ->check(CLI::Validator(
+            [](std::string& v) {
+                return !v.empty() && v[0] == '-' ? "--select must be a corner, 0 or more, not " + v
+                                                 : std::string();
+            },
+            "C >= 0"));
     cmd->add_flag("--presentation", args->presentation,
                   "Presentation mode (large fonts, high contrast)");
     cmd->add_option("--lesson", args->lesson, "A lesson (.toml): render one of its stops");

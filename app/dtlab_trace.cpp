@@ -53,7 +53,12 @@ void addTrace(CLI::App& app) {
     cmd->add_option("input", args->input, "Point file (.node, .csv, .xy, .pts)")->required();
     cmd->add_option("-o,--output", args->output, "Trace file (.jsonl)")->required();
     cmd->add_option("--limit", args->limit, "Stop after this many operations (default: none)")
-        ->check(CLI::NonNegativeNumber);
+        ->check(CLI::Validator(
+            [](std::string& v) {
+                return !v.empty() && v[0] == '-' ? "--limit must be 0 or more, not " + v
+                                                 : std::string();
+            },
+            "N >= 0"));
     args->engine.add(*cmd);
     cmd->callback([args] { guarded([&] { runTrace(*args); }); });
 }

@@ -34,7 +34,7 @@ std::string idList(const std::vector<std::int32_t>& ids, int base, std::size_t m
 // Refuses, before any work, outputs that would overwrite the input or each other.
 void checkOutputs(const TriangulateArgs& args) {
     if (args.base.empty() || std::filesystem::path(args.base).filename().empty())
-        fail("-o " + args.base + ": give a base name for the output files, e.g. -o out", 2);
+        fail("-o \"" + args.base + "\": give a base name for the output files, e.g. -o out", 2);
     std::vector<OutputFile> out;
     for (const char* ext : {".node", ".ele", ".neigh"}) out.push_back({args.base + ext, {}});
     for (const std::string* p : {&args.off, &args.obj, &args.svg, &args.voronoiSvg})

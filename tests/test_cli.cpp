@@ -294,7 +294,8 @@ TEST(Cli, FilesThatAreNotRegularAreRefusedInOneLineWithoutBlocking) {
     fs::create_symlink("/dev/zero", zero);
     const std::string folder = (dir / "folder.jsonl").string();
     fs::create_directories(folder);
-    const std::string lesson = writeFile(dir / "l.toml", "");
+    const std::string lesson =
+        std::string(DLAB_SOURCE_DIR) + "/lessons/10_assignment_insertion.toml";
     struct Case {
         std::string args, expect;
     };
@@ -302,7 +303,7 @@ TEST(Cli, FilesThatAreNotRegularAreRefusedInOneLineWithoutBlocking) {
         {"triangulate " + fifo + " -o " + (dir / "o").string(), "named pipe (FIFO)"},
         {"triangulate " + zero + " -o " + (dir / "o").string(), "a device"},
         {"diff-trace " + lesson + " " + folder, "a directory"},
-        {"lesson check " + fifo, "named pipe (FIFO)"},
+        {"lesson show " + fifo, "named pipe (FIFO)"},
         {"lesson show " + folder, "a directory"},
     };
     for (const Case& c : cases) {
@@ -313,6 +314,9 @@ TEST(Cli, FilesThatAreNotRegularAreRefusedInOneLineWithoutBlocking) {
         EXPECT_NE(r.out.find(c.expect), std::string::npos) << r.out;
         EXPECT_EQ(lineCount(r.out), 1) << r.out;
     }
+    const Result check = dtlabWithin(20, "lesson check " + fifo);
+    EXPECT_NE(check.status, 0);
+    EXPECT_NE(check.out.find("named pipe (FIFO)"), std::string::npos) << check.out;
 }
 
 TEST(Cli, OutputsThatAreTheInputOrEachOtherAreRefusedBeforeWriting) {
@@ -449,8 +453,9 @@ TEST(Cli, ALatticeLessonOfTheLargestSizeOpensWithinTheHistoryBudget) {
     // and the history stops at its budget instead of taking gigabytes.
     const fs::path dir = tempDir();
     std::string text = "title = \"lattice\"\nsummary = \"s\"\npoints = [";  // input order
-    for (int i = 0; i < 100000; ++i) {
-        text += (i ? "," : "") + std::string("[") + std::to_string(i % 316) + "," +
+    for (int i = 0; i < 100000; ++i) {  // each row from both ends in turn: long walks
+        const int k = i % 316, x = k % 2 ? 315 - k / 2 : k / 2;
+        text += (i ? "," : "") + std::string("[") + std::to_string(x) + "," +
                 std::to_string(i / 316) + "]";
     }
     text += "]\n[[stop]]\nrun_to = \"op:10\"\n";

@@ -88,12 +88,17 @@ namespace fs = std::filesystem;
 
 std::string errnoText(int e) { return std::generic_category().message(e); }
 
-// Where the bytes of an output go: the file a symbolic link points to, not the link.
+// Where the bytes of an output go: the file a symbolic link points to (followed link by link,
+// so a dangling link names the file it will create), not the link.
 fs::path targetOf(const std::string& path) {
+    fs::path p = path;
     std::error_code ec;
-    if (!fs::is_symlink(fs::symlink_status(path, ec))) return path;
-    const fs::path real = fs::weakly_canonical(path, ec);
-    return ec ? fs::path(path) : real;
+    for (int hops = 0; hops < 40 && fs::is_symlink(fs::symlink_status(p, ec)); ++hops) {
+        const fs::path to = fs::read_symlink(p, ec);
+        if (ec) break;
+        p = to.is_absolute() ? to : p.parent_path() / to;
+    }
+    return p;
 }
 
 // The identity of an existing file (device and inode, so hard links match too), or of the
@@ -161,6 +166,7 @@ void prepare(Pending& p) {
     if (exists && !S_ISREG(st.st_mode)) {
         // A device or pipe is written through; a pipe without a reader is refused, not waited on.
         const int fd = ::open(p.target.c_str(), O_WRONLY | O_NONBLOCK | O_NOCTTY | O_CLOEXEC);
+        if (fd < 0 && errno == ENXIO) cannotWrite(path, "it is a named pipe that nobody reads");
         if (fd < 0) cannotWrite(path, errnoText(errno));
         ::close(fd);
         return;
