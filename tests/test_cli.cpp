@@ -458,7 +458,7 @@ TEST(Cli, ALatticeLessonOfTheLargestSizeOpensWithinTheHistoryBudget) {
         text += (i ? "," : "") + std::string("[") + std::to_string(x) + "," +
                 std::to_string(i / 316) + "]";
     }
-    text += "]\n[[stop]]\nrun_to = \"op:10\"\n";
+    text += "]\n[[stop]]\nrun_to = \"op:10\"\ntext = \"t\"\n";
     const std::string lesson = writeFile(dir / "lattice.toml", text);
     const long kib = peakKibOfDtlab({"lesson", "check", lesson});
     ASSERT_GT(kib, 0) << "lesson check failed";
