@@ -485,6 +485,23 @@ bool saveSession(const AppState& st, const std::string& path, std::string& error
     return true;
 }
 
+// nlohmann's out_of_range 406, "number overflow parsing '1e400'", has no position: the line
+// is the number's first occurrence.
+static std::string numberTooLarge(std::string_view text, const std::string& name,
+                                  const std::string& what) {
+    const auto q1 = what.find('\''), q2 = what.rfind('\'');
+    const std::string number =
+        q1 < q2 && q2 != std::string::npos ? what.substr(q1 + 1, q2 - q1 - 1) : "";
+    int line = 0;
+    if (const auto at = number.empty() ? std::string_view::npos : text.find(number);
+        at != std::string_view::npos) {
+        line = 1;
+        for (std::size_t k = 0; k < at; ++k) line += text[k] == '\n';
+    }
+    return name + (line > 0 ? ":" + std::to_string(line) : "") + ": the number " +
+           escapeControls(number) + " is too large (a coordinate must be a finite double)";
+}
+
 bool loadSessionText(AppState& st, std::string_view textIn, const std::string& name,
                      std::string& error) {
     Session s;
@@ -503,19 +520,7 @@ bool loadSessionText(AppState& st, std::string_view textIn, const std::string& n
             name + ":" + std::to_string(line) + ": not valid JSON (" + escapeControls(what) + ")";
         return false;
     } catch (const Json::out_of_range& e) {
-        // 406: "number overflow parsing '1e400'", with no position: find the number's line.
-        std::string what = e.what();
-        const auto q1 = what.find('\''), q2 = what.rfind('\'');
-        const std::string number =
-            q1 < q2 && q2 != std::string::npos ? what.substr(q1 + 1, q2 - q1 - 1) : "";
-        int line = 0;
-        if (const auto at = number.empty() ? std::string_view::npos : textIn.find(number);
-            at != std::string_view::npos) {
-            line = 1;
-            for (std::size_t k = 0; k < at; ++k) line += textIn[k] == '\n';
-        }
-        error = name + (line > 0 ? ":" + std::to_string(line) : "") + ": the number " +
-                escapeControls(number) + " is too large (a coordinate must be a finite double)";
+        error = numberTooLarge(textIn, name, e.what());
         return false;
     } catch (const SessionError& e) {
         LineFinder finder(textIn);
