@@ -24,6 +24,7 @@ struct BenchArgs {
 void runBench(const BenchArgs& args) {
     const LoadedPoints loaded = loadPoints(args.input);
     const std::size_t n = loaded.points.size();
+    if (n == 0) fail(args.input + ": no points: there is nothing to time", 2);
     std::vector<double> ms;
     InsertStats stats;
     std::int32_t triangles = 0;
@@ -57,7 +58,7 @@ void runBench(const BenchArgs& args) {
     std::sort(ms.begin(), ms.end());
     const double median =
         ms.size() % 2 ? ms[ms.size() / 2] : (ms[ms.size() / 2 - 1] + ms[ms.size() / 2]) / 2;
-    const double pn = std::max<double>(1.0, static_cast<double>(n));
+    const auto pn = static_cast<double>(n);
     const double hitRate =
         locStats.queries ? static_cast<double>(locStats.hits) / locStats.queries : 0.0;
     if (args.json) {

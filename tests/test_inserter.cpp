@@ -477,3 +477,39 @@ TEST(Locators, BrioWalkIsShort) {
     EXPECT_LT(static_cast<double>(ins.stats().walkSteps) / 20000, 4.0);
     EXPECT_LT(static_cast<double>(ins.stats().flips) / 20000, 4.0);
 }
+
+TEST(Journal, StopsRecordingAtItsMemoryBudget) {
+    // Input order on a lattice walks far: a small budget is reached long before the end.
+    const auto pts = generatePoints(Generator::Grid, 2500, 1);
+    InsertOptions o;
+    o.order = OrderKind::Input;
+    Inserter ins(pts, o);
+    Journal journal(ins);
+    journal.setBudget(std::size_t{1} << 20);
+    while (journal.forward()) {}
+    EXPECT_TRUE(journal.budgetReached());
+    EXPECT_FALSE(ins.done());
+    EXPECT_LE(journal.memoryBytes(), journal.budget());
+    EXPECT_GT(journal.memoryBytes(), journal.budget() / 4);  // it did use the room it had
+    // Undo still works over what was recorded, and the run can go on unrecorded.
+    const std::size_t recorded = journal.recorded();
+    journal.seek(recorded / 2);
+    EXPECT_EQ(journal.position(), recorded / 2);
+    journal.seek(recorded);
+    while (!ins.done()) ins.step(nullptr);
+    EXPECT_EQ(checkDelaunayExact(ins.mesh()), "");
+    // The default budget is the documented one.
+    Journal fresh(ins);
+    EXPECT_EQ(fresh.budget(), kHistoryBudgetBytes);
+    EXPECT_EQ(kHistoryBudgetBytes, std::size_t{1} << 30);
+}
+
+TEST(Inserter, RefusesMorePointsThanTheReadersAccept) {
+    std::vector<Vec2> pts(kMaxPoints + 1);
+    try {
+        Inserter ins(std::move(pts));
+        ADD_FAILURE() << "accepted kMaxPoints + 1 points";
+    } catch (const std::invalid_argument& e) {
+        EXPECT_NE(std::string(e.what()).find(std::to_string(kMaxPoints)), std::string::npos);
+    }
+}

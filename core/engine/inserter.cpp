@@ -74,8 +74,6 @@ struct JournalRec {
     }
 };
 
-constexpr std::int32_t kMaxInputPoints = 1 << 26;  // corners and slots stay inside int32
-
 // Within one triangle: the index of next(c) and prev(c) for c = 3t + k.
 constexpr int kNext[3] = {1, 2, 0};
 constexpr int kPrev[3] = {2, 0, 1};
@@ -124,9 +122,9 @@ void adviseHugePages(void* data, std::size_t bytes) {
 Inserter::Inserter(std::vector<Vec2> points, const InsertOptions& options,
                    std::unique_ptr<Locator> locator)
     : m_options(options), m_locator(std::move(locator)) {
-    if (points.size() > static_cast<std::size_t>(kMaxInputPoints)) {
+    if (points.size() > kMaxPoints) {
         throw std::invalid_argument("too many points: " + std::to_string(points.size()) +
-                                    " (the limit is " + std::to_string(kMaxInputPoints) + ")");
+                                    " (the limit is " + std::to_string(kMaxPoints) + ")");
     }
     for (std::size_t i = 0; i < points.size(); ++i) {
         if (!std::isfinite(points[i].x) || !std::isfinite(points[i].y)) {
@@ -1195,8 +1193,25 @@ const Op* Journal::forward() {
         return &op;
     }
     if (m_ins->done()) return nullptr;
+    if (!fitsBudget()) {
+        m_budgetReached = true;
+        return nullptr;
+    }
     m_ins->step(this);
     return &m_ops.back();
+}
+
+bool Journal::fitsBudget() const {
+    // What the vectors hold after one more op if they grow (doubling; an op records at most a
+    // few dozen cell changes and one control snapshot).
+    constexpr std::size_t kChangesPerOpAtMost = 64;
+    auto grown = [](std::size_t size, std::size_t capacity, std::size_t more) {
+        return size + more <= capacity ? capacity : std::max(2 * capacity, size + more);
+    };
+    const std::size_t ops = grown(m_ops.size(), m_ops.capacity(), 1);
+    const std::size_t controls = grown(m_controls.size(), m_controls.capacity(), 1);
+    const std::size_t changes = grown(m_changes.size(), m_changes.capacity(), kChangesPerOpAtMost);
+    return ops * sizeof(Op) + controls * sizeof(Control) + changes * sizeof(CellChange) <= m_budget;
 }
 
 const Op* Journal::back() {

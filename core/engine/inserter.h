@@ -263,6 +263,11 @@ private:
     InsertStats m_stats;
 };
 
+// The most memory a Journal's history takes by default: 1 GiB (about 10 million operations
+// with their cell changes). Past it the journal stops recording: forward() returns nullptr and
+// budgetReached() says why; the run itself can go on unrecorded (Inserter::step(nullptr)).
+inline constexpr std::size_t kHistoryBudgetBytes = std::size_t{1} << 30;
+
 // The record of a run: ops and their cell changes, with a cursor for undo/redo.
 class Journal {
 public:
@@ -293,6 +298,15 @@ public:
                m_changes.size() * sizeof(CellChange);
     }
     std::size_t controlSnapshots() const { return m_controls.size(); }
+    // The history's memory budget (bytes of reserved ops, control snapshots and cell changes), and whether
+    // forward() stopped at it: then the run is not done, but nothing more is recorded.
+    void setBudget(std::size_t bytes) { m_budget = bytes; }
+    std::size_t budget() const { return m_budget; }
+    std::size_t memoryBytes() const {
+        return m_ops.capacity() * sizeof(Op) + m_controls.capacity() * sizeof(Control) +
+               m_changes.capacity() * sizeof(CellChange);
+    }
+    bool budgetReached() const { return m_budgetReached; }
 
     // Used by the inserter while recording.
     void record(const CellChange& c) { m_changes.push_back(c); }
@@ -306,6 +320,9 @@ private:
     std::vector<CellChange> m_changes;
     std::size_t m_pos = 0;
     Control m_tip;  // the inserter's control state after the last recorded op
+    std::size_t m_budget = kHistoryBudgetBytes;
+    bool m_budgetReached = false;
+    bool fitsBudget() const;  // room for one more op without passing the budget
 };
 
 }  // namespace dlab
