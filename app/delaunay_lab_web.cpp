@@ -50,6 +50,7 @@ struct WebApp {
     double lastSync = 0;
     // Files in /downloads seen at the end of the last frame, with their sizes.
     std::map<std::string, std::uintmax_t> pending;
+    long frames = 0;  // frames drawn (the test hook waits on it)
 };
 
 WebApp* g_app = nullptr;
@@ -72,6 +73,9 @@ EM_JS(void, offerDownload, (const char* path), {
     const p = UTF8ToString(path);
     const name = p.substring(p.lastIndexOf("/") + 1);
     if (Module.onDownload) Module.onDownload(name, FS.readFile(p));
+});
+EM_JS(void, showFatal, (const char* text), {
+    Module.fatal(UTF8ToString(text));
 });
 EM_JS(void, openFilePicker, (), {
     if (Module.openFilePicker) Module.openFilePicker();
@@ -201,6 +205,7 @@ void frame() {
         openFilePicker();  // the browser's own dialog; the page calls dlab_web_open
     }
     app.gui->frame();
+    ++app.frames;
     dlab::ui::serviceCaptures(*app.gui);
     serviceDownloads(app);
     saveState(app, false);
@@ -245,7 +250,7 @@ EMSCRIPTEN_KEEPALIVE void dlab_web_start() {
     if (!warning.empty()) st.log(dlab::ui::Message::Level::Warning, warning);
     app->platform = dlab::ui::makeWebPlatform(pageWidth(), pageHeight(), error);
     if (!app->platform) {
-        EM_ASM({ Module.fatal(UTF8ToString($0)); }, error.c_str());
+        showFatal(error.c_str());
         return;
     }
     app->gui = std::make_unique<dlab::ui::Gui>(*app->platform, st);
@@ -302,8 +307,10 @@ EMSCRIPTEN_KEEPALIVE const char* dlab_web_test_info() {
     const auto& lp = st.lessonPlayer;
     j["lesson"] = lp.lesson ? lp.lesson->title : "";
     j["stop"] = lp.lesson ? static_cast<long>(lp.progress.stop) + 1 : 0;
+    j["frame"] = g_app->frames;
     j["frameMs"] = g_app->gui ? g_app->gui->lastFrameMs() : 0.0;
     j["gl"] = st.engine.glContext() ? st.engine.glContext()->version() : "";
+    for (const auto& [name, r] : st.itemRects) j["rects"][name] = {r[0], r[1], r[2], r[3]};
     text = j.dump();
     return text.c_str();
 }

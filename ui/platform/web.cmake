@@ -23,7 +23,6 @@ add_library(dlab_platform_web STATIC platform/platform_web.cpp)
 add_library(dlab::platform_web ALIAS dlab_platform_web)
 target_link_libraries(dlab_platform_web PUBLIC dlab::ui)
 target_link_options(dlab_platform_web PUBLIC ${DLAB_WEB_LINK_OPTIONS})
-target_compile_options(dlab_platform_web PUBLIC -sUSE_GLFW=3)
 
 # The page: the GUI on a canvas that fills the window, the file picker, downloads, IndexedDB,
 # URL parameters, touch, Table 1, and the hooks the browser test drives.
