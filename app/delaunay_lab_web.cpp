@@ -200,10 +200,6 @@ void frame() {
         const fs::path p(dropped);
         openInFolder(st, p.parent_path().string(), p.filename().string());
     }
-    if (st.files.dialog == dlab::ui::FileState::Dialog::OpenFile) {
-        st.files.dialog = dlab::ui::FileState::Dialog::None;
-        openFilePicker();  // the browser's own dialog; the page calls dlab_web_open
-    }
     app.gui->frame();
     ++app.frames;
     dlab::ui::serviceCaptures(*app.gui);
@@ -254,6 +250,8 @@ EMSCRIPTEN_KEEPALIVE void dlab_web_start() {
         return;
     }
     app->gui = std::make_unique<dlab::ui::Gui>(*app->platform, st);
+    // File > Open is the browser's file chooser; the page then calls dlab_web_open.
+    st.files.platformOpenDialog = [] { openFilePicker(); };
     st.setOptions(dlab::ui::demoOptions());
     st.loadPoints(dlab::demoPoints(), "built-in demo");
     applyUrl(*app);
@@ -308,6 +306,11 @@ EMSCRIPTEN_KEEPALIVE const char* dlab_web_test_info() {
     j["lesson"] = lp.lesson ? lp.lesson->title : "";
     j["stop"] = lp.lesson ? static_cast<long>(lp.progress.stop) + 1 : 0;
     j["frame"] = g_app->frames;
+    int width = 0, height = 0;
+    if (g_app->platform) g_app->platform->framebufferSize(width, height);
+    j["width"] = width;
+    j["height"] = height;
+    j["scale"] = st.view.scale;
     j["frameMs"] = g_app->gui ? g_app->gui->lastFrameMs() : 0.0;
     j["gl"] = st.engine.glContext() ? st.engine.glContext()->version() : "";
     for (const auto& [name, r] : st.itemRects) j["rects"][name] = {r[0], r[1], r[2], r[3]};

@@ -185,6 +185,29 @@ try {
   check(dl.name.endsWith(".json") && dl.text && JSON.parse(dl.text).points !== undefined,
         `Save session handed ${dl.name} (${dl.size} bytes) to the browser as a download`);
 
+  // ---- Resize and touch: the canvas follows the window; a tap clicks, a pinch zooms -------------
+  await page.setViewport({ width: 1024, height: 640, hasTouch: true });
+  i = await waitFor(page, (x) => x.width === 1024 && x.height === 640, "the canvas at 1024 x 640");
+  check(true, "the canvas followed the window to 1024 x 640");
+  i = await waitFor(page, (x) => x.rects && x.rects[">"], "the step button");
+  const [bx0, by0, bx1, by1] = i.rects[">"];
+  const before = i.position;
+  await page.touchscreen.tap((bx0 + bx1) / 2, (by0 + by1) / 2);
+  i = await waitFor(page, (x) => x.position === before + 1, "a tap on the step button");
+  check(true, `a tap on ">" stepped once (operation ${before} -> ${i.position})`);
+  const cdp = await page.createCDPSession();
+  const scale0 = i.scale, cx = 300, cy = 350;
+  const fingers = (d) => [{ x: cx - d, y: cy }, { x: cx + d, y: cy }];
+  await cdp.send("Input.dispatchTouchEvent", { type: "touchStart", touchPoints: fingers(40) });
+  for (let d = 50; d <= 160; d += 10) {
+    await cdp.send("Input.dispatchTouchEvent", { type: "touchMove", touchPoints: fingers(d) });
+    await sleep(30);
+  }
+  await cdp.send("Input.dispatchTouchEvent", { type: "touchEnd", touchPoints: [] });
+  i = await waitFor(page, (x) => x.scale > scale0 * 1.5, "the pinch to zoom in");
+  check(true, `a pinch apart zoomed in (${scale0.toFixed(3)} -> ${i.scale.toFixed(3)} px/unit)`);
+  await page.setViewport({ width: 1280, height: 720 });
+
   // ---- 5. Table 1 on WebGL2 ------------------------------------------------------------------
   await page.click("#table1-open");
   const t1 = await page.evaluate(() => window.dlab.runTable1({
