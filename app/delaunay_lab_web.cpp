@@ -67,7 +67,10 @@ EM_JS(char*, pageQuery, (), {
 EM_JS(int, pageWidth, (), { return window.innerWidth | 0; });
 EM_JS(int, pageHeight, (), { return window.innerHeight | 0; });
 EM_JS(void, syncPersist, (), {
-    FS.syncfs(false, function(err) { if (err) console.warn("IndexedDB: " + err); });
+    FS.syncfs(false, function(err) {
+        if (err) console.warn("IndexedDB: " + err);
+        if (window.dlab) window.dlab.syncs = (window.dlab.syncs || 0) + 1;
+    });
 });
 EM_JS(void, offerDownload, (const char* path), {
     const p = UTF8ToString(path);
@@ -168,7 +171,7 @@ void saveState(WebApp& app, bool force) {
     if (!dlab::ui::saveSettings(app.settingsPath, app.state, window, error))
         app.state.log(dlab::ui::Message::Level::Warning, error);
     std::string now_text = persistedText();
-    if (now_text == app.persisted) return;
+    if (!force && now_text == app.persisted) return;
     app.persisted = std::move(now_text);
     syncPersist();
 }

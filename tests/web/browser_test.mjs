@@ -95,10 +95,10 @@ async function clickItem(page, name) {
   await page.mouse.click((x0 + x1) / 2, (y0 + y1) / 2);
 }
 
-async function newPage() {  // each in a context of its own: its own IndexedDB
+async function newPage(hasTouch = false) {  // each in a context of its own: its own IndexedDB
   const context = await browser.createBrowserContext();
   const p = await context.newPage();
-  await p.setViewport({ width: 1280, height: 720 });
+  await p.setViewport({ width: 1280, height: 720, hasTouch: hasTouch });
   p.on("pageerror", (e) => console.log("page error: " + e.message));
   return p;
 }
@@ -154,13 +154,14 @@ try {
         `presentation ${i.presentation}`);
   await sleep(300);
   await page.screenshot({ path: path.join(outDir, "web-lesson-presentation.png") });
+  const syncs = await page.evaluate("window.dlab.syncs || 0");
   await page.evaluate("Module.ccall('dlab_web_save_state', null, [], [])");
-  await sleep(500);  // IndexedDB writes are asynchronous
+  await page.waitForFunction(`(window.dlab.syncs || 0) > ${syncs}`, { timeout: 10000 });
   await open(page, "");
   i = await info(page);
   check(i.presentation, "presentation mode came back from IndexedDB after a reload");
   // ---- 3. A bad file through File > Open ------------------------------------------------------
-  page = await newPage();
+  page = await newPage(true);
   await open(page, "?points=scattered24");
   i = await info(page);
   check(i.points === 24 && i.notice === "", `?points=scattered24 opened ${i.points} points`);
@@ -206,7 +207,7 @@ try {
   await cdp.send("Input.dispatchTouchEvent", { type: "touchEnd", touchPoints: [] });
   i = await waitFor(page, (x) => x.scale > scale0 * 1.5, "the pinch to zoom in");
   check(true, `a pinch apart zoomed in (${scale0.toFixed(3)} -> ${i.scale.toFixed(3)} px/unit)`);
-  await page.setViewport({ width: 1280, height: 720 });
+  await page.setViewport({ width: 1280, height: 720, hasTouch: true });
 
   // ---- 5. Table 1 on WebGL2 ------------------------------------------------------------------
   await page.click("#table1-open");
@@ -222,6 +223,7 @@ try {
   await page.screenshot({ path: path.join(outDir, "web-table1.png") });
 } catch (e) {
   check(false, "the test stopped: " + e.message);
+  console.log(e.stack);
   await page.screenshot({ path: path.join(outDir, "web-failure.png") }).catch(() => {});
 } finally {
   await browser.close();

@@ -139,6 +139,22 @@
   for (const type of ["touchstart", "touchmove", "touchend", "touchcancel"])
     document.addEventListener(type, onTouch, { capture: true, passive: false });
 
+  // ---- The wheel: Emscripten 3.1.6's GLFW hands the DOM's deltas on as they are (100 per notch
+  // in Chrome, the sign opposite to GLFW's), so ImGui would zoom by 1.2^100. Each wheel event on
+  // the canvas is replaced by one in GLFW's units: +1 per notch up.
+  function onWheel(e) {
+    if (e.target !== canvas || e.dlabNormalized) return;
+    e.preventDefault();
+    e.stopPropagation();
+    const unit = e.deltaMode === 1 ? 3 : e.deltaMode === 2 ? 1 / 80 : 100;
+    const ev = new WheelEvent("wheel", { clientX: e.clientX, clientY: e.clientY,
+                                         deltaX: -e.deltaX / unit, deltaY: -e.deltaY / unit,
+                                         deltaMode: 0, bubbles: true, cancelable: true });
+    ev.dlabNormalized = true;
+    canvas.dispatchEvent(ev);
+  }
+  document.addEventListener("wheel", onWheel, { capture: true, passive: false });
+
   // ---- Table 1 on this GPU: each (size, method) run is one call, with the page updated between.
   const methods = ["naive", "idbuffer-gl", "idbuffer-gl-batched", "idbuffer-cpu", "walk", "best"];
   const colours = ["#d62728", "#1f77b4", "#17becf", "#2ca02c", "#9467bd", "#7f7f7f"];
