@@ -6,7 +6,8 @@
 //   2. ?lesson=05_flips&stop=2&presentation=1 opens the lesson at its stop in presentation mode;
 //      presentation mode comes back from IndexedDB after a reload; screenshot
 //   3. a bad point file, opened through File > Open (Ctrl+O, the browser's file chooser), shows
-//      one line naming the file and the line; the run is unchanged
+//      one line naming the file and the line; the run is unchanged; a good file's points are
+//      autosaved to IndexedDB and offered back on the next visit
 //   4. Ctrl+S and the dialog's Save button hand a session to the browser as a download
 //   5. the canvas follows the window; a tap clicks, a pinch zooms
 //   6. Table 1 runs every method at two small sizes on WebGL2 and plots them; screenshot
@@ -183,6 +184,26 @@ try {
   check(/^bad_points\.csv:3: /.test(i.notice) && !i.notice.includes("\n") && i.points === 24,
         `the bad file gave one line and changed nothing: "${i.notice}"`);
   await page.screenshot({ path: path.join(outDir, "web-bad-file.png") });
+
+  // A good file the same way; its points are autosaved to IndexedDB, and after the tab is gone
+  // the next visit offers them back.
+  const good = path.join(path.dirname(bad), "square.csv");
+  fs.writeFileSync(good, "x,y\n0,0\n100,0\n100,100\n0,100\n40,60\n");
+  const [chooser2] = await Promise.all([page.waitForFileChooser({ timeout: 10000 }),
+                                        chord(page, ["Control", "o"])]);
+  await chooser2.accept([good]);
+  i = await waitFor(page, (x) => x.points === 5, "the good file");
+  await sleep(300);  // the autosave is written after the frame that changed the points
+  const synced = await page.evaluate("window.dlab.syncs || 0");
+  await page.evaluate("Module.ccall('dlab_web_save_state', null, [], [])");
+  await page.waitForFunction(`(window.dlab.syncs || 0) > ${synced}`, { timeout: 10000 });
+  await open(page, "");
+  i = await info(page);
+  check(i.recovery !== "" && i.points === 12,
+        "after the tab was gone, the demo opens with an offer to recover the autosave");
+  await clickItem(page, "recover");
+  i = await waitFor(page, (x) => x.points === 5, "the recovered points");
+  check(i.recovery === "", "Recover brought the 5 points of square.csv back");
 
   // ---- 4. Save a session: a download ----------------------------------------------------------
   await chord(page, ["Control", "s"]);
