@@ -119,13 +119,15 @@ try {
   while (!sawFlip) {
     const before = i.position;
     i = await press(page, "ArrowRight", (x) => x.position > before);
+    // The line of the operation just done (a held key may have repeated: its own index).
     const line = await lastOp(page);
     const record = JSON.parse(line);
-    if (line !== native[i.position - 1]) {
-      check(false, `operation ${i.position - 1} differs from the native trace:\n  browser ${line}` +
-                   `\n  native  ${native[i.position - 1]}`);
+    if (line !== native[record.i]) {
+      check(false, `operation ${record.i} differs from the native trace:\n  browser ${line}` +
+                   `\n  native  ${native[record.i]}`);
       break;
     }
+    i = await info(page);
     compared++;
     sawFlip = record.op === "Flip";
   }
