@@ -315,7 +315,8 @@ EMSCRIPTEN_KEEPALIVE const char* dlab_web_test_info() {
     j["height"] = height;
     j["scale"] = st.view.scale;
     j["frameMs"] = g_app->gui ? g_app->gui->lastFrameMs() : 0.0;
-    j["gl"] = st.engine.glContext() ? st.engine.glContext()->version() : "";
+    const auto gl = std::dynamic_pointer_cast<dlab::ui::GlContext>(st.engine.glContext());
+    j["gl"] = gl ? gl->version() : "";
     for (const auto& [name, r] : st.itemRects) j["rects"][name] = {r[0], r[1], r[2], r[3]};
     text = j.dump();
     return text.c_str();
@@ -351,7 +352,7 @@ double dlab_web_table1_run(int n, int method, int seed) {
         {LocatorKind::Walk, OrderKind::Brio},
     };
     if (!g_app || method < 0 || method >= 6 || n < 3 || n > (1 << 22)) return -1;
-    const auto& gl = g_app->state.engine.glContext();
+    const auto gl = std::dynamic_pointer_cast<dlab::ui::GlContext>(g_app->state.engine.glContext());
     const Method m = kMethods[method];
     const bool needsGl =
         m.locator == LocatorKind::IdBufferGl || m.locator == LocatorKind::IdBufferGlBatched;

@@ -2,6 +2,8 @@
 // context, ImGui's GLFW backend for input. The page resizes the canvas through resize().
 #include "ui/platform/platform_web.h"
 
+#include "ui/gl/gl_renderer.h"
+
 #define GLFW_INCLUDE_NONE  // GL comes from ui/gl/gl_api.h, never from here
 #include <GLFW/glfw3.h>
 #include <imgui.h>
@@ -30,6 +32,7 @@ public:
     }
     const char* name() const override { return "webgl2"; }
     bool headless() const override { return false; }
+    std::unique_ptr<Renderer> makeRenderer() override { return makeGlRenderer(); }
     void framebufferSize(int& width, int& height) const override {
         glfwGetFramebufferSize(m_window, &width, &height);
     }

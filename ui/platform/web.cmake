@@ -6,7 +6,7 @@
 file(GLOB DLAB_UI_SOURCES CONFIGURE_DEPENDS
      ${PROJECT_SOURCE_DIR}/ui/*.cpp
      ${PROJECT_SOURCE_DIR}/ui/panels/*.cpp
-     ${PROJECT_SOURCE_DIR}/ui/gl/*.cpp
+     ${PROJECT_SOURCE_DIR}/ui/render/*.cpp
      ${PROJECT_SOURCE_DIR}/ui/files/*.cpp)
 add_library(dlab_ui STATIC ${DLAB_UI_SOURCES})
 add_library(dlab::ui ALIAS dlab_ui)
@@ -14,6 +14,11 @@ target_include_directories(dlab_ui PUBLIC ${PROJECT_SOURCE_DIR})
 target_compile_definitions(dlab_ui PRIVATE DLAB_LESSONS_DIR="/lessons")  # bundled (below)
 target_link_libraries(dlab_ui PUBLIC dlab::engine dlab::teaching PkgConfig::IMGUI glm::glm)
 target_link_libraries(dlab_ui PRIVATE GIF::GIF nlohmann_json::nlohmann_json)
+
+file(GLOB DLAB_UI_GL_SOURCES CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/ui/gl/*.cpp)
+add_library(dlab_ui_gl STATIC ${DLAB_UI_GL_SOURCES})
+add_library(dlab::ui_gl ALIAS dlab_ui_gl)
+target_link_libraries(dlab_ui_gl PUBLIC dlab::ui)
 set_source_files_properties(${PROJECT_SOURCE_DIR}/ui/gl/imgui_backend.cpp PROPERTIES
   COMPILE_DEFINITIONS "DLAB_IMGUI_OPENGL3_SOURCE=\"${DLAB_IMGUI_SOURCE_DIR}/backends/imgui_impl_opengl3.cpp\""
   COMPILE_OPTIONS "-w")
@@ -21,7 +26,7 @@ set_source_files_properties(${PROJECT_SOURCE_DIR}/ui/gl/imgui_backend.cpp PROPER
 set(DLAB_WEB_LINK_OPTIONS -sUSE_GLFW=3 -sMIN_WEBGL_VERSION=2 -sMAX_WEBGL_VERSION=2)
 add_library(dlab_platform_web STATIC platform/platform_web.cpp)
 add_library(dlab::platform_web ALIAS dlab_platform_web)
-target_link_libraries(dlab_platform_web PUBLIC dlab::ui)
+target_link_libraries(dlab_platform_web PUBLIC dlab::ui_gl)
 target_link_options(dlab_platform_web PUBLIC ${DLAB_WEB_LINK_OPTIONS})
 
 # The page: the GUI on a canvas that fills the window, the file picker, downloads, IndexedDB,
