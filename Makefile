@@ -83,7 +83,8 @@ deps:
 		echo "deps: optional fuzzing packages missing ($(FUZZ_DEB_PACKAGES)): fuzzing will be skipped"; \
 	fi
 
-# The browser test's tools: as root they are installed; otherwise the test is skipped when absent.
+# The browser test's tools, before the configure step (which registers Web.Browser when they are
+# there): as root they are installed; otherwise the test is not registered when they are absent.
 web-test-deps:
 	@if [[ "$(WEB_TEST)" == 0 ]]; then echo "deps: WEB_TEST=0: the browser test is off"; exit 0; fi; \
 	if [[ $$(id -u) -eq 0 ]]; then \
@@ -124,7 +125,7 @@ build: configure
 run: build
 	$(BUILD_DIR)/app/delaunay-lab --headless-png $(BUILD_DIR)/demo.png
 
-test: build web-test-deps
+test: web-test-deps build
 	ctest --test-dir $(BUILD_DIR) --output-on-failure --no-tests=error -j $(CTEST_JOBS) \
 		$(if $(filter 0,$(WEB_TEST)),-E '^Web\.Browser$$')
 	@if [[ "$(TEST_FUZZ_SECONDS)" == 0 ]]; then echo "fuzz: SKIPPED: TEST_FUZZ_SECONDS=0"; \
@@ -137,7 +138,8 @@ asan: deps
 	UBSAN_OPTIONS=print_stacktrace=1 \
 		LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan.supp:print_suppressions=0 \
 		ctest --test-dir $(ASAN_DIR) --output-on-failure --no-tests=error -j $(CTEST_JOBS) \
-		-E '^Gui\.RealWindowUnderXvfb$$'
+		-E '^(Gui\.RealWindowUnderXvfb|Web\.Browser)$$'
+	@# Web.Browser tests the WebAssembly build, which sanitizers do not change: make test runs it.
 	@# The real-window test with ASan and UBSan but no leak check: glfwTerminate unloads Mesa's
 	@# DRI driver (swrast_dri.so), and the caches its globals pointed to then look leaked from an
 	@# <unknown module>; a minimal GLFW program under Xvfb shows the same 128 bytes.
