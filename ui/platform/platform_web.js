@@ -216,7 +216,7 @@
     document.getElementById("t1-result").innerHTML = html + "</table>";
     // Log-log plot: ms against n.
     const svg = document.getElementById("t1-plot");
-    const W = 540, H = 320, L = 60, R = 130, T = 12, B = 36;
+    const W = 540, H = 320, L = 74, R = 130, T = 12, B = 36;
     const all = res.ms.flat().filter((v) => v > 0);
     if (!all.length) { svg.innerHTML = ""; return; }
     const x0 = Math.log2(Math.min(...res.sizes)), x1 = Math.max(x0 + 1, Math.log2(Math.max(...res.sizes)));
