@@ -735,6 +735,10 @@ void ShowCanvas(AppState& st) {
             view.fit(b.lo, b.hi);
         st.fitPending = false;
     }
+    if (auto& box = st.lessonPlayer.pendingView) {  // a lesson stop's view
+        view.fit({(*box)[0], (*box)[1]}, {(*box)[2], (*box)[3]});
+        box.reset();
+    }
     ImGui::InvisibleButton("##canvas", size,
                            ImGuiButtonFlags_MouseButtonLeft | ImGuiButtonFlags_MouseButtonRight |
                                ImGuiButtonFlags_MouseButtonMiddle);
@@ -799,6 +803,7 @@ void ShowCanvas(AppState& st) {
         }
     }
     if (st.overlays.voronoi) DrawVoronoi(scene);
+    DrawGhostTriangles(st, dl);
     DrawOpOverlay(scene);
     std::int32_t hoveredCorner = kNone;
     DrawLabels(scene, hoveredCorner, ImGui::GetIO().MousePos, hovered);
