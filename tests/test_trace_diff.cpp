@@ -639,6 +639,10 @@ TEST(AssignmentChecker, MissingFlipIsNamedAtItsInsertion) {
     EXPECT_NE(p.diff.what.find("not Delaunay at edge"), std::string::npos) << p.report;
     EXPECT_NE(p.diff.what.find("is inside the circle of"), std::string::npos) << p.report;
     EXPECT_NE(p.diff.what.find("missing flip of edge"), std::string::npos) << p.report;
+    // The message README.md quotes.
+    EXPECT_EQ(p.diff.what,
+              "after inserting point 9 (insertion 10 of 38): not Delaunay at edge 1\u20136: vertex "
+              "4 is inside the circle of 1 6 9; missing flip of edge 1\u20136 (expected 4\u20139)");
 }
 
 TEST(AssignmentChecker, FlipOfADelaunayEdgeIsNamed) {

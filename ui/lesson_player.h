@@ -31,6 +31,7 @@ struct LessonState {
     // settings save while a lesson is open).
     std::shared_ptr<const Overlays> userOverlays;
     float slideQuestionHeight = 0;  // the slide's question block, as laid out last frame
+    float slideTextHeight = 0;      // and the height the stop's text needed
     // Progress of every lesson opened, by path (persisted with the settings).
     std::map<std::string, LessonProgress> saved;
 };

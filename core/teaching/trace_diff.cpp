@@ -431,6 +431,14 @@ std::vector<Step> stepsOf(const TraceFile& f) {
     return steps;
 }
 
+// The step's last op that changed the mesh: after it, the mesh is the step's result.
+std::size_t lastChange(const TraceFile& f, const Step& step) {
+    for (std::size_t i = step.end; i-- > step.lead;) {
+        if (f.ops[i].changesMesh()) return i;
+    }
+    return step.lead;
+}
+
 // The flip a Flip op made, from the two triangles it left: they share the new edge; their
 // other vertices are the ends of the removed one.
 std::optional<FlipMade> flipOf(const std::vector<Triple>& two) {
@@ -510,8 +518,8 @@ TraceDiff diffInsertions(const TraceFile& ref, const TraceFile& student) {
         d.equal = false;
         d.insertion = insertion;
         d.vertex = lead.vertex && lead.type != OpType::Finalize ? *lead.vertex : -1;
-        d.refOp = rs[k].end - 1;
-        d.studentOp = ss[k].end - 1;
+        d.refOp = lastChange(ref, rs[k]);
+        d.studentOp = lastChange(student, ss[k]);
         d.what = stepName(lead, insertion, insertions) + ": " + verdict.reason;
         const TraceOp& theirs = student.ops[ss[k].lead];
         if (theirs.type != lead.type)

@@ -294,6 +294,10 @@ TEST(LessonPlayer, ClosingALessonBringsBackTheUsersOverlays) {
     EXPECT_TRUE(st.overlays.cornerIds);
     EXPECT_TRUE(st.overlays.walk);
     EXPECT_FALSE(st.overlays.circumcircles);
-    // A stop's zoom is not left behind: the canvas fits the points again.
-    EXPECT_TRUE(st.fitPending);
+    // A stop's zoom is not left behind: the canvas shows every point again.
+    const auto canvas = h.rect("canvas");
+    for (const dlab::Vec2& p : st.engine.points()) {
+        const auto q = st.view.toScreen(p);
+        EXPECT_TRUE(q.x >= canvas[0] && q.x <= canvas[2] && q.y >= canvas[1] && q.y <= canvas[3]);
+    }
 }

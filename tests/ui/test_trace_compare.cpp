@@ -68,6 +68,10 @@ TEST(TraceCompare, AStudentWhoMissedAFlipIsShownAtThatInsertionAndBothRunsStepTo
     EXPECT_GT(tc.diff.insertion, 0) << tc.diff.what;
     EXPECT_GE(tc.diff.refOp, flip) << tc.diff.what;
     EXPECT_LT(tc.diff.refOp, stepEnd) << tc.diff.what;
+    EXPECT_TRUE(st.engine.current()->type == dlab::OpType::Flip ||
+                st.engine.current()->type == dlab::OpType::Split ||
+                st.engine.current()->type == dlab::OpType::SplitEdge)
+        << "the canvas shows our mesh as that insertion left it";
     EXPECT_EQ(st.engine.position(), tc.diff.refOp + 1);
     EXPECT_EQ(st.engine.points(), points);  // nothing else changed
     EXPECT_EQ(st.messages.back().level, dlab::ui::Message::Level::Warning);

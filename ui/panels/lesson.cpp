@@ -173,8 +173,10 @@ void ShowSlide(AppState& st) {
         ImGuiWindowFlags_NoScrollbar | ImGuiWindowFlags_NoScrollWithMouse;
     const ImVec2 avail = ImGui::GetContentRegionAvail();
     const float gap = ImGui::GetStyle().ItemSpacing.x;
-    const float sideW =
-        std::clamp(avail.x * 0.4f, std::min(300.0f, avail.x * 0.5f), avail.x * 0.6f);
+    // A slide with a side tab gives the column more room.
+    const PanelFn tab = SlideTab(*L.lesson, k);
+    const float sideW = std::clamp(avail.x * (tab ? 0.48f : 0.4f), std::min(300.0f, avail.x * 0.5f),
+                                   avail.x * 0.6f);
     ImGui::BeginChild("##slidecanvas", ImVec2(avail.x - sideW - gap, avail.y), false, still);
     ShowCanvas(st);
     DrawDebugOverlays(st);
@@ -183,16 +185,17 @@ void ShowSlide(AppState& st) {
     ImGui::EndChild();
     ImGui::SameLine(0, gap);
     ImGui::BeginChild("##slideside", ImVec2(sideW, avail.y), false, still);
-    // The question's height from the last frame (it is laid out last, pinned to the bottom).
-    const PanelFn tab = SlideTab(*L.lesson, k);
+    // The question and the text's heights come from the last frame: the question is pinned to
+    // the bottom, the text takes what it needs (at most 70 % with a tab), the tab the rest.
     const float rest = std::max(0.0f, avail.y - L.slideQuestionHeight);
-    const float tabH = tab ? rest * 0.55f : 0.0f;
-    ImGui::BeginChild("##slidetext", ImVec2(0, std::max(1.0f, rest - tabH)), false);
+    const float textH = tab ? std::clamp(L.slideTextHeight, rest * 0.3f, rest * 0.7f) : rest;
+    ImGui::BeginChild("##slidetext", ImVec2(0, std::max(1.0f, textH)), false);
     RichText(stop.text);
+    L.slideTextHeight = ImGui::GetCursorPosY() + ImGui::GetStyle().ItemSpacing.y;
     ImGui::EndChild();
     RecordItem(st, "slide-text");
     if (tab) {
-        ImGui::BeginChild("##slidetab", ImVec2(0, tabH), true);
+        ImGui::BeginChild("##slidetab", ImVec2(0, std::max(1.0f, rest - textH)), true);
         tab(st);
         ImGui::EndChild();
         RecordItem(st, "slide-tab");
@@ -200,9 +203,10 @@ void ShowSlide(AppState& st) {
     const float y0 = ImGui::GetCursorScreenPos().y;
     const float x0 = ImGui::GetCursorScreenPos().x;
     Question(st, stop, k);
-    const float y1 = ImGui::GetCursorScreenPos().y;
-    L.slideQuestionHeight =
-        stop.question.empty() ? 0.0f : y1 - y0 + ImGui::GetStyle().ItemSpacing.y;
+    // The cursor waits one item spacing below the last item (and the text child above keeps one).
+    const float spacing = ImGui::GetStyle().ItemSpacing.y;
+    const float y1 = ImGui::GetCursorScreenPos().y - spacing;
+    L.slideQuestionHeight = stop.question.empty() ? 0.0f : y1 - y0 + 2 * spacing;
     // Not clipped (unlike RecordItem): tests check that the whole question is on the slide.
     if (!stop.question.empty()) st.itemRects["slide-question"] = {x0, y0, x0 + sideW, y1};
     ImGui::EndChild();
