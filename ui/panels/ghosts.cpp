@@ -1,21 +1,51 @@
-// Ghost triangles on the canvas (exact mode, "virtual-triangles" overlay): each stands for the
-// open half-plane beyond one hull edge, drawn as a grey band along that edge on the outside, so
-// that lessons can show what "the walk ends in a ghost triangle" means.
+// Virtual triangles on the canvas ("virtual-triangles" overlay). Exact mode: each ghost triangle
+// stands for the open half-plane beyond one hull edge, drawn as a grey band along that edge on
+// the outside, so that lessons can show what "the walk ends in a ghost triangle" means. Super
+// mode: the super-triangle's vertices are labelled.
 #include "ui/panels/panels.h"
 
 #include <imgui.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
 namespace dlab::ui {
 
+namespace {
+
+// Super mode: the super-triangle's vertices are named like the tables name them ("4 (s0)").
+void LabelSuperVertices(AppState& st, ImDrawList* dl) {
+    const Engine& e = st.engine;
+    const Inserter& ins = e.inserter();
+    const Mesh& m = e.mesh();
+    for (std::int32_t v = ins.firstVirtual(); v < m.numVertices(); ++v) {
+        const glm::dvec2 q = st.view.toScreen(m.G[v]);
+        const std::string label =
+            std::to_string(v) + " (s" + std::to_string(v - ins.firstVirtual()) + ")";
+        const ImVec2 size = ImGui::CalcTextSize(label.c_str());
+        // Inside the canvas, beside the vertex.
+        const float x =
+            std::clamp(static_cast<float>(q.x) + 6, static_cast<float>(st.view.origin.x),
+                       static_cast<float>(st.view.origin.x + st.view.size.x) - size.x);
+        const float y =
+            std::clamp(static_cast<float>(q.y) - size.y - 4, static_cast<float>(st.view.origin.y),
+                       static_cast<float>(st.view.origin.y + st.view.size.y) - size.y);
+        dl->AddText(ImVec2(x, y), IM_COL32(110, 115, 130, 255), label.c_str());
+    }
+}
+
+}  // namespace
+
 void DrawGhostTriangles(AppState& st, ImDrawList* dl) {
     const Engine& e = st.engine;
-    if (e.batch() || !st.overlays.virtualTriangles || e.options().boundary != Boundary::Exact)
-        return;
+    if (e.batch() || !st.overlays.virtualTriangles) return;
     const Inserter& ins = e.inserter();
     if (ins.done()) return;
+    if (e.options().boundary == Boundary::Super) {
+        if (st.overlays.vertexIds) LabelSuperVertices(st, dl);
+        return;
+    }
     const Mesh& m = e.mesh();
     constexpr std::int32_t kMostBands = 2000;
     const float band = ImGui::GetFontSize() * 2.2f;
