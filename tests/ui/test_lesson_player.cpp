@@ -177,7 +177,7 @@ void everyStopFits(int width, int height) {
             ASSERT_TRUE(dlab::ui::slideMode(st)) << where;
             EXPECT_TRUE(st.itemRects.count("slide-text")) << where;
             EXPECT_FALSE(st.itemRects.count("messages")) << where;
-            EXPECT_TRUE(st.itemRects.count("slide-next")) << where;
+            EXPECT_TRUE(st.itemRects.count("lesson-next")) << where;
             if (stops[k].question.empty()) continue;
             ASSERT_TRUE(st.itemRects.count("slide-question")) << where;
             EXPECT_TRUE(inside(st.itemRects["slide-question"], width, height))
@@ -300,4 +300,17 @@ TEST(LessonPlayer, ClosingALessonBringsBackTheUsersOverlays) {
         const auto q = st.view.toScreen(p);
         EXPECT_TRUE(q.x >= canvas[0] && q.x <= canvas[2] && q.y >= canvas[1] && q.y <= canvas[3]);
     }
+}
+
+TEST(LessonPlayer, AnAssignmentShowsItsText) {
+    UiHarness h;
+    auto& st = h.state();
+    ASSERT_TRUE(dlab::ui::openLesson(st, lessonPath("10_assignment_insertion.toml")));
+    st.itemRects.clear();
+    h.frames(3);
+    ASSERT_TRUE(st.itemRects.count("assignment-text"));
+    const auto r = st.itemRects["assignment-text"];
+    EXPECT_GT(r[3] - r[1], 5 * ImGui::GetFontSize()) << "several lines of the text are on show";
+    h.clickItem("lesson-close");
+    EXPECT_FALSE(st.lessonPlayer.lesson);
 }

@@ -135,18 +135,18 @@ PanelFn SlideTab(const Lesson& lesson, std::size_t k) {
 void SlideHeader(AppState& st, std::size_t k, std::size_t n) {
     const Lesson& lesson = *st.lessonPlayer.lesson;
     if (ImGui::Button("<") && k > 0) goToStop(st, k - 1);
-    RecordItem(st, "slide-previous");
+    RecordItem(st, "lesson-previous");  // the same buttons as the panel's
     ImGui::SameLine();
     ImGui::Text("%zu / %zu", k + 1, n);
     ImGui::SameLine();
     if (ImGui::Button(">") && k + 1 < n) goToStop(st, k + 1);
-    RecordItem(st, "slide-next");
+    RecordItem(st, "lesson-next");
     ImGui::SameLine();
     if (ImGui::Button("Close")) {
         closeLesson(st);
         return;
     }
-    RecordItem(st, "slide-close");
+    RecordItem(st, "lesson-close");
     ImGui::SameLine();
     ImGui::PushFont(fonts().bold);
     ImGui::TextWrapped("%s", lesson.title.c_str());
