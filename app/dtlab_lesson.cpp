@@ -80,6 +80,10 @@ void runShow(const LessonArgs& args) {
                   << lesson.points.size() << " points"
                   << (lesson.pointsFile.empty() ? "" : " from " + escapeControls(lesson.pointsFile))
                   << "; " << plan.totalOps << " operations\n";
+        if (!lesson.text.empty())
+            std::cout << "\n"
+                      << escapeControlsKeepLines(lesson.text)
+                      << (lesson.text.back() == '\n' ? "" : "\n");
         for (std::size_t k = 0; k < lesson.stops.size(); ++k) {
             const LessonStop& s = lesson.stops[k];
             const StopState& st = plan.stops[k];

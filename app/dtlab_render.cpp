@@ -135,6 +135,8 @@ void benchChangingFrames(ui::Gui& gui, ui::AppState& state, int frames, std::siz
 }
 
 void runRender(const RenderArgs& args) {
+    if (!args.slides.empty() && args.lesson.empty()) fail("--slides needs --lesson", 2);
+    if (args.output.empty() && args.slides.empty()) fail("-o FILE.png is required", 2);
     int width = 0, height = 0;
     if (std::sscanf(args.size.c_str(), "%dx%d", &width, &height) != 2 || width < 320 ||
         height < 240 || width > 8192 || height > 8192) {
@@ -158,6 +160,10 @@ void runRender(const RenderArgs& args) {
             for (std::size_t k = 0; k < stops; ++k) {
                 ui::goToStop(state, k);
                 for (int i = 0; i < 3; ++i) gui.frame();
+                if (const auto q = state.itemRects.find("slide-question");
+                    q != state.itemRects.end() &&
+                    (q->second[3] > static_cast<float>(height) || q->second[1] < 0))
+                    std::cout << "stop " << k + 1 << ": the question does not fit the slide\n";
                 char name[32];
                 std::snprintf(name, sizeof name, "/%02zu.png", k + 1);
                 if (!gui.saveScreenshot(args.slides + name, error)) fail(error);
@@ -234,7 +240,7 @@ void addRender(CLI::App& app) {
         "render", "Screenshot of the whole GUI after K operations (headless, OSMesa)");
     cmd->add_option("input", args->input,
                     "Point file (.node, .csv, .xy, .pts); the built-in demo when absent");
-    cmd->add_option("-o,--output", args->output, "PNG file to write")->required();
+    cmd->add_option("-o,--output", args->output, "PNG file to write (not with --slides)");
     auto* steps = cmd->add_option("--steps,--step", args->steps,
                                   "Operations to perform before the screenshot");
     cmd->add_flag("--to-end", args->toEnd, "Run to the end before the screenshot")->excludes(steps);
@@ -252,7 +258,8 @@ void addRender(CLI::App& app) {
     cmd->add_option("--stop", args->stop, "The lesson's stop to render (1-based)")
         ->capture_default_str();
     cmd->add_option("--slides", args->slides,
-                    "Render every stop of the lesson to DIR/01.png, DIR/02.png, ...");
+                    "Render every stop of the lesson to DIR/01.png, DIR/02.png, ... (slides with "
+                    "--presentation)");
     cmd->add_option("--bench-frames", args->benchFrames,
                     "Also time this many frames idle, running and scrolling");
     cmd->add_option("--tab", args->tab, "The side tab to show")

@@ -4,7 +4,9 @@
 #include <imgui.h>
 #include <stb_image_write.h>
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <filesystem>
 
 namespace dlab::ui {
@@ -69,7 +71,7 @@ void Gui::loadFonts() {
     const char* sans = firstExisting({"/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf"});
     const char* mono = firstExisting({"/usr/share/fonts/truetype/dejavu/DejaVuSansMono.ttf"});
     const char* bold = firstExisting({"/usr/share/fonts/truetype/dejavu/DejaVuSans-Bold.ttf"});
-    const float base = m_state.presentation ? 26.0f : 16.0f;
+    const float base = fontSize();
     io.Fonts->Clear();
     ImFontConfig cfg;
     cfg.OversampleH = 2;
@@ -96,6 +98,16 @@ void Gui::loadFonts() {
     io.FontDefault = m_fonts.ui;
     if (m_rendererReady) m_renderer->reloadFonts();
     m_presentationApplied = m_state.presentation;
+    m_fontSizeApplied = base;
+}
+
+// Presentation mode reads from the back of a room: the text is about 1/34 of the window's
+// height (21 px at 720, 32 px at 1080).
+float Gui::fontSize() const {
+    if (!m_state.presentation) return 16.0f;
+    int w = 0, h = 0;
+    m_platform.framebufferSize(w, h);
+    return h > 0 ? std::clamp(std::round(static_cast<float>(h) / 34.0f), 18.0f, 40.0f) : 26.0f;
 }
 
 void Gui::applyTheme() {
@@ -120,7 +132,7 @@ void Gui::applyTheme() {
 
 bool Gui::frame() {
     const double t0 = nowMs();
-    if (m_presentationApplied != m_state.presentation) {
+    if (m_presentationApplied != m_state.presentation || fontSize() != m_fontSizeApplied) {
         loadFonts();
         applyTheme();
     }

@@ -54,6 +54,7 @@ private:
     void loadFonts();
     void readFramebuffer();
     void applyTheme();
+    float fontSize() const;  // presentation: grows with the window's height
 
     Platform& m_platform;
     AppState& m_state;
@@ -61,6 +62,7 @@ private:
     Fonts m_fonts;
     bool m_rendererReady = false;  // the renderer draws ImGui (on the platform's context)
     bool m_presentationApplied = false;
+    float m_fontSizeApplied = 0;
     bool m_capture = false;
     std::vector<std::uint8_t> m_pixels;
     int m_pixelsW = 0, m_pixelsH = 0;

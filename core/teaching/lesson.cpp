@@ -830,7 +830,7 @@ public:
         s.line = lineOf(t);
         checkKeys(t,
                   {"run_to", "count", "panels", "overlays", "select", "text", "question", "answer",
-                   "hint"},
+                   "hint", "view", "tab"},
                   "in a [[stop]]");
         if (auto r = string(t, "run_to")) {
             std::string why;
@@ -875,7 +875,59 @@ public:
         }
         if (s.text.empty() && s.question.empty())
             fail(s.line, "a stop needs a \"text\" or a \"question\"");
+        stopView(t, s);
+        stopTab(t, s);
         return s;
+    }
+
+    // view = { fit = [0, 4, 7] } (vertex ids) or view = { rect = [x0, y0, x1, y1] }.
+    void stopView(const toml::table& t, LessonStop& s) {
+        const toml::node* n = t.get("view");
+        if (!n) return;
+        const char* form =
+            "view = { fit = [0, 4, 7] } (vertices) or view = { rect = [x0, y0, "
+            "x1, y1] }";
+        const toml::table* v = n->as_table();
+        if (!v) fail(lineOf(*n), std::string("\"view\" must be ") + form);
+        checkKeys(*v, {"fit", "rect"}, "in a view");
+        const toml::array* fit = v->get("fit") ? v->get("fit")->as_array() : nullptr;
+        const toml::array* rect = v->get("rect") ? v->get("rect")->as_array() : nullptr;
+        if ((v->get("fit") && !fit) || (v->get("rect") && !rect) || (!fit && !rect) ||
+            (fit && rect))
+            fail(lineOf(*n), std::string("\"view\" must be ") + form);
+        if (fit) {
+            for (const toml::node& e : *fit) {
+                const auto id = e.value<std::int64_t>();
+                if (!e.is_integer() || !id || *id < 0 ||
+                    *id >= static_cast<std::int64_t>(m_numVertices))
+                    fail(lineOf(e), "view: fit takes vertex numbers from 0 to " +
+                                        std::to_string(m_numVertices - 1));
+                s.view.fit.push_back(static_cast<std::int32_t>(*id));
+            }
+            if (s.view.fit.empty()) fail(lineOf(*n), "view: fit needs at least one vertex");
+        }
+        if (rect) {
+            std::array<double, 4> r{};
+            bool ok = rect->size() == 4;
+            for (std::size_t k = 0; ok && k < 4; ++k) {
+                const auto x = (*rect)[k].value<double>();
+                ok = x && std::isfinite(*x);
+                if (ok) r[k] = *x;
+            }
+            if (!ok || !(r[0] < r[2]) || !(r[1] < r[3]))
+                fail(lineOf(*n), "view: rect is [x0, y0, x1, y1] with x0 < x1 and y0 < y1");
+            s.view.rect = r;
+        }
+    }
+
+    void stopTab(const toml::table& t, LessonStop& s) {
+        const auto tab = string(t, "tab");
+        if (!tab) return;
+        if (std::none_of(std::begin(kTabNames), std::end(kTabNames),
+                         [&](const char* k) { return *tab == k; }))
+            fail(lineOf(*t.get("tab")),
+                 "unknown tab \"" + *tab + "\" (known: " + joinNames(kTabNames) + ")");
+        s.tab = *tab;
     }
 
     Lesson lesson(std::string_view source, const std::string& path) {
@@ -901,7 +953,10 @@ public:
                 fail(lineOf(*root.get("kind")), "kind must be \"lesson\" or \"assignment\"");
             L.assignment = *k == "assignment";
         }
-        if (auto x = string(root, "text")) text(*x, lineOf(*root.get("text")));
+        if (auto x = string(root, "text")) {
+            text(*x, lineOf(*root.get("text")));
+            L.text = *x;
+        }
         if (const toml::node* o = root.get("options")) {
             if (!o->is_table()) fail(lineOf(*o), "\"options\" must be a table: [options]");
             options(*o->as_table(), L.options);
@@ -934,6 +989,7 @@ public:
             if (a->size() > kMaxLessonStops)
                 fail(lineOf(*st),
                      "too many stops (at most " + std::to_string(kMaxLessonStops) + ")");
+            m_numVertices = L.points.size() + 3;  // the super-triangle's (or the ghost) follow
             for (const toml::node& n : *a) {
                 m_stop = static_cast<int>(L.stops.size()) + 1;
                 L.stops.push_back(stop(*n.as_table()));
@@ -948,6 +1004,7 @@ public:
 private:
     const std::string& m_file;
     int m_stop = 0;
+    std::size_t m_numVertices = 0;  // vertex ids a stop's view may name
 };
 
 }  // namespace

@@ -108,7 +108,7 @@ void loadSettings(const std::string& path, AppState& st, WindowOptions& window,
 bool saveSettings(const std::string& path, const AppState& st, const WindowOptions& window,
                   std::string& error) {
     if (path.empty()) return true;
-    const Overlays& ov = st.overlays;
+    const Overlays& ov = userOverlays(st);  // not a lesson's
     nlohmann::json j = {
         {"window",
          {{"x", window.x},

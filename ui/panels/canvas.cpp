@@ -12,6 +12,7 @@
 //   [SECTION] ShowCanvas
 #include "core/engine/voronoi.h"
 #include "ui/gui.h"
+#include "ui/panels/labels.h"
 #include "ui/panels/panels.h"
 #include "ui/render/renderer.h"
 
@@ -165,6 +166,10 @@ struct Scene {
     Palette pal;
     bool running;  // virtual vertices still present
     bool ghostMode;
+    // Labels placed so far this frame (x0, y0, x1, y1), and where each vertex label goes (its
+    // top-left; NaN: none): later labels avoid earlier ones (labels.cpp).
+    mutable LabelBoxes labels{};
+    mutable std::vector<ImVec2> vertexLabelAt{};
 
     ImVec2 screen(std::int32_t v) const { return toIm(view.toScreen(m.G[v])); }
     bool virtualTri(std::int32_t t) const { return running && ins.isVirtualTriangle(t); }
@@ -452,6 +457,7 @@ void DrawLabels(const Scene& s, std::int32_t& hoveredCorner, ImVec2 mouse, bool 
                 std::snprintf(buf, sizeof buf, "t%d", t);
                 LabelBox(s.dl, mono, fs, centre, s.pal.triangleId, IM_COL32(255, 255, 255, 200),
                          buf);
+                s.labels.add(centre, mono->CalcTextSizeA(fs, 1e9f, 0, buf));
             }
         }
         for (int k = 0; k < 3; ++k) {
@@ -468,6 +474,7 @@ void DrawLabels(const Scene& s, std::int32_t& hoveredCorner, ImVec2 mouse, bool 
             if (!ov.cornerIds || !s.room(48 + s.pointReserve())) continue;
             const bool isChanged = std::find(changed.begin(), changed.end(), c) != changed.end();
             std::snprintf(buf, sizeof buf, "%d", c);
+            a = placeAlong(s.labels, s.screen(m.V[c]), a, p, mono->CalcTextSizeA(fs, 1e9f, 0, buf));
             LabelBox(s.dl, mono, fs, a, isChanged ? IM_COL32(255, 255, 255, 255) : s.pal.cornerId,
                      isChanged ? s.pal.cornerChanged : 0, buf);
         }
@@ -520,7 +527,11 @@ void DrawPoints(const Scene& s, std::int32_t draggedPoint, Vec2 dragTo) {
         }
         if (ids) {
             std::snprintf(buf, sizeof buf, "%zu", i);
-            s.dl->AddText(mono, fs, ImVec2(q.x + r + 2, q.y - r - fs), idCol, buf);
+            const bool placed = i < s.vertexLabelAt.size() &&
+                                static_cast<std::int32_t>(i) != draggedPoint &&
+                                !std::isnan(s.vertexLabelAt[i].x);
+            s.dl->AddText(mono, fs, placed ? s.vertexLabelAt[i] : ImVec2(q.x + r + 2, q.y - r - fs),
+                          idCol, buf);
         }
     }
 }
@@ -737,6 +748,10 @@ void ShowCanvas(AppState& st) {
             view.fit(b.lo, b.hi);
         st.fitPending = false;
     }
+    if (auto& box = st.lessonPlayer.pendingView) {  // a lesson stop's view
+        view.fit({(*box)[0], (*box)[1]}, {(*box)[2], (*box)[3]});
+        box.reset();
+    }
     ImGui::InvisibleButton("##canvas", size,
                            ImGuiButtonFlags_MouseButtonLeft | ImGuiButtonFlags_MouseButtonRight |
                                ImGuiButtonFlags_MouseButtonMiddle);
@@ -807,8 +822,13 @@ void ShowCanvas(AppState& st) {
         }
     }
     if (st.overlays.voronoi) DrawVoronoi(scene);
+    DrawGhostTriangles(st, dl);
     DrawOpOverlay(scene);
     std::int32_t hoveredCorner = kNone;
+    if (st.overlays.vertexIds && e.points().size() <= kFewPoints)
+        scene.vertexLabelAt =
+            placeVertexLabels(scene.labels, view, e.points(), fonts().mono,
+                              ImGui::GetFontSize() * 0.9f, st.presentation ? 5.5f : 4.0f);
     DrawLabels(scene, hoveredCorner, ImGui::GetIO().MousePos, hovered);
     st.selection.hoveredCorner = hoveredCorner;
     const Vec2 dragTo =

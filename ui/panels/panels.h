@@ -21,17 +21,23 @@ inline ImVec2 toIm(glm::dvec2 v) {
     return ImVec2(static_cast<float>(v.x), static_cast<float>(v.y));
 }
 
-void ShowMenuBar(AppState& state);      // menu.cpp: File, View, Run, Generate, Help
-void ShowToolbar(AppState& state);      // toolbar.cpp: stepping, run/pause, speed, modes
-void ShowCaption(AppState& state);      // toolbar.cpp: "[17/245] edge 4-9 is Delaunay"
-void ShowTimeline(AppState& state);     // toolbar.cpp: scrubber over all operations
-void ShowCanvas(AppState& state);       // canvas.cpp: the mesh and every overlay
+void ShowMenuBar(AppState& state);   // menu.cpp: File, View, Run, Generate, Help
+void ShowToolbar(AppState& state);   // toolbar.cpp: stepping, run/pause, speed, modes
+void ShowCaption(AppState& state);   // toolbar.cpp: "[17/245] edge 4-9 is Delaunay"
+void ShowTimeline(AppState& state);  // toolbar.cpp: scrubber over all operations
+void ShowCanvas(AppState& state);    // canvas.cpp: the mesh and every overlay
+// ghosts.cpp: exact mode's ghost triangles as grey bands beyond the hull edges (overlay
+// "virtual-triangles"), labelled when triangle ids are on.
+void DrawGhostTriangles(AppState& state, ImDrawList* dl);
 void ShowCornerTable(AppState& state);  // corner_table.cpp: c, t, V, O, n, p, l, r
 void ShowVertexTable(AppState& state);  // corner_table.cpp: G (vertex coordinates)
 void ShowInspector(AppState& state);    // inspector.cpp: the selected corner's operators
 void ShowMessages(AppState& state);     // messages.cpp: every warning and error
 void ShowHelp(AppState& state);         // help.cpp: F1 overlay with all shortcuts
 void ShowLesson(AppState& state);       // lesson.cpp: the lesson's text and questions
+// lesson.cpp: presentation mode with a lesson: canvas, the stop's text, its side tab and its
+// question, sized to the window (nothing scrolls the question away), no toolbar or messages.
+void ShowSlide(AppState& state);
 
 // Loads a point file into the run; on bad input logs one line (file:line: what) and changes
 // nothing (menu.cpp).
