@@ -298,8 +298,9 @@ public:
                m_changes.size() * sizeof(CellChange);
     }
     std::size_t controlSnapshots() const { return m_controls.size(); }
-    // The history's memory budget (bytes of reserved ops, control snapshots and cell changes), and whether
-    // forward() stopped at it: then the run is not done, but nothing more is recorded.
+    // The history's memory budget (bytes of reserved ops, control snapshots and cell changes),
+    // and whether forward() stopped at it: then the run is not done, but nothing more is
+    // recorded.
     void setBudget(std::size_t bytes) { m_budget = bytes; }
     std::size_t budget() const { return m_budget; }
     std::size_t memoryBytes() const {
