@@ -26,8 +26,12 @@
 //   question = "What is O[c] for the selected corner?"
 //   answer = "O[c]"                 # a quantity name (lessonQuantities) or a corner expression
 //   hint = "Look across the edge opposite c."
+//   expect = { located = "hit", walk_steps = 0 }  # checked against the engine at the stop
 //
-// The answer is computed by the engine at the stop, never typed into the file.
+// The answer is computed by the engine at the stop, never typed into the file. Text, question
+// and hint may embed engine values: {{walk_steps}}, {{test_edge}}, {{V[c.n]}} (a quantity or a
+// corner expression, as in `answer`), replaced by the value at the stop. An expectation's value
+// is written as a student would type the answer ("0-2", "edge", 25, true).
 #pragma once
 
 #include "core/engine/inserter.h"
@@ -72,6 +76,12 @@ private:
     std::string m_message;
 };
 
+// An expectation: at the stop, `spec` (a quantity or a corner expression) reads `value`.
+struct LessonExpect {
+    std::string spec, value;
+    int line = 0;
+};
+
 struct LessonStop {
     int line = 0;                     // line of its [[stop]] header
     std::optional<Breakpoint> runTo;  // nullopt: stay at the previous stop's position
@@ -81,6 +91,9 @@ struct LessonStop {
     std::string text;
     std::string question, answer, hint;
     int answerLine = 0;
+    // Lines of the first line of text / question / hint (for messages about their content).
+    int textLine = 0, questionLine = 0, hintLine = 0;
+    std::vector<LessonExpect> expect;
 };
 
 struct Lesson {
@@ -114,12 +127,15 @@ std::string resolveLessonFile(const std::string& lessonPath, const std::string& 
 struct Answer {
     enum class Kind : std::uint8_t { Integer, Edge, Text, Truth, Point };
     Kind kind = Kind::Integer;
-    std::int64_t a = 0, b = 0;    // Integer: a; Edge: the two vertices
-    bool corner = false;          // Integer that is a corner: -1 reads "none" too
-    std::string text;             // Text
-    bool truth = false;           // Truth
-    Vec2 point{};                 // Point
-    std::string display() const;  // "17", "4-9", "Flip", "yes", "(1, 2)"
+    std::int64_t a = 0, b = 0;  // Integer: a; Edge: the two vertices
+    bool corner = false;        // Integer that is a corner: -1 reads "none" too
+    std::string text;           // Text
+    bool truth = false;         // Truth
+    Vec2 point{};               // Point
+    // The canvas labels of virtual vertices ("s0", "g"): of a (a vertex) or of a and b (edge).
+    std::string labelA, labelB;
+    bool triangle = false;        // Integer that is a triangle: "t25" reads 25 too
+    std::string display() const;  // "17", "4-9", "1-s0", "Flip", "yes", "(1, 2)"
 };
 // Whether what a student typed means the same as `expected` (edges in either order, numbers
 // with spaces, "split edge" for SplitEdge, yes/no for truth values...).
@@ -145,6 +161,9 @@ struct StopState {
     std::int32_t selected = kNone;  // the selected corner there
     std::optional<Answer> answer;   // when the stop has a question
     std::string caption;            // describe() of the last op ("" at position 0)
+    std::string banner;             // the GUI's operation banner: "[N] Type: caption"
+    // The stop's text, question and hint with every {{value}} replaced by the engine's value.
+    std::string text, question, hint;
 };
 
 struct LessonPlan {
@@ -157,6 +176,41 @@ std::unique_ptr<Inserter> makeInserter(const Lesson& lesson);
 // Runs the lesson to its end: every stop must be reached in order and every question must have
 // a computable answer. Throws LessonError naming the stop.
 LessonPlan planLesson(const Lesson& lesson);
+
+// ---- Engine values in the text, and the checks of `dtlab lesson check` --------------------------
+
+// One {{spec}} in a text: byte range [begin, end) of the whole "{{...}}", line counted from 1.
+struct EmbeddedValue {
+    std::string spec;
+    std::size_t begin = 0, end = 0;
+    int line = 1;
+};
+// The {{...}} in `text`. An unclosed or empty one: nullopt and, in `error`, "line N of the text:
+// ...". The specs are not checked here.
+std::optional<std::vector<EmbeddedValue>> findEmbeddedValues(std::string_view text,
+                                                             std::string* error = nullptr);
+// `text` with every {{spec}} replaced by its value at the journal's position (as computeAnswer).
+std::optional<std::string> renderEmbeddedValues(std::string_view text, Inserter& ins,
+                                                Journal& journal, std::int32_t selected,
+                                                std::string* error = nullptr);
+
+// The code points the GUI's fonts carry (ImGui glyph ranges: pairs, then 0). Anything else is
+// drawn as "?".
+inline constexpr std::uint16_t kLessonGlyphRanges[] = {
+    0x0020, 0x00FF, 0x2013, 0x2014, 0x2190, 0x21FF, 0x2212, 0x2212, 0x2260, 0x2265, 0,
+};
+// The first character of UTF-8 `text` the GUI cannot draw: its byte offset and code point
+// (0xFFFD for bytes that are not UTF-8). nullopt when everything can be drawn.
+std::optional<std::pair<std::size_t, char32_t>> firstUndrawable(std::string_view text);
+
+// Whether `text` already says `answer`: the number (digits, or a word up to twelve), the edge
+// (a-b either way, labels too), the phrase, or the point. Truth values are never "said".
+bool answerAppearsIn(const Answer& answer, std::string_view text);
+
+// What `dtlab lesson check` finds beyond planLesson: characters the GUI cannot draw, and stops
+// whose answer is already in their own text or in the operation banner at the stop. Each names
+// file, line and stop.
+std::vector<LessonError> lessonProblems(const Lesson& lesson, const LessonPlan& plan);
 
 // ---- Markdown-light text ------------------------------------------------------------------------
 

@@ -137,11 +137,13 @@ void ShowLesson(AppState& st) {
     ImGui::Separator();
     ImGui::BeginChild("##lessontext", ImVec2(0, 0), false);
     const LessonStop& stop = lesson.stops[k];
-    RichText(stop.text);
+    // The stop's words with their {{values}} as the engine computed them at the stop.
+    const StopState& shown = L.plan.stops[k];
+    RichText(shown.text);
     if (!stop.question.empty()) {
         ImGui::Spacing();
         ImGui::PushFont(fonts().bold);
-        ImGui::TextWrapped("%s", stop.question.c_str());
+        ImGui::TextWrapped("%s", shown.question.c_str());
         ImGui::PopFont();
         ImGui::SetNextItemWidth(std::min(260.0f, ImGui::GetContentRegionAvail().x * 0.6f));
         const bool enter =
@@ -165,7 +167,7 @@ void ShowLesson(AppState& st) {
         }
         if (L.feedback == LessonState::Feedback::Shown)
             ImGui::Text("The answer: %s", L.plan.stops[k].answer->display().c_str());
-        if (L.showHint) ImGui::TextWrapped("Hint: %s", stop.hint.c_str());
+        if (L.showHint) ImGui::TextWrapped("Hint: %s", shown.hint.c_str());
     }
     ImGui::EndChild();
     RecordItem(st, "lesson-text");
