@@ -804,6 +804,7 @@ TEST(LessonCheck, RefusesAnswersGivenAwayByTheTextOrTheBanner) {
     w.text = "edge";
     EXPECT_TRUE(answerAppearsIn(w, "it lies on the edge"));
     EXPECT_FALSE(answerAppearsIn(w, "it lies on the diagonal"));
+    EXPECT_FALSE(answerAppearsIn(w, "every edge around it is Delaunay"));
 
     // In a lesson: the text says the answer; the banner says the other one.
     const fs::path p = scratchDir() / "lessons" / "giveaway.toml";

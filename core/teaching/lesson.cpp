@@ -350,6 +350,7 @@ constexpr QuantityInfo kQuantities[] = {
     {"all_triangles", "rows of the table / 3: every triangle, ghost or super ones included"},
     {"corners", "corners in the table (3 per triangle, virtual ones included)"},
     {"vertices", "input points that are vertices of the mesh now"},
+    {"input_points", "points in the lesson's input, duplicates included"},
     {"position", "operations done so far"},
     {"op", "the type of the last operation (Flip, Split, ...)"},
     {"next_op", "the type of the next operation"},
@@ -379,6 +380,7 @@ constexpr QuantityInfo kQuantities[] = {
     {"degree", "triangles around the vertex of the selected corner, ghost ones included"},
     {"triangles_around", "real triangles around the vertex of the selected corner"},
     {"edges_around", "edges at the vertex of the selected corner (its degree in the graph)"},
+    {"next_new_edge", "the edge the next flip of this insertion makes, or none"},
     {"next_test_edge", "the edge the next in-circle test of this insertion tests"},
     {"will_flip", "whether the next in-circle test of this insertion flips its edge (yes / no)"},
     {"next_where", "where the next locate will find its point: inside, edge, vertex, outside-hull"},
@@ -458,6 +460,7 @@ public:
         if (name == "all_triangles") return integer(m.numTriangles());
         if (name == "corners") return integer(m.numCorners());
         if (name == "vertices") return integer(realVertices());
+        if (name == "input_points") return integer(m_ins.numInput());
         if (name == "position") return integer(static_cast<std::int64_t>(m_j.position()));
         if (name == "op") return text(toString(last().type));
         if (name == "next_op") return text(toString(peek().type));
@@ -492,7 +495,8 @@ public:
                            : edgeAnswer(V[op.a], V[op.b]);
             });
         }
-        if (name == "next_flip") return nextFlip();
+        if (name == "next_flip") return nextFlip(false);
+        if (name == "next_new_edge") return nextFlip(true);
         if (name == "duplicates") return integer(st.duplicates);
         if (name == "edge_splits") return integer(st.edgeSplits);
         if (name == "hull_edges") return integer(hullEdges());
@@ -598,13 +602,14 @@ private:
         for (std::size_t i = first; i < q; ++i) steps += m_j.ops()[i].type == OpType::LocateStep;
         return integer(steps);
     }
-    Answer nextFlip() {
+    Answer nextFlip(bool made) {
         if (m_j.atEnd()) throw Unavailable{"the run is finished: nothing flips any more"};
         PositionGuard g(m_j);
         while (const Op* op = m_j.forward()) {
             if (op->type == OpType::Flip) {
                 const auto& V = mesh().V;
-                return edgeAnswer(V[next(op->a)], V[next(op->b)]);
+                return made ? edgeAnswer(V[op->a], V[op->b])
+                            : edgeAnswer(V[next(op->a)], V[next(op->b)]);
             }
             if (endsInsertion(op->type)) break;
         }

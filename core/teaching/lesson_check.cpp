@@ -226,6 +226,19 @@ bool answerAppearsIn(const Answer& answer, std::string_view text) {
             }
             return false;
         case Answer::Kind::Text: {
+            // Where a point was found: "edge" and "vertex" give it away after "on" ("on the
+            // edge", "on vertex 2"), not in "every edge around it".
+            if (answer.text == "edge" || answer.text == "vertex") {
+                for (std::size_t i = 0; i < tok.size(); ++i) {
+                    if (tok[i].word != answer.text) continue;
+                    std::size_t k = i;
+                    while (k > 0 && (tok[k - 1].word == "the" || tok[k - 1].word == "an" ||
+                                     tok[k - 1].word == "a"))
+                        --k;
+                    if (k > 0 && tok[k - 1].word == "on") return true;
+                }
+                return false;
+            }
             const std::vector<std::string> want = phraseWords(answer.text);
             const std::string joined = looseName(answer.text);
             for (std::size_t i = 0; i < tok.size(); ++i) {
