@@ -530,7 +530,7 @@ private:
         return a;
     }
     static Answer triangleAnswer(std::int64_t t) {
-        Answer a = integer(t);
+        Answer a = integer(t, t < 0);  // no triangle: "none" reads -1 too
         a.triangle = true;
         return a;
     }
