@@ -909,3 +909,32 @@ TEST(LessonFacts, SuperTriangleLessonExactModeGivesThreeTrianglesAndAConvexHull)
     EXPECT_EQ(answer(e, "triangles").a, 3);
     EXPECT_TRUE(answer(e, "convex").truth);
 }
+
+TEST(LessonFacts, SplitLessonOldTriangleChangesOnlyV2O0AndO1) {
+    const Lesson lesson = loadLesson(std::string(DLAB_SOURCE_DIR) + "/lessons/04_split.toml");
+    LiveRun r = start(lesson.points, lesson.options);
+    while (const Op* op = r.journal->forward()) {
+        if (op->type == OpType::Split) break;
+    }
+    const Op& split = *r.journal->current();
+    ASSERT_EQ(split.type, OpType::Split);
+    ASSERT_EQ(split.a, 0);
+    std::set<std::int32_t> cells;  // slot = 2 * corner + (O ? 1 : 0)
+    for (std::uint32_t i = 0; i < split.numChanges; ++i) {
+        const CellChange& ch = r.journal->changes()[split.firstChange + i];
+        if (ch.corner() < 3) cells.insert(ch.slot);
+    }
+    EXPECT_EQ(cells, (std::set<std::int32_t>{2 * 2, 2 * 0 + 1, 2 * 1 + 1}));
+}
+
+TEST(LessonFacts, FlipsLessonTestsAreThreePlusTwoPerFlip) {
+    const Lesson lesson = loadLesson(std::string(DLAB_SOURCE_DIR) + "/lessons/05_flips.toml");
+    const LessonPlan plan = planLesson(lesson);
+    std::int64_t flips = -1, tests = -1;
+    for (std::size_t k = 0; k < lesson.stops.size(); ++k) {
+        if (lesson.stops[k].answer == "insertion_flips") flips = plan.stops[k].answer->a;
+        if (lesson.stops[k].answer == "insertion_tests") tests = plan.stops[k].answer->a;
+    }
+    ASSERT_GT(flips, 0);
+    EXPECT_EQ(tests, 3 + 2 * flips);
+}
