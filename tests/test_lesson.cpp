@@ -754,7 +754,8 @@ TEST(LessonExpectations, CheckFailsWhereTheTextContradictsTheEngine) {
                   "[[stop]]\nrun_to = \"located\"\ncount = 2\ntext = \"Found.\"\nexpect = { "
                   "locate_steps = " +
                   std::to_string(steps) +
-                  ", where = \"inside a triangle\", convex = true, \"V[0]\" = 0 }\n");
+                  ", where = \"inside a triangle\", convex = true, \"V[0]\" = " +
+                  std::to_string(r.ins->mesh().V[0]) + " }\n");
     EXPECT_NO_THROW(planLesson(loadLesson(ok.string())));
 }
 
