@@ -939,3 +939,22 @@ TEST(LessonFacts, FlipsLessonTestsAreThreePlusTwoPerFlip) {
     ASSERT_GT(flips, 0);
     EXPECT_EQ(tests, 3 + 2 * flips);
 }
+
+TEST(LessonSlides, RenderWritesOneSlidePerStopWithoutAnOutputFile) {
+    const std::string lesson = std::string(DLAB_SOURCE_DIR) + "/lessons/01_corner_table.toml";
+    const fs::path dir = scratchDir() / "slides";
+    fs::remove_all(dir);
+    const Result r =
+        dtlab("render --lesson " + lesson + " --slides " + dir.string() + " --size 640x400");
+    ASSERT_EQ(r.status, 0) << r.out;
+    const std::size_t stops = loadLesson(lesson).stops.size();
+    for (std::size_t k = 1; k <= stops; ++k) {
+        char name[16];
+        std::snprintf(name, sizeof name, "%02zu.png", k);
+        EXPECT_GT(fs::file_size(dir / name), 0u) << name;
+    }
+    EXPECT_FALSE(fs::exists(dir / "00.png"));
+    const Result none = dtlab("render --lesson " + lesson);
+    EXPECT_EQ(none.status, 2) << none.out;
+    EXPECT_NE(none.out.find("needs -o FILE.png"), std::string::npos) << none.out;
+}
