@@ -958,3 +958,35 @@ TEST(LessonSlides, RenderWritesOneSlidePerStopWithoutAnOutputFile) {
     EXPECT_EQ(none.status, 2) << none.out;
     EXPECT_NE(none.out.find("needs -o FILE.png"), std::string::npos) << none.out;
 }
+
+TEST(LessonFigure, LiftingMapDrawsTheInCircleTestAtTheStop) {
+    const Lesson lesson =
+        loadLesson(std::string(DLAB_SOURCE_DIR) + "/lessons/04b_delaunay_foundations.toml");
+    const LessonPlan plan = planLesson(lesson);
+    std::size_t figures = 0;
+    for (std::size_t k = 0; k < lesson.stops.size(); ++k) {
+        if (lesson.stops[k].figure != "lifting-map") continue;
+        ++figures;
+        LiveRun r = start(lesson.points, lesson.options);
+        r.journal->seek(plan.stops[k].position);
+        const auto f = liftingMapAt(*r.ins, r.journal->current());
+        ASSERT_TRUE(f) << "stop " << k + 1;
+        // The figure's sign is the exact test's, and the lifted point is below the plane through
+        // the lifted triangle exactly when the test says inside.
+        EXPECT_EQ(f->sign, answer(r, "test_result").a);
+        EXPECT_EQ(f->vertex, answer(r, "vertex").a);
+        const Answer tested = answer(r, "test_edge");
+        const std::set<std::int32_t> tri(std::begin(f->vertices), std::end(f->vertices));
+        EXPECT_TRUE(tri.count(static_cast<std::int32_t>(tested.a)) &&
+                    tri.count(static_cast<std::int32_t>(tested.b)));
+    }
+    EXPECT_EQ(figures, 1u);
+    // An unknown figure, and a figure where no in-circle test is at hand, name line and stop.
+    const LessonError unknown = errorOf(kHead + "[[stop]]\ntext = \"t\"\nfigure = \"torus\"\n");
+    EXPECT_EQ(unknown.line(), 5);
+    EXPECT_NE(unknown.message().find("unknown figure \"torus\""), std::string::npos);
+    const LessonError none =
+        errorOf(kHead + "[[stop]]\nrun_to = \"end\"\ntext = \"t\"\nfigure = \"lifting-map\"\n");
+    EXPECT_EQ(none.stop(), 1);
+    EXPECT_NE(none.message().find("needs an in-circle test"), std::string::npos) << none.what();
+}

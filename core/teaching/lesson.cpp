@@ -1067,7 +1067,7 @@ public:
         s.line = lineOf(t);
         checkKeys(t,
                   {"run_to", "count", "panels", "overlays", "select", "text", "question", "answer",
-                   "hint", "expect"},
+                   "hint", "expect", "figure"},
                   "in a [[stop]]");
         if (auto r = string(t, "run_to")) {
             std::string why;
@@ -1119,6 +1119,7 @@ public:
         embedded(s.question, s.questionLine, "question");
         embedded(s.hint, s.hintLine, "hint");
         s.expect = expectations(t);
+        s.figure = figure(t);
         return s;
     }
 
@@ -1263,6 +1264,17 @@ private:
         return out;
     }
 
+    // figure = "lifting-map": a drawing beside the text (kFigureNames).
+    std::string figure(const toml::table& t) {
+        const auto name = string(t, "figure");
+        if (!name) return "";
+        if (std::none_of(std::begin(kFigureNames), std::end(kFigureNames),
+                         [&](const char* k) { return *name == k; }))
+            fail(lineOf(*t.get("figure")),
+                 "unknown figure \"" + *name + "\" (known: " + joinNames(kFigureNames) + ")");
+        return *name;
+    }
+
     const std::string& m_file;
     std::string_view m_source;
     int m_stop = 0;
@@ -1297,6 +1309,32 @@ std::unique_ptr<Inserter> makeInserter(const Lesson& lesson) {
     } catch (const std::exception& e) {
         throw LessonError(lesson.file, 0, 0, std::string("cannot start the run: ") + e.what());
     }
+}
+
+std::optional<LiftingMap> liftingMapAt(const Inserter& ins, const Op* current) {
+    const Mesh& m = ins.mesh();
+    std::int32_t c = kNone, d = kNone;
+    if (current && current->type == OpType::InCircleTest) {
+        c = current->a;
+        d = current->b;
+    } else if (!ins.flipStack().empty()) {
+        c = ins.flipStack().back();
+        d = m.O[c];
+    }
+    if (c == kNone || d == kNone) return std::nullopt;
+    const std::int32_t t = tri(d);
+    LiftingMap f;
+    for (int k = 0; k < 3; ++k) {
+        const std::int32_t v = m.V[3 * t + k];
+        if (ins.isVirtual(v)) return std::nullopt;
+        f.triangle[k] = m.G[v];
+        f.vertices[k] = v;
+    }
+    if (ins.isVirtual(m.V[c])) return std::nullopt;
+    f.point = m.G[m.V[c]];
+    f.vertex = m.V[c];
+    f.sign = incircle(f.triangle[0], f.triangle[1], f.triangle[2], f.point);
+    return f;
 }
 
 namespace {
@@ -1405,6 +1443,11 @@ LessonPlan planLesson(const Lesson& lesson) {
             std::string why;
             state.answer = computeAnswer(s.answer, *ins, journal, selected, &why);
             if (!state.answer) fail(s.answerLine, "the answer cannot be computed: " + why);
+        }
+        if (s.figure == "lifting-map" && !liftingMapAt(*ins, journal.current())) {
+            fail(s.line,
+                 "the lifting-map figure needs an in-circle test of a real triangle at "
+                 "the stop (just done, or next on the flip stack)");
         }
         renderStopText(lesson, k, *ins, journal, selected, state);
         checkExpectations(lesson, k, *ins, journal, selected);

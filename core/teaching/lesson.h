@@ -27,6 +27,7 @@
 //   answer = "O[c]"                 # a quantity name (lessonQuantities) or a corner expression
 //   hint = "Look across the edge opposite c."
 //   expect = { located = "hit", walk_steps = 0 }  # checked against the engine at the stop
+//   figure = "lifting-map"          # a drawing beside the text (kFigureNames)
 //
 // The answer is computed by the engine at the stop, never typed into the file. Text, question
 // and hint may embed engine values: {{walk_steps}}, {{test_edge}}, {{V[c.n]}} (a quantity or a
@@ -59,6 +60,9 @@ inline constexpr const char* kOverlayNames[] = {
     "walk",    "flip-queue",     "flipped",           "circumcircles",
     "voronoi", "pending-points", "virtual-triangles", "idbuffer",
 };
+
+// Drawings a stop may show beside its text (`figure = "lifting-map"`).
+inline constexpr const char* kFigureNames[] = {"lifting-map"};
 
 // A bad lesson file. what() is "FILE:LINE: stop K: message" (parts left out when unknown).
 class LessonError : public std::runtime_error {
@@ -94,6 +98,7 @@ struct LessonStop {
     // Lines of the first line of text / question / hint (for messages about their content).
     int textLine = 0, questionLine = 0, hintLine = 0;
     std::vector<LessonExpect> expect;
+    std::string figure;  // a drawing beside the text: one of kFigureNames, or empty
 };
 
 struct Lesson {
@@ -176,6 +181,21 @@ std::unique_ptr<Inserter> makeInserter(const Lesson& lesson);
 // Runs the lesson to its end: every stop must be reached in order and every question must have
 // a computable answer. Throws LessonError naming the stop.
 LessonPlan planLesson(const Lesson& lesson);
+
+// ---- The lifting-map figure ------------------------------------------------------------------
+
+// The in-circle test the lifting-map figure draws: the triangle whose circle is tested and the
+// new point, lifted onto the paraboloid z = x² + y². Its `sign` is the exact test's.
+struct LiftingMap {
+    Vec2 triangle[3]{};
+    std::int32_t vertices[3]{};
+    Vec2 point{};
+    std::int32_t vertex = kNone;
+    int sign = 0;  // 1: the point is inside the circle (its lift below the plane), 0 on it
+};
+// The test just done (the current op), else the one next on the flip stack; nullopt when there
+// is none or its triangle is a ghost / super one.
+std::optional<LiftingMap> liftingMapAt(const Inserter& ins, const Op* current);
 
 // ---- Engine values in the text, and the checks of `dtlab lesson check` --------------------------
 

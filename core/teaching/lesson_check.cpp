@@ -284,9 +284,14 @@ void checkFont(const Lesson& lesson, int stop, const std::string& what, const st
                  : 0;
     std::size_t end = at;
     decode(text, end);
-    const std::string shown = cp == 0xFFFD
-                                  ? "a byte that is not UTF-8"
-                                  : "\"" + text.substr(at, end - at) + "\" (" + codePoint(cp) + ")";
+    std::string shown = "a byte that is not UTF-8";
+    if (cp != 0xFFFD) {
+        shown = "\"";
+        shown.append(text, at, end - at);
+        shown += "\" (";
+        shown += codePoint(cp);
+        shown += ")";
+    }
     out.emplace_back(lesson.file, l, stop,
                      "the " + what + " has " + shown +
                          ", which the GUI's font cannot draw (it shows \"?\"): use plain "
