@@ -2,6 +2,7 @@
 #include "app/dtlab_common.h"
 
 #include "core/engine/generators.h"
+#include "ui/gl/mesh_renderer.h"
 #include "ui/gui.h"
 #include "ui/lesson_player.h"
 #include "ui/panels/panels.h"
@@ -10,6 +11,7 @@
 
 #include <chrono>
 #include <cstdio>
+#include <ctime>
 #include <filesystem>
 #include <iostream>
 
@@ -35,18 +37,28 @@ struct RenderArgs {
     EngineFlags engine;
 };
 
+double cpuMs(clockid_t clock) {
+    timespec t{};
+    clock_gettime(clock, &t);
+    return static_cast<double>(t.tv_sec) * 1e3 + static_cast<double>(t.tv_nsec) / 1e6;
+}
+double processCpuMs() { return cpuMs(CLOCK_PROCESS_CPUTIME_ID); }
+double mainThreadCpuMs() { return cpuMs(CLOCK_THREAD_CPUTIME_ID); }
+
 // Frame times: idle (nothing changes), then running at full speed (the mesh changes every
 // frame), then scrolling the corner table. Wall-clock ms per frame, mean over the frames.
 void benchFrames(ui::Gui& gui, ui::AppState& state, int frames) {
     using Clock = std::chrono::steady_clock;
-    double buildMs = 0;
+    double buildMs = 0, cpuMs = 0;
     auto timeFrames = [&](int n, auto&& before) {
         double total = 0, worst = 0;
-        buildMs = 0;
+        buildMs = cpuMs = 0;
         for (int i = 0; i < n; ++i) {
             before(i);
             const auto t0 = Clock::now();
+            const double c0 = processCpuMs();
             gui.frame();
+            cpuMs += processCpuMs() - c0;
             const double ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
             total += ms;
             worst = std::max(worst, ms);
@@ -55,9 +67,10 @@ void benchFrames(ui::Gui& gui, ui::AppState& state, int frames) {
         return std::pair{total / std::max(1, n), worst};
     };
     const auto idle = timeFrames(frames, [](int) {});
-    std::printf("frame ms, idle:       mean %.1f, worst %.1f (%zu points, %d triangles)\n",
-                idle.first, idle.second, state.engine.points().size(),
-                state.engine.mesh().numTriangles());
+    std::printf(
+        "frame ms, idle:       mean %.1f, worst %.1f, cpu %.1f (%zu points, %d triangles)\n",
+        idle.first, idle.second, cpuMs / frames, state.engine.points().size(),
+        state.engine.mesh().numTriangles());
     if (!state.engine.batch() && !state.engine.atEnd()) {
         state.run.running = true;
         state.run.opsPerSecond = ui::RunControl::kFullSpeed;
@@ -71,10 +84,10 @@ void benchFrames(ui::Gui& gui, ui::AppState& state, int frames) {
         const auto running = timeFrames(frames, [&](int) { timed += state.run.running ? 1 : 0; });
         const int n = std::max(1, timed);
         std::printf(
-            "frame ms, full speed: mean %.1f, worst %.1f over %d running frames (%.0f operations "
-            "and %.1f ms of "
-            "mesh rebuild per frame; the first frame, with shader compilation: %.0f ms)\n",
-            running.first * frames / n, running.second, timed,
+            "frame ms, full speed: mean %.1f, worst %.1f, cpu %.1f over %d running frames (%.0f "
+            "operations and %.1f ms of mesh rebuild per frame; the first frame, with shader "
+            "compilation: %.0f ms)\n",
+            running.first * frames / n, running.second, cpuMs / n, timed,
             static_cast<double>(state.engine.position() - p0) / n, buildMs / n, warmMs);
         state.run.running = false;
     }
@@ -85,6 +98,41 @@ void benchFrames(ui::Gui& gui, ui::AppState& state, int frames) {
     io.MouseWheel = 0;
     std::printf("frame ms, scrolling the corner table (%d rows): mean %.1f, worst %.1f\n",
                 state.engine.mesh().numCorners(), scrolling.first, scrolling.second);
+}
+
+// The drawing of a changing mesh alone: before each frame the run moves `ops` operations on
+// (outside the frame's time), from the same position with the raster patched and redrawn whole.
+// Wall-clock and process CPU ms (all threads, llvmpipe's included: steadier on a loaded machine).
+void benchChangingFrames(ui::Gui& gui, ui::AppState& state, int frames, std::size_t ops) {
+    if (state.engine.batch()) return;
+    state.run.running = false;
+    const std::size_t was = state.engine.position();
+    const std::size_t start = state.engine.recorded() / 2;
+    for (const bool patch : {true, false}) {
+        ui::MeshRenderer::setPatching(patch);
+        state.engine.seek(start);
+        gui.frame();
+        double wall = 0, cpu = 0, mainCpu = 0, build = 0, vertices = 0;
+        for (int i = 0; i < frames; ++i) {
+            state.engine.seek(state.engine.position() + ops);
+            const auto t0 = std::chrono::steady_clock::now();
+            const double c0 = processCpuMs(), m0 = mainThreadCpuMs();
+            gui.frame();
+            cpu += processCpuMs() - c0;
+            mainCpu += mainThreadCpuMs() - m0;
+            vertices += ImGui::GetDrawData() ? ImGui::GetDrawData()->TotalVtxCount : 0;
+            wall += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0)
+                        .count();
+            build += state.frameStats.meshBuildMs;
+        }
+        std::printf(
+            "frame ms, %zu more operations each, %s: wall mean %.1f, cpu mean %.1f (main "
+            "thread %.1f; mesh update %.1f ms wall; %.0f ImGui vertices)\n",
+            ops, patch ? "raster patched" : "raster redrawn whole", wall / frames, cpu / frames,
+            mainCpu / frames, build / frames, vertices / frames);
+    }
+    ui::MeshRenderer::setPatching(true);
+    state.engine.seek(was);
 }
 
 void runRender(const RenderArgs& args) {
@@ -166,7 +214,11 @@ void runRender(const RenderArgs& args) {
     state.pendingTab = args.tab;
     // ImGui lays out in the first frames (tables measure their columns): render a few.
     for (int i = 0; i < 3; ++i) gui.frame();
-    if (args.benchFrames > 0) benchFrames(gui, state, args.benchFrames);
+    if (args.benchFrames > 0) {
+        benchFrames(gui, state, args.benchFrames);
+        for (const std::size_t ops : {std::size_t{1}, std::size_t{20000}})
+            benchChangingFrames(gui, state, args.benchFrames, ops);
+    }
     if (!gui.saveScreenshot(args.output, error)) fail(error);
     std::cout << "wrote " << args.output << " (" << width << "x" << height << ", operation "
               << state.engine.position() << " of " << state.engine.recorded() << ", "

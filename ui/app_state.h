@@ -24,6 +24,7 @@
 namespace dlab::ui {
 
 struct CanvasCache;  // canvas.cpp: the mesh renderer's arrays and the drag in progress
+class Renderer;      // ui/render/renderer.h: what the canvas and image views draw through
 
 // The canvas' one world <-> screen transform: y up in the world, y down on the screen.
 struct View {
@@ -89,8 +90,9 @@ struct RunControl {
     double carry = 0.0;         // fractional ops owed from earlier frames
     double frameBudgetMs = 25;  // stepping time per frame at full speed, at most
     // At full speed the stepping gets what is left of this frame time after the rest of the
-    // last frame (drawing, the mesh rebuild, the GL render): large meshes stay interactive.
-    double targetFrameMs = 24;
+    // last frame (drawing, the mesh rebuild, the GL render): 60 frames a second with ~3 ms to
+    // spare for a frame that costs more than the last.
+    double targetFrameMs = 13;
     double lastStepMs = 0;         // the stepping part of the last frame
     double lastAdvanceMs = -1;     // when advanceRun last ran (steady clock ms), -1: not yet
     std::string stopReason;        // why the last run stopped ("end", "breakpoint: next flip", ...)
@@ -260,6 +262,7 @@ struct AppState {
     double gridStep = 10.0;
     bool quitRequested = false;
     std::shared_ptr<CanvasCache> canvas;  // created by the canvas on its first frame
+    Renderer* renderer = nullptr;         // the Gui's (GL or null); none: nothing is drawn
     DialogState dialogs;
     FrameStats frameStats;
     LessonState lessonPlayer;        // the lesson on show, if any (lesson_player.h)

@@ -1,9 +1,6 @@
 // Gui: ImGui context, fonts (DejaVu when installed), light theme, frames and PNG screenshots.
 #include "ui/gui.h"
 
-#include "ui/gl/gl_api.h"
-#include "ui/gl/imgui_gl.h"
-
 #include "core/teaching/lesson.h"
 
 #include <imgui.h>
@@ -37,19 +34,21 @@ const char* firstExisting(std::initializer_list<const char*> paths) {
 
 const Fonts& fonts() { return g_fonts; }
 
-Gui::Gui(Platform& platform, AppState& state) : m_platform(platform), m_state(state) {
+Gui::Gui(Platform& platform, AppState& state)
+    : m_platform(platform), m_state(state), m_renderer(platform.makeRenderer()) {
     IMGUI_CHECKVERSION();
     ImGui::CreateContext();
     ImGuiIO& io = ImGui::GetIO();
     io.IniFilename = nullptr;  // the layout is ours (settings.json), not ImGui's window list
     io.ConfigWindowsMoveFromTitleBarOnly = true;
     m_platform.initImGui();
-    // The platform made a context that runs our shaders (OpenGL 3.3 core, or ES 3.0): ImGui,
-    // the mesh renderer and the GL ID-buffer locators draw on it.
+    // The renderer draws ImGui, the canvas' mesh and the image views; its device (the platform's
+    // context that runs our shaders; none with the null renderer) runs the GL ID-buffer locators.
     std::string glError;
-    m_glReady = initImGuiGl(glError);
-    if (m_glReady) {
-        m_state.engine.attachGl(GlContext::fromCurrent(glError));
+    m_rendererReady = m_renderer->init(glError);
+    if (m_rendererReady) {
+        m_state.engine.attachGl(m_renderer->device());
+        m_state.renderer = m_renderer.get();
     } else {
         m_state.log(Message::Level::Error, std::string(m_platform.name()) + ": " + glError);
     }
@@ -60,7 +59,9 @@ Gui::Gui(Platform& platform, AppState& state) : m_platform(platform), m_state(st
 
 Gui::~Gui() {
     m_state.engine.detachGl();  // the context may go away with us
-    if (m_glReady) shutdownImGuiGl();
+    m_state.renderer = nullptr;
+    m_state.canvas.reset();  // its mesh belongs to the renderer
+    if (m_rendererReady) m_renderer->shutdown();
     m_platform.shutdownImGui();
     ImGui::DestroyContext();
     g_fonts = {};
@@ -109,7 +110,7 @@ void Gui::loadFonts() {
     if (!m_fonts.mono) m_fonts.mono = m_fonts.ui;
     if (!m_fonts.bold) m_fonts.bold = m_fonts.ui;
     io.FontDefault = m_fonts.ui;
-    if (m_glReady) reloadImGuiFontsGl();
+    if (m_rendererReady) m_renderer->reloadFonts();
     m_presentationApplied = m_state.presentation;
 }
 
@@ -146,7 +147,7 @@ bool Gui::frame() {
     m_lastTime = t0;
     const bool open = m_platform.newFrame();
     g_fonts = m_fonts;
-    if (m_glReady) newFrameImGuiGl();
+    if (m_rendererReady) m_renderer->newFrame();
     ImGui::NewFrame();
     ShowApplication(m_state);
     ImGui::Render();
@@ -154,7 +155,7 @@ bool Gui::frame() {
     int w = 0, h = 0;
     m_platform.framebufferSize(w, h);
     static constexpr float kBackground[4] = {0.95f, 0.95f, 0.96f, 1.0f};
-    if (m_glReady) renderImGuiGl(ImGui::GetDrawData(), w, h, kBackground);
+    if (m_rendererReady) m_renderer->render(ImGui::GetDrawData(), w, h, kBackground);
     if (m_capture) readFramebuffer();
     m_pixelsStale = !m_capture;
     m_platform.present();
@@ -166,7 +167,10 @@ bool Gui::frame() {
 void Gui::readFramebuffer() {
     int w = 0, h = 0;
     m_platform.framebufferSize(w, h);
-    readFramebufferGl(w, h, m_platform.headless(), m_pixels);
+    if (!m_rendererReady || !m_renderer->readPixels(w, h, m_platform.headless(), m_pixels)) {
+        m_pixels.clear();  // nothing drawn (the null renderer)
+        w = h = 0;
+    }
     m_pixelsW = w;
     m_pixelsH = h;
     m_pixelsStale = false;

@@ -11,9 +11,9 @@
 //   [SECTION] Input
 //   [SECTION] ShowCanvas
 #include "core/engine/voronoi.h"
-#include "ui/gl/mesh_renderer.h"
 #include "ui/gui.h"
 #include "ui/panels/panels.h"
+#include "ui/render/renderer.h"
 
 #include <imgui.h>
 
@@ -31,7 +31,9 @@ constexpr unsigned kVerticesPerPoint = 64;
 constexpr int kSkippedDrawn = 300;  // crosses for skipped duplicates when there are many points
 
 struct CanvasCache {
-    MeshRenderer renderer;
+    // The mesh as the renderer draws it (GL, or counted by the null renderer), made by it.
+    std::unique_ptr<CanvasMesh> renderer;
+    Renderer* madeBy = nullptr;
     bool rebuiltLastFrame = false;
     View builtView;  // the view of the last rebuild
     // Interaction in progress (press on the canvas until release).
@@ -778,17 +780,23 @@ void ShowCanvas(AppState& st) {
     const bool sameView =
         view.center == cache.builtView.center && view.scale == cache.builtView.scale &&
         view.origin == cache.builtView.origin && view.size == cache.builtView.size;
+    if (!cache.renderer || cache.madeBy != st.renderer) {
+        cache.renderer =
+            st.renderer ? st.renderer->makeCanvasMesh() : makeNullRenderer()->makeCanvasMesh();
+        cache.madeBy = st.renderer;
+    }
+    CanvasMesh& mesh = *cache.renderer;
     const bool defer = st.run.running && st.run.opsPerSecond >= RunControl::kFullSpeed &&
-                       cache.rebuiltLastFrame && sameView && cache.renderer.lastBuildMs() > 5.0;
-    const bool rebuilt = !defer && cache.renderer.update(e, view, ms);
+                       cache.rebuiltLastFrame && sameView && mesh.lastBuildMs() > 5.0;
+    const bool rebuilt = !defer && mesh.update(e, view, ms);
     cache.rebuiltLastFrame = rebuilt;
     if (rebuilt) cache.builtView = view;
-    st.frameStats.meshBuildMs = rebuilt ? cache.renderer.lastBuildMs() : 0.0;
-    st.frameStats.visibleEdges = cache.renderer.visibleEdges();
-    st.frameStats.denseMesh = cache.renderer.dense();
-    if (ms.drawFill) cache.renderer.enqueue(dl, MeshRenderer::Pass::Fill, p0.x, p0.y, p1.x, p1.y);
+    st.frameStats.meshBuildMs = rebuilt ? mesh.lastBuildMs() : 0.0;
+    st.frameStats.visibleEdges = mesh.visibleEdges();
+    st.frameStats.denseMesh = mesh.dense();
+    if (ms.drawFill) mesh.enqueue(dl, CanvasMesh::Pass::Fill, p0.x, p0.y, p1.x, p1.y);
     DrawOpUnderlay(scene);
-    cache.renderer.enqueue(dl, MeshRenderer::Pass::Lines, p0.x, p0.y, p1.x, p1.y);
+    mesh.enqueue(dl, CanvasMesh::Pass::Lines, p0.x, p0.y, p1.x, p1.y);
     if (st.overlays.circumcircles) {
         for (std::int32_t t = 0; t < e.mesh().numTriangles(); ++t) {
             Vec2 c;

@@ -1,4 +1,5 @@
 // The windowed platform: GLFW with an OpenGL 3.3 core context, ImGui's GLFW backend for input.
+#include "ui/gl/gl_renderer.h"
 #include "ui/platform/platform.h"
 
 #define GLFW_INCLUDE_NONE  // GL comes from ui/gl/gl_api.h, never from here
@@ -31,6 +32,7 @@ public:
     }
     const char* name() const override { return "glfw"; }
     bool headless() const override { return false; }
+    std::unique_ptr<Renderer> makeRenderer() override { return makeGlRenderer(); }
     void framebufferSize(int& width, int& height) const override {
         glfwGetFramebufferSize(m_window, &width, &height);
     }
