@@ -59,12 +59,12 @@ void runCheck(const LessonArgs& args) {
                 ++failed;
                 continue;
             }
-            std::cout << path << ": ok: \"" << lesson.title << "\" ("
-                      << (lesson.assignment ? "assignment, " : "") << lesson.points.size()
+            std::cout << escapeControls(path) << ": ok: \"" << escapeControls(lesson.title)
+                      << "\" (" << (lesson.assignment ? "assignment, " : "") << lesson.points.size()
                       << " points, " << lesson.stops.size() << " stops, " << questions(lesson)
                       << " questions, " << plan.totalOps << " operations)\n";
         } catch (const LessonError& e) {
-            std::cerr << "dtlab: error: " << e.what() << "\n";
+            std::cerr << "dtlab: error: " << escapeControls(e.what()) << "\n";
             ++failed;
         }
     }
@@ -80,14 +80,16 @@ void runShow(const LessonArgs& args) {
         const LessonPlan plan = planLesson(lesson);
         auto ins = makeInserter(lesson);
         Journal journal(*ins);
-        std::cout << "# " << lesson.title << "\n"
-                  << lesson.summary << "\n"
+        // Lesson files are untrusted: no control character reaches the terminal.
+        const auto text = [](std::string_view s) { return escapeControlsKeepLines(s); };
+        std::cout << "# " << escapeControls(lesson.title) << "\n"
+                  << text(lesson.summary) << "\n"
                   << "options: boundary " << toString(lesson.options.boundary) << ", locator "
                   << toString(lesson.options.locator) << ", order "
                   << toString(lesson.options.order) << ", seed " << lesson.options.seed << "; "
                   << lesson.points.size() << " points"
-                  << (lesson.pointsFile.empty() ? "" : " from " + lesson.pointsFile) << "; "
-                  << plan.totalOps << " operations\n";
+                  << (lesson.pointsFile.empty() ? "" : " from " + escapeControls(lesson.pointsFile))
+                  << "; " << plan.totalOps << " operations\n";
         for (std::size_t k = 0; k < lesson.stops.size(); ++k) {
             const LessonStop& s = lesson.stops[k];
             const StopState& st = plan.stops[k];
@@ -96,23 +98,24 @@ void runShow(const LessonArgs& args) {
                                         (s.count > 1 ? " x" + std::to_string(s.count) : "")
                                   : std::string("stay"))
                       << " -> op " << st.position << "\n";
-            if (!st.caption.empty()) std::cout << "caption: " << st.caption << "\n";
+            if (!st.caption.empty()) std::cout << "caption: " << text(st.caption) << "\n";
             if (args.tables) {
                 journal.seek(st.position);
                 printTables(*ins);
             }
             if (st.selected != kNone) std::cout << "selected corner: " << st.selected << "\n";
-            if (!st.text.empty()) std::cout << st.text << (st.text.back() == '\n' ? "" : "\n");
+            if (!st.text.empty())
+                std::cout << text(st.text) << (st.text.back() == '\n' ? "" : "\n");
             if (!s.question.empty()) {
-                std::cout << "Q: " << st.question << "\nA: " << st.answer->display() << "   ("
-                          << s.answer << ")\n";
-                if (!st.hint.empty()) std::cout << "hint: " << st.hint << "\n";
+                std::cout << "Q: " << text(st.question) << "\nA: " << text(st.answer->display())
+                          << "   (" << text(s.answer) << ")\n";
+                if (!st.hint.empty()) std::cout << "hint: " << text(st.hint) << "\n";
             }
             for (const LessonExpect& e : s.expect)
-                std::cout << "checked: " << e.spec << " = " << e.value << "\n";
+                std::cout << "checked: " << text(e.spec) << " = " << text(e.value) << "\n";
         }
     } catch (const LessonError& e) {
-        fail(e.what());
+        fail(e.what(), 2);  // bad input
     }
 }
 

@@ -28,7 +28,6 @@ struct RenderArgs {
     long long select = -1;
     bool presentation = false;
     std::vector<std::string> overlays;
-    bool engineGiven = false;
     int benchFrames = 0;
     std::string tab;
     std::string lesson;
@@ -151,10 +150,7 @@ void runRender(const RenderArgs& args) {
     if (!platform) fail(error);
     ui::Gui gui(*platform, state);
     state.presentation = args.presentation;
-    if (args.engineGiven)
-        state.setOptions(args.engine.options());
-    else
-        state.setOptions(ui::demoOptions());
+    state.setOptions(args.engine.options());  // the defaults its help states (order brio)
     if (!args.lesson.empty()) {
         if (!ui::openLesson(state, args.lesson)) fail(state.messages.back().text, 2);
         const std::size_t stops = state.lessonPlayer.lesson->stops.size();
@@ -209,8 +205,16 @@ void runRender(const RenderArgs& args) {
     } else if (args.steps >= 0) {
         state.engine.seek(static_cast<std::size_t>(args.steps));
     }
-    if (args.select >= 0 && args.lesson.empty())
+    if (args.select >= 0 && args.lesson.empty()) {
+        const std::int32_t corners = state.engine.mesh().numCorners();
+        if (args.select >= corners) {
+            fail("--select " + std::to_string(args.select) + ": the mesh at operation " +
+                     std::to_string(state.engine.position()) + " has corners 0 to " +
+                     std::to_string(corners - 1),
+                 2);
+        }
         state.select(static_cast<std::int32_t>(args.select));
+    }
     state.pendingTab = args.tab;
     // ImGui lays out in the first frames (tables measure their columns): render a few.
     for (int i = 0; i < 3; ++i) gui.frame();
@@ -239,7 +243,13 @@ void addRender(CLI::App& app) {
                                   "Operations to perform before the screenshot");
     cmd->add_flag("--to-end", args->toEnd, "Run to the end before the screenshot")->excludes(steps);
     cmd->add_option("--size", args->size, "Window size WIDTHxHEIGHT")->capture_default_str();
-    cmd->add_option("--select", args->select, "Select this corner (inspector, highlights)");
+    cmd->add_option("--select", args->select, "Select this corner (inspector, highlights)")
+        ->check(CLI::Validator(
+            [](std::string& v) {
+                return !v.empty() && v[0] == '-' ? "--select must be a corner, 0 or more, not " + v
+                                                 : std::string();
+            },
+            "C >= 0"));
     cmd->add_flag("--presentation", args->presentation,
                   "Presentation mode (large fonts, high contrast)");
     cmd->add_option("--lesson", args->lesson, "A lesson (.toml): render one of its stops");
@@ -255,12 +265,7 @@ void addRender(CLI::App& app) {
     cmd->add_option("--overlay", args->overlays,
                     "voronoi, circumcircles, triangle-ids, no-corner-ids, no-fill (repeatable)");
     args->engine.add(*cmd);
-    cmd->callback([args, cmd] {
-        args->engineGiven = cmd->count("--locate") + cmd->count("--order") +
-                                cmd->count("--boundary") + cmd->count("--seed") >
-                            0;
-        guarded([&] { runRender(*args); });
-    });
+    cmd->callback([args] { guarded([&] { runRender(*args); }); });
 }
 
 }  // namespace dlab::cli

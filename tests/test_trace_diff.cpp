@@ -7,6 +7,7 @@
 #include "core/engine/generators.h"
 #include "core/engine/io_read.h"
 #include "core/teaching/lesson.h"
+#include "core/teaching/trace.h"
 
 #include "tests/run_dtlab.h"
 
@@ -146,6 +147,25 @@ TEST(TraceDiff, MinimalStudentTraceIsEnough) {
         return true;
     }));
     EXPECT_TRUE(diffTraces(ref, lower).equal);
+}
+
+TEST(TraceDiff, OurOwnTraceWithoutChangesAgrees) {
+    // "changes" is optional: without it, Finalize's empty "triangles" means "not given", not
+    // "the final mesh is empty".
+    Inserter ins(testPoints(), InsertOptions{});
+    Journal journal(ins);
+    std::ostringstream text;
+    while (journal.forward()) {
+        auto j = nlohmann::json::parse(
+            toJsonLine(traceRecord(journal, journal.position() - 1, ins.mesh())));
+        j.erase("changes");
+        text << j.dump() << "\n";
+    }
+    const TraceFile student = parse(text.str());
+    ASSERT_EQ(student.ops.back().type, OpType::Finalize);
+    const TraceFile ref = ourTrace(testPoints());
+    const TraceDiff d = diffTraces(ref, student);
+    EXPECT_TRUE(d.equal) << formatDiff(d, ref, student);
 }
 
 TEST(TraceDiff, FirstWrongTriangleIsFoundAtItsOp) {

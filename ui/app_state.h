@@ -244,6 +244,10 @@ struct FileState {
     std::string dialogPath;        // the path field of the open dialog
     int meshFormat = 0;            // export dialog: 0 .ele/.neigh, 1 OFF, 2 OBJ
     GifRequest gifDraft;           // the GIF dialog's fields
+
+    // The platform's own file chooser (the browser's), used for Open instead of our dialog; it
+    // opens the chosen file itself, later.
+    std::function<void()> platformOpenDialog;
 };
 
 struct AppState {

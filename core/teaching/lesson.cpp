@@ -1287,16 +1287,13 @@ Lesson parseLesson(std::string_view text, const std::string& path) {
 }
 
 Lesson loadLesson(const std::string& path) {
-    std::error_code ec;
-    if (!fs::is_regular_file(path, ec)) throw LessonError(path, 0, 0, "no such lesson file");
-    const auto size = fs::file_size(path, ec);
-    if (ec || size > kMaxLessonFileBytes)
-        throw LessonError(path, 0, 0, "lesson file unreadable or too large (at most 1 MiB)");
-    std::ifstream in(path, std::ios::binary);
-    std::stringstream ss;
-    ss << in.rdbuf();
-    if (!in && !in.eof()) throw LessonError(path, 0, 0, "cannot read the lesson file");
-    return parseLesson(ss.str(), path);
+    std::string text;
+    try {
+        text = readRegularFile(path, kMaxLessonFileBytes);
+    } catch (const InputError& e) {
+        throw LessonError(path, 0, 0, e.message());
+    }
+    return parseLesson(text, path);
 }
 
 // ============================================================================================
@@ -1373,6 +1370,15 @@ void checkExpectations(const Lesson& lesson, std::size_t k, Inserter& ins, Journ
 
 }  // namespace
 
+// Why a stop cannot be reached: the history is full (target 0: the stop's breakpoint).
+static std::string historyFull(const Journal& journal, std::size_t target) {
+    return "this stop" + (target ? " (op " + std::to_string(target) + ")" : std::string()) +
+           " lies past the step-by-step history's memory budget of " +
+           std::to_string(journal.budget() >> 20) + " MiB, reached after " +
+           std::to_string(journal.recorded()) +
+           " operations; stop earlier, or use fewer points or the brio order (it walks far less)";
+}
+
 LessonPlan planLesson(const Lesson& lesson) {
     auto ins = makeInserter(lesson);
     Journal journal(*ins);
@@ -1394,6 +1400,7 @@ LessonPlan planLesson(const Lesson& lesson) {
                                      std::to_string(journal.position()) + ")");
                 }
                 journal.seek(target);
+                if (journal.budgetReached()) fail(s.line, historyFull(journal, target));
                 if (journal.position() != target) {
                     fail(s.line, "run_to op:" + std::to_string(target) +
                                      " is past the end of the run (" +
@@ -1403,6 +1410,7 @@ LessonPlan planLesson(const Lesson& lesson) {
                 for (int i = 0; i < s.count; ++i) {
                     const RunResult r = runUntil(journal, *ins, std::span(&bp, 1),
                                                  std::numeric_limits<std::size_t>::max());
+                    if (journal.budgetReached()) fail(s.line, historyFull(journal, 0));
                     if (r.reason != StopReason::Hit) {
                         fail(s.line,
                              "run_to \"" + toString(bp) + "\" (" + explain(bp) +
@@ -1455,6 +1463,8 @@ LessonPlan planLesson(const Lesson& lesson) {
     }
     runUntil(journal, *ins, {}, std::numeric_limits<std::size_t>::max());
     plan.totalOps = journal.position();
+    // Past the history's budget the rest of the run is only counted.
+    for (; journal.budgetReached() && !ins->done(); ++plan.totalOps) ins->step(nullptr);
     return plan;
 }
 

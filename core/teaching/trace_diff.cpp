@@ -118,6 +118,9 @@ TraceOp parseLine(const std::string& text, const std::string& name, int line) {
                 v[k] = static_cast<std::int32_t>(integer(t[k], "a vertex", 0, kMaxId, name, line));
             op.triangles.push_back(v);
         }
+        // Finalize with an empty list means "not given" (as our own traces write it), never
+        // "the final mesh is empty": a finished run always has its triangles.
+        if (op.type == OpType::Finalize && op.triangles.empty()) op.hasTriangles = false;
     }
     return op;
 }
@@ -152,8 +155,7 @@ TraceFile parseTraceText(std::istream& in, const std::string& name) {
 }
 
 TraceFile readTraceFile(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw InputError(path, 0, "cannot open the trace");
+    std::istringstream in(readRegularFile(path, kMaxTraceFileBytes));
     return parseTraceText(in, path);
 }
 
@@ -162,6 +164,13 @@ TraceFile traceOfRun(Inserter& ins, const std::string& name) {
     std::stringstream text;
     while (journal.forward())
         text << toJsonLine(traceRecord(journal, journal.position() - 1, ins.mesh())) << '\n';
+    if (journal.budgetReached()) {
+        throw InputError(name, 0,
+                         "the reference run passes the history's memory budget (" +
+                             std::to_string(journal.budget() >> 20) + " MiB) after " +
+                             std::to_string(journal.recorded()) +
+                             " operations: compare a smaller or a brio-order run");
+    }
     return parseTraceText(text, name);
 }
 

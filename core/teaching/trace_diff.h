@@ -48,6 +48,9 @@ struct TraceFile {
     std::vector<TraceOp> ops;
 };
 
+// The largest trace file read: 1 GiB (about 5 million operations of a few hundred bytes each).
+inline constexpr std::size_t kMaxTraceFileBytes = std::size_t{1} << 30;
+
 // Reads a trace leniently (only "op" is required on each line; blank lines are skipped).
 // Throws InputError ("NAME:LINE: what") on anything that is not such a trace.
 TraceFile readTraceFile(const std::string& path);

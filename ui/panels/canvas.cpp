@@ -320,9 +320,9 @@ void DrawOpOverlay(const Scene& s) {
             if (!ov.walk) break;
             const Control& ctl = s.ins.control();
             const std::int32_t v = op->vertex;
-            if (v >= 0 && v < m.numVertices() && ctl.straight && ctl.walkSteps > 0) {
+            if (v >= 0 && v < m.numVertices() && ctl.walk.straight && ctl.walk.steps > 0) {
                 // The paper's line L from q (inside the start triangle) to the new point.
-                Arrow(s.dl, toIm(s.view.toScreen(ctl.walkOrigin)), s.screen(v), s.pal.lineL,
+                Arrow(s.dl, toIm(s.view.toScreen(ctl.walk.origin)), s.screen(v), s.pal.lineL,
                       w * 0.7f);
             }
             break;

@@ -9,6 +9,7 @@
 #include "ui/files/files.h"
 #include "ui/files/gif_export.h"
 #include "ui/files/session.h"
+#include "ui/files/settings.h"
 #include "ui/panels/panels.h"
 #include "ui/platform/keys.h"
 
@@ -16,6 +17,7 @@
 #include <imgui.h>
 
 #include <signal.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -95,6 +97,56 @@ TEST(Files, ASessionErrorQuotingAControlCharacterStaysOneLine) {
     EXPECT_EQ(error.rfind("bad.json:2:", 0), 0u) << error;
     EXPECT_NE(error.find("sup\\nper"), std::string::npos) << error;
     EXPECT_EQ(st.engine.points(), before);
+}
+
+TEST(Files, PipesAndDevicesAreRefusedWithoutReadingThem) {
+    TempDir dir("nonregular");
+    const std::string fifo = dir / "pipe.json";
+    ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+    const std::string zero = dir / "z.json";
+    fs::create_symlink("/dev/zero", zero);
+    dlab::ui::AppState st;
+    std::string error;
+    // No writer on the pipe and endless zeros: each is refused at once, in one line.
+    EXPECT_FALSE(dlab::ui::loadSession(st, fifo, error));
+    EXPECT_EQ(error, fifo + ": cannot read: it is a named pipe (FIFO), not a regular file");
+    EXPECT_FALSE(dlab::ui::loadSession(st, zero, error));
+    EXPECT_EQ(error, zero + ": cannot read: it is a device, not a regular file");
+    dlab::ui::SessionSummary summary;
+    EXPECT_FALSE(dlab::ui::peekSession(zero, summary, error));
+    EXPECT_NE(error.find("device"), std::string::npos) << error;
+    EXPECT_FALSE(dlab::ui::openFile(st, fifo));
+    EXPECT_FALSE(dlab::ui::openFile(st, dir / "z.json"));
+    // Settings: ignored with a warning, never waited on.
+    dlab::ui::WindowOptions window;
+    std::string warning;
+    dlab::ui::loadSettings(fifo, st, window, warning);
+    EXPECT_NE(warning.find("named pipe"), std::string::npos) << warning;
+}
+
+TEST(Files, ASessionNumberBeyondDoubleNamesItsLine) {
+    dlab::ui::AppState st;
+    const std::string text =
+        "{\"format\": \"delaunay-lab session\", \"version\": 1,\n"
+        "  \"points\": [[0, 0], [1e400, 0], [0, 1]]}";
+    std::string error;
+    ASSERT_FALSE(dlab::ui::loadSessionText(st, text, "big.json", error));
+    EXPECT_EQ(error.rfind("big.json:2: the number 1e400 is too large", 0), 0u) << error;
+    EXPECT_EQ(error.find("json.exception"), std::string::npos) << error;
+}
+
+TEST(Files, ViewSvgEscapesControlCharactersInItsTitle) {
+    UiHarness h;
+    auto& st = h.state();
+    st.source = "lesson \x1b[31mred\x07 <&>";
+    std::ostringstream out;
+    dlab::ui::writeViewSvg(out, st);
+    const std::string svg = out.str();
+    for (char c : svg) {
+        const auto u = static_cast<unsigned char>(c);
+        EXPECT_FALSE(u < 0x20 && c != '\n' && c != '\t' && c != '\r') << static_cast<int>(u);
+    }
+    EXPECT_NE(svg.find("lesson ?[31mred? &lt;&amp;&gt;"), std::string::npos);
 }
 
 TEST(Files, PointsRoundTripBitExactAsNodeAndCsv) {
