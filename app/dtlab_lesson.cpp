@@ -1,11 +1,13 @@
-// dtlab lesson check | show: runs lessons headlessly (every stop reached, every answer computed)
-// and prints a lesson's answer key.
+// dtlab lesson check | show | handout: runs lessons headlessly (every stop reached, every answer
+// computed, every expectation met), prints a lesson's answer key, or writes a student handout.
 #include "app/dtlab_common.h"
 
 #include "core/engine/text_util.h"
 #include "core/teaching/lesson.h"
 
+#include <fstream>
 #include <iostream>
+#include <sstream>
 
 namespace dlab::cli {
 
@@ -14,6 +16,7 @@ namespace {
 struct LessonArgs {
     std::vector<std::string> files;
     std::string file;
+    std::string output;
     bool tables = false;
 };
 
@@ -49,6 +52,13 @@ void runCheck(const LessonArgs& args) {
         try {
             const Lesson lesson = loadLesson(path);
             const LessonPlan plan = planLesson(lesson);
+            const std::vector<LessonError> problems = lessonProblems(lesson, plan);
+            if (!problems.empty()) {
+                for (const LessonError& e : problems)
+                    std::cerr << "dtlab: error: " << e.what() << "\n";
+                ++failed;
+                continue;
+            }
             std::cout << escapeControls(path) << ": ok: \"" << escapeControls(lesson.title)
                       << "\" (" << (lesson.assignment ? "assignment, " : "") << lesson.points.size()
                       << " points, " << lesson.stops.size() << " stops, " << questions(lesson)
@@ -98,15 +108,48 @@ void runShow(const LessonArgs& args) {
                 printTables(*ins);
             }
             if (st.selected != kNone) std::cout << "selected corner: " << st.selected << "\n";
-            if (!s.text.empty()) std::cout << text(s.text) << (s.text.back() == '\n' ? "" : "\n");
+            if (!st.text.empty())
+                std::cout << text(st.text) << (st.text.back() == '\n' ? "" : "\n");
             if (!s.question.empty()) {
-                std::cout << "Q: " << text(s.question) << "\nA: " << text(st.answer->display())
+                std::cout << "Q: " << text(st.question) << "\nA: " << text(st.answer->display())
                           << "   (" << text(s.answer) << ")\n";
+                if (!st.hint.empty()) std::cout << "hint: " << text(st.hint) << "\n";
             }
+            for (const LessonExpect& e : s.expect)
+                std::cout << "checked: " << text(e.spec) << " = " << text(e.value) << "\n";
         }
     } catch (const LessonError& e) {
         fail(e.what(), 2);  // bad input
     }
+}
+
+// A handout for students: the lesson's text and questions in Markdown, no answers.
+void runHandout(const LessonArgs& args) {
+    std::string text;
+    try {
+        const Lesson lesson = loadLesson(args.file);
+        const LessonPlan plan = planLesson(lesson);
+        std::ostringstream md;
+        md << "# " << lesson.title << "\n\n" << lesson.summary << "\n";
+        int asked = 0;
+        for (std::size_t k = 0; k < lesson.stops.size(); ++k) {
+            const StopState& st = plan.stops[k];
+            md << "\n## Stop " << k + 1 << "\n\n";
+            if (!st.text.empty()) md << trimmed(st.text) << "\n";
+            if (lesson.stops[k].question.empty()) continue;
+            md << "\n**Question " << ++asked << ".** " << st.question << "\n";
+            if (!st.hint.empty()) md << "\n*Hint:* " << st.hint << "\n";
+            md << "\nYour answer: ____________________\n";
+        }
+        text = md.str();
+    } catch (const LessonError& e) {
+        fail(e.what());
+    }
+    std::ofstream out(args.output, std::ios::binary);
+    out << text;
+    out.close();
+    if (!out) fail("cannot write " + args.output);
+    std::cout << "wrote " << args.output << "\n";
 }
 
 }  // namespace
@@ -117,7 +160,9 @@ void addLesson(CLI::App& app) {
     cmd->require_subcommand(1);
     CLI::App* check = cmd->add_subcommand("check",
                                           "Run every lesson to its end headlessly: each stop "
-                                          "reached in order, each answer computable");
+                                          "reached in order, each answer computable, each "
+                                          "expectation met, every character drawable, no "
+                                          "answer given away");
     check->add_option("lessons", args->files, "Lesson files (.toml)")->required();
     check->callback([args] { guarded([&] { runCheck(*args); }); });
     CLI::App* show =
@@ -126,6 +171,13 @@ void addLesson(CLI::App& app) {
     show->add_flag("--tables", args->tables,
                    "Also print the corner table (V and O per triangle) at each stop");
     show->callback([args] { guarded([&] { runShow(*args); }); });
+    CLI::App* handout = cmd->add_subcommand(
+        "handout",
+        "Write a lesson as a Markdown handout for students: text and questions, no "
+        "answers");
+    handout->add_option("lesson", args->file, "Lesson file (.toml)")->required();
+    handout->add_option("-o,--output", args->output, "Markdown file to write")->required();
+    handout->callback([args] { guarded([&] { runHandout(*args); }); });
 }
 
 }  // namespace dlab::cli

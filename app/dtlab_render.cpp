@@ -135,8 +135,9 @@ void benchChangingFrames(ui::Gui& gui, ui::AppState& state, int frames, std::siz
 }
 
 void runRender(const RenderArgs& args) {
+    if (args.output.empty() && (args.slides.empty() || args.lesson.empty()))
+        fail("render needs -o FILE.png (or --lesson L --slides DIR)", 2);
     if (!args.slides.empty() && args.lesson.empty()) fail("--slides needs --lesson", 2);
-    if (args.output.empty() && args.slides.empty()) fail("-o FILE.png is required", 2);
     int width = 0, height = 0;
     if (std::sscanf(args.size.c_str(), "%dx%d", &width, &height) != 2 || width < 320 ||
         height < 240 || width > 8192 || height > 8192) {
@@ -240,7 +241,8 @@ void addRender(CLI::App& app) {
         "render", "Screenshot of the whole GUI after K operations (headless, OSMesa)");
     cmd->add_option("input", args->input,
                     "Point file (.node, .csv, .xy, .pts); the built-in demo when absent");
-    cmd->add_option("-o,--output", args->output, "PNG file to write (not with --slides)");
+    cmd->add_option("-o,--output", args->output,
+                    "PNG file to write (not needed with --lesson L --slides DIR)");
     auto* steps = cmd->add_option("--steps,--step", args->steps,
                                   "Operations to perform before the screenshot");
     cmd->add_flag("--to-end", args->toEnd, "Run to the end before the screenshot")->excludes(steps);

@@ -15,6 +15,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <set>
 
 using namespace dlab;
 namespace fs = std::filesystem;
@@ -114,6 +115,8 @@ TEST_P(EveryLesson, RunsToItsEndWithEveryAnswerComputed) {
         }
     }
     EXPECT_LE(previous, plan.totalOps);
+    // The text may not contradict the engine, give answers away, or hold undrawable characters.
+    for (const LessonError& e : lessonProblems(lesson, plan)) ADD_FAILURE() << e.what();
 }
 
 INSTANTIATE_TEST_SUITE_P(Lessons, EveryLesson, testing::ValuesIn(lessonFiles()),
@@ -513,6 +516,348 @@ TEST(LessonAnswers, StudentsTypeAnswersTheirWay) {
     EXPECT_EQ(y.display(), "no");
 }
 
+TEST(LessonAnswers, LabelsAndPhrasesAsPeopleWriteThem) {
+    Answer s0;  // a super-triangle vertex: the canvas says s0
+    s0.kind = Answer::Kind::Integer;
+    s0.a = 21;
+    s0.labelA = "s0";
+    for (const char* typed : {"s0", "S0", " s 0 ", "21"})
+        EXPECT_TRUE(acceptsAnswer(s0, typed)) << typed;
+    EXPECT_FALSE(acceptsAnswer(s0, "s1"));
+    EXPECT_EQ(s0.display(), "s0");
+    Answer e;  // the edge 1-s0
+    e.kind = Answer::Kind::Edge;
+    e.a = 1;
+    e.b = 21;
+    e.labelB = "s0";
+    for (const char* typed : {"1-s0", "s0-1", "edge 1-s0", "1 - 21", "from 1 to s0"})
+        EXPECT_TRUE(acceptsAnswer(e, typed)) << typed;
+    for (const char* typed : {"1-s1", "1", "1-s0-2"})
+        EXPECT_FALSE(acceptsAnswer(e, typed)) << typed;
+    EXPECT_EQ(e.display(), "1-s0");
+    Answer g = s0;  // the ghost vertex
+    g.labelA = "g";
+    EXPECT_TRUE(acceptsAnswer(g, "g"));
+    EXPECT_TRUE(acceptsAnswer(g, "G"));
+    Answer where;
+    where.kind = Answer::Kind::Text;
+    where.text = "edge";
+    for (const char* typed : {"edge", "on an edge", "On the edge", "it is on an edge"})
+        EXPECT_TRUE(acceptsAnswer(where, typed)) << typed;
+    EXPECT_FALSE(acceptsAnswer(where, "inside"));
+    where.text = "outside-hull";
+    for (const char* typed : {"outside", "outside the hull", "outside hull", "beyond the hull"})
+        EXPECT_TRUE(acceptsAnswer(where, typed)) << typed;
+    where.text = "inside";
+    EXPECT_TRUE(acceptsAnswer(where, "inside a triangle"));
+    EXPECT_FALSE(acceptsAnswer(where, "on a vertex"));
+    Answer t;  // a triangle: the canvas says t25
+    t.kind = Answer::Kind::Integer;
+    t.a = 25;
+    t.triangle = true;
+    for (const char* typed : {"25", "t25", "T 25", "triangle 25"})
+        EXPECT_TRUE(acceptsAnswer(t, typed)) << typed;
+    Answer three;
+    three.kind = Answer::Kind::Integer;
+    three.a = 3;
+    EXPECT_TRUE(acceptsAnswer(three, "three"));
+    EXPECT_FALSE(acceptsAnswer(three, "four"));
+    Answer yes;
+    yes.kind = Answer::Kind::Truth;
+    yes.truth = true;
+    EXPECT_TRUE(acceptsAnswer(yes, "yes, it flips"));
+    EXPECT_FALSE(acceptsAnswer(yes, "no"));
+}
+
+TEST(LessonAnswers, LiveAnswersCarryTheCanvasLabels) {
+    // Super mode: the first in-circle tests involve super vertices, named s0..s2 as on canvas.
+    InsertOptions super;
+    super.boundary = Boundary::Super;
+    super.order = OrderKind::Input;
+    LiveRun r = start({{0, 0}, {6, 0}, {5, 4}, {1, 3}}, super);
+    while (const Op* op = r.journal->forward()) {
+        if (op->type == OpType::InCircleTest && op->b != kNone) break;
+    }
+    const Answer tested = answer(r, "test_edge");
+    const bool touchesSuper = tested.b >= 4;
+    ASSERT_TRUE(touchesSuper) << tested.display();
+    EXPECT_EQ(tested.labelB, "s" + std::to_string(tested.b - 4));
+    EXPECT_TRUE(acceptsAnswer(tested, tested.display()));
+    EXPECT_TRUE(acceptsAnswer(tested, std::to_string(tested.a) + "-" + std::to_string(tested.b)));
+}
+
+TEST(LessonAnswers, ForwardLookingQuantitiesMatchWhatHappensNext) {
+    InsertOptions opt;
+    opt.order = OrderKind::Input;
+    LiveRun r = start(demoPoints(), opt);
+    Journal& j = *r.journal;
+    int tests = 0, locates = 0;
+    while (!j.atEnd()) {
+        std::string why;
+        const auto nextEdge = computeAnswer("next_test_edge", *r.ins, j, kNone, &why);
+        const auto willFlip = computeAnswer("will_flip", *r.ins, j, kNone, &why);
+        const auto nextWhere = computeAnswer("next_where", *r.ins, j, kNone, &why);
+        const auto nextTri = computeAnswer("next_located", *r.ins, j, kNone, &why);
+        const Op* op = j.forward();
+        if (op->type == OpType::InCircleTest && nextEdge) {
+            ++tests;
+            EXPECT_EQ(nextEdge->display(), answer(r, "test_edge").display());
+            EXPECT_EQ(willFlip->truth, op->sign > 0);
+        }
+        if (op->type == OpType::Located && nextWhere) {
+            ++locates;
+            EXPECT_EQ(nextWhere->text, toString(op->where));
+            EXPECT_EQ(nextTri->a, op->a);
+        }
+    }
+    EXPECT_GT(tests, 10);
+    EXPECT_GT(locates, 5);
+    j.seek(0);
+    j.forward();  // Start: the next locate is in this insertion, the next test too
+    EXPECT_TRUE(answer(r, "next_where").kind == Answer::Kind::Text);
+}
+
+TEST(LessonAnswers, TrianglesAroundAndEdgesAroundDifferOnTheHull) {
+    LiveRun r = start({{0, 0}, {6, 0}, {5, 4}, {1, 3}, {3, 1.5}});
+    r.journal->seek(1u << 30);
+    const Mesh& m = r.ins->mesh();
+    std::int32_t atHull = kNone, atCentre = kNone;
+    for (std::int32_t c = 0; c < m.numCorners(); ++c) {
+        if (m.V[c] == 0) atHull = c;
+        if (m.V[c] == 4) atCentre = c;
+    }
+    EXPECT_EQ(answer(r, "triangles_around", atCentre).a, 4);
+    EXPECT_EQ(answer(r, "edges_around", atCentre).a, 4);
+    // Vertex 0 on the hull: its edges go to 1, 3 and the centre, between two triangles.
+    EXPECT_EQ(answer(r, "triangles_around", atHull).a, 2);
+    EXPECT_EQ(answer(r, "edges_around", atHull).a, 3);
+}
+
+TEST(LessonAnswers, ChangedCornersOfAFlip) {
+    InsertOptions opt;
+    opt.order = OrderKind::Input;
+    LiveRun r = start(demoPoints(), opt);
+    while (const Op* op = r.journal->forward()) {
+        if (op->type == OpType::Flip) break;
+    }
+    ASSERT_EQ(r.journal->current()->type, OpType::Flip);
+    // The paper's Figure 6: the flip rewrites all six corners of its two triangles (V at two, O
+    // at four), and the O of the outer neighbours that now face back at them.
+    const Op& flip = *r.journal->current();
+    std::set<std::int32_t> vCells, all;
+    for (std::uint32_t i = 0; i < flip.numChanges; ++i) {
+        const CellChange& ch = r.journal->changes()[flip.firstChange + i];
+        all.insert(ch.corner());
+        if (!ch.isO()) vCells.insert(ch.corner());
+    }
+    EXPECT_EQ(vCells.size(), 2u);
+    for (std::int32_t c : {flip.a, next(flip.a), prev(flip.a), flip.b, next(flip.b), prev(flip.b)})
+        EXPECT_TRUE(all.count(c)) << "corner " << c;
+    EXPECT_EQ(answer(r, "changed_corners").a, static_cast<std::int64_t>(all.size()));
+    EXPECT_GE(all.size(), 6u);
+    EXPECT_LE(all.size(), 8u);
+}
+
+// ---- Engine values in the text, expectations, and what lesson check refuses --------------------
+
+TEST(LessonValues, TextEmbedsTheEngineValuesAtTheStop) {
+    const fs::path p = scratchDir() / "lessons" / "values.toml";
+    write(p, kHead +
+                 "[[stop]]\nrun_to = \"split\"\ntext = \"\"\"\n{{queue}} edges wait; "
+                 "vertex {{vertex}}\nat corner 0: {{ V[0] }}\"\"\"\nquestion = \"Which "
+                 "edge is tested first?\"\nanswer = \"next_test_edge\"\nhint = \"One of "
+                 "{{queue}}\"\n");
+    const Lesson lesson = loadLesson(p.string());
+    EXPECT_EQ(lesson.stops[0].textLine, 6);
+    const LessonPlan plan = planLesson(lesson);
+    LiveRun r = start(lesson.points, lesson.options);
+    r.journal->seek(plan.stops[0].position);
+    EXPECT_EQ(plan.stops[0].text, std::to_string(answer(r, "queue").a) + " edges wait; vertex " +
+                                      std::to_string(answer(r, "vertex").a) +
+                                      "\nat corner 0: " + std::to_string(r.ins->mesh().V[0]));
+    EXPECT_EQ(plan.stops[0].hint, "One of 3");
+    EXPECT_NE(plan.stops[0].banner.find("Split: split triangle"), std::string::npos)
+        << plan.stops[0].banner;
+}
+
+TEST(LessonValues, UnknownOrUnclosedValuesNameFileLineAndStop) {
+    const std::string stop = "[[stop]]\ntext = \"x\"\n";
+    struct Case {
+        std::string text;
+        int line, stop;
+        const char* says;
+    };
+    const Case cases[] = {
+        {kHead + stop + "[[stop]]\ntext = \"\"\"\nfine\n{{walk_stepz}} steps\"\"\"\n", 8, 2,
+         "unknown value {{walk_stepz}} in the text"},
+        {kHead + "[[stop]]\ntext = \"{{queue\"\n", 4, 1, "unclosed {{"},
+        {kHead + "[[stop]]\ntext = \"{{ }}\"\n", 4, 1, "empty {{}}"},
+        {kHead + "[[stop]]\nquestion = \"Is {{x.n}} right?\"\nanswer = \"queue\"\n", 4, 1,
+         "in the question: neither a quantity"},
+        {kHead + "[[stop]]\ntext = \"t\"\nexpect = { walk_stepz = 0 }\n", 5, 1,
+         "expect \"walk_stepz\": neither a quantity"},
+        {kHead + "[[stop]]\ntext = \"t\"\nexpect = 3\n", 5, 1, "must be a table"},
+        {kHead + "[[stop]]\ntext = \"t\"\nexpect = { queue = [1] }\n", 5, 1,
+         "a string, a number or true/false"},
+        {kHead + "[[stop]]\ntext = \"{{next_flip}}\"\nrun_to = \"end\"\n", 4, 1,
+         "the run is finished"},
+    };
+    for (const Case& c : cases) {
+        const LessonError e = errorOf(c.text);
+        EXPECT_EQ(e.line(), c.line) << e.what();
+        EXPECT_EQ(e.stop(), c.stop) << e.what();
+        EXPECT_NE(e.message().find(c.says), std::string::npos)
+            << e.what() << "\n  wanted: " << c.says;
+    }
+}
+
+TEST(LessonExpectations, CheckFailsWhereTheTextContradictsTheEngine) {
+    const std::string head =
+        "title = \"t\"\npoints = [[0, 0], [6, 0], [5, 4], [1, 3], [3, 1]]\n"
+        "[options]\nlocator = \"naive\"\n";
+    LiveRun r = start({{0, 0}, {6, 0}, {5, 4}, {1, 3}, {3, 1}}, [] {
+        InsertOptions o;
+        o.order = OrderKind::Input;
+        o.locator = LocatorKind::Naive;
+        return o;
+    }());
+    const std::vector<Breakpoint> located{*parseBreakpoint("located")};
+    for (int i = 0; i < 2; ++i) runUntil(*r.journal, *r.ins, located, 1u << 30);
+    const std::int64_t steps = answer(r, "locate_steps").a;
+    // The text claims a longer walk than the engine's, on an edge: check names file, line, stop.
+    const std::string claim = std::to_string(steps + 3);
+    const std::string wrong = head +
+                              "[[stop]]\nrun_to = \"located\"\ncount = 2\ntext = \"A long "
+                              "walk.\"\nexpect = { locate_steps = " +
+                              claim + " }\n";
+    const LessonError e = errorOf(wrong);
+    EXPECT_EQ(e.line(), 9) << e.what();
+    EXPECT_EQ(e.stop(), 1);
+    EXPECT_NE(e.message().find("the lesson expects locate_steps = " + claim +
+                               ", but the engine says " + std::to_string(steps)),
+              std::string::npos)
+        << e.what();
+    const LessonError where = errorOf(head +
+                                      "[[stop]]\nrun_to = \"located\"\ncount = 2\ntext = \"On "
+                                      "it.\"\nexpect = { where = \"on an edge\" }\n");
+    EXPECT_NE(where.message().find("expects where = on an edge, but the engine says inside"),
+              std::string::npos)
+        << where.what();
+    const Result cli = dtlab("lesson check " + scratchDir().string() + "/lessons/x.toml");
+    EXPECT_EQ(cli.status, 1);
+    EXPECT_NE(cli.out.find("x.toml:9: stop 1: the lesson expects where = on an edge"),
+              std::string::npos)
+        << cli.out;
+    // What the engine says passes, in any spelling a student would use.
+    const fs::path ok = scratchDir() / "lessons" / "ok.toml";
+    write(ok, head +
+                  "[[stop]]\nrun_to = \"located\"\ncount = 2\ntext = \"Found.\"\nexpect = { "
+                  "locate_steps = " +
+                  std::to_string(steps) +
+                  ", where = \"inside a triangle\", convex = true, \"V[0]\" = " +
+                  std::to_string(r.ins->mesh().V[0]) + " }\n");
+    EXPECT_NO_THROW(planLesson(loadLesson(ok.string())));
+}
+
+TEST(LessonCheck, RefusesCharactersTheGuiCannotDraw) {
+    EXPECT_FALSE(firstUndrawable("plain - text, 2\u00b75, \u2192, \u2212 1, \u2264"));
+    const auto bad = firstUndrawable("a \u221e b");  // infinity: not in the font's ranges
+    ASSERT_TRUE(bad);
+    EXPECT_EQ(bad->first, 2u);
+    EXPECT_EQ(bad->second, U'\u221e');
+    EXPECT_TRUE(firstUndrawable("broken \xff byte"));
+    const fs::path p = scratchDir() / "lessons" / "font.toml";
+    write(p, kHead + "[[stop]]\ntext = \"\"\"\nfine\nto \u221e and back\"\"\"\n");
+    const Lesson lesson = loadLesson(p.string());
+    const auto problems = lessonProblems(lesson, planLesson(lesson));
+    ASSERT_EQ(problems.size(), 1u);
+    EXPECT_EQ(problems[0].line(), 6);
+    EXPECT_EQ(problems[0].stop(), 1);
+    EXPECT_NE(problems[0].message().find("U+221E"), std::string::npos) << problems[0].what();
+    const Result cli = dtlab("lesson check " + p.string());
+    EXPECT_EQ(cli.status, 1);
+    EXPECT_NE(cli.out.find("font.toml:6: stop 1: the text has"), std::string::npos) << cli.out;
+}
+
+TEST(LessonCheck, RefusesAnswersGivenAwayByTheTextOrTheBanner) {
+    Answer n;
+    n.kind = Answer::Kind::Integer;
+    n.a = 3;
+    EXPECT_TRUE(answerAppearsIn(n, "the three edges"));
+    EXPECT_TRUE(answerAppearsIn(n, "split into 3"));
+    EXPECT_TRUE(answerAppearsIn(n, "triangle t3"));
+    EXPECT_FALSE(answerAppearsIn(n, "vertex 13 and 0.3"));
+    n.a = -1;
+    EXPECT_TRUE(answerAppearsIn(n, "says so with `-1`"));
+    EXPECT_FALSE(answerAppearsIn(n, "edge 0-1"));
+    Answer e;
+    e.kind = Answer::Kind::Edge;
+    e.a = 0;
+    e.b = 2;
+    EXPECT_TRUE(answerAppearsIn(e, "the diagonal 2-0 stays"));
+    EXPECT_TRUE(answerAppearsIn(e, "the diagonal 0\u20132 stays"));
+    EXPECT_FALSE(answerAppearsIn(e, "vertices 0, 1 and 2"));
+    Answer w;
+    w.kind = Answer::Kind::Text;
+    w.text = "SkipDuplicate";
+    EXPECT_TRUE(answerAppearsIn(w, "[40] SkipDuplicate: vertex 6 ..."));
+    EXPECT_TRUE(answerAppearsIn(w, "we skip duplicate points"));
+    w.text = "edge";
+    EXPECT_TRUE(answerAppearsIn(w, "it lies on the edge"));
+    EXPECT_FALSE(answerAppearsIn(w, "it lies on the diagonal"));
+    EXPECT_FALSE(answerAppearsIn(w, "every edge around it is Delaunay"));
+
+    // In a lesson: the text says the answer; the banner says the other one.
+    const fs::path p = scratchDir() / "lessons" / "giveaway.toml";
+    write(p, kHead +
+                 "[[stop]]\nrun_to = \"op:1\"\ntext = \"Four triangles.\"\n"
+                 "question = \"How many triangles?\"\nanswer = \"all_triangles\"\n"
+                 "[[stop]]\nrun_to = \"flip\"\ntext = \"A flip.\"\n"
+                 "question = \"Which edge did it make?\"\nanswer = \"new_edge\"\n");
+    const Lesson lesson = loadLesson(p.string());
+    const auto problems = lessonProblems(lesson, planLesson(lesson));
+    ASSERT_EQ(problems.size(), 2u);
+    EXPECT_EQ(problems[0].stop(), 1);
+    EXPECT_EQ(problems[0].line(), 5);
+    EXPECT_NE(problems[0].message().find("the answer (4) already appears in the stop's text"),
+              std::string::npos)
+        << problems[0].what();
+    EXPECT_EQ(problems[1].stop(), 2);
+    EXPECT_EQ(problems[1].line(), 8);
+    EXPECT_NE(problems[1].message().find("appears in the operation banner"), std::string::npos)
+        << problems[1].what();
+    EXPECT_EQ(dtlab("lesson check " + p.string()).status, 1);
+}
+
+TEST(LessonHandout, WritesTextAndQuestionsWithoutAnswers) {
+    const std::string lesson = std::string(DLAB_SOURCE_DIR) + "/lessons/01_corner_table.toml";
+    const fs::path out = scratchDir() / "handout.md";
+    const Result r = dtlab("lesson handout " + lesson + " -o " + out.string());
+    ASSERT_EQ(r.status, 0) << r.out;
+    std::ifstream in(out);
+    const std::string md((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const Lesson l = loadLesson(lesson);
+    const LessonPlan plan = planLesson(l);
+    EXPECT_EQ(md.rfind("# " + l.title, 0), 0u);
+    std::size_t questions = 0;
+    for (std::size_t k = 0; k < l.stops.size(); ++k) {
+        if (l.stops[k].question.empty()) continue;
+        ++questions;
+        EXPECT_NE(md.find(plan.stops[k].question), std::string::npos) << "stop " << k + 1;
+    }
+    std::size_t blanks = 0;
+    for (auto at = md.find("Your answer:"); at != std::string::npos;
+         at = md.find("Your answer:", at + 1))
+        ++blanks;
+    EXPECT_EQ(blanks, questions);
+    EXPECT_EQ(md.find("A: "), std::string::npos);
+    EXPECT_EQ(md.find("{{"), std::string::npos) << "values are rendered";
+    // The answer key stays in `lesson show`.
+    const Result show = dtlab("lesson show " + lesson);
+    EXPECT_NE(show.out.find("A: "), std::string::npos);
+    EXPECT_NE(dtlab("lesson handout " + lesson).status, 0) << "-o is required";
+}
+
 // ---- Markdown-light -----------------------------------------------------------------------------
 
 TEST(LessonText, ParagraphsListsBoldAndCode) {
@@ -564,4 +909,84 @@ TEST(LessonFacts, SuperTriangleLessonExactModeGivesThreeTrianglesAndAConvexHull)
     e.journal->seek(1u << 30);
     EXPECT_EQ(answer(e, "triangles").a, 3);
     EXPECT_TRUE(answer(e, "convex").truth);
+}
+
+TEST(LessonFacts, SplitLessonOldTriangleChangesOnlyV2O0AndO1) {
+    const Lesson lesson = loadLesson(std::string(DLAB_SOURCE_DIR) + "/lessons/04_split.toml");
+    LiveRun r = start(lesson.points, lesson.options);
+    while (const Op* op = r.journal->forward()) {
+        if (op->type == OpType::Split) break;
+    }
+    const Op& split = *r.journal->current();
+    ASSERT_EQ(split.type, OpType::Split);
+    ASSERT_EQ(split.a, 0);
+    std::set<std::int32_t> cells;  // slot = 2 * corner + (O ? 1 : 0)
+    for (std::uint32_t i = 0; i < split.numChanges; ++i) {
+        const CellChange& ch = r.journal->changes()[split.firstChange + i];
+        if (ch.corner() < 3) cells.insert(ch.slot);
+    }
+    EXPECT_EQ(cells, (std::set<std::int32_t>{2 * 2, 2 * 0 + 1, 2 * 1 + 1}));
+}
+
+TEST(LessonFacts, FlipsLessonTestsAreThreePlusTwoPerFlip) {
+    const Lesson lesson = loadLesson(std::string(DLAB_SOURCE_DIR) + "/lessons/05_flips.toml");
+    const LessonPlan plan = planLesson(lesson);
+    std::int64_t flips = -1, tests = -1;
+    for (std::size_t k = 0; k < lesson.stops.size(); ++k) {
+        if (lesson.stops[k].answer == "insertion_flips") flips = plan.stops[k].answer->a;
+        if (lesson.stops[k].answer == "insertion_tests") tests = plan.stops[k].answer->a;
+    }
+    ASSERT_GT(flips, 0);
+    EXPECT_EQ(tests, 3 + 2 * flips);
+}
+
+TEST(LessonSlides, RenderWritesOneSlidePerStopWithoutAnOutputFile) {
+    const std::string lesson = std::string(DLAB_SOURCE_DIR) + "/lessons/01_corner_table.toml";
+    const fs::path dir = scratchDir() / "slides";
+    fs::remove_all(dir);
+    const Result r =
+        dtlab("render --lesson " + lesson + " --slides " + dir.string() + " --size 640x400");
+    ASSERT_EQ(r.status, 0) << r.out;
+    const std::size_t stops = loadLesson(lesson).stops.size();
+    for (std::size_t k = 1; k <= stops; ++k) {
+        char name[16];
+        std::snprintf(name, sizeof name, "%02zu.png", k);
+        EXPECT_GT(fs::file_size(dir / name), 0u) << name;
+    }
+    EXPECT_FALSE(fs::exists(dir / "00.png"));
+    const Result none = dtlab("render --lesson " + lesson);
+    EXPECT_EQ(none.status, 2) << none.out;
+    EXPECT_NE(none.out.find("needs -o FILE.png"), std::string::npos) << none.out;
+}
+
+TEST(LessonFigure, LiftingMapDrawsTheInCircleTestAtTheStop) {
+    const Lesson lesson =
+        loadLesson(std::string(DLAB_SOURCE_DIR) + "/lessons/04b_delaunay_foundations.toml");
+    const LessonPlan plan = planLesson(lesson);
+    std::size_t figures = 0;
+    for (std::size_t k = 0; k < lesson.stops.size(); ++k) {
+        if (lesson.stops[k].figure != "lifting-map") continue;
+        ++figures;
+        LiveRun r = start(lesson.points, lesson.options);
+        r.journal->seek(plan.stops[k].position);
+        const auto f = liftingMapAt(*r.ins, r.journal->current());
+        ASSERT_TRUE(f) << "stop " << k + 1;
+        // The figure's sign is the exact test's, and the lifted point is below the plane through
+        // the lifted triangle exactly when the test says inside.
+        EXPECT_EQ(f->sign, answer(r, "test_result").a);
+        EXPECT_EQ(f->vertex, answer(r, "vertex").a);
+        const Answer tested = answer(r, "test_edge");
+        const std::set<std::int32_t> tri(std::begin(f->vertices), std::end(f->vertices));
+        EXPECT_TRUE(tri.count(static_cast<std::int32_t>(tested.a)) &&
+                    tri.count(static_cast<std::int32_t>(tested.b)));
+    }
+    EXPECT_EQ(figures, 1u);
+    // An unknown figure, and a figure where no in-circle test is at hand, name line and stop.
+    const LessonError unknown = errorOf(kHead + "[[stop]]\ntext = \"t\"\nfigure = \"torus\"\n");
+    EXPECT_EQ(unknown.line(), 5);
+    EXPECT_NE(unknown.message().find("unknown figure \"torus\""), std::string::npos);
+    const LessonError none =
+        errorOf(kHead + "[[stop]]\nrun_to = \"end\"\ntext = \"t\"\nfigure = \"lifting-map\"\n");
+    EXPECT_EQ(none.stop(), 1);
+    EXPECT_NE(none.message().find("needs an in-circle test"), std::string::npos) << none.what();
 }

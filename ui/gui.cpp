@@ -1,10 +1,13 @@
 // Gui: ImGui context, fonts (DejaVu when installed), light theme, frames and PNG screenshots.
 #include "ui/gui.h"
 
+#include "core/teaching/lesson.h"
+
 #include <imgui.h>
 #include <stb_image_write.h>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
@@ -66,6 +69,22 @@ Gui::~Gui() {
     g_fonts = {};
 }
 
+namespace {
+
+// Latin-1 plus the few symbols captions and lessons use (arrows, dashes, minus, ≤, ≥): the
+// ranges `dtlab lesson check` holds lesson text to.
+const ImWchar* glyphRanges() {
+    static const auto ranges = [] {
+        std::array<ImWchar, std::size(kLessonGlyphRanges)> r{};
+        for (std::size_t i = 0; i < r.size(); ++i)
+            r[i] = static_cast<ImWchar>(kLessonGlyphRanges[i]);
+        return r;
+    }();
+    return ranges.data();
+}
+
+}  // namespace
+
 void Gui::loadFonts() {
     ImGuiIO& io = ImGui::GetIO();
     const char* sans = firstExisting({"/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf"});
@@ -76,14 +95,11 @@ void Gui::loadFonts() {
     ImFontConfig cfg;
     cfg.OversampleH = 2;
     if (sans) {
-        // Latin-1 plus the few symbols the captions use (arrows, en dash, ≤, ≥).
-        static const ImWchar ranges[] = {0x0020, 0x00FF, 0x2013, 0x2014, 0x2190,
-                                         0x21FF, 0x2264, 0x2265, 0};
-        m_fonts.ui = io.Fonts->AddFontFromFileTTF(sans, base, &cfg, ranges);
-        m_fonts.caption = io.Fonts->AddFontFromFileTTF(sans, base * 1.3f, &cfg, ranges);
+        m_fonts.ui = io.Fonts->AddFontFromFileTTF(sans, base, &cfg, glyphRanges());
+        m_fonts.caption = io.Fonts->AddFontFromFileTTF(sans, base * 1.3f, &cfg, glyphRanges());
     }
-    if (mono) m_fonts.mono = io.Fonts->AddFontFromFileTTF(mono, base, &cfg);
-    if (bold) m_fonts.bold = io.Fonts->AddFontFromFileTTF(bold, base, &cfg);
+    if (mono) m_fonts.mono = io.Fonts->AddFontFromFileTTF(mono, base, &cfg, glyphRanges());
+    if (bold) m_fonts.bold = io.Fonts->AddFontFromFileTTF(bold, base, &cfg, glyphRanges());
     if (!m_fonts.ui) {
         ImFontConfig def;
         def.SizePixels = base;

@@ -17,6 +17,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <limits>
@@ -180,24 +181,6 @@ namespace {
 
 std::string formatNumber(double x) { return shortest(x); }
 
-// Non-negative integers written in s, in order ("edge 4-9" -> 4, 9).
-std::vector<std::int64_t> digitRuns(std::string_view s) {
-    std::vector<std::int64_t> out;
-    for (std::size_t i = 0; i < s.size();) {
-        if (!std::isdigit(static_cast<unsigned char>(s[i]))) {
-            ++i;
-            continue;
-        }
-        std::size_t j = i;
-        while (j < s.size() && std::isdigit(static_cast<unsigned char>(s[j]))) ++j;
-        std::int64_t v = 0;
-        const auto [end, ec] = std::from_chars(s.data() + i, s.data() + j, v);
-        out.push_back(ec == std::errc() ? v : -1);
-        i = j;
-    }
-    return out;
-}
-
 // Real numbers written in s ("(1.5, -2)" -> 1.5, -2).
 std::vector<double> realRuns(std::string_view s) {
     std::vector<double> out;
@@ -218,8 +201,10 @@ std::vector<double> realRuns(std::string_view s) {
 
 std::string Answer::display() const {
     switch (kind) {
-        case Kind::Integer: return std::to_string(a);
-        case Kind::Edge: return std::to_string(a) + "-" + std::to_string(b);
+        case Kind::Integer: return labelA.empty() ? std::to_string(a) : labelA;
+        case Kind::Edge:
+            return (labelA.empty() ? std::to_string(a) : labelA) + "-" +
+                   (labelB.empty() ? std::to_string(b) : labelB);
         case Kind::Text: return text;
         case Kind::Truth: return truth ? "yes" : "no";
         case Kind::Point: return "(" + formatNumber(point.x) + ", " + formatNumber(point.y) + ")";
@@ -227,31 +212,120 @@ std::string Answer::display() const {
     return "?";
 }
 
+namespace {
+
+// Lower-case runs of letters and digits ("Edge 1-s0" -> edge, 1, s0).
+std::vector<std::string> words(std::string_view s) {
+    std::vector<std::string> out;
+    std::string cur;
+    for (char ch : s) {
+        if (std::isalnum(static_cast<unsigned char>(ch))) {
+            cur += static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+        } else if (!cur.empty()) {
+            out.push_back(std::move(cur));
+            cur.clear();
+        }
+    }
+    if (!cur.empty()) out.push_back(std::move(cur));
+    return out;
+}
+
+bool isOneOf(std::string_view w, std::initializer_list<std::string_view> list) {
+    return std::find(list.begin(), list.end(), w) != list.end();
+}
+
+// Number words as people type them ("three").
+std::optional<std::int64_t> numberWord(std::string_view w) {
+    static constexpr std::string_view kWords[] = {
+        "zero",  "one",  "two", "three",  "four",   "five",     "six",      "seven",
+        "eight", "nine", "ten", "eleven", "twelve", "thirteen", "fourteen", "fifteen"};
+    for (std::size_t i = 0; i < std::size(kWords); ++i) {
+        if (w == kWords[i]) return static_cast<std::int64_t>(i);
+    }
+    return std::nullopt;
+}
+
+// A whole number as typed: "17", "+17", "- 1", "t25" (a triangle), "seven".
+std::optional<std::int64_t> typedInteger(std::string t) {
+    for (const char* prefix : {"triangle", "corner", "vertex"}) {
+        if (t.rfind(prefix, 0) == 0) t.erase(0, std::strlen(prefix));
+    }
+    std::string c;
+    for (char ch : t) {
+        if (ch != ' ') c += ch;
+    }
+    if (!c.empty() && c[0] == '+') c.erase(0, 1);
+    if (c.size() > 1 && (c[0] == 't' || c[0] == 'c' || c[0] == 'v') &&
+        std::isdigit(static_cast<unsigned char>(c[1])))
+        c.erase(0, 1);
+    if (auto w = numberWord(c)) return w;
+    std::int64_t v = 0;
+    const auto [end, ec] = std::from_chars(c.data(), c.data() + c.size(), v);
+    if (ec != std::errc() || end != c.data() + c.size()) return std::nullopt;
+    return v;
+}
+
+// A phrase reduced to what it names: filler words dropped, then synonyms mapped, so that
+// "on an edge" and "edge", "outside the hull" and "outside-hull" read the same.
+std::string canonicalPhrase(std::string_view s) {
+    std::string joined;
+    for (const std::string& w : words(s)) {
+        if (isOneOf(w, {"on", "an", "a", "the", "in", "at", "it", "its", "is", "of", "lies",
+                        "exactly", "point", "found", "was", "will", "be", "by"}))
+            continue;
+        joined += w;
+    }
+    if (isOneOf(joined, {"inside", "insidetriangle", "intriangle", "triangle", "interior"}))
+        return "inside";
+    if (isOneOf(joined, {"edge", "anedge", "insideedge"})) return "edge";
+    if (isOneOf(joined, {"vertex", "duplicate", "existingvertex", "samevertex"})) return "vertex";
+    if (isOneOf(joined, {"outside", "outsidehull", "beyondhull", "outsidemesh", "outsideconvexhull",
+                         "beyondconvexhull"}))
+        return "outsidehull";
+    if (isOneOf(joined, {"none", "noflip", "nothing", "noedge", "no"})) return "none";
+    return joined;
+}
+
+bool sameVertex(const std::string& w, std::int64_t v, const std::string& label) {
+    return w == std::to_string(v) || (!label.empty() && w == lowered(label));
+}
+
+}  // namespace
+
 bool acceptsAnswer(const Answer& expected, std::string_view typedIn) {
     const std::string typed = lowered(trimmed(typedIn));
     if (typed.empty()) return false;
     switch (expected.kind) {
         case Answer::Kind::Integer: {
-            if (expected.corner && expected.a == kNone && (typed == "none" || typed == "boundary"))
+            if (expected.corner && expected.a == kNone &&
+                isOneOf(canonicalPhrase(typed), {"none", "boundary", "nocorner", "hull"}))
                 return true;
-            std::string t;
-            for (char ch : typed) {
-                if (ch != ' ') t += ch;
-            }
-            if (!t.empty() && t[0] == '+') t.erase(0, 1);
-            std::int64_t v = 0;
-            const auto [end, ec] = std::from_chars(t.data(), t.data() + t.size(), v);
-            return ec == std::errc() && end == t.data() + t.size() && v == expected.a;
+            if (!expected.labelA.empty() && looseName(typed) == looseName(expected.labelA))
+                return true;
+            const auto v = typedInteger(typed);
+            return v && *v == expected.a;
         }
         case Answer::Kind::Edge: {
-            const auto v = digitRuns(typed);
-            return v.size() == 2 && ((v[0] == expected.a && v[1] == expected.b) ||
-                                     (v[0] == expected.b && v[1] == expected.a));
+            std::vector<std::string> w;
+            for (std::string& x : words(typed)) {
+                if (!isOneOf(x, {"edge", "from", "to", "and", "between", "the"}))
+                    w.push_back(std::move(x));
+            }
+            const auto is = [&](const std::string& x, bool first) {
+                return first ? sameVertex(x, expected.a, expected.labelA)
+                             : sameVertex(x, expected.b, expected.labelB);
+            };
+            return w.size() == 2 &&
+                   ((is(w[0], true) && is(w[1], false)) || (is(w[0], false) && is(w[1], true)));
         }
-        case Answer::Kind::Text: return looseName(typed) == looseName(expected.text);
+        case Answer::Kind::Text:
+            return looseName(typed) == looseName(expected.text) ||
+                   canonicalPhrase(typed) == canonicalPhrase(expected.text);
         case Answer::Kind::Truth: {
-            const bool yes = typed == "yes" || typed == "y" || typed == "true" || typed == "1";
-            const bool no = typed == "no" || typed == "n" || typed == "false" || typed == "0";
+            const auto w = words(typed);
+            if (w.empty()) return false;
+            const bool yes = isOneOf(w[0], {"yes", "y", "true", "1", "yep", "yeah"});
+            const bool no = isOneOf(w[0], {"no", "n", "false", "0", "nope"});
             return expected.truth ? yes : no;
         }
         case Answer::Kind::Point: {
@@ -276,6 +350,7 @@ constexpr QuantityInfo kQuantities[] = {
     {"all_triangles", "rows of the table / 3: every triangle, ghost or super ones included"},
     {"corners", "corners in the table (3 per triangle, virtual ones included)"},
     {"vertices", "input points that are vertices of the mesh now"},
+    {"input_points", "points in the lesson's input, duplicates included"},
     {"position", "operations done so far"},
     {"op", "the type of the last operation (Flip, Split, ...)"},
     {"next_op", "the type of the next operation"},
@@ -302,10 +377,32 @@ constexpr QuantityInfo kQuantities[] = {
     {"hull_edges", "edges of the real triangles with no real triangle across"},
     {"convex", "whether the real triangles cover a convex region (yes / no)"},
     {"delaunay_violations", "interior edges whose opposite vertex is strictly inside the circle"},
-    {"degree", "triangles around the vertex of the selected corner"},
+    {"degree", "triangles around the vertex of the selected corner, ghost ones included"},
+    {"triangles_around", "real triangles around the vertex of the selected corner"},
+    {"edges_around", "edges at the vertex of the selected corner (its degree in the graph)"},
+    {"next_new_edge", "the edge the next flip of this insertion makes, or none"},
+    {"next_test_edge", "the edge the next in-circle test of this insertion tests"},
+    {"will_flip", "whether the next in-circle test of this insertion flips its edge (yes / no)"},
+    {"next_where", "where the next locate will find its point: inside, edge, vertex, outside-hull"},
+    {"next_located", "the triangle the next locate will find"},
+    {"next_locate_steps", "the walk steps the next locate will take"},
+    {"changed_corners",
+     "corners whose V or O cell the last operation changed (back-pointers in neighbours too)"},
+    {"min_angle", "the smallest angle of the real triangles, in whole degrees"},
+    {"pixel_outcome",
+     "the latest ID-buffer locate: hit (the pixel's triangle holds the point), miss (a walk "
+     "from it) or empty (no triangle painted there: a walk from the last insertion)"},
     {"circumcenter", "the circumcenter of the selected corner's triangle (its Voronoi vertex)"},
     {"pixel", "the triangle id the ID buffer holds under the point about to be located"},
 };
+
+// The canvas label of a virtual vertex ("g" for the ghost, "s0".."s2" for the super-triangle's);
+// "" for an input point.
+std::string vertexLabel(const Inserter& ins, std::int32_t v) {
+    if (v < 0 || !ins.isVirtual(v) || ins.done()) return "";
+    return ins.options().boundary == Boundary::Exact ? "g"
+                                                     : "s" + std::to_string(v - ins.numInput());
+}
 
 struct Unavailable {
     std::string why;
@@ -363,11 +460,13 @@ public:
         if (name == "all_triangles") return integer(m.numTriangles());
         if (name == "corners") return integer(m.numCorners());
         if (name == "vertices") return integer(realVertices());
+        if (name == "input_points") return integer(m_ins.numInput());
         if (name == "position") return integer(static_cast<std::int64_t>(m_j.position()));
         if (name == "op") return text(toString(last().type));
         if (name == "next_op") return text(toString(peek().type));
-        if (name == "vertex") return integer(needVertex(last().vertex, "the last operation"));
-        if (name == "next_vertex") return integer(needVertex(peek().vertex, "the next operation"));
+        if (name == "vertex") return vertexAnswer(needVertex(last().vertex, "the last operation"));
+        if (name == "next_vertex")
+            return vertexAnswer(needVertex(peek().vertex, "the next operation"));
         if (name == "flips") return integer(st.flips);
         if (name == "tests") return integer(st.inCircleTests);
         if (name == "insertion_flips") return integer(insertionCount(OpType::Flip));
@@ -377,14 +476,14 @@ public:
         if (name == "hint" || name == "locate_steps") return latestLocate(name == "hint");
         if (name == "located" || name == "where") {
             const Op& op = latest(OpType::Located, "no locate has ended yet");
-            return name == "located" ? integer(op.a) : text(toString(op.where));
+            return name == "located" ? triangleAnswer(op.a) : text(toString(op.where));
         }
         if (name == "test_edge" || name == "test_result") {
             const std::size_t q = latestIndex(OpType::InCircleTest, "no in-circle test yet");
             const Op& op = m_j.ops()[q];
             if (name == "test_result") return integer(op.sign);
-            return atPosition(q + 1,
-                              [&] { return edge(mesh().V[next(op.a)], mesh().V[prev(op.a)]); });
+            return atPosition(
+                q + 1, [&] { return edgeAnswer(mesh().V[next(op.a)], mesh().V[prev(op.a)]); });
         }
         if (name == "flipped_edge" || name == "new_edge") {
             const std::size_t q = latestIndex(OpType::Flip, "no flip yet");
@@ -392,16 +491,26 @@ public:
             const bool old = name == "flipped_edge";
             return atPosition(q + 1, [&] {
                 const auto& V = mesh().V;
-                return old ? edge(V[next(op.a)], V[next(op.b)]) : edge(V[op.a], V[op.b]);
+                return old ? edgeAnswer(V[next(op.a)], V[next(op.b)])
+                           : edgeAnswer(V[op.a], V[op.b]);
             });
         }
-        if (name == "next_flip") return nextFlip();
+        if (name == "next_flip") return nextFlip(false);
+        if (name == "next_new_edge") return nextFlip(true);
         if (name == "duplicates") return integer(st.duplicates);
         if (name == "edge_splits") return integer(st.edgeSplits);
         if (name == "hull_edges") return integer(hullEdges());
         if (name == "convex") return truth(convex());
         if (name == "delaunay_violations") return integer(delaunayViolations());
         if (name == "degree") return integer(degree());
+        if (name == "triangles_around" || name == "edges_around")
+            return integer(around(name == "edges_around"));
+        if (name == "next_test_edge" || name == "will_flip") return nextTest(name == "will_flip");
+        if (name == "next_where" || name == "next_located") return nextLocate(name == "next_where");
+        if (name == "next_locate_steps") return integer(nextLocateSteps());
+        if (name == "changed_corners") return integer(changedCorners());
+        if (name == "min_angle") return integer(minAngle());
+        if (name == "pixel_outcome") return pixelOutcome();
         if (name == "circumcenter") return circumcenterOfSelection();
         if (name == "pixel") return pixel();
         throw Unavailable{"unknown quantity"};
@@ -409,6 +518,22 @@ public:
 
 private:
     const Mesh& mesh() const { return m_ins.mesh(); }
+    Answer vertexAnswer(std::int64_t v) const {
+        Answer a = integer(v);
+        a.labelA = vertexLabel(m_ins, static_cast<std::int32_t>(v));
+        return a;
+    }
+    Answer edgeAnswer(std::int32_t x, std::int32_t y) const {
+        Answer a = edge(x, y);
+        a.labelA = vertexLabel(m_ins, static_cast<std::int32_t>(a.a));
+        a.labelB = vertexLabel(m_ins, static_cast<std::int32_t>(a.b));
+        return a;
+    }
+    static Answer triangleAnswer(std::int64_t t) {
+        Answer a = integer(t, t < 0);  // no triangle: "none" reads -1 too
+        a.triangle = true;
+        return a;
+    }
     bool virtualTri(std::int32_t t) const {
         const auto& V = mesh().V;
         return m_ins.isVirtual(V[3 * t]) || m_ins.isVirtual(V[3 * t + 1]) ||
@@ -472,18 +597,19 @@ private:
         while (first > 0 && m_j.ops()[first - 1].type == OpType::LocateStep &&
                m_j.ops()[first - 1].vertex == v)
             --first;
-        if (wantHint) return integer(m_j.ops()[first].a);
+        if (wantHint) return triangleAnswer(m_j.ops()[first].a);
         std::int64_t steps = 0;
         for (std::size_t i = first; i < q; ++i) steps += m_j.ops()[i].type == OpType::LocateStep;
         return integer(steps);
     }
-    Answer nextFlip() {
+    Answer nextFlip(bool made) {
         if (m_j.atEnd()) throw Unavailable{"the run is finished: nothing flips any more"};
         PositionGuard g(m_j);
         while (const Op* op = m_j.forward()) {
             if (op->type == OpType::Flip) {
                 const auto& V = mesh().V;
-                return edge(V[next(op->a)], V[next(op->b)]);
+                return made ? edgeAnswer(V[op->a], V[op->b])
+                            : edgeAnswer(V[next(op->a)], V[next(op->b)]);
             }
             if (endsInsertion(op->type)) break;
         }
@@ -539,6 +665,107 @@ private:
         }
         return n;
     }
+    // The corners around the selected corner's vertex (all of them, virtual triangles too).
+    std::vector<std::int32_t> fan() const {
+        const Mesh& m = mesh();
+        if (m_sel < 0 || m_sel >= m.numCorners()) throw Unavailable{"this needs a selected corner"};
+        std::vector<std::int32_t> out{m_sel};
+        std::int32_t c = m.s(m_sel);
+        for (; c != kNone && c != m_sel && out.size() <= std::size_t(m.numCorners()); c = m.s(c))
+            out.push_back(c);
+        if (c == kNone) {
+            for (c = m.u(m_sel); c != kNone && out.size() <= std::size_t(m.numCorners());
+                 c = m.u(c))
+                out.push_back(c);
+        }
+        return out;
+    }
+    std::int64_t around(bool edges) const {
+        const Mesh& m = mesh();
+        std::set<std::int32_t> neighbours;
+        std::int64_t triangles = 0;
+        for (std::int32_t c : fan()) {
+            triangles += !virtualTri(tri(c));
+            for (std::int32_t w : {m.V[next(c)], m.V[prev(c)]}) {
+                if (!m_ins.isVirtual(w)) neighbours.insert(w);
+            }
+        }
+        return edges ? static_cast<std::int64_t>(neighbours.size()) : triangles;
+    }
+    // The next op of `type` in this insertion, with the journal just after it (restored by g).
+    const Op* findAhead(OpType type) {
+        while (const Op* op = m_j.forward()) {
+            if (op->type == type) return op;
+            if (endsInsertion(op->type)) break;
+        }
+        return nullptr;
+    }
+    Answer nextTest(bool wantFlip) {
+        PositionGuard g(m_j);
+        const Op* op = findAhead(OpType::InCircleTest);
+        if (!op) throw Unavailable{"no in-circle test follows in this insertion"};
+        if (wantFlip) return truth(op->sign > 0);
+        return edgeAnswer(mesh().V[next(op->a)], mesh().V[prev(op->a)]);
+    }
+    Answer nextLocate(bool wantWhere) {
+        PositionGuard g(m_j);
+        const Op* op = findAhead(OpType::Located);
+        if (!op) throw Unavailable{"no locate follows in this insertion"};
+        return wantWhere ? text(toString(op->where)) : triangleAnswer(op->a);
+    }
+    std::int64_t nextLocateSteps() {
+        PositionGuard g(m_j);
+        std::int64_t steps = 0;
+        while (const Op* op = m_j.forward()) {
+            steps += op->type == OpType::LocateStep;
+            if (op->type == OpType::Located) return steps;
+            if (endsInsertion(op->type)) break;
+        }
+        throw Unavailable{"no locate follows in this insertion"};
+    }
+    std::int64_t changedCorners() const {
+        const Op& op = last();
+        std::set<std::int32_t> corners;
+        for (std::uint32_t i = 0; i < op.numChanges; ++i)
+            corners.insert(m_j.changes()[op.firstChange + i].corner());
+        return static_cast<std::int64_t>(corners.size());
+    }
+    // The smallest angle of the real triangles in whole degrees (a measurement to show, not a
+    // decision: no predicate depends on it).
+    std::int64_t minAngle() const {
+        const Mesh& m = mesh();
+        double least = 180;
+        bool any = false;
+        for (std::int32_t t = 0; t < m.numTriangles(); ++t) {
+            if (virtualTri(t)) continue;
+            for (int k = 0; k < 3; ++k) {
+                const Vec2 a = m.G[m.V[3 * t + k]], b = m.G[m.V[3 * t + (k + 1) % 3]],
+                           c = m.G[m.V[3 * t + (k + 2) % 3]];
+                const double ux = b.x - a.x, uy = b.y - a.y, vx = c.x - a.x, vy = c.y - a.y;
+                const double angle = std::atan2(std::abs(ux * vy - uy * vx), ux * vx + uy * vy) *
+                                     180 / 3.14159265358979;
+                least = std::min(least, angle);
+                any = true;
+            }
+        }
+        if (!any) throw Unavailable{"there is no real triangle yet"};
+        return static_cast<std::int64_t>(std::floor(least + 0.5));
+    }
+    Answer pixelOutcome() {
+        auto* buffer = dynamic_cast<IdBufferCpu*>(m_ins.locator());
+        if (!buffer) throw Unavailable{"pixel_outcome needs locator = \"idbuffer-cpu\""};
+        const Op& located = latest(OpType::Located, "no locate has ended yet");
+        const std::int64_t steps = latestLocate(false).a;
+        std::size_t first = latestIndex(OpType::Located, "");
+        while (first > 0 && m_j.ops()[first - 1].type == OpType::LocateStep) --first;
+        const std::int32_t v = located.vertex;
+        const std::int32_t inTri = located.a;
+        PositionGuard g(m_j);
+        m_j.seek(first);
+        const std::int32_t pixel = buffer->pixelAt(mesh().G[v]);
+        if (pixel < 0) return text("empty");
+        return text(steps == 0 && pixel == inTri ? "hit" : "miss");
+    }
     Answer circumcenterOfSelection() const {
         const Mesh& m = mesh();
         if (m_sel < 0 || m_sel >= m.numCorners())
@@ -558,7 +785,7 @@ private:
         if (next.type != OpType::LocateStep && next.type != OpType::Located) {
             throw Unavailable{"pixel: the next operation locates no point"};
         }
-        return integer(buffer->pixelAt(mesh().G[next.vertex]));
+        return triangleAnswer(buffer->pixelAt(mesh().G[next.vertex]));
     }
 
     Inserter& m_ins;
@@ -626,6 +853,16 @@ std::optional<Answer> computeAnswer(std::string_view specIn, Inserter& ins, Jour
             return a;
         }
         case ValueKind::Truth: return truth(v.truth);
+        case ValueKind::Vertex: {
+            Answer a = integer(v.i);
+            a.labelA = vertexLabel(ins, static_cast<std::int32_t>(v.i));
+            return a;
+        }
+        case ValueKind::Triangle: {
+            Answer a = integer(v.i);
+            a.triangle = true;
+            return a;
+        }
         default: return integer(v.i, v.kind == ValueKind::Corner);
     }
 }
@@ -830,7 +1067,7 @@ public:
         s.line = lineOf(t);
         checkKeys(t,
                   {"run_to", "count", "panels", "overlays", "select", "text", "question", "answer",
-                   "hint", "view", "tab"},
+                   "hint", "view", "tab", "expect", "figure"},
                   "in a [[stop]]");
         if (auto r = string(t, "run_to")) {
             std::string why;
@@ -877,6 +1114,14 @@ public:
             fail(s.line, "a stop needs a \"text\" or a \"question\"");
         stopView(t, s);
         stopTab(t, s);
+        s.textLine = contentLine(t, "text");
+        s.questionLine = contentLine(t, "question");
+        s.hintLine = contentLine(t, "hint");
+        embedded(s.text, s.textLine, "text");
+        embedded(s.question, s.questionLine, "question");
+        embedded(s.hint, s.hintLine, "hint");
+        s.expect = expectations(t);
+        s.figure = figure(t);
         return s;
     }
 
@@ -933,6 +1178,7 @@ public:
     Lesson lesson(std::string_view source, const std::string& path) {
         Lesson L;
         L.file = path;
+        m_source = source;
         L.options.order = OrderKind::Input;
         if (source.size() > kMaxLessonFileBytes) fail(0, "lesson file too large (at most 1 MiB)");
         toml::table root;
@@ -1002,7 +1248,91 @@ public:
     }
 
 private:
+    // The line where a string's content starts: a """ string that opens with a line break
+    // starts on the next line.
+    int contentLine(const toml::table& t, const char* key) const {
+        const toml::node* n = t.get(key);
+        if (!n) return 0;
+        const int line = lineOf(*n);
+        std::size_t pos = 0;
+        for (int l = 1; l < line && pos != std::string_view::npos; ++l) {
+            pos = m_source.find('\n', pos);
+            if (pos != std::string_view::npos) ++pos;
+        }
+        if (pos == std::string_view::npos) return line;
+        const std::string_view rest = m_source.substr(pos, m_source.find('\n', pos) - pos);
+        const std::string tail = trimmed(rest);
+        const bool opens = tail.ends_with("\"\"\"") || tail.ends_with("'''");
+        const bool once =
+            rest.find("\"\"\"") == rest.rfind("\"\"\"") && rest.find("'''") == rest.rfind("'''");
+        return opens && once ? line + 1 : line;
+    }
+
+    // Every {{name}} of a text names a quantity or a corner expression.
+    void embedded(const std::string& text, int line, const char* what) {
+        std::string why;
+        const auto values = findEmbeddedValues(text, &why);
+        if (!values) fail(line, std::string("in the ") + what + ": " + why);
+        for (const EmbeddedValue& v : *values) {
+            if (findQuantity(v.spec)) continue;
+            const std::string problem = expressionProblem(v.spec);
+            if (problem.empty()) continue;
+            fail(line + v.line - 1, std::string("unknown value {{") + v.spec + "}} in the " + what +
+                                        ": neither a quantity (" + quantityNames() +
+                                        ") nor a corner expression (" + problem + ")");
+        }
+    }
+
+    static std::string expectedValue(const toml::node& value) {
+        if (value.is_string()) return value.as_string()->get();
+        if (value.is_integer()) return std::to_string(value.as_integer()->get());
+        if (value.is_boolean()) return value.as_boolean()->get() ? "yes" : "no";
+        if (value.is_floating_point()) return shortest(value.as_floating_point()->get());
+        return "";
+    }
+
+    // expect = { name = value, ... }: values as a student would type them.
+    std::vector<LessonExpect> expectations(const toml::table& t) {
+        std::vector<LessonExpect> out;
+        const toml::node* n = t.get("expect");
+        if (!n) return out;
+        const toml::table* table = n->as_table();
+        if (!table)
+            fail(lineOf(*n), "\"expect\" must be a table, e.g. expect = { walk_steps = 0 }");
+        for (auto&& [key, value] : *table) {
+            LessonExpect e;
+            e.spec = trimmed(key.str());
+            e.line = static_cast<int>(key.source().begin.line);
+            if (e.line == 0) e.line = lineOf(*n);
+            if (!findQuantity(e.spec)) {
+                const std::string problem = expressionProblem(e.spec);
+                if (!problem.empty())
+                    fail(e.line, "expect \"" + e.spec + "\": neither a quantity (" +
+                                     quantityNames() + ") nor a corner expression (" + problem +
+                                     ")");
+            }
+            e.value = expectedValue(value);
+            if (e.value.empty())
+                fail(e.line, "expect \"" + e.spec +
+                                 "\": the value must be a string, a number or true/false");
+            out.push_back(std::move(e));
+        }
+        return out;
+    }
+
+    // figure = "lifting-map": a drawing beside the text (kFigureNames).
+    std::string figure(const toml::table& t) {
+        const auto name = string(t, "figure");
+        if (!name) return "";
+        if (std::none_of(std::begin(kFigureNames), std::end(kFigureNames),
+                         [&](const char* k) { return *name == k; }))
+            fail(lineOf(*t.get("figure")),
+                 "unknown figure \"" + *name + "\" (known: " + joinNames(kFigureNames) + ")");
+        return *name;
+    }
+
     const std::string& m_file;
+    std::string_view m_source;
     int m_stop = 0;
     std::size_t m_numVertices = 0;  // vertex ids a stop's view may name
 };
@@ -1034,6 +1364,68 @@ std::unique_ptr<Inserter> makeInserter(const Lesson& lesson) {
         throw LessonError(lesson.file, 0, 0, std::string("cannot start the run: ") + e.what());
     }
 }
+
+std::optional<LiftingMap> liftingMapAt(const Inserter& ins, const Op* current) {
+    const Mesh& m = ins.mesh();
+    std::int32_t c = kNone, d = kNone;
+    if (current && current->type == OpType::InCircleTest) {
+        c = current->a;
+        d = current->b;
+    } else if (!ins.flipStack().empty()) {
+        c = ins.flipStack().back();
+        d = m.O[c];
+    }
+    if (c == kNone || d == kNone) return std::nullopt;
+    const std::int32_t t = tri(d);
+    LiftingMap f;
+    for (int k = 0; k < 3; ++k) {
+        const std::int32_t v = m.V[3 * t + k];
+        if (ins.isVirtual(v)) return std::nullopt;
+        f.triangle[k] = m.G[v];
+        f.vertices[k] = v;
+    }
+    if (ins.isVirtual(m.V[c])) return std::nullopt;
+    f.point = m.G[m.V[c]];
+    f.vertex = m.V[c];
+    f.sign = incircle(f.triangle[0], f.triangle[1], f.triangle[2], f.point);
+    return f;
+}
+
+namespace {
+
+// The stop's text, question and hint with the engine's values in place of {{...}}.
+void renderStopText(const Lesson& lesson, std::size_t k, Inserter& ins, Journal& journal,
+                    std::int32_t selected, StopState& state) {
+    const LessonStop& s = lesson.stops[k];
+    const auto render = [&](const std::string& in, int line, std::string& out) {
+        std::string why;
+        const auto r = renderEmbeddedValues(in, ins, journal, selected, &why);
+        if (!r) throw LessonError(lesson.file, line, static_cast<int>(k) + 1, why);
+        out = *r;
+    };
+    render(s.text, s.textLine, state.text);
+    render(s.question, s.questionLine, state.question);
+    render(s.hint, s.hintLine, state.hint);
+}
+
+// Every `expect` of the stop holds in the engine's state there.
+void checkExpectations(const Lesson& lesson, std::size_t k, Inserter& ins, Journal& journal,
+                       std::int32_t selected) {
+    for (const LessonExpect& e : lesson.stops[k].expect) {
+        const auto fail = [&](const std::string& why) {
+            throw LessonError(lesson.file, e.line, static_cast<int>(k) + 1, why);
+        };
+        std::string why;
+        const auto got = computeAnswer(e.spec, ins, journal, selected, &why);
+        if (!got) fail("expect " + e.spec + " = \"" + e.value + "\": " + why);
+        if (!acceptsAnswer(*got, e.value)) {
+            fail("the lesson expects " + e.spec + " = " + e.value + ", but the engine says " +
+                 got->display() + " here");
+        }
+    }
+}
+
+}  // namespace
 
 // Why a stop cannot be reached: the history is full (target 0: the stop's breakpoint).
 static std::string historyFull(const Journal& journal, std::size_t target) {
@@ -1107,12 +1499,23 @@ LessonPlan planLesson(const Lesson& lesson) {
         StopState state;
         state.position = journal.position();
         state.selected = selected;
-        if (const Op* op = journal.current()) state.caption = describe(*op, *ins);
+        if (const Op* op = journal.current()) {
+            state.caption = describe(*op, *ins);
+            state.banner = "[" + std::to_string(journal.position() - 1) + "] " +
+                           toString(op->type) + ": " + state.caption;
+        }
         if (!s.question.empty()) {
             std::string why;
             state.answer = computeAnswer(s.answer, *ins, journal, selected, &why);
             if (!state.answer) fail(s.answerLine, "the answer cannot be computed: " + why);
         }
+        if (s.figure == "lifting-map" && !liftingMapAt(*ins, journal.current())) {
+            fail(s.line,
+                 "the lifting-map figure needs an in-circle test of a real triangle at "
+                 "the stop (just done, or next on the flip stack)");
+        }
+        renderStopText(lesson, k, *ins, journal, selected, state);
+        checkExpectations(lesson, k, *ins, journal, selected);
         plan.stops.push_back(std::move(state));
     }
     runUntil(journal, *ins, {}, std::numeric_limits<std::size_t>::max());

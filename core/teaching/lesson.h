@@ -26,8 +26,13 @@
 //   question = "What is O[c] for the selected corner?"
 //   answer = "O[c]"                 # a quantity name (lessonQuantities) or a corner expression
 //   hint = "Look across the edge opposite c."
+//   expect = { located = "hit", walk_steps = 0 }  # checked against the engine at the stop
+//   figure = "lifting-map"          # a drawing beside the text (kFigureNames)
 //
-// The answer is computed by the engine at the stop, never typed into the file.
+// The answer is computed by the engine at the stop, never typed into the file. Text, question
+// and hint may embed engine values: {{walk_steps}}, {{test_edge}}, {{V[c.n]}} (a quantity or a
+// corner expression, as in `answer`), replaced by the value at the stop. An expectation's value
+// is written as a student would type the answer ("0-2", "edge", 25, true).
 #pragma once
 
 #include "core/engine/inserter.h"
@@ -57,6 +62,9 @@ inline constexpr const char* kOverlayNames[] = {
     "voronoi", "pending-points", "virtual-triangles", "idbuffer",
 };
 
+// Drawings a stop may show beside its text (`figure = "lifting-map"`).
+inline constexpr const char* kFigureNames[] = {"lifting-map"};
+
 // A bad lesson file. what() is "FILE:LINE: stop K: message" (parts left out when unknown).
 class LessonError : public std::runtime_error {
 public:
@@ -85,6 +93,12 @@ struct StopView {
 inline constexpr const char* kTabNames[] = {"corner-table", "vertex-table", "expressions",
                                             "predicates",   "idbuffer",     "statistics"};
 
+// An expectation: at the stop, `spec` (a quantity or a corner expression) reads `value`.
+struct LessonExpect {
+    std::string spec, value;
+    int line = 0;
+};
+
 struct LessonStop {
     int line = 0;                     // line of its [[stop]] header
     std::optional<Breakpoint> runTo;  // nullopt: stay at the previous stop's position
@@ -96,6 +110,11 @@ struct LessonStop {
     int answerLine = 0;
     StopView view;    // view = { fit = [0, 4, 7] } or view = { rect = [x0, y0, x1, y1] }
     std::string tab;  // a side tab in front at this stop (kTabNames), empty: as it is
+
+    // Lines of the first line of text / question / hint (for messages about their content).
+    int textLine = 0, questionLine = 0, hintLine = 0;
+    std::vector<LessonExpect> expect;
+    std::string figure;  // a drawing beside the text: one of kFigureNames, or empty
 };
 
 struct Lesson {
@@ -130,12 +149,15 @@ std::string resolveLessonFile(const std::string& lessonPath, const std::string& 
 struct Answer {
     enum class Kind : std::uint8_t { Integer, Edge, Text, Truth, Point };
     Kind kind = Kind::Integer;
-    std::int64_t a = 0, b = 0;    // Integer: a; Edge: the two vertices
-    bool corner = false;          // Integer that is a corner: -1 reads "none" too
-    std::string text;             // Text
-    bool truth = false;           // Truth
-    Vec2 point{};                 // Point
-    std::string display() const;  // "17", "4-9", "Flip", "yes", "(1, 2)"
+    std::int64_t a = 0, b = 0;  // Integer: a; Edge: the two vertices
+    bool corner = false;        // Integer that is a corner: -1 reads "none" too
+    std::string text;           // Text
+    bool truth = false;         // Truth
+    Vec2 point{};               // Point
+    // The canvas labels of virtual vertices ("s0", "g"): of a (a vertex) or of a and b (edge).
+    std::string labelA, labelB;
+    bool triangle = false;        // Integer that is a triangle: "t25" reads 25 too
+    std::string display() const;  // "17", "4-9", "1-s0", "Flip", "yes", "(1, 2)"
 };
 // Whether what a student typed means the same as `expected` (edges in either order, numbers
 // with spaces, "split edge" for SplitEdge, yes/no for truth values...).
@@ -161,6 +183,9 @@ struct StopState {
     std::int32_t selected = kNone;  // the selected corner there
     std::optional<Answer> answer;   // when the stop has a question
     std::string caption;            // describe() of the last op ("" at position 0)
+    std::string banner;             // the GUI's operation banner: "[N] Type: caption"
+    // The stop's text, question and hint with every {{value}} replaced by the engine's value.
+    std::string text, question, hint;
 };
 
 struct LessonPlan {
@@ -173,6 +198,56 @@ std::unique_ptr<Inserter> makeInserter(const Lesson& lesson);
 // Runs the lesson to its end: every stop must be reached in order and every question must have
 // a computable answer. Throws LessonError naming the stop.
 LessonPlan planLesson(const Lesson& lesson);
+
+// ---- The lifting-map figure ------------------------------------------------------------------
+
+// The in-circle test the lifting-map figure draws: the triangle whose circle is tested and the
+// new point, lifted onto the paraboloid z = x² + y². Its `sign` is the exact test's.
+struct LiftingMap {
+    Vec2 triangle[3]{};
+    std::int32_t vertices[3]{};
+    Vec2 point{};
+    std::int32_t vertex = kNone;
+    int sign = 0;  // 1: the point is inside the circle (its lift below the plane), 0 on it
+};
+// The test just done (the current op), else the one next on the flip stack; nullopt when there
+// is none or its triangle is a ghost / super one.
+std::optional<LiftingMap> liftingMapAt(const Inserter& ins, const Op* current);
+
+// ---- Engine values in the text, and the checks of `dtlab lesson check` --------------------------
+
+// One {{spec}} in a text: byte range [begin, end) of the whole "{{...}}", line counted from 1.
+struct EmbeddedValue {
+    std::string spec;
+    std::size_t begin = 0, end = 0;
+    int line = 1;
+};
+// The {{...}} in `text`. An unclosed or empty one: nullopt and, in `error`, "line N of the text:
+// ...". The specs are not checked here.
+std::optional<std::vector<EmbeddedValue>> findEmbeddedValues(std::string_view text,
+                                                             std::string* error = nullptr);
+// `text` with every {{spec}} replaced by its value at the journal's position (as computeAnswer).
+std::optional<std::string> renderEmbeddedValues(std::string_view text, Inserter& ins,
+                                                Journal& journal, std::int32_t selected,
+                                                std::string* error = nullptr);
+
+// The code points the GUI's fonts carry (ImGui glyph ranges: pairs, then 0). Anything else is
+// drawn as "?".
+inline constexpr std::uint16_t kLessonGlyphRanges[] = {
+    0x0020, 0x00FF, 0x2013, 0x2014, 0x2190, 0x21FF, 0x2212, 0x2212, 0x2260, 0x2265, 0,
+};
+// The first character of UTF-8 `text` the GUI cannot draw: its byte offset and code point
+// (0xFFFD for bytes that are not UTF-8). nullopt when everything can be drawn.
+std::optional<std::pair<std::size_t, char32_t>> firstUndrawable(std::string_view text);
+
+// Whether `text` already says `answer`: the number (digits, or a word up to twelve), the edge
+// (a-b either way, labels too), the phrase, or the point. Truth values are never "said".
+bool answerAppearsIn(const Answer& answer, std::string_view text);
+
+// What `dtlab lesson check` finds beyond planLesson: characters the GUI cannot draw, and stops
+// whose answer is already in their own text or in the operation banner at the stop. Each names
+// file, line and stop.
+std::vector<LessonError> lessonProblems(const Lesson& lesson, const LessonPlan& plan);
 
 // ---- Markdown-light text ------------------------------------------------------------------------
 

@@ -1,4 +1,5 @@
-// Fuzz target: lesson files (TOML), from parseLesson through planLesson and answer checking.
+// Fuzz target: lesson files (TOML), from parseLesson through planLesson, answer checking and the
+// findings of lesson check.
 //
 // The bytes are the lesson's text, read as if it were lessons/fuzz.toml in an empty folder (so a
 // points_file can only fail, cleanly). Either outcome is checked: a LessonError is one line that
@@ -88,6 +89,13 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
             require(acceptsAnswer(*s.answer, s.answer->display()),
                     "an answer typed as displayed is accepted", s.answer->display());
         }
+    }
+    // lesson check's own findings (undrawable characters, answers given away) name file, line and
+    // a stop of the lesson too.
+    for (const LessonError& e : lessonProblems(lesson, plan)) {
+        checkError(e, text, path);
+        require(e.stop() >= 0 && e.stop() <= static_cast<int>(lesson.stops.size()),
+                "a check finding names a stop of the lesson", e.what());
     }
     return 0;
 }

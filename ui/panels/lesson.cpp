@@ -1,6 +1,7 @@
 // The lesson panel: the stop's text (Markdown-light: bold, code, lists), its question with an
 // answer field and immediate feedback, a hint, and the way between stops. Shown at the top of
 // the side column while a lesson is open.
+#include "core/engine/voronoi.h"
 #include "core/teaching/describe.h"
 #include "ui/gui.h"
 #include "ui/lesson_player.h"
@@ -10,6 +11,8 @@
 #include <imgui_stdlib.h>
 
 #include <algorithm>
+#include <array>
+#include <cmath>
 #include <string>
 #include <utility>
 
@@ -79,9 +82,10 @@ void RichText(const std::string& text) {
 void Question(AppState& st, const LessonStop& stop, std::size_t k) {
     LessonState& L = st.lessonPlayer;
     if (stop.question.empty()) return;
+    const StopState& shown = L.plan.stops[k];  // the words with their {{values}} filled in
     ImGui::Spacing();
     ImGui::PushFont(fonts().bold);
-    ImGui::TextWrapped("%s", stop.question.c_str());
+    ImGui::TextWrapped("%s", shown.question.c_str());
     ImGui::PopFont();
     ImGui::SetNextItemWidth(std::min(260.0f, ImGui::GetContentRegionAvail().x * 0.6f));
     const bool enter = ImGui::InputText("##answer", &L.typed, ImGuiInputTextFlags_EnterReturnsTrue);
@@ -108,7 +112,7 @@ void Question(AppState& st, const LessonStop& stop, std::size_t k) {
     }
     if (L.feedback == LessonState::Feedback::Shown)
         ImGui::TextWrapped("The answer: %s", L.plan.stops[k].answer->display().c_str());
-    if (L.showHint) ImGui::TextWrapped("Hint: %s", stop.hint.c_str());
+    if (L.showHint) ImGui::TextWrapped("Hint: %s", shown.hint.c_str());
 }
 
 // The side tab a slide shows: the `tab` of this stop or of the last stop before it that named
@@ -161,6 +165,77 @@ void SlideHeader(AppState& st, std::size_t k, std::size_t n) {
     RecordItem(st, "slide-banner");
 }
 
+// The lifting map of the in-circle test at the stop, in an oblique view: coordinates centred on
+// the tested triangle's circumcenter and scaled by its radius, so that its circle lifts to the
+// plane z = 1 and the new point is inside exactly when its lift is below that plane.
+void LiftingFigure(const AppState& st) {
+    const auto f = liftingMapAt(st.engine.inserter(), st.engine.current());
+    if (!f) return;
+    const Vec2 o = circumcenter(f->triangle[0], f->triangle[1], f->triangle[2]);
+    const double r = std::hypot(f->triangle[0].x - o.x, f->triangle[0].y - o.y);
+    if (!(r > 0) || !std::isfinite(r)) return;
+    const float w = std::min(ImGui::GetContentRegionAvail().x, 360.0f), h = w * 0.7f;
+    const ImVec2 p0 = ImGui::GetCursorScreenPos();
+    ImDrawList* dl = ImGui::GetWindowDrawList();
+    const float s = w / 5.0f;
+    const ImVec2 base(p0.x + w * 0.5f, p0.y + h * 0.92f);
+    const double zMax = 2.6;
+    const auto screen = [&](double x, double y, double z) {
+        return ImVec2(base.x + s * static_cast<float>(x + 0.45 * y),
+                      base.y - s * static_cast<float>(0.25 * y + z * 1.1));
+    };
+    const auto ring = [&](double z, ImU32 col, float thick) {  // the paraboloid at height z
+        const double rad = std::sqrt(z);
+        ImVec2 prev = screen(rad, 0, z);
+        for (int k = 1; k <= 48; ++k) {
+            const double a = k * 2 * 3.14159265358979 / 48;
+            const ImVec2 q = screen(rad * std::cos(a), rad * std::sin(a), z);
+            dl->AddLine(prev, q, col, thick);
+            prev = q;
+        }
+    };
+    dl->AddRectFilled(p0, ImVec2(p0.x + w, p0.y + h), IM_COL32(250, 250, 252, 255), 4);
+    for (double z : {0.25, 2.25}) ring(z, IM_COL32(190, 195, 210, 255), 1);
+    for (double x : {-1.0, 1.0}) {  // the silhouette: z = x²
+        ImVec2 prev = screen(0, 0, 0);
+        for (int k = 1; k <= 24; ++k) {
+            const double u = x * std::sqrt(zMax) * k / 24;
+            const ImVec2 q = screen(u, 0, u * u);
+            dl->AddLine(prev, q, IM_COL32(150, 155, 175, 255), 1.5f);
+            prev = q;
+        }
+    }
+    ring(1, IM_COL32(60, 110, 200, 255), 2);  // the lifted circle: the plane z = 1
+    const auto lifted = [&](Vec2 p) {
+        const double x = (p.x - o.x) / r, y = (p.y - o.y) / r;
+        return std::array<double, 3>{x, y, x * x + y * y};
+    };
+    for (int k = 0; k < 3; ++k) {
+        const auto q = lifted(f->triangle[k]);
+        const ImVec2 at = screen(q[0], q[1], q[2]);
+        dl->AddCircleFilled(at, 4, IM_COL32(60, 110, 200, 255));
+        dl->AddText(ImVec2(at.x + 5, at.y - 16), IM_COL32(40, 60, 120, 255),
+                    std::to_string(f->vertices[k]).c_str());
+    }
+    const auto d = lifted(f->point);
+    const double z = std::min(d[2], zMax);
+    const ImU32 red = IM_COL32(220, 60, 40, 255);
+    dl->AddLine(screen(d[0], d[1], 0), screen(d[0], d[1], std::max(z, 1.0)),
+                IM_COL32(120, 120, 120, 255), 1);
+    dl->AddCircle(screen(d[0], d[1], 1), 4, IM_COL32(60, 110, 200, 255));
+    dl->AddCircleFilled(screen(d[0], d[1], z), 5, red);
+    dl->AddText(ImVec2(screen(d[0], d[1], z).x + 6, screen(d[0], d[1], z).y - 6), red,
+                std::to_string(f->vertex).c_str());
+    ImGui::Dummy(ImVec2(w, h));
+    ImGui::TextWrapped(
+        "Lifted onto z = x² + y² (scaled to the circle of %d %d %d): vertex %d's "
+        "lift is %s the plane of the circle.",
+        f->vertices[0], f->vertices[1], f->vertices[2], f->vertex,
+        f->sign > 0    ? "below"
+        : f->sign == 0 ? "on"
+                       : "above");
+}
+
 }  // namespace
 
 void ShowSlide(AppState& st) {
@@ -190,7 +265,8 @@ void ShowSlide(AppState& st) {
     const float rest = std::max(0.0f, avail.y - L.slideQuestionHeight);
     const float textH = tab ? std::clamp(L.slideTextHeight, rest * 0.3f, rest * 0.7f) : rest;
     ImGui::BeginChild("##slidetext", ImVec2(0, std::max(1.0f, textH)), false);
-    RichText(stop.text);
+    RichText(L.plan.stops[k].text);  // with its {{values}} filled in
+    if (stop.figure == "lifting-map") LiftingFigure(st);
     L.slideTextHeight = ImGui::GetCursorPosY() + ImGui::GetStyle().ItemSpacing.y;
     ImGui::EndChild();
     RecordItem(st, "slide-text");
@@ -285,7 +361,9 @@ void ShowLesson(AppState& st) {
     ImGui::Separator();
     ImGui::BeginChild("##lessontext", ImVec2(0, 0), false);
     const LessonStop& stop = lesson.stops[k];
-    RichText(stop.text);
+    // The stop's words with their {{values}} as the engine computed them at the stop.
+    RichText(L.plan.stops[k].text);
+    if (stop.figure == "lifting-map") LiftingFigure(st);
     Question(st, stop, k);
     ImGui::EndChild();
     RecordItem(st, "lesson-text");

@@ -92,16 +92,21 @@ TEST(LessonPlayer, AnswersAreCheckedAgainstTheEngine) {
     auto& st = h.state();
     ASSERT_TRUE(dlab::ui::openLesson(st, lessonPath("05_flips.toml")));
     auto& L = st.lessonPlayer;
-    dlab::ui::goToStop(st, 1);  // "How many edges wait in the queue?"
+    dlab::ui::goToStop(st, 1);  // "Which edge will be tested first?"
     h.frames(2);
     ASSERT_TRUE(L.plan.stops[1].answer);
-    const std::string right = L.plan.stops[1].answer->display();
-    EXPECT_EQ(right, std::to_string(st.engine.inserter().flipStack().size()));
+    const dlab::Answer& edge = *L.plan.stops[1].answer;
+    ASSERT_EQ(edge.kind, dlab::Answer::Kind::Edge);
+    // The edge on top of the flip stack, the first one the in-circle tests take.
+    const std::int32_t top = st.engine.inserter().flipStack().back();
+    const auto& V = st.engine.mesh().V;
+    EXPECT_EQ(std::min(V[dlab::next(top)], V[dlab::prev(top)]), edge.a);
+    EXPECT_EQ(std::max(V[dlab::next(top)], V[dlab::prev(top)]), edge.b);
     typeAnswer(h, "99");
     EXPECT_EQ(L.feedback, dlab::ui::LessonState::Feedback::Wrong);
     EXPECT_EQ(L.progress.answers[1], 1);
     L.typed.clear();
-    typeAnswer(h, right);
+    typeAnswer(h, "edge " + std::to_string(edge.b) + "-" + std::to_string(edge.a));
     EXPECT_EQ(L.feedback, dlab::ui::LessonState::Feedback::Right);
     EXPECT_EQ(L.progress.answers[1], 2);
 }
