@@ -86,6 +86,13 @@ struct RunControl {
     std::vector<BreakpointEntry> breakpoints;  // a running animation stops where one hits
     float opsPerSecond = 6.0f;  // the slider; kFullSpeed runs as many as a frame allows
     static constexpr float kFullSpeed = 1000.0f;
+    // End (and >|): this run goes to the end at full speed; the slider keeps the user's speed.
+    bool toEnd = false;
+    bool fullSpeed() const { return toEnd || opsPerSecond >= kFullSpeed; }
+    void runToEnd() {
+        running = true;
+        toEnd = true;
+    }
     double carry = 0.0;         // fractional ops owed from earlier frames
     double frameBudgetMs = 25;  // stepping time per frame at full speed, at most
     // At full speed the stepping gets what is left of this frame time after the rest of the
@@ -150,6 +157,7 @@ struct WatchEntry {
 
 struct ExpressionState {
     std::string input;              // the console's input line
+    bool refocusInput = false;      // give the input line the keyboard at the next frame
     std::vector<ExprLine> history;  // newest last
     std::string live;               // the expression shown on the canvas, re-evaluated each step
     std::vector<PathStep> path;     // its moves, drawn on the canvas as arrows between corners
@@ -158,7 +166,8 @@ struct ExpressionState {
     std::int32_t liveCorner = kNone;                // the c it was computed with
     std::vector<WatchEntry> watches;
     std::string watchInput;
-    bool pauseOnFailure = true;                        // a failing watch pauses a running animation
+    bool refocusWatch = false;   // the watch field keeps the keyboard after Enter
+    bool pauseOnFailure = true;  // a failing watch pauses a running animation
     std::uint64_t watchedVersion = ~std::uint64_t{0};  // engine version the watches last saw
     std::size_t watchedPosition = 0;  // and its position (for the replay on failure)
 };
@@ -313,5 +322,11 @@ struct AppState {
 
 // The built-in demo: the demo points with options chosen for teaching (input order).
 InsertOptions demoOptions();
+// Loads the built-in demo with those options.
+void loadDemo(AppState& state);
+// What the program starts with: the file named on the command line (a point file, a session, a
+// lesson...), or the demo when none is named. A file that cannot be opened leaves its one-line
+// reason in state.files.notice and the demo, in its own order, runs instead (false).
+bool openStartupInput(AppState& state, const std::string& input);
 
 }  // namespace dlab::ui

@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <cmath>
 #include <unordered_set>
+#include <utility>
 
 namespace dlab::ui {
 
@@ -433,6 +434,9 @@ void ShowExpressions(AppState& st) {
     // ---- The console ------------------------------------------------------------------------
     ImGui::PushFont(fonts().mono);
     ImGui::SetNextItemWidth(-70);
+    // After Enter (or Eval) the field takes the keyboard back for the next expression: what is
+    // typed next goes there, not to the single-letter shortcuts.
+    if (std::exchange(ex.refocusInput, false)) ImGui::SetKeyboardFocusHere();
     const bool enter = ImGui::InputTextWithHint("##expr", "r(o(n(7)))  or  c.n.o.r", &ex.input,
                                                 ImGuiInputTextFlags_EnterReturnsTrue);
     RecordItem(st, "expr-input");
@@ -440,10 +444,10 @@ void ShowExpressions(AppState& st) {
     ImGui::SameLine();
     const bool eval = ImGui::Button("Eval");
     RecordItem(st, "expr-eval");
+    if (enter || eval) ex.refocusInput = true;
     if ((enter || eval) && !ex.input.empty()) {
         evaluateExpression(st, ex.input);
         ex.input.clear();
-        ImGui::SetKeyboardFocusHere(-1);
     }
     // Below the input line everything scrolls (the side column may be short); the history has
     // its own scrolling box that keeps the newest line in view.
@@ -527,9 +531,11 @@ void ShowExpressions(AppState& st) {
     ImGui::PopFont();
     if (remove >= 0) ex.watches.erase(ex.watches.begin() + remove);
     ImGui::SetNextItemWidth(-150);
+    if (std::exchange(ex.refocusWatch, false)) ImGui::SetKeyboardFocusHere();
     const bool addEnter = ImGui::InputTextWithHint(
         "##watch", "V[n(o(c))] == V[p(c)]", &ex.watchInput, ImGuiInputTextFlags_EnterReturnsTrue);
     RecordItem(st, "watch-input");
+    ex.refocusWatch = addEnter;
     ImGui::SameLine();
     if ((ImGui::Button("Add") || addEnter) && !ex.watchInput.empty()) {
         if (addWatch(st, ex.watchInput)) ex.watchInput.clear();
