@@ -188,8 +188,13 @@ void handleShortcuts(AppState& state) {
     const ImGuiIO& io = ImGui::GetIO();
     // A text field has the keyboard (or takes it back this frame, after Enter): every key is
     // typing, no shortcut fires.
-    const ExpressionState& ex = state.expressions;
-    if (io.WantTextInput || ImGui::IsAnyItemActive() || ex.refocusInput || ex.refocusWatch) return;
+    ExpressionState& ex = state.expressions;
+    if (ex.refocusInput > 0 || ex.refocusWatch > 0) {
+        ex.refocusInput = std::max(0, ex.refocusInput - 1);
+        ex.refocusWatch = std::max(0, ex.refocusWatch - 1);
+        return;
+    }
+    if (io.WantTextInput || ImGui::IsAnyItemActive()) return;
     auto pressed = [](int k) { return ImGui::IsKeyPressed(k, true); };
     auto once = [](int k) { return ImGui::IsKeyPressed(k, false); };
     Engine& e = state.engine;

@@ -156,8 +156,11 @@ struct WatchEntry {
 };
 
 struct ExpressionState {
-    std::string input;              // the console's input line
-    bool refocusInput = false;      // give the input line the keyboard at the next frame
+    std::string input;  // the console's input line
+    // After Enter a field takes the keyboard back; until it has it (a few frames at most), no
+    // shortcut fires: the next key typed is for the field.
+    static constexpr int kRefocusFrames = 4;
+    int refocusInput = 0;
     std::vector<ExprLine> history;  // newest last
     std::string live;               // the expression shown on the canvas, re-evaluated each step
     std::vector<PathStep> path;     // its moves, drawn on the canvas as arrows between corners
@@ -166,8 +169,8 @@ struct ExpressionState {
     std::int32_t liveCorner = kNone;                // the c it was computed with
     std::vector<WatchEntry> watches;
     std::string watchInput;
-    bool refocusWatch = false;   // the watch field keeps the keyboard after Enter
-    bool pauseOnFailure = true;  // a failing watch pauses a running animation
+    int refocusWatch = 0;                              // the watch field, likewise
+    bool pauseOnFailure = true;                        // a failing watch pauses a running animation
     std::uint64_t watchedVersion = ~std::uint64_t{0};  // engine version the watches last saw
     std::size_t watchedPosition = 0;  // and its position (for the replay on failure)
 };

@@ -40,8 +40,7 @@ std::string describe(const Op& op, const Inserter& ins) {
             return ins.options().boundary == Boundary::Super
                        ? triName(ins, 0) + ", the super-triangle, holds every point"
                        : triName(ins, 0) +
-                             " on the first three points, and three ghost triangles around its "
-                             "hull";
+                             ", the first triangle, and three ghost triangles around its hull";
         case OpType::LocateStep:
             return "locate " + p + ": leave triangle " + std::to_string(op.a) + " for " +
                    triName(ins, op.b);

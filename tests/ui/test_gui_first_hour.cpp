@@ -278,7 +278,7 @@ TEST(GuiCanvas, InCircleTestAgainstAGhostTriangleDrawsTheHullEdgeAndItsHalfPlane
         return std::abs(px[0] - px[1]) > 8 || std::abs(px[1] - px[2]) > 8;
     };
     int shaded = 0;
-    for (int i = 0; i < 9; ++i) shaded += tinted(mid + out * (70.0 + 5 * i) + d * (i - 4) * 6.0);
+    for (int i = 0; i < 9; ++i) shaded += tinted(mid + out * (70.0 + 5 * i) + d * ((i - 4) * 6.0));
     EXPECT_GE(shaded, 7) << "the half-plane beyond the hull edge is not shaded";
     // The old drawing: a line from the hull vertex to the ghost's placeholder coordinates.
     const std::int32_t ghost = m.V[3 * t + k];

@@ -12,7 +12,6 @@
 #include <algorithm>
 #include <cmath>
 #include <unordered_set>
-#include <utility>
 
 namespace dlab::ui {
 
@@ -436,15 +435,17 @@ void ShowExpressions(AppState& st) {
     ImGui::SetNextItemWidth(-70);
     // After Enter (or Eval) the field takes the keyboard back for the next expression: what is
     // typed next goes there, not to the single-letter shortcuts.
-    if (std::exchange(ex.refocusInput, false)) ImGui::SetKeyboardFocusHere();
+    if (ex.refocusInput > 0) ImGui::SetKeyboardFocusHere();
     const bool enter = ImGui::InputTextWithHint("##expr", "r(o(n(7)))  or  c.n.o.r", &ex.input,
                                                 ImGuiInputTextFlags_EnterReturnsTrue);
     RecordItem(st, "expr-input");
+    if (ImGui::IsItemActive()) ex.refocusInput = 0;
+    if (enter) ImGui::SetKeyboardFocusHere(-1);  // from the next frame on, as Enter deactivated it
     ImGui::PopFont();
     ImGui::SameLine();
     const bool eval = ImGui::Button("Eval");
     RecordItem(st, "expr-eval");
-    if (enter || eval) ex.refocusInput = true;
+    if (enter || eval) ex.refocusInput = ExpressionState::kRefocusFrames;
     if ((enter || eval) && !ex.input.empty()) {
         evaluateExpression(st, ex.input);
         ex.input.clear();
@@ -531,11 +532,15 @@ void ShowExpressions(AppState& st) {
     ImGui::PopFont();
     if (remove >= 0) ex.watches.erase(ex.watches.begin() + remove);
     ImGui::SetNextItemWidth(-150);
-    if (std::exchange(ex.refocusWatch, false)) ImGui::SetKeyboardFocusHere();
+    if (ex.refocusWatch > 0) ImGui::SetKeyboardFocusHere();
     const bool addEnter = ImGui::InputTextWithHint(
         "##watch", "V[n(o(c))] == V[p(c)]", &ex.watchInput, ImGuiInputTextFlags_EnterReturnsTrue);
     RecordItem(st, "watch-input");
-    ex.refocusWatch = addEnter;
+    if (ImGui::IsItemActive()) ex.refocusWatch = 0;
+    if (addEnter) {
+        ImGui::SetKeyboardFocusHere(-1);
+        ex.refocusWatch = ExpressionState::kRefocusFrames;
+    }
     ImGui::SameLine();
     if ((ImGui::Button("Add") || addEnter) && !ex.watchInput.empty()) {
         if (addWatch(st, ex.watchInput)) ex.watchInput.clear();
