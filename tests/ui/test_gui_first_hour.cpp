@@ -22,6 +22,7 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <ostream>
 #include <string>
 #include <vector>
 
@@ -175,6 +176,8 @@ struct TextField {
     void (*open)(UiHarness&);  // brings it on screen
 };
 
+void PrintTo(const TextField& field, std::ostream* os) { *os << field.name; }
+
 class GuiTextField : public ::testing::TestWithParam<TextField> {};
 
 // Every text field: while it has the keyboard, letters are typing, never shortcuts.
@@ -190,7 +193,10 @@ TEST_P(GuiTextField, NoShortcutFiresWhileItHasTheKeyboard) {
     GetParam().open(h);
     h.frames(2);
     ASSERT_TRUE(st.itemRects.count(GetParam().name)) << GetParam().name << " is not on screen";
-    h.clickItem(GetParam().name);
+    // Into the text, near its left end (a number field ends with its - and + buttons).
+    const auto field = h.rect(GetParam().name);
+    h.click(field[0] + 12, (field[1] + field[3]) / 2);
+    ASSERT_TRUE(ImGui::GetIO().WantTextInput) << GetParam().name << " did not take the keyboard";
     const auto overlays = st.overlays;
     const bool snap = st.snapToGrid;
     const auto view = st.view;

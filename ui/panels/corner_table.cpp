@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cinttypes>
 #include <cstdio>
+#include <string>
 #include <unordered_map>
 
 namespace dlab::ui {
@@ -76,10 +77,18 @@ void ShowCornerTable(AppState& st) {
     const bool tableOpen = ImGui::BeginTable("##corners", 8, flags);
     if (tableOpen) {
         ImGui::TableSetupScrollFreeze(0, 1);
-        // V[c] is wider: it may read "12 (ghost)".
-        for (const char* h : {"c", "t", "V[c]", "O[c]", "n", "p", "l", "r"})
-            ImGui::TableSetupColumn(h, ImGuiTableColumnFlags_WidthStretch,
-                                    h[0] == 'V' ? 2.3f : 1.0f);
+        // V[c] is as wide as its widest text, "12 (ghost)" at any font size; the others share
+        // the rest.
+        const std::string widest =
+            std::string(std::to_string(m.numVertices()).size(), '0') +
+            (e.options().boundary == Boundary::Exact ? " (ghost)" : " (super)");
+        for (const char* h : {"c", "t", "V[c]", "O[c]", "n", "p", "l", "r"}) {
+            if (h[0] == 'V')
+                ImGui::TableSetupColumn(h, ImGuiTableColumnFlags_WidthFixed,
+                                        ImGui::CalcTextSize(widest.c_str()).x);
+            else
+                ImGui::TableSetupColumn(h, ImGuiTableColumnFlags_WidthStretch);
+        }
         ImGui::TableHeadersRow();
         const float rowH = ImGui::GetTextLineHeightWithSpacing();
         if (st.selection.jumpToCorner != kNone) {
