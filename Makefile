@@ -12,9 +12,14 @@
 #   make bench   build, then dtlab vs CGAL on 2^20 points of each distribution and larger uniform
 #                sets, with peak memory (.ci/bench_compare.sh; BENCH_* variables; ~20 min)
 #   make format  clang-format every C++ source (make test checks the format: Style.Format)
-#   make clean   remove build/, build-asan/, build-release/, build-fuzz/
+#   make web     the browser build: build-web/ (index.html, .js, .wasm, .data with the lessons,
+#                their point sets and the fonts), with Debian's emscripten and the sources of
+#                Debian's imgui and giflib (.ci/debian_source.sh); serve the folder over HTTP
+#   make serve-web   build-web/ on http://127.0.0.1:$(WEB_PORT)/ (python3's http.server)
+#   make clean   remove build/, build-asan/, build-release/, build-fuzz/, build-web/
 #
-# Variables: JOBS (build parallelism, default nproc), CTEST_JOBS (default 2), DLAB_SKIP_DEPS=1
+# Variables: JOBS (build parallelism, default nproc), WEB_PORT (default 8000), WEB_TEST=0 (make test
+# neither installs nor runs the browser test), CTEST_JOBS (default 2), DLAB_SKIP_DEPS=1
 # (skip the Debian package check), CMAKE_ARGS (extra arguments for the configure step),
 # FUZZ_SECONDS (per target for `make fuzz`, default 120), TEST_FUZZ_SECONDS (per target in
 # `make test`, default 20; 0 skips fuzzing), FUZZ_JOBS (targets fuzzed at once, default nproc).
@@ -50,7 +55,20 @@ DEB_PACKAGES := \
 # without them `make test` says that fuzzing was skipped and why, and passes.
 FUZZ_DEB_PACKAGES := clang-14 libclang-rt-14-dev
 
-.PHONY: all run test build configure deps asan fuzz bench format clean help
+# The browser build (make web) and its test in Chromium (Web.Browser, in make test): emscripten,
+# dpkg-dev (dpkg-source unpacks Debian's imgui and giflib sources), chromium, npm (puppeteer-core
+# goes into $(BUILD_DIR)/web-test, never the system). Installed by `make deps` as root; elsewhere
+# optional: without them the browser test is not registered and make test says so.
+WEB_DEB_PACKAGES := emscripten dpkg-dev python3
+WEB_TEST_DEB_PACKAGES := chromium npm
+WEB_DIR := build-web
+WEB_PORT ?= 8000
+WEB_TEST ?= 1
+# Debian's emscripten needs Debian's node modules (acorn) on Node's path.
+WEB_ENV := NODE_PATH=/usr/share/nodejs
+
+.PHONY: all run test build configure deps asan fuzz bench format clean help web serve-web web-deps \
+	web-test-deps
 
 all: build
 
@@ -65,6 +83,35 @@ deps:
 		echo "deps: optional fuzzing packages missing ($(FUZZ_DEB_PACKAGES)): fuzzing will be skipped"; \
 	fi
 
+# The browser test's tools, before the configure step (which registers Web.Browser when they are
+# there): as root they are installed; otherwise the test is not registered when they are absent.
+web-test-deps:
+	@if [[ "$(WEB_TEST)" == 0 ]]; then echo "deps: WEB_TEST=0: the browser test is off"; exit 0; fi; \
+	if [[ $$(id -u) -eq 0 ]]; then \
+		bash .ci/deps.sh $(WEB_DEB_PACKAGES) $(WEB_TEST_DEB_PACKAGES); \
+	elif ! bash .ci/deps.sh $(WEB_DEB_PACKAGES) $(WEB_TEST_DEB_PACKAGES) >/dev/null 2>&1; then \
+		echo "deps: optional browser-test packages missing ($(WEB_DEB_PACKAGES) $(WEB_TEST_DEB_PACKAGES)): Web.Browser will not run"; \
+	fi
+	@if [[ "$(WEB_TEST)" != 0 ]] && command -v npm >/dev/null 2>&1 && [[ ! -f $(BUILD_DIR)/web-test/node_modules/puppeteer-core/package.json ]]; then \
+		mkdir -p $(BUILD_DIR)/web-test && \
+		npm install --prefix $(BUILD_DIR)/web-test --no-audit --no-fund --silent puppeteer-core@24 || \
+		echo "deps: npm could not install puppeteer-core: Web.Browser will fail"; \
+	fi
+
+web-deps:
+	@bash .ci/deps.sh $(DEB_PACKAGES) $(WEB_DEB_PACKAGES)
+
+# The browser build. Release (-O3), no tests; ccache when installed. em++ runs nice'd.
+web: web-deps
+	$(WEB_ENV) emcmake cmake -S . -B $(WEB_DIR) -DCMAKE_BUILD_TYPE=Release \
+		$$(command -v ccache >/dev/null && echo -DCMAKE_CXX_COMPILER_LAUNCHER=ccache -DCMAKE_C_COMPILER_LAUNCHER=ccache)
+	$(WEB_ENV) nice -n 10 cmake --build $(WEB_DIR) -j $(JOBS)
+	@echo "web: open $(WEB_DIR)/index.html through a web server, e.g. make serve-web"
+
+serve-web: web
+	@echo "serve-web: http://127.0.0.1:$(WEB_PORT)/ (Ctrl+C stops)"
+	python3 -m http.server $(WEB_PORT) --bind 127.0.0.1 --directory $(WEB_DIR)
+
 # Configure every time: cheap once the cache exists, and it never builds from a stale or
 # half-written configuration.
 configure: deps
@@ -78,8 +125,9 @@ build: configure
 run: build
 	$(BUILD_DIR)/app/delaunay-lab --headless-png $(BUILD_DIR)/demo.png
 
-test: build
-	ctest --test-dir $(BUILD_DIR) --output-on-failure --no-tests=error -j $(CTEST_JOBS)
+test: web-test-deps build
+	ctest --test-dir $(BUILD_DIR) --output-on-failure --no-tests=error -j $(CTEST_JOBS) \
+		$(if $(filter 0,$(WEB_TEST)),-E '^Web\.Browser$$')
 	@if [[ "$(TEST_FUZZ_SECONDS)" == 0 ]]; then echo "fuzz: SKIPPED: TEST_FUZZ_SECONDS=0"; \
 	else FUZZ_SECONDS=$(TEST_FUZZ_SECONDS) bash tests/fuzz/run_fuzz.sh; fi
 
@@ -90,7 +138,8 @@ asan: deps
 	UBSAN_OPTIONS=print_stacktrace=1 \
 		LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan.supp:print_suppressions=0 \
 		ctest --test-dir $(ASAN_DIR) --output-on-failure --no-tests=error -j $(CTEST_JOBS) \
-		-E '^Gui\.RealWindowUnderXvfb$$'
+		-E '^(Gui\.RealWindowUnderXvfb|Web\.Browser)$$'
+	@# Web.Browser tests the WebAssembly build, which sanitizers do not change: make test runs it.
 	@# The real-window test with ASan and UBSan but no leak check: glfwTerminate unloads Mesa's
 	@# DRI driver (swrast_dri.so), and the caches its globals pointed to then look leaked from an
 	@# <unknown module>; a minimal GLFW program under Xvfb shows the same 128 bytes.
@@ -109,4 +158,4 @@ format:
 	git ls-files -co --exclude-standard '*.cpp' '*.h' | grep -v '/corpus/' | xargs clang-format -i
 
 clean:
-	rm -rf $(BUILD_DIR) $(ASAN_DIR) build-release $(FUZZ_DIR)
+	rm -rf $(BUILD_DIR) $(ASAN_DIR) build-release $(FUZZ_DIR) $(WEB_DIR)

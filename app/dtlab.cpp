@@ -22,10 +22,13 @@ int main(int argc, char** argv) {
     dlab::cli::addDiffTrace(app);
     dlab::cli::addRender(app);
     dlab::cli::addTable1(app);
+    int code = 0;
     try {
         app.parse(argc, argv);
+        code = dlab::cli::exitCode();
     } catch (const CLI::ParseError& e) {
-        return app.exit(e);
+        code = app.exit(e) == 0 ? 0 : 2;  // --help: 0; every usage error: 2
     }
-    return dlab::cli::exitCode();
+    dlab::cli::releaseGl();
+    return code;
 }

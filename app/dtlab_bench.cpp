@@ -1,6 +1,8 @@
 // dtlab bench: times the triangulation only (not I/O), after warm-up runs; median of repeats.
 #include "app/dtlab_common.h"
 
+#include "core/engine/predicates.h"
+
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
@@ -22,10 +24,12 @@ struct BenchArgs {
 void runBench(const BenchArgs& args) {
     const LoadedPoints loaded = loadPoints(args.input);
     const std::size_t n = loaded.points.size();
+    if (n == 0) fail(args.input + ": no points: there is nothing to time", 2);
     std::vector<double> ms;
     InsertStats stats;
     std::int32_t triangles = 0;
     LocatorStats locStats;
+    const PredicateCounters countersBefore = predicateCounters();
     for (int r = 0; r < args.warmup + args.repeat; ++r) {  // the first `warmup` runs are not timed
         std::vector<Vec2> pts = loaded.points;             // copied outside the timed region
         const auto t0 = std::chrono::steady_clock::now();
@@ -39,10 +43,22 @@ void runBench(const BenchArgs& args) {
         triangles = ins.mesh().numTriangles();
         locStats = ins.locator()->stats();
     }
+    // Which stage decided the predicates the filter could not: every run is the same, so a
+    // run's share of the counters is their growth divided by the runs.
+    const PredicateCounters& counters = predicateCounters();
+    const int runs = args.warmup + args.repeat;
+    auto perRun = [&](std::uint64_t now, std::uint64_t before) {
+        return static_cast<std::int64_t>((now - before) / static_cast<std::uint64_t>(runs));
+    };
+    std::int64_t orientStage[kNumPredicateTiers], incircleStage[kNumPredicateTiers];
+    for (int t = 0; t < kNumPredicateTiers; ++t) {
+        orientStage[t] = perRun(counters.orientByTier[t], countersBefore.orientByTier[t]);
+        incircleStage[t] = perRun(counters.incircleByTier[t], countersBefore.incircleByTier[t]);
+    }
     std::sort(ms.begin(), ms.end());
     const double median =
         ms.size() % 2 ? ms[ms.size() / 2] : (ms[ms.size() / 2 - 1] + ms[ms.size() / 2]) / 2;
-    const double pn = std::max<double>(1.0, static_cast<double>(n));
+    const auto pn = static_cast<double>(n);
     const double hitRate =
         locStats.queries ? static_cast<double>(locStats.hits) / locStats.queries : 0.0;
     if (args.json) {
@@ -65,6 +81,14 @@ void runBench(const BenchArgs& args) {
         j["locator_hit_rate"] = hitRate;
         j["duplicates"] = stats.duplicates;
         j["triangles"] = triangles;
+        // Calls past the floating-point filter, by the stage that decided them (one run).
+        nlohmann::ordered_json stages;
+        for (int t = 1; t < kNumPredicateTiers; ++t) {
+            const char* name = toString(static_cast<PredicateTier>(t));
+            stages["orient2d"][name] = orientStage[t];
+            stages["incircle"][name] = incircleStage[t];
+        }
+        j["predicates_past_filter"] = stages;
         std::cout << j.dump() << "\n";
     } else {
         std::printf("%s: n=%zu locate=%s order=%s boundary=%s\n", args.input.c_str(), n,
@@ -78,6 +102,13 @@ void runBench(const BenchArgs& args) {
             median * 1e6 / pn, stats.flips / pn, stats.inCircleTests / pn, stats.walkSteps / pn);
         std::printf("  locator hint hit rate %.3f, %lld duplicates skipped, %d triangles\n",
                     hitRate, static_cast<long long>(stats.duplicates), triangles);
+        std::printf("  past the filter (one run):");
+        for (int t = 1; t < kNumPredicateTiers; ++t) {
+            std::printf(" %s %lld+%lld", toString(static_cast<PredicateTier>(t)),
+                        static_cast<long long>(orientStage[t]),
+                        static_cast<long long>(incircleStage[t]));
+        }
+        std::printf(" (orient2d+incircle)\n");
     }
 }
 

@@ -2,8 +2,10 @@
 #include "app/dtlab_common.h"
 
 #include "core/engine/io_read.h"
+#include "core/engine/text_util.h"
 
 #include <iostream>
+#include <stdexcept>
 
 namespace dlab::cli {
 
@@ -70,7 +72,7 @@ std::unique_ptr<Inserter> EngineFlags::makeInserter(std::vector<Vec2> points) co
 }
 
 void fail(const std::string& message, int code) {
-    std::cerr << "dtlab: error: " << message << "\n";
+    std::cerr << "dtlab: error: " << escapeControls(message) << "\n";  // one line, always
     throw Exit{code};
 }
 
@@ -89,8 +91,14 @@ void guarded(const std::function<void()>& body) {
         body();
     } catch (const Exit& e) {
         g_exitCode = e.code;
-    } catch (const std::exception& e) {
+    } catch (const std::invalid_argument& e) {  // the engine refused the input (too many
+        std::cerr << "dtlab: error: " << e.what() << "\n";  // points, no super-triangle)
+        g_exitCode = 2;
+    } catch (const std::domain_error& e) {
         std::cerr << "dtlab: error: " << e.what() << "\n";
+        g_exitCode = 2;
+    } catch (const std::exception& e) {
+        std::cerr << "dtlab: error: " << escapeControls(e.what()) << "\n";
         g_exitCode = 1;
     }
 }

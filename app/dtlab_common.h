@@ -40,6 +40,8 @@ struct EngineFlags {
 // The process' headless GL context (OSMesa, made current on first use); fail()s when there is
 // none. GL locators on it must be destroyed before main returns. dtlab-gl only.
 std::shared_ptr<ui::GlContext> headlessGl();
+// Destroys that context (if any) before main returns; nothing in dtlab.
+void releaseGl();
 
 // The command line as main() received it, for dtlab to hand on to dtlab-gl.
 void rememberCommandLine(int argc, char** argv);

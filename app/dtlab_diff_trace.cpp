@@ -1,4 +1,5 @@
-// dtlab diff-trace REF STUDENT: the first operation where a student's run differs from ours.
+// dtlab diff-trace REF STUDENT: the first insertion after which a student's mesh differs from
+// ours, and why (or, with --by-op, the first operation that differs).
 // Exit status: 0 the runs agree, 1 they differ, 2 bad input.
 #include "app/dtlab_common.h"
 
@@ -53,19 +54,23 @@ void addDiffTrace(CLI::App& app) {
     auto args = std::make_shared<DiffArgs>();
     CLI::App* cmd =
         app.add_subcommand("diff-trace",
-                           "Compare a student's trace with ours: the first operation where the "
-                           "runs differ (exit 0 same, 1 differ, 2 bad input)");
+                           "Check a student's trace against ours: the first insertion after which "
+                           "the student's triangles are wrong, and why (exit 0 same, 1 differ, 2 "
+                           "bad input)");
     cmd->add_option(
            "reference", args->reference,
            "Our trace (.jsonl from dtlab trace), or a lesson/assignment (.toml) to run and trace")
         ->required();
     cmd->add_option("student", args->student, "The student's trace (.jsonl)")->required();
+    cmd->add_flag("--by-op", args->options.byOp,
+                  "Compare operation by operation (each split and flip, in our order), not only "
+                  "the triangles after each insertion");
     cmd->add_flag("--all-ops", args->options.allOps,
-                  "Compare every operation one to one (walk steps and tests too), not only those "
-                  "that change the mesh");
+                  "With --by-op: compare every operation one to one (walk steps and tests too), "
+                  "not only those that change the mesh");
     cmd->add_flag("--corners", args->options.corners,
-                  "The student follows the paper's corner-reuse convention: compare V (and O) "
-                  "corner by corner");
+                  "With --by-op: the student follows the paper's corner-reuse convention (see the "
+                  "assignment's text): compare V (and O) corner by corner");
     cmd->add_option("--context", args->options.context,
                     "Operations of context shown before the difference")
         ->check(CLI::Range(0, 100))

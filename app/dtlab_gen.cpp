@@ -15,18 +15,20 @@ namespace {
 
 struct GenArgs {
     std::string kind;
-    std::size_t n = 0;
+    long long n = 0;
     std::uint64_t seed = 1;
     std::string output;
 };
 
 void runGen(const GenArgs& args) {
     const auto kind = parseGenerator(args.kind);
-    if (!kind) fail("unknown point set '" + args.kind + "' (one of: " + generatorNames() + ")");
-    if (args.n > kMaxPoints) fail("too many points: " + std::to_string(args.n));
-    const std::vector<Vec2> pts = generatePoints(*kind, args.n, args.seed);
+    if (!kind) fail("unknown point set '" + args.kind + "' (one of: " + generatorNames() + ")", 2);
+    const std::vector<Vec2> pts =
+        generatePoints(*kind, static_cast<std::size_t>(args.n), args.seed);
     std::string ext = std::filesystem::path(args.output).extension().string();
     for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    if (args.output.empty() || std::filesystem::path(args.output).filename().empty())
+        fail("-o \"" + args.output + "\": give a file name for the points, e.g. -o points.node", 2);
     writeTextFile(args.output, [&](std::ostream& os) {
         if (ext == ".csv" || ext == ".xy" || ext == ".txt" || ext == ".pts") {
             std::string s;
@@ -54,7 +56,9 @@ void addGen(CLI::App& app) {
     CLI::App* cmd =
         app.add_subcommand("gen", "Write a built-in point set (.node; .csv/.xy/.pts by extension)");
     cmd->add_option("kind", args->kind, "Point set: " + generatorNames())->required();
-    cmd->add_option("n", args->n, "Number of points")->required();
+    cmd->add_option("n", args->n, "Number of points (1 to 2^25)")
+        ->required()
+        ->check(CLI::Range(1LL, static_cast<long long>(kMaxPoints)));
     cmd->add_option("--seed", args->seed, "Random seed")->capture_default_str();
     cmd->add_option("-o,--output", args->output, "Output file")->required();
     cmd->callback([args] { guarded([&] { runGen(*args); }); });

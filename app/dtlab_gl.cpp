@@ -29,22 +29,27 @@ namespace {
 struct HeadlessContext {
     std::unique_ptr<ui::Platform> platform;
     std::shared_ptr<ui::GlContext> gl;
-    ~HeadlessContext() {
-        if (gl) gl->lose();
-    }
 };
+HeadlessContext g_context;
 
 }  // namespace
 
 std::shared_ptr<ui::GlContext> headlessGl() {
-    static HeadlessContext context;
-    if (!context.gl) {
+    if (!g_context.gl) {
         std::string error;
-        context.platform = ui::makeOsmesaPlatform(16, 16, error);
-        if (context.platform) context.gl = ui::GlContext::fromCurrent(error);
-        if (!context.gl) fail("--locate idbuffer-gl: " + error);
+        g_context.platform = ui::makeOsmesaPlatform(16, 16, error);
+        if (g_context.platform) g_context.gl = ui::GlContext::fromCurrent(error);
+        if (!g_context.gl) fail("--locate idbuffer-gl: " + error);
     }
-    return context.gl;
+    return g_context.gl;
+}
+
+void releaseGl() {
+    // Mesa registers its own exit handlers (its thread queues) when the context is made, after
+    // any static of ours: destroyed at exit, the context would outlive them.
+    if (g_context.gl) g_context.gl->lose();
+    g_context.gl.reset();
+    g_context.platform.reset();
 }
 
 }  // namespace dlab::cli

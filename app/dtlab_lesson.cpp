@@ -2,6 +2,7 @@
 // and prints a lesson's answer key.
 #include "app/dtlab_common.h"
 
+#include "core/engine/text_util.h"
 #include "core/teaching/lesson.h"
 
 #include <iostream>
@@ -48,12 +49,12 @@ void runCheck(const LessonArgs& args) {
         try {
             const Lesson lesson = loadLesson(path);
             const LessonPlan plan = planLesson(lesson);
-            std::cout << path << ": ok: \"" << lesson.title << "\" ("
-                      << (lesson.assignment ? "assignment, " : "") << lesson.points.size()
+            std::cout << escapeControls(path) << ": ok: \"" << escapeControls(lesson.title)
+                      << "\" (" << (lesson.assignment ? "assignment, " : "") << lesson.points.size()
                       << " points, " << lesson.stops.size() << " stops, " << questions(lesson)
                       << " questions, " << plan.totalOps << " operations)\n";
         } catch (const LessonError& e) {
-            std::cerr << "dtlab: error: " << e.what() << "\n";
+            std::cerr << "dtlab: error: " << escapeControls(e.what()) << "\n";
             ++failed;
         }
     }
@@ -69,14 +70,20 @@ void runShow(const LessonArgs& args) {
         const LessonPlan plan = planLesson(lesson);
         auto ins = makeInserter(lesson);
         Journal journal(*ins);
-        std::cout << "# " << lesson.title << "\n"
-                  << lesson.summary << "\n"
+        // Lesson files are untrusted: no control character reaches the terminal.
+        const auto text = [](std::string_view s) { return escapeControlsKeepLines(s); };
+        std::cout << "# " << escapeControls(lesson.title) << "\n"
+                  << text(lesson.summary) << "\n"
                   << "options: boundary " << toString(lesson.options.boundary) << ", locator "
                   << toString(lesson.options.locator) << ", order "
                   << toString(lesson.options.order) << ", seed " << lesson.options.seed << "; "
                   << lesson.points.size() << " points"
-                  << (lesson.pointsFile.empty() ? "" : " from " + lesson.pointsFile) << "; "
-                  << plan.totalOps << " operations\n";
+                  << (lesson.pointsFile.empty() ? "" : " from " + escapeControls(lesson.pointsFile))
+                  << "; " << plan.totalOps << " operations\n";
+        if (!lesson.text.empty())
+            std::cout << "\n"
+                      << escapeControlsKeepLines(lesson.text)
+                      << (lesson.text.back() == '\n' ? "" : "\n");
         for (std::size_t k = 0; k < lesson.stops.size(); ++k) {
             const LessonStop& s = lesson.stops[k];
             const StopState& st = plan.stops[k];
@@ -85,20 +92,20 @@ void runShow(const LessonArgs& args) {
                                         (s.count > 1 ? " x" + std::to_string(s.count) : "")
                                   : std::string("stay"))
                       << " -> op " << st.position << "\n";
-            if (!st.caption.empty()) std::cout << "caption: " << st.caption << "\n";
+            if (!st.caption.empty()) std::cout << "caption: " << text(st.caption) << "\n";
             if (args.tables) {
                 journal.seek(st.position);
                 printTables(*ins);
             }
             if (st.selected != kNone) std::cout << "selected corner: " << st.selected << "\n";
-            if (!s.text.empty()) std::cout << s.text << (s.text.back() == '\n' ? "" : "\n");
+            if (!s.text.empty()) std::cout << text(s.text) << (s.text.back() == '\n' ? "" : "\n");
             if (!s.question.empty()) {
-                std::cout << "Q: " << s.question << "\nA: " << st.answer->display() << "   ("
-                          << s.answer << ")\n";
+                std::cout << "Q: " << text(s.question) << "\nA: " << text(st.answer->display())
+                          << "   (" << text(s.answer) << ")\n";
             }
         }
     } catch (const LessonError& e) {
-        fail(e.what());
+        fail(e.what(), 2);  // bad input
     }
 }
 

@@ -26,6 +26,8 @@ void needGl() {
     std::exit(1);
 }
 
+void releaseGl() {}
+
 std::unique_ptr<Inserter> EngineFlags::makeGlInserter(std::vector<Vec2>) const {
     needGl();
     return nullptr;

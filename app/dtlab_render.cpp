@@ -2,6 +2,7 @@
 #include "app/dtlab_common.h"
 
 #include "core/engine/generators.h"
+#include "ui/gl/mesh_renderer.h"
 #include "ui/gui.h"
 #include "ui/lesson_player.h"
 #include "ui/panels/panels.h"
@@ -10,6 +11,7 @@
 
 #include <chrono>
 #include <cstdio>
+#include <ctime>
 #include <filesystem>
 #include <iostream>
 
@@ -26,7 +28,6 @@ struct RenderArgs {
     long long select = -1;
     bool presentation = false;
     std::vector<std::string> overlays;
-    bool engineGiven = false;
     int benchFrames = 0;
     std::string tab;
     std::string lesson;
@@ -35,18 +36,28 @@ struct RenderArgs {
     EngineFlags engine;
 };
 
+double cpuMs(clockid_t clock) {
+    timespec t{};
+    clock_gettime(clock, &t);
+    return static_cast<double>(t.tv_sec) * 1e3 + static_cast<double>(t.tv_nsec) / 1e6;
+}
+double processCpuMs() { return cpuMs(CLOCK_PROCESS_CPUTIME_ID); }
+double mainThreadCpuMs() { return cpuMs(CLOCK_THREAD_CPUTIME_ID); }
+
 // Frame times: idle (nothing changes), then running at full speed (the mesh changes every
 // frame), then scrolling the corner table. Wall-clock ms per frame, mean over the frames.
 void benchFrames(ui::Gui& gui, ui::AppState& state, int frames) {
     using Clock = std::chrono::steady_clock;
-    double buildMs = 0;
+    double buildMs = 0, cpuMs = 0;
     auto timeFrames = [&](int n, auto&& before) {
         double total = 0, worst = 0;
-        buildMs = 0;
+        buildMs = cpuMs = 0;
         for (int i = 0; i < n; ++i) {
             before(i);
             const auto t0 = Clock::now();
+            const double c0 = processCpuMs();
             gui.frame();
+            cpuMs += processCpuMs() - c0;
             const double ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
             total += ms;
             worst = std::max(worst, ms);
@@ -55,9 +66,10 @@ void benchFrames(ui::Gui& gui, ui::AppState& state, int frames) {
         return std::pair{total / std::max(1, n), worst};
     };
     const auto idle = timeFrames(frames, [](int) {});
-    std::printf("frame ms, idle:       mean %.1f, worst %.1f (%zu points, %d triangles)\n",
-                idle.first, idle.second, state.engine.points().size(),
-                state.engine.mesh().numTriangles());
+    std::printf(
+        "frame ms, idle:       mean %.1f, worst %.1f, cpu %.1f (%zu points, %d triangles)\n",
+        idle.first, idle.second, cpuMs / frames, state.engine.points().size(),
+        state.engine.mesh().numTriangles());
     if (!state.engine.batch() && !state.engine.atEnd()) {
         state.run.running = true;
         state.run.opsPerSecond = ui::RunControl::kFullSpeed;
@@ -71,10 +83,10 @@ void benchFrames(ui::Gui& gui, ui::AppState& state, int frames) {
         const auto running = timeFrames(frames, [&](int) { timed += state.run.running ? 1 : 0; });
         const int n = std::max(1, timed);
         std::printf(
-            "frame ms, full speed: mean %.1f, worst %.1f over %d running frames (%.0f operations "
-            "and %.1f ms of "
-            "mesh rebuild per frame; the first frame, with shader compilation: %.0f ms)\n",
-            running.first * frames / n, running.second, timed,
+            "frame ms, full speed: mean %.1f, worst %.1f, cpu %.1f over %d running frames (%.0f "
+            "operations and %.1f ms of mesh rebuild per frame; the first frame, with shader "
+            "compilation: %.0f ms)\n",
+            running.first * frames / n, running.second, cpuMs / n, timed,
             static_cast<double>(state.engine.position() - p0) / n, buildMs / n, warmMs);
         state.run.running = false;
     }
@@ -87,7 +99,44 @@ void benchFrames(ui::Gui& gui, ui::AppState& state, int frames) {
                 state.engine.mesh().numCorners(), scrolling.first, scrolling.second);
 }
 
+// The drawing of a changing mesh alone: before each frame the run moves `ops` operations on
+// (outside the frame's time), from the same position with the raster patched and redrawn whole.
+// Wall-clock and process CPU ms (all threads, llvmpipe's included: steadier on a loaded machine).
+void benchChangingFrames(ui::Gui& gui, ui::AppState& state, int frames, std::size_t ops) {
+    if (state.engine.batch()) return;
+    state.run.running = false;
+    const std::size_t was = state.engine.position();
+    const std::size_t start = state.engine.recorded() / 2;
+    for (const bool patch : {true, false}) {
+        ui::MeshRenderer::setPatching(patch);
+        state.engine.seek(start);
+        gui.frame();
+        double wall = 0, cpu = 0, mainCpu = 0, build = 0, vertices = 0;
+        for (int i = 0; i < frames; ++i) {
+            state.engine.seek(state.engine.position() + ops);
+            const auto t0 = std::chrono::steady_clock::now();
+            const double c0 = processCpuMs(), m0 = mainThreadCpuMs();
+            gui.frame();
+            cpu += processCpuMs() - c0;
+            mainCpu += mainThreadCpuMs() - m0;
+            vertices += ImGui::GetDrawData() ? ImGui::GetDrawData()->TotalVtxCount : 0;
+            wall += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0)
+                        .count();
+            build += state.frameStats.meshBuildMs;
+        }
+        std::printf(
+            "frame ms, %zu more operations each, %s: wall mean %.1f, cpu mean %.1f (main "
+            "thread %.1f; mesh update %.1f ms wall; %.0f ImGui vertices)\n",
+            ops, patch ? "raster patched" : "raster redrawn whole", wall / frames, cpu / frames,
+            mainCpu / frames, build / frames, vertices / frames);
+    }
+    ui::MeshRenderer::setPatching(true);
+    state.engine.seek(was);
+}
+
 void runRender(const RenderArgs& args) {
+    if (!args.slides.empty() && args.lesson.empty()) fail("--slides needs --lesson", 2);
+    if (args.output.empty() && args.slides.empty()) fail("-o FILE.png is required", 2);
     int width = 0, height = 0;
     if (std::sscanf(args.size.c_str(), "%dx%d", &width, &height) != 2 || width < 320 ||
         height < 240 || width > 8192 || height > 8192) {
@@ -100,10 +149,7 @@ void runRender(const RenderArgs& args) {
     if (!platform) fail(error);
     ui::Gui gui(*platform, state);
     state.presentation = args.presentation;
-    if (args.engineGiven)
-        state.setOptions(args.engine.options());
-    else
-        state.setOptions(ui::demoOptions());
+    state.setOptions(args.engine.options());  // the defaults its help states (order brio)
     if (!args.lesson.empty()) {
         if (!ui::openLesson(state, args.lesson)) fail(state.messages.back().text, 2);
         const std::size_t stops = state.lessonPlayer.lesson->stops.size();
@@ -114,6 +160,10 @@ void runRender(const RenderArgs& args) {
             for (std::size_t k = 0; k < stops; ++k) {
                 ui::goToStop(state, k);
                 for (int i = 0; i < 3; ++i) gui.frame();
+                if (const auto q = state.itemRects.find("slide-question");
+                    q != state.itemRects.end() &&
+                    (q->second[3] > static_cast<float>(height) || q->second[1] < 0))
+                    std::cout << "stop " << k + 1 << ": the question does not fit the slide\n";
                 char name[32];
                 std::snprintf(name, sizeof name, "/%02zu.png", k + 1);
                 if (!gui.saveScreenshot(args.slides + name, error)) fail(error);
@@ -158,12 +208,24 @@ void runRender(const RenderArgs& args) {
     } else if (args.steps >= 0) {
         state.engine.seek(static_cast<std::size_t>(args.steps));
     }
-    if (args.select >= 0 && args.lesson.empty())
+    if (args.select >= 0 && args.lesson.empty()) {
+        const std::int32_t corners = state.engine.mesh().numCorners();
+        if (args.select >= corners) {
+            fail("--select " + std::to_string(args.select) + ": the mesh at operation " +
+                     std::to_string(state.engine.position()) + " has corners 0 to " +
+                     std::to_string(corners - 1),
+                 2);
+        }
         state.select(static_cast<std::int32_t>(args.select));
+    }
     state.pendingTab = args.tab;
     // ImGui lays out in the first frames (tables measure their columns): render a few.
     for (int i = 0; i < 3; ++i) gui.frame();
-    if (args.benchFrames > 0) benchFrames(gui, state, args.benchFrames);
+    if (args.benchFrames > 0) {
+        benchFrames(gui, state, args.benchFrames);
+        for (const std::size_t ops : {std::size_t{1}, std::size_t{20000}})
+            benchChangingFrames(gui, state, args.benchFrames, ops);
+    }
     if (!gui.saveScreenshot(args.output, error)) fail(error);
     std::cout << "wrote " << args.output << " (" << width << "x" << height << ", operation "
               << state.engine.position() << " of " << state.engine.recorded() << ", "
@@ -178,19 +240,26 @@ void addRender(CLI::App& app) {
         "render", "Screenshot of the whole GUI after K operations (headless, OSMesa)");
     cmd->add_option("input", args->input,
                     "Point file (.node, .csv, .xy, .pts); the built-in demo when absent");
-    cmd->add_option("-o,--output", args->output, "PNG file to write")->required();
+    cmd->add_option("-o,--output", args->output, "PNG file to write (not with --slides)");
     auto* steps = cmd->add_option("--steps,--step", args->steps,
                                   "Operations to perform before the screenshot");
     cmd->add_flag("--to-end", args->toEnd, "Run to the end before the screenshot")->excludes(steps);
     cmd->add_option("--size", args->size, "Window size WIDTHxHEIGHT")->capture_default_str();
-    cmd->add_option("--select", args->select, "Select this corner (inspector, highlights)");
+    cmd->add_option("--select", args->select, "Select this corner (inspector, highlights)")
+        ->check(CLI::Validator(
+            [](std::string& v) {
+                return !v.empty() && v[0] == '-' ? "--select must be a corner, 0 or more, not " + v
+                                                 : std::string();
+            },
+            "C >= 0"));
     cmd->add_flag("--presentation", args->presentation,
                   "Presentation mode (large fonts, high contrast)");
     cmd->add_option("--lesson", args->lesson, "A lesson (.toml): render one of its stops");
     cmd->add_option("--stop", args->stop, "The lesson's stop to render (1-based)")
         ->capture_default_str();
     cmd->add_option("--slides", args->slides,
-                    "Render every stop of the lesson to DIR/01.png, DIR/02.png, ...");
+                    "Render every stop of the lesson to DIR/01.png, DIR/02.png, ... (slides with "
+                    "--presentation)");
     cmd->add_option("--bench-frames", args->benchFrames,
                     "Also time this many frames idle, running and scrolling");
     cmd->add_option("--tab", args->tab, "The side tab to show")
@@ -199,12 +268,7 @@ void addRender(CLI::App& app) {
     cmd->add_option("--overlay", args->overlays,
                     "voronoi, circumcircles, triangle-ids, no-corner-ids, no-fill (repeatable)");
     args->engine.add(*cmd);
-    cmd->callback([args, cmd] {
-        args->engineGiven = cmd->count("--locate") + cmd->count("--order") +
-                                cmd->count("--boundary") + cmd->count("--seed") >
-                            0;
-        guarded([&] { runRender(*args); });
-    });
+    cmd->callback([args] { guarded([&] { runRender(*args); }); });
 }
 
 }  // namespace dlab::cli

@@ -130,7 +130,9 @@ const Run& medianRun(const std::vector<Run>& runs) {
     return runs[idx[(idx.size() - 1) / 2]];
 }
 
-std::vector<std::size_t> parseSizes(const std::string& text) {
+// A comma-separated list of counts between lo and hi, for the option `name`.
+std::vector<std::size_t> parseCounts(const std::string& text, const char* name, std::size_t lo,
+                                     std::size_t hi) {
     std::vector<std::size_t> sizes;
     std::stringstream ss(text);
     std::string item;
@@ -142,12 +144,14 @@ std::vector<std::size_t> parseSizes(const std::string& text) {
         } catch (const std::exception&) {
             used = 0;
         }
-        if (used != item.size() || item.empty() || v < 3 || v > (1u << 20)) {
-            fail("--sizes: \"" + item + "\" is not a point count between 3 and 1048576", 2);
+        if (used != item.size() || item.empty() || v < lo || v > hi) {
+            fail(std::string(name) + ": \"" + item + "\" is not a count between " +
+                     std::to_string(lo) + " and " + std::to_string(hi),
+                 2);
         }
         sizes.push_back(static_cast<std::size_t>(v));
     }
-    if (sizes.empty()) fail("--sizes: give at least one point count", 2);
+    if (sizes.empty()) fail(std::string(name) + ": give at least one count", 2);
     return sizes;
 }
 
@@ -342,12 +346,12 @@ void writePlot(const std::string& path, const std::vector<Series>& series, const
 // ============================================================================================
 
 void runTable1(const Table1Args& args) {
-    const std::vector<std::size_t> sizes = parseSizes(args.sizes);
+    const std::vector<std::size_t> sizes = parseCounts(args.sizes, "--sizes", 3, 1u << 20);
     std::vector<int> sweep;
     if (!args.sweep.empty()) {
-        for (std::size_t k : parseSizes(args.sweep))
-            sweep.push_back(
-                static_cast<int>(std::min<std::size_t>(k, ui::IdBufferGlOptions::kMaxBatch)));
+        for (std::size_t k :
+             parseCounts(args.sweep, "--sweep", 1, ui::IdBufferGlOptions::kMaxBatch))
+            sweep.push_back(static_cast<int>(k));
     }
     std::array<bool, kNumMethods> on{};
     {

@@ -1,9 +1,9 @@
 // dtlab trace: one JSON object per operation (JSON Lines), as documented in core/teaching/trace.h.
 #include "app/dtlab_common.h"
 
+#include "core/engine/io_write.h"
 #include "core/teaching/trace.h"
 
-#include <fstream>
 #include <iostream>
 
 namespace dlab::cli {
@@ -18,20 +18,29 @@ struct TraceArgs {
 };
 
 void runTrace(const TraceArgs& args) {
+    try {
+        checkOutputFiles({{args.output, {}}}, {args.input});
+    } catch (const std::runtime_error& e) {
+        fail(e.what(), 2);
+    }
     LoadedPoints loaded = loadPoints(args.input);
     const auto made =
         args.engine.makeInserter(std::move(loaded.points));  // GL locators need a context
     Inserter& ins = *made;
     Journal journal(ins);
-    std::ofstream out(args.output, std::ios::binary);
-    if (!out) fail("cannot write " + args.output);
     long long count = 0;
-    while ((args.limit < 0 || count < args.limit) && journal.forward()) {
-        out << toJsonLine(traceRecord(journal, journal.position() - 1, ins.mesh())) << '\n';
-        ++count;
-    }
-    out.flush();
-    if (!out) fail("cannot write " + args.output + " (disk full?)");
+    writeTextFile(args.output, [&](std::ostream& out) {
+        while ((args.limit < 0 || count < args.limit) && journal.forward()) {
+            out << toJsonLine(traceRecord(journal, journal.position() - 1, ins.mesh())) << '\n';
+            ++count;
+        }
+        if (journal.budgetReached()) {  // no file rather than a trace cut short silently
+            fail("the run passes the history's memory budget (" +
+                 std::to_string(journal.budget() >> 20) + " MiB) after " + std::to_string(count) +
+                 " operations: nothing written; use --limit, or the brio order (it walks far "
+                 "less)");
+        }
+    });
     std::cout << "wrote " << count << " operations to " << args.output
               << (ins.done() ? "" : " (stopped at --limit before the end)") << "\n";
 }
@@ -43,7 +52,13 @@ void addTrace(CLI::App& app) {
     CLI::App* cmd = app.add_subcommand("trace", "Write every operation of a run as JSON Lines");
     cmd->add_option("input", args->input, "Point file (.node, .csv, .xy, .pts)")->required();
     cmd->add_option("-o,--output", args->output, "Trace file (.jsonl)")->required();
-    cmd->add_option("--limit", args->limit, "Stop after this many operations");
+    cmd->add_option("--limit", args->limit, "Stop after this many operations (default: none)")
+        ->check(CLI::Validator(
+            [](std::string& v) {
+                return !v.empty() && v[0] == '-' ? "--limit must be 0 or more, not " + v
+                                                 : std::string();
+            },
+            "N >= 0"));
     args->engine.add(*cmd);
     cmd->callback([args] { guarded([&] { runTrace(*args); }); });
 }

@@ -7,6 +7,7 @@
 #include "core/engine/voronoi.h"
 
 #include <chrono>
+#include <filesystem>
 #include <iostream>
 
 namespace dlab::cli {
@@ -30,7 +31,27 @@ std::string idList(const std::vector<std::int32_t>& ids, int base, std::size_t m
     return s;
 }
 
+// Refuses, before any work, outputs that would overwrite the input or each other.
+void checkOutputs(const TriangulateArgs& args) {
+    if (args.base.empty() || std::filesystem::path(args.base).filename().empty())
+        fail("-o \"" + args.base + "\": give a base name for the output files, e.g. -o out", 2);
+    std::vector<OutputFile> out;
+    for (const char* ext : {".node", ".ele", ".neigh"}) out.push_back({args.base + ext, {}});
+    for (const std::string* p : {&args.off, &args.obj, &args.svg, &args.voronoiSvg})
+        if (!p->empty()) out.push_back({*p, {}});
+    if (!args.voronoiBase.empty()) {
+        out.push_back({args.voronoiBase + ".v.node", {}});
+        out.push_back({args.voronoiBase + ".v.edge", {}});
+    }
+    try {
+        checkOutputFiles(out, {args.input});
+    } catch (const std::runtime_error& e) {
+        fail(e.what(), 2);
+    }
+}
+
 void runTriangulate(const TriangulateArgs& args) {
+    checkOutputs(args);
     LoadedPoints loaded = loadPoints(args.input);
     const int base = loaded.indexBase;
     const std::size_t n = loaded.points.size();
@@ -52,29 +73,31 @@ void runTriangulate(const TriangulateArgs& args) {
                  bad[0].message);
     }
 
-    writeTextFile(args.base + ".node", [&](std::ostream& os) { writeNode(os, m.G, base); });
-    writeTextFile(args.base + ".ele", [&](std::ostream& os) { writeEle(os, m, base); });
-    writeTextFile(args.base + ".neigh", [&](std::ostream& os) { writeNeigh(os, m, base); });
-    if (!args.off.empty()) writeTextFile(args.off, [&](std::ostream& os) { writeOff(os, m); });
-    if (!args.obj.empty()) writeTextFile(args.obj, [&](std::ostream& os) { writeObj(os, m); });
-    if (!args.svg.empty()) {
-        SvgOptions so;
-        so.title = args.input;
-        writeTextFile(args.svg, [&](std::ostream& os) { writeSvg(os, m, so); });
-    }
-    if (!args.voronoiSvg.empty()) {
-        SvgOptions so;
-        so.voronoi = true;
-        so.title = args.input + " (Voronoi)";
-        writeTextFile(args.voronoiSvg, [&](std::ostream& os) { writeSvg(os, m, so); });
-    }
+    std::vector<OutputFile> out;
+    auto add = [&](const std::string& path, std::function<void(std::ostream&)> body) {
+        out.push_back({path, std::move(body)});
+    };
+    add(args.base + ".node", [&](std::ostream& os) { writeNode(os, m.G, base); });
+    add(args.base + ".ele", [&](std::ostream& os) { writeEle(os, m, base); });
+    add(args.base + ".neigh", [&](std::ostream& os) { writeNeigh(os, m, base); });
+    if (!args.off.empty()) add(args.off, [&](std::ostream& os) { writeOff(os, m); });
+    if (!args.obj.empty()) add(args.obj, [&](std::ostream& os) { writeObj(os, m); });
+    SvgOptions meshSvg, voronoiSvg;
+    meshSvg.title = args.input;
+    voronoiSvg.voronoi = true;
+    voronoiSvg.title = args.input + " (Voronoi)";
+    if (!args.svg.empty()) add(args.svg, [&](std::ostream& os) { writeSvg(os, m, meshSvg); });
+    if (!args.voronoiSvg.empty())
+        add(args.voronoiSvg, [&](std::ostream& os) { writeSvg(os, m, voronoiSvg); });
+    VoronoiDiagram vd;
     if (!args.voronoiBase.empty()) {
-        const VoronoiDiagram vd = buildVoronoi(m);
-        writeTextFile(args.voronoiBase + ".v.node",
-                      [&](std::ostream& os) { writeVoronoiNode(os, vd, base); });
-        writeTextFile(args.voronoiBase + ".v.edge",
-                      [&](std::ostream& os) { writeVoronoiEdge(os, vd, base); });
+        vd = buildVoronoi(m);
+        add(args.voronoiBase + ".v.node",
+            [&](std::ostream& os) { writeVoronoiNode(os, vd, base); });
+        add(args.voronoiBase + ".v.edge",
+            [&](std::ostream& os) { writeVoronoiEdge(os, vd, base); });
     }
+    writeTextFiles(out, {args.input});  // all of them or none; never over the input
 
     if (args.quiet) return;
     const InsertStats& st = ins.stats();

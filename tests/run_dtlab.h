@@ -13,9 +13,10 @@ struct DtlabResult {
     std::string out;
 };
 
-inline DtlabResult runDtlab(const std::string& args) {
+// `prefix` goes before the executable (e.g. "timeout 20 ").
+inline DtlabResult runDtlab(const std::string& args, const std::string& prefix = "") {
     DtlabResult r;
-    FILE* pipe = popen((std::string(DLAB_DTLAB_PATH) + " " + args + " 2>&1").c_str(), "r");
+    FILE* pipe = popen((prefix + std::string(DLAB_DTLAB_PATH) + " " + args + " 2>&1").c_str(), "r");
     if (!pipe) return r;
     char buf[4096];
     std::size_t n;

@@ -9,9 +9,11 @@
 #include <nlohmann/json.hpp>
 
 #include <sys/resource.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -198,6 +200,21 @@ TEST(Cli, BenchJsonHasTheAdvertisedFields) {
     EXPECT_GT(j.at("flips_per_point").get<double>(), 1.0);
 }
 
+TEST(Cli, BenchJsonSaysWhichStageDecidedThePredicates) {
+    const fs::path dir = tempDir();
+    const std::string in = (dir / "g.node").string();
+    ASSERT_EQ(dtlab("gen grid 4096 -o " + in).status, 0);
+    const Result r = dtlab("bench --input " + in + " --repeat 2 --json");
+    ASSERT_EQ(r.status, 0) << r.out;
+    const auto stages = nlohmann::json::parse(r.out).at("predicates_past_filter");
+    // A lattice: every quadrilateral cocircular, every difference exact, so the calls the
+    // filter leaves are all decided by the zero-tail stage, none by expansions.
+    EXPECT_GT(stages.at("incircle").at("zero-tail").get<std::int64_t>(), 1000);
+    EXPECT_EQ(stages.at("incircle").at("expansion").get<std::int64_t>(), 0);
+    EXPECT_EQ(stages.at("incircle").at("big-integer").get<std::int64_t>(), 0);
+    EXPECT_TRUE(stages.at("orient2d").contains("stage-b"));
+}
+
 TEST(Cli, BadInputGivesOneLineNamingTheFileAndLine) {
     const fs::path dir = tempDir();
     struct Case {
@@ -240,4 +257,225 @@ TEST(Cli, DegenerateInputsAreNotErrors) {
     ASSERT_EQ(r.status, 0) << r.out;
     EXPECT_NE(r.out.find("duplicate"), std::string::npos) << r.out;
     EXPECT_EQ(slurp(base + ".ele").substr(0, 2), "0 ");
+}
+
+// ============================================================================================
+// Hard cases: tiny inputs on GL, files that are not regular, outputs over inputs, messages
+// ============================================================================================
+
+namespace {
+
+// dtlab with a deadline: a command that blocks (a FIFO without a writer) fails the test with
+// status 124 instead of hanging it.
+Result dtlabWithin(int seconds, const std::string& args) {
+    return dlab::testutil::runDtlab(args, "timeout " + std::to_string(seconds) + " ");
+}
+
+int lineCount(const std::string& s) {
+    return static_cast<int>(std::count(s.begin(), s.end(), '\n'));
+}
+
+}  // namespace
+
+TEST(Cli, GlLocatorsExitCleanlyOnTinyAndDegenerateInputs) {
+    const fs::path dir = tempDir();
+    const std::vector<std::pair<std::string, std::string>> inputs = {
+        {"one.csv", "0,0\n"},
+        {"three.csv", "0,0\n1,0\n0,1\n"},
+        {"line.csv", "0,0\n1,1\n2,2\n3,3\n"},
+        {"same.csv", "5,5\n5,5\n5,5\n"},
+    };
+    for (const auto& [name, text] : inputs) {
+        const std::string in = writeFile(dir / name, text);
+        for (const char* loc : {"idbuffer-gl", "idbuffer-gl-batched"}) {
+            SCOPED_TRACE(name + " " + loc);
+            const Result r =
+                dtlab("triangulate " + in + " -o " + (dir / "tiny").string() + " --locate " + loc);
+            EXPECT_EQ(r.status, 0) << r.out;
+            EXPECT_NE(r.out.find("triangles in"), std::string::npos) << r.out;  // the summary
+        }
+    }
+    const Result table = dtlab("table1 --sizes 3 --repeat 1");
+    EXPECT_EQ(table.status, 0) << table.out;
+}
+
+TEST(Cli, FilesThatAreNotRegularAreRefusedInOneLineWithoutBlocking) {
+    const fs::path dir = tempDir();
+    const std::string fifo = (dir / "pipe.node").string();
+    fs::remove(fifo);
+    ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+    const std::string zero = (dir / "zero.node").string();
+    fs::remove(zero);
+    fs::create_symlink("/dev/zero", zero);
+    const std::string folder = (dir / "folder.jsonl").string();
+    fs::create_directories(folder);
+    const std::string lesson =
+        std::string(DLAB_SOURCE_DIR) + "/lessons/10_assignment_insertion.toml";
+    struct Case {
+        std::string args, expect;
+    };
+    const std::vector<Case> cases = {
+        {"triangulate " + fifo + " -o " + (dir / "o").string(), "named pipe (FIFO)"},
+        {"triangulate " + zero + " -o " + (dir / "o").string(), "a device"},
+        {"diff-trace " + lesson + " " + folder, "a directory"},
+        {"lesson show " + fifo, "named pipe (FIFO)"},
+        {"lesson show " + folder, "a directory"},
+    };
+    for (const Case& c : cases) {
+        SCOPED_TRACE(c.args);
+        const Result r = dtlabWithin(20, c.args);
+        EXPECT_NE(r.status, 124) << "blocked";
+        EXPECT_NE(r.status, 0);
+        EXPECT_NE(r.out.find(c.expect), std::string::npos) << r.out;
+        EXPECT_EQ(lineCount(r.out), 1) << r.out;
+    }
+    const Result check = dtlabWithin(20, "lesson check " + fifo);
+    EXPECT_NE(check.status, 0);
+    EXPECT_NE(check.out.find("named pipe (FIFO)"), std::string::npos) << check.out;
+}
+
+TEST(Cli, OutputsThatAreTheInputOrEachOtherAreRefusedBeforeWriting) {
+    const fs::path dir = tempDir();
+    const std::string text = "3 2 1 1\n0 0 0 7.5 1 # a comment\n1 1 0 2.5 0\n2 0 1 1.5 1\n";
+    const std::string in = writeFile(dir / "keep.node", text);
+    const Result same = dtlab("triangulate " + in + " -o " + (dir / "keep").string());
+    EXPECT_EQ(same.status, 2) << same.out;
+    EXPECT_NE(same.out.find("the input file"), std::string::npos) << same.out;
+    EXPECT_EQ(slurp(in), text);
+    EXPECT_FALSE(fs::exists(dir / "keep.ele"));
+    const Result twice = dtlab("triangulate " + in + " -o " + (dir / "x").string() + " --off " +
+                               (dir / "x.node").string());
+    EXPECT_EQ(twice.status, 2) << twice.out;
+    EXPECT_FALSE(fs::exists(dir / "x.ele"));
+    const Result trace = dtlab("trace " + in + " -o " + in);
+    EXPECT_EQ(trace.status, 2) << trace.out;
+    EXPECT_EQ(slurp(in), text);
+    const Result empty = dtlab("triangulate " + in + " -o \"\"");
+    EXPECT_EQ(empty.status, 2) << empty.out;
+    EXPECT_FALSE(fs::exists(dir / ".node"));
+}
+
+TEST(Cli, OutputsFollowLinksKeepTheUsersTmpFilesAndAreAllOrNone) {
+    const fs::path dir = tempDir();
+    const std::string in = writeFile(dir / "pts.csv", "0,0\n1,0\n0,1\n1,1\n");
+    // A link is followed: its target gets the mesh, the link stays a link.
+    fs::remove(dir / "linked.node");
+    fs::create_symlink(dir / "real.node", dir / "linked.node");
+    const std::string tmp = writeFile(dir / "linked.ele.tmp", "mine");
+    ASSERT_EQ(dtlab("triangulate " + in + " -o " + (dir / "linked").string()).status, 0);
+    EXPECT_TRUE(fs::is_symlink(dir / "linked.node"));
+    EXPECT_EQ(slurp(dir / "real.node").substr(0, 8), "4 2 0 0\n");
+    EXPECT_EQ(slurp(tmp), "mine");
+    // A pipe is not replaced by a file (nobody reads it: refused).
+    const std::string fifo = (dir / "out.off").string();
+    fs::remove(fifo);
+    ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+    const Result r =
+        dtlabWithin(20, "triangulate " + in + " -o " + (dir / "p").string() + " --off " + fifo);
+    EXPECT_NE(r.status, 0) << r.out;
+    EXPECT_NE(r.status, 124) << "blocked";
+    EXPECT_TRUE(fs::is_fifo(fifo));
+    EXPECT_FALSE(fs::exists(dir / "p.node"));  // none of the outputs, not some
+    // One output that cannot be written: the old .node/.ele/.neigh stay together.
+    const std::string base = (dir / "old").string();
+    for (const char* ext : {".node", ".ele", ".neigh"}) writeFile(base + ext, "old");
+    const Result fails = dtlab("triangulate " + in + " -o " + base + " --obj " +
+                               (dir / "no_such_dir" / "m.obj").string());
+    EXPECT_NE(fails.status, 0) << fails.out;
+    for (const char* ext : {".node", ".ele", ".neigh"}) EXPECT_EQ(slurp(base + ext), "old") << ext;
+    for (const auto& e : fs::directory_iterator(dir))
+        EXPECT_EQ(e.path().filename().string().find(".tmp."), std::string::npos) << e.path();
+}
+
+TEST(Cli, RenderRunsInTheOrderItsHelpStates) {
+    const fs::path dir = tempDir();
+    const std::string in = (dir / "r.node").string();
+    ASSERT_EQ(dtlab("gen uniform 3000 --seed 3 -o " + in).status, 0);
+    const std::string png = (dir / "r.png").string();
+    auto ops = [&](const std::string& extra) {
+        const Result r = dtlab("render " + in + " --to-end --size 640x400 -o " + png + extra);
+        EXPECT_EQ(r.status, 0) << r.out;
+        return r.out.substr(r.out.find("operation"));
+    };
+    EXPECT_NE(dtlab("render --help").out.find("brio"), std::string::npos);
+    EXPECT_EQ(ops(""), ops(" --order brio"));
+    EXPECT_NE(ops(""), ops(" --order input"));
+}
+
+TEST(Cli, UsageErrorsExitWithTwoAndSayWhatIsWrong) {
+    const fs::path dir = tempDir();
+    const std::string in = writeFile(dir / "u.csv", "0,0\n1,0\n0,1\n");
+    const std::string none = writeFile(dir / "none.node", "0 2 0 0\n");
+    const std::string huge = writeFile(dir / "huge.csv",
+                                       "-1.7e308,-1.7e308\n1.7e308,-1.7e308\n"
+                                       "0,1.7e308\n");
+    struct Case {
+        std::string args, expect;
+    };
+    const std::vector<Case> cases = {
+        {"gen uniform -1 -o " + (dir / "g.node").string(), "n"},
+        {"gen uniform 0 -o " + (dir / "g.csv").string(), "n"},
+        {"table1 --sweep 0", "--sweep"},
+        {"trace " + in + " -o " + (dir / "t.jsonl").string() + " --limit -5", "--limit"},
+        {"render " + in + " -o " + (dir / "s.png").string() + " --to-end --select 4294967299",
+         "--select"},
+        {"bench " + none, "no points"},
+        {"triangulate " + huge + " -o " + (dir / "h").string() + " --boundary super", "super mode"},
+    };
+    for (const Case& c : cases) {
+        SCOPED_TRACE(c.args);
+        const Result r = dtlab(c.args);
+        EXPECT_EQ(r.status, 2) << r.out;
+        EXPECT_NE(r.out.find(c.expect), std::string::npos) << r.out;
+    }
+    EXPECT_FALSE(fs::exists(dir / "g.csv"));
+}
+
+TEST(Cli, NumbersWithAGluedHashAndUnguessableFilesAreExplained) {
+    const fs::path dir = tempDir();
+    const std::string inf = writeFile(dir / "inf.csv", "0,0\n1,0\n1.#INF,1\n");
+    const Result r = dtlab("triangulate " + inf + " -o " + (dir / "i").string());
+    EXPECT_EQ(r.status, 2) << r.out;
+    EXPECT_NE(r.out.find("inf.csv:3"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("1.#INF"), std::string::npos) << r.out;
+    // No extension, taken for a .node by its shape, then broken: the guess is named.
+    const std::string guess = writeFile(dir / "points", "3 2\n0 0 0\n1 1 0\nx y\n");
+    const Result g = dtlab("triangulate " + guess + " -o " + (dir / "g").string());
+    EXPECT_EQ(g.status, 2) << g.out;
+    EXPECT_NE(g.out.find("no extension: read as Triangle .node"), std::string::npos) << g.out;
+    EXPECT_EQ(lineCount(g.out), 1) << g.out;
+}
+
+TEST(Cli, LessonShowAndCheckEscapeControlCharacters) {
+    const fs::path dir = tempDir();
+    const std::string lesson = writeFile(dir / "esc.toml",
+                                         "title = \"Bell \\u0007 and \\u001b[2J\"\n"
+                                         "summary = \"s\"\n"
+                                         "points = [[0, 0], [1, 0], [0, 1]]\n"
+                                         "[[stop]]\n"
+                                         "text = \"\\u001b]0;pwned\\u0007 line\\nnext\"\n");
+    for (const char* cmd : {"lesson show ", "lesson check "}) {
+        const Result r = dtlab(cmd + lesson);
+        EXPECT_EQ(r.status, 0) << r.out;
+        EXPECT_EQ(r.out.find('\x1b'), std::string::npos) << r.out;
+        EXPECT_EQ(r.out.find('\x07'), std::string::npos) << r.out;
+        EXPECT_NE(r.out.find("\\x1b"), std::string::npos) << r.out;
+    }
+}
+
+TEST(Cli, ALatticeLessonOfTheLargestSizeOpensWithinTheHistoryBudget) {
+    // 100,000 lattice points in input order: the walks are long (tens of millions of steps),
+    // and the history stops at its budget instead of taking gigabytes.
+    const fs::path dir = tempDir();
+    std::string text = "title = \"lattice\"\nsummary = \"s\"\npoints = [";  // input order
+    for (int i = 0; i < 100000; ++i) {  // each row from both ends in turn: long walks
+        const int k = i % 316, x = k % 2 ? 315 - k / 2 : k / 2;
+        text += (i ? "," : "") + std::string("[") + std::to_string(x) + "," +
+                std::to_string(i / 316) + "]";
+    }
+    text += "]\n[[stop]]\nrun_to = \"op:10\"\ntext = \"t\"\n";
+    const std::string lesson = writeFile(dir / "lattice.toml", text);
+    const long kib = peakKibOfDtlab({"lesson", "check", lesson});
+    ASSERT_GT(kib, 0) << "lesson check failed";
+    EXPECT_LT(kib, 1300l * 1024) << kib << " KiB";
 }

@@ -11,7 +11,9 @@
 #include <cstring>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
+#include <fstream>
 #include <map>
 #include <set>
 #include <sstream>
@@ -30,6 +32,15 @@ struct Snapshot {
     }
 };
 Snapshot snap(const Mesh& m) { return {m.G, m.V, m.O}; }
+
+// Every field of the state machine's control state, the walk's origin bit for bit.
+bool sameControl(const Control& a, const Control& b) {
+    return a.phase == b.phase && a.cursor == b.cursor && a.walk.tri == b.walk.tri &&
+           a.walk.entry == b.walk.entry && a.walk.steps == b.walk.steps &&
+           a.walk.straight == b.walk.straight &&
+           std::memcmp(&a.walk.origin, &b.walk.origin, sizeof(Vec2)) == 0 && a.where == b.where &&
+           a.whereCorner == b.whereCorner && a.flipCorner == b.flipCorner && a.lastTri == b.lastTri;
+}
 
 // Triangulates in batch and checks everything the exact mode promises.
 void expectExactDelaunay(const std::vector<Vec2>& pts, const InsertOptions& opt,
@@ -256,10 +267,16 @@ TEST(Journal, ForwardToEndAndBackRestoresTheEmptyStateBitForBit) {
         Journal journal(ins);
         std::vector<Snapshot> states{empty};
         std::vector<InsertStats> stats{ins.stats()};
+        std::vector<Control> controls{ins.control()};
+        std::vector<std::vector<std::int32_t>> stacks{ins.flipStack()}, skipped{ins.skipped()};
         while (journal.forward()) {
             states.push_back(snap(ins.mesh()));
             stats.push_back(ins.stats());
+            controls.push_back(ins.control());
+            stacks.push_back(ins.flipStack());
+            skipped.push_back(ins.skipped());
         }
+        ASSERT_GT(stats.back().duplicates, 0);
         const std::size_t total = journal.position();
         // Random seeks compare with the state recorded on the way forward.
         SplitMix64 rng(5);
@@ -270,6 +287,9 @@ TEST(Journal, ForwardToEndAndBackRestoresTheEmptyStateBitForBit) {
             ASSERT_TRUE(states[target] == snap(ins.mesh())) << "after seeking to " << target;
             ASSERT_EQ(stats[target].flips, ins.stats().flips);
             ASSERT_EQ(stats[target].duplicates, ins.stats().duplicates);
+            ASSERT_TRUE(sameControl(controls[target], ins.control())) << "at op " << target;
+            ASSERT_EQ(stacks[target], ins.flipStack()) << "at op " << target;
+            ASSERT_EQ(skipped[target], ins.skipped()) << "at op " << target;
             // Every intermediate state is a valid corner table (ghost/super triangles included).
             ValidateOptions vo;
             vo.firstVirtual = static_cast<std::int32_t>(pts.size());
@@ -285,6 +305,62 @@ TEST(Journal, ForwardToEndAndBackRestoresTheEmptyStateBitForBit) {
         EXPECT_TRUE(states.back() == snap(ins.mesh()));
         EXPECT_TRUE(ins.done());
     }
+}
+
+TEST(Journal, ControlStateBeforeEveryOpIsRecoveredExactly) {
+    for (Generator g : {Generator::Uniform, Generator::NearDuplicates, Generator::Grid}) {
+        Inserter ins(generatePoints(g, 300, 3));
+        Journal journal(ins);
+        std::vector<Control> before;
+        while (!ins.done()) {
+            before.push_back(ins.control());
+            journal.forward();
+        }
+        ASSERT_EQ(before.size(), journal.recorded());
+        for (std::size_t i = 0; i < before.size(); ++i) {
+            ASSERT_TRUE(sameControl(before[i], journal.controlBefore(i)))
+                << "op " << i << " " << toString(journal.ops()[i].type);
+        }
+        // Snapshots only where the control state cannot be derived: far fewer than ops.
+        EXPECT_LT(journal.controlSnapshots() * 2, journal.recorded());
+    }
+}
+
+// README, Limits: "about N bytes per recorded operation" for 2^14 uniform points.
+TEST(Journal, BytesPerRecordedOperationMatchTheReadme) {
+    Inserter ins(generatePoints(Generator::Uniform, 1 << 14, 1));
+    Journal journal(ins);
+    while (journal.forward()) {}
+    const double perOp = static_cast<double>(journal.bytesUsed()) / journal.recorded();
+    std::ifstream readme(std::string(DLAB_SOURCE_DIR) + "/README.md");
+    std::stringstream text;
+    text << readme.rdbuf();
+    const std::string s = text.str();
+    const std::string key = " bytes per recorded operation";
+    const std::size_t at = s.find(key);
+    ASSERT_NE(at, std::string::npos) << "README.md states no history size";
+    std::size_t start = at;
+    while (start > 0 && std::isdigit(static_cast<unsigned char>(s[start - 1]))) --start;
+    ASSERT_LT(start, at) << "no number before \"" << key << "\"";
+    const int claimed = std::stoi(s.substr(start, at - start));
+    EXPECT_NEAR(perOp, claimed, 1.0) << "README says " << claimed;
+    EXPECT_LE(sizeof(Op), 44u);
+}
+
+TEST(Inserter, StraightWalkReachesEveryPointWithoutFallingBack) {
+    // Points in general position on a Delaunay mesh: the line walk from the centroid of the hint
+    // finds each point without the visibility-walk fallback, and a walk step never stays put.
+    Inserter ins(generatePoints(Generator::Uniform, 3000, 8));
+    Journal journal(ins);
+    std::int64_t steps = 0, fallbacks = 0;
+    while (const Op* op = journal.forward()) {
+        if (op->type != OpType::LocateStep) continue;
+        ++steps;
+        fallbacks += !ins.control().walk.straight;
+        EXPECT_NE(op->a, op->b);
+    }
+    EXPECT_GT(steps, 3000);
+    EXPECT_EQ(fallbacks, 0);
 }
 
 TEST(Journal, UndoThenNewStepsContinueCorrectly) {
@@ -400,4 +476,40 @@ TEST(Locators, BrioWalkIsShort) {
     ins.run();
     EXPECT_LT(static_cast<double>(ins.stats().walkSteps) / 20000, 4.0);
     EXPECT_LT(static_cast<double>(ins.stats().flips) / 20000, 4.0);
+}
+
+TEST(Journal, StopsRecordingAtItsMemoryBudget) {
+    // Input order on a lattice walks far: a small budget is reached long before the end.
+    const auto pts = generatePoints(Generator::Grid, 2500, 1);
+    InsertOptions o;
+    o.order = OrderKind::Input;
+    Inserter ins(pts, o);
+    Journal journal(ins);
+    journal.setBudget(std::size_t{1} << 20);
+    while (journal.forward()) {}
+    EXPECT_TRUE(journal.budgetReached());
+    EXPECT_FALSE(ins.done());
+    EXPECT_LE(journal.memoryBytes(), journal.budget());
+    EXPECT_GT(journal.memoryBytes(), journal.budget() / 4);  // it did use the room it had
+    // Undo still works over what was recorded, and the run can go on unrecorded.
+    const std::size_t recorded = journal.recorded();
+    journal.seek(recorded / 2);
+    EXPECT_EQ(journal.position(), recorded / 2);
+    journal.seek(recorded);
+    while (!ins.done()) ins.step(nullptr);
+    EXPECT_EQ(checkDelaunayExact(ins.mesh()), "");
+    // The default budget is the documented one.
+    Journal fresh(ins);
+    EXPECT_EQ(fresh.budget(), kHistoryBudgetBytes);
+    EXPECT_EQ(kHistoryBudgetBytes, std::size_t{1} << 30);
+}
+
+TEST(Inserter, RefusesMorePointsThanTheReadersAccept) {
+    std::vector<Vec2> pts(kMaxPoints + 1);
+    try {
+        Inserter ins(std::move(pts));
+        ADD_FAILURE() << "accepted kMaxPoints + 1 points";
+    } catch (const std::invalid_argument& e) {
+        EXPECT_NE(std::string(e.what()).find(std::to_string(kMaxPoints)), std::string::npos);
+    }
 }

@@ -213,12 +213,155 @@ TEST(Predicates, FilterDecidesOrdinaryCallsAndCountsTheRest) {
         EXPECT_EQ(orient2dReport(a, b, c).tier, PredicateTier::Filter);
     }
     EXPECT_LE(counters.orientExact - before.orientExact, 5u);
-    // A cocircular call on an integer grid cannot be decided by the filter.
+    // A cocircular call on an integer grid cannot be decided by the filter; its differences are
+    // exact, so the zero-tail stage decides it without expansions.
     const auto r = incircleReport({0, 0}, {2, 0}, {2, 2}, {0, 2});
     EXPECT_EQ(r.exactSign, 0);
-    EXPECT_EQ(r.tier, PredicateTier::Expansion);
+    EXPECT_EQ(r.tier, PredicateTier::ZeroTail);
     EXPECT_GE(r.errorBound, std::fabs(r.approx));
     const auto c0 = counters.incircleExact;
+    const auto z0 = counters.incircleByTier[static_cast<int>(PredicateTier::ZeroTail)];
     incircle({0, 0}, {2, 0}, {2, 2}, {0, 2});
     EXPECT_EQ(counters.incircleExact, c0 + 1);
+    EXPECT_EQ(counters.incircleByTier[static_cast<int>(PredicateTier::ZeroTail)], z0 + 1);
+}
+
+namespace {
+
+// Inputs that reach every stage: random (filter), lattice degeneracies (zero tail), ulp-nudged
+// near-degeneracies off the lattice (stage B or expansions), exact degeneracies whose
+// differences round (expansions) and exponent spans of hundreds of binades (big integers).
+struct StageTally {
+    int orient[dlab::kNumPredicateTiers] = {};
+    int incircle[dlab::kNumPredicateTiers] = {};
+};
+
+void tallyOrient(StageTally& t, Vec2 a, Vec2 b, Vec2 c) {
+    const auto r = orient2dReport(a, b, c);
+    ASSERT_EQ(r.exactSign, orientGmp(a, b, c)) << dlab::toString(r.tier);
+    ASSERT_EQ(orient2d(a, b, c), r.exactSign);
+    ++t.orient[static_cast<int>(r.tier)];
+}
+
+void tallyIncircle(StageTally& t, Vec2 a, Vec2 b, Vec2 c, Vec2 d) {
+    const auto r = incircleReport(a, b, c, d);
+    ASSERT_EQ(r.exactSign, incircleGmp(a, b, c, d)) << dlab::toString(r.tier);
+    ASSERT_EQ(incircle(a, b, c, d), r.exactSign);
+    ++t.incircle[static_cast<int>(r.tier)];
+}
+
+}  // namespace
+
+TEST(Predicates, EveryStageDecidesSomeCallsAndAgreesWithGmp) {
+    StageTally t;
+    std::mt19937_64 rng(21);
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    std::uniform_int_distribution<int> lattice(-6, 6), k(-3, 3);
+    for (int i = 0; i < 4000; ++i) {
+        const Vec2 a{u(rng), u(rng)}, b{u(rng), u(rng)}, c{u(rng), u(rng)}, d{u(rng), u(rng)};
+        tallyOrient(t, a, b, c);
+        tallyIncircle(t, a, b, c, d);
+        // Lattice points: collinear triples and cocircular quadruples occur often.
+        auto g = [&] { return Vec2{double(lattice(rng)), double(lattice(rng))}; };
+        const Vec2 e = g(), f = g();
+        tallyOrient(t, e, f, Vec2{2 * f.x - e.x, 2 * f.y - e.y});
+        tallyIncircle(t, e, Vec2{f.x, e.y}, f, Vec2{e.x, f.y});
+        // Stretched to about 18 bits: exact differences, too long for incircle in plain doubles.
+        const double v = 16385;
+        tallyOrient(t, {e.x * v, e.y}, {f.x * v, f.y}, {(2 * f.x - e.x) * v, 2 * f.y - e.y});
+        tallyIncircle(t, {e.x * v, e.y * 3}, {f.x * v, e.y * 3}, {f.x * v, f.y * 3},
+                      {e.x * v, f.y * 3});
+        // The same on a lattice of wide span (2^40 steps): exact differences too long for the
+        // plain double evaluation, so the zero-tail stage uses expansions.
+        const double w = 0x1p40 + 1;
+        tallyOrient(t, {e.x * w, e.y}, {f.x * w, f.y}, {(2 * f.x - e.x) * w, 2 * f.y - e.y});
+        tallyIncircle(t, {e.x * w, e.y}, {f.x * w, e.y}, {f.x * w, f.y}, {e.x * w, f.y});
+        // A rectangle at an offset whose differences round: exactly cocircular, and the
+        // rounded differences still form a rectangle, so only the full expansion can say 0.
+        const double x0 = u(rng), y0 = u(rng), x1 = x0 + 1 + u(rng), y1 = y0 + 3 + u(rng);
+        tallyIncircle(t, {x0, y0}, {x1, y0}, {x1, y1}, {x0, y1});
+        tallyOrient(t, {x0, x0}, {x1, x1}, {y1, y1});
+        // Near-degenerate off the lattice: a line and a circle, nudged by ulps.
+        const double s = u(rng) * 4;
+        tallyOrient(t, a, b,
+                    {ulps(a.x + s * (b.x - a.x), k(rng)), ulps(a.y + s * (b.y - a.y), k(rng))});
+        Vec2 p[4];
+        for (Vec2& q : p) {
+            const double th = u(rng) * 3.14159;
+            q = {ulps(x0 + 0.5 * std::cos(th), 1 + i % 8), y0 + 0.5 * std::sin(th)};
+        }
+        tallyIncircle(t, p[0], p[1], p[2], p[3]);
+    }
+    tallyOrient(t, {1e-300, 0}, {1e300, 1e-300}, {-1e300, -1e-300});
+    tallyIncircle(t, {1e200, 0}, {0, 1e200}, {1e200, 1e200}, {5e-324, 5e-324});
+    for (int tier = 0; tier < dlab::kNumPredicateTiers; ++tier) {
+        const char* name = dlab::toString(static_cast<PredicateTier>(tier));
+        EXPECT_GT(t.orient[tier], 0) << "orient2d never decided by " << name;
+        EXPECT_GT(t.incircle[tier], 0) << "incircle never decided by " << name;
+    }
+}
+
+TEST(Predicates, StageCountersSeeEachStage) {
+    auto& counters = dlab::predicateCounters();
+    // The one stage whose counter a call moved (-1: none, -2: several).
+    auto stageOf = [&](auto call) {
+        const auto before = counters;
+        call();
+        int moved = -1;
+        for (int i = 0; i < dlab::kNumPredicateTiers; ++i) {
+            const auto d = counters.orientByTier[i] - before.orientByTier[i] +
+                           counters.incircleByTier[i] - before.incircleByTier[i];
+            if (d != 0) moved = moved == -1 && d == 1 ? i : -2;
+        }
+        const auto past = counters.orientExact - before.orientExact + counters.incircleExact -
+                          before.incircleExact;
+        EXPECT_EQ(past, moved >= 0 ? 1u : 0u);
+        return moved;
+    };
+    constexpr int kFilter = -1, kZeroTail = static_cast<int>(PredicateTier::ZeroTail),
+                  kStageB = static_cast<int>(PredicateTier::StageB),
+                  kExpansion = static_cast<int>(PredicateTier::Expansion),
+                  kBig = static_cast<int>(PredicateTier::BigInteger);
+    // The filter's hot path counts nothing.
+    EXPECT_EQ(stageOf([] { orient2d({0, 0}, {1, 0}, {0, 1}); }), kFilter);
+    // Zero tail: lattice degeneracies.
+    EXPECT_EQ(stageOf([] { orient2d({0, 0}, {1, 1}, {3, 3}); }), kZeroTail);
+    EXPECT_EQ(stageOf([] { incircle({0, 0}, {4, 0}, {4, 2}, {0, 2}); }), kZeroTail);
+    // Expansions: exactly degenerate, with differences that round.
+    EXPECT_EQ(stageOf([] { orient2d({0.1, 0.1}, {1.3, 1.3}, {7.7, 7.7}); }), kExpansion);
+    EXPECT_EQ(stageOf([] {
+                  incircle({0.1, 0.3}, {1.7, 0.3}, {1.7, 3.9}, {0.1, 3.9});
+              }),
+              kExpansion);
+    // Big integers.
+    EXPECT_EQ(stageOf([] { orient2d({1e-300, 0}, {1e300, 1e-300}, {-1e300, -1e-300}); }), kBig);
+    EXPECT_EQ(stageOf([] {
+                  incircle({1e200, 0}, {0, 1e200}, {1e200, 1e200}, {5e-324, 5e-324});
+              }),
+              kBig);
+    // Stage B: a few ulps off a line or a circle, off the lattice: beyond the filter's reach but
+    // not the exact determinant of the rounded differences'. The counter agrees with the report.
+    int orientB = 0, incircleB = 0;
+    std::mt19937_64 rng(4);
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    for (int i = 1; i < 400; ++i) {
+        const Vec2 a{ulps(0.5, i), ulps(0.5, 3 * i + 1)}, q{12, 12}, r{24, 24};
+        const int o = stageOf([&] { orient2d(a, q, r); });
+        if (o >= 0) {
+            EXPECT_EQ(o, static_cast<int>(orient2dReport(a, q, r).tier));
+        }
+        orientB += o == kStageB;
+        Vec2 p[4];  // on a circle, nudged
+        for (Vec2& v : p) {
+            const double th = u(rng) * 3.14159;
+            v = {ulps(0.3 + 0.5 * std::cos(th), 1 + i % 4), 0.2 + 0.5 * std::sin(th)};
+        }
+        const int c = stageOf([&] { incircle(p[0], p[1], p[2], p[3]); });
+        if (c >= 0) {
+            EXPECT_EQ(c, static_cast<int>(incircleReport(p[0], p[1], p[2], p[3]).tier));
+        }
+        incircleB += c == kStageB;
+    }
+    EXPECT_GT(orientB, 0);
+    EXPECT_GT(incircleB, 0);
 }

@@ -1,12 +1,15 @@
-// Trace diff: identical runs agree; a student's minimal trace (op + triangles) is understood; the
-// first difference is found at the right op (wrong triangle, missing flip, truncation, extra ops,
-// other corner layout, clockwise triangles); bad files fail with file:line; dtlab diff-trace
-// exits 0 / 1 / 2.
+// Trace diff: identical runs agree; a student's minimal trace (op + triangles) is understood; op
+// by op, the first difference is found at the right op (wrong triangle, missing flip, truncation,
+// extra ops, other corner layout, clockwise triangles); bad files fail with file:line; dtlab
+// diff-trace exits 0 / 1 / 2. The assignment checker (insertion by insertion) passes an
+// independent correct implementation and names the insertion and the reason of planted bugs.
 #include "core/teaching/trace_diff.h"
 
 #include "core/engine/generators.h"
 #include "core/engine/io_read.h"
+#include "core/engine/predicates.h"
 #include "core/teaching/lesson.h"
+#include "core/teaching/trace.h"
 
 #include "tests/run_dtlab.h"
 
@@ -14,9 +17,11 @@
 #include <nlohmann/json.hpp>
 
 #include <unistd.h>
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
 
 using namespace dlab;
@@ -108,19 +113,24 @@ fs::path scratch() {
 
 }  // namespace
 
-TEST(TraceDiff, IdenticalRunsAgreeInBothModes) {
+TEST(TraceDiff, IdenticalRunsAgreeInEveryMode) {
     for (Boundary b : {Boundary::Exact, Boundary::Super}) {
         InsertOptions opt;
         opt.boundary = b;
         const TraceFile ref = ourTrace(testPoints(), opt);
-        for (bool corners : {false, true}) {
+        std::size_t meshOps = 0, steps = 0;
+        for (const TraceOp& op : ref.ops) {
+            meshOps += op.changesMesh();
+            steps += op.changesMesh() && op.type != OpType::Flip;
+        }
+        for (int mode = 0; mode < 3; ++mode) {
             DiffOptions o;
-            o.corners = corners;
+            o.byOp = mode == 1;
+            o.corners = mode == 2;
             const TraceDiff d = diffTraces(ref, ourTrace(testPoints(), opt), o);
             EXPECT_TRUE(d.equal) << d.what;
-            std::size_t meshOps = 0;
-            for (const TraceOp& op : ref.ops) meshOps += op.changesMesh();
-            EXPECT_EQ(d.compared, meshOps);
+            // Insertion by insertion: the start, every insertion and Finalize.
+            EXPECT_EQ(d.compared, mode == 0 ? steps : meshOps);
             o.allOps = true;
             EXPECT_TRUE(diffTraces(ref, ref, o).equal);
         }
@@ -148,6 +158,25 @@ TEST(TraceDiff, MinimalStudentTraceIsEnough) {
     EXPECT_TRUE(diffTraces(ref, lower).equal);
 }
 
+TEST(TraceDiff, OurOwnTraceWithoutChangesAgrees) {
+    // "changes" is optional: without it, Finalize's empty "triangles" means "not given", not
+    // "the final mesh is empty".
+    Inserter ins(testPoints(), InsertOptions{});
+    Journal journal(ins);
+    std::ostringstream text;
+    while (journal.forward()) {
+        auto j = nlohmann::json::parse(
+            toJsonLine(traceRecord(journal, journal.position() - 1, ins.mesh())));
+        j.erase("changes");
+        text << j.dump() << "\n";
+    }
+    const TraceFile student = parse(text.str());
+    ASSERT_EQ(student.ops.back().type, OpType::Finalize);
+    const TraceFile ref = ourTrace(testPoints());
+    const TraceDiff d = diffTraces(ref, student);
+    EXPECT_TRUE(d.equal) << formatDiff(d, ref, student);
+}
+
 TEST(TraceDiff, FirstWrongTriangleIsFoundAtItsOp) {
     const TraceFile ref = ourTrace(testPoints());
     for (OpType type : {OpType::Split, OpType::Flip, OpType::SplitEdge}) {
@@ -157,14 +186,16 @@ TEST(TraceDiff, FirstWrongTriangleIsFoundAtItsOp) {
             if (m == k) j["triangles"][0][1] = static_cast<int>(j["triangles"][0][1]) + 1;
             return true;
         }));
-        const TraceDiff d = diffTraces(ref, student);
+        DiffOptions byOp;
+        byOp.byOp = true;
+        const TraceDiff d = diffTraces(ref, student, byOp);
         ASSERT_FALSE(d.equal) << toString(type);
         EXPECT_EQ(d.refOp, meshOpIndex(ref, k)) << toString(type);
         EXPECT_EQ(d.studentOp, k);
         EXPECT_NE(d.what.find(std::string("the triangles differ after ") + toString(type)),
                   std::string::npos)
             << d.what;
-        const std::string report = formatDiff(d, ref, student);
+        const std::string report = formatDiff(d, ref, student, byOp);
         EXPECT_NE(report.find("triangles only in the reference"), std::string::npos) << report;
         EXPECT_NE(report.find("> ref.jsonl:" + std::to_string(ref.ops[d.refOp].line)),
                   std::string::npos)
@@ -185,7 +216,9 @@ TEST(TraceDiff, MissingFlipShowsAsTheWrongOperation) {
         k = firstOfType(ref, OpType::Flip, k + 1);
     const TraceFile student =
         parse(minimalText(ref, [&](std::size_t m, nlohmann::json&) { return m != k; }));
-    const TraceDiff d = diffTraces(ref, student);
+    DiffOptions byOp;
+    byOp.byOp = true;
+    const TraceDiff d = diffTraces(ref, student, byOp);
     ASSERT_FALSE(d.equal);
     EXPECT_EQ(d.refOp, meshOpIndex(ref, k));
     EXPECT_NE(d.what.find("the reference does Flip, the student"), std::string::npos) << d.what;
@@ -195,14 +228,16 @@ TEST(TraceDiff, TruncatedAndOverlongStudentTraces) {
     const TraceFile ref = ourTrace(testPoints());
     const TraceFile cut =
         parse(minimalText(ref, [](std::size_t m, nlohmann::json&) { return m < 40; }));
-    TraceDiff d = diffTraces(ref, cut);
+    DiffOptions byOp;
+    byOp.byOp = true;
+    TraceDiff d = diffTraces(ref, cut, byOp);
     ASSERT_FALSE(d.equal);
     EXPECT_EQ(d.refOp, meshOpIndex(ref, 40));
     EXPECT_EQ(d.studentOp, cut.ops.size());
     EXPECT_NE(d.what.find("the student's trace ends early"), std::string::npos) << d.what;
     EXPECT_NE(formatDiff(d, ref, cut).find("(end of trace)"), std::string::npos);
     // The reference cut short instead: the student goes on.
-    d = diffTraces(cut, parse(minimalText(ref)));
+    d = diffTraces(cut, parse(minimalText(ref)), byOp);
     ASSERT_FALSE(d.equal);
     EXPECT_NE(d.what.find("goes on after the reference has ended"), std::string::npos) << d.what;
 }
@@ -230,11 +265,17 @@ TEST(TraceDiff, CornerLayoutAndOrientation) {
         }
         return true;
     }));
-    const TraceDiff c = diffTraces(ref, clockwise);
+    DiffOptions byOp;
+    byOp.byOp = true;
+    const TraceDiff c = diffTraces(ref, clockwise, byOp);
     ASSERT_FALSE(c.equal);
     EXPECT_EQ(c.studentOp, 7u);
-    EXPECT_NE(formatDiff(c, ref, clockwise).find("other orientation (clockwise)"),
+    EXPECT_NE(formatDiff(c, ref, clockwise, byOp).find("other orientation (clockwise)"),
               std::string::npos);
+    // Insertion by insertion, the clockwise triangle is named.
+    const TraceDiff w = diffTraces(ref, clockwise);
+    ASSERT_FALSE(w.equal);
+    EXPECT_NE(w.what.find("is clockwise"), std::string::npos) << w.what;
 }
 
 TEST(TraceDiff, LocatorsDifferOnlyInTheWalk) {
@@ -326,4 +367,339 @@ TEST(TraceDiff, DtlabDiffTraceExitCodes) {
     std::ofstream(stu) << minimalText(fromLesson);
     r = dtlab("diff-trace --corners " + lesson + " " + stu);
     EXPECT_EQ(r.status, 0) << r.out;
+}
+
+// ---- The assignment, checked insertion by insertion --------------------------------------------
+//
+// A student's implementation written from the assignment's text alone
+// (lessons/10_assignment_insertion.toml): a plain triangle list with an edge map, no corner
+// table; a brute-force point location; its own numbering and slot use (a split keeps the old
+// triangle's number for a different new triangle than ours, a flip swaps the two numbers). It
+// writes the minimal trace format. `Bug` plants one of the classic mistakes.
+
+namespace {
+
+enum class Bug { None, MissingFlip, FlipDelaunayEdge, ForgottenPush, OnEdgeOneSide, SkipPoint };
+
+class StudentTriangulator {
+public:
+    StudentTriangulator(std::vector<Vec2> points, Bug bug, int bugFrom)
+        : m_p(std::move(points)),
+          m_n(static_cast<int>(m_p.size())),
+          m_bug(bug),
+          m_bugFrom(bugFrom) {
+        // The super-triangle from the text, stored after the input points.
+        m_p.push_back({-1650, -1089});
+        m_p.push_back({1710, -1089});
+        m_p.push_back({30, 1711});
+        setTriangle(0, {m_n, m_n + 1, m_n + 2});
+        emit("Start", {0});
+    }
+
+    void run() {
+        for (int i = 0; i < m_n; ++i) insert(i);
+        m_out << "{\"op\": \"Finalize\", \"triangles\": []}\n";
+    }
+    std::string trace() const { return m_out.str(); }
+    // The 1-based insertion at which the planted bug first acted (0: never).
+    int bugAt() const { return m_bugAt; }
+    // The triangles after each insertion: the ground truth the planted bugs are judged by.
+    const std::vector<std::vector<Triple>>& history() const { return m_history; }
+
+private:
+    using Tri = std::array<int, 3>;
+
+    bool bugOn(int insertion) const { return m_bug != Bug::None && insertion >= m_bugFrom; }
+    void acted(int insertion) {
+        if (m_bugAt == 0) m_bugAt = insertion;
+    }
+
+    void setTriangle(int t, Tri tri) {
+        if (t >= static_cast<int>(m_t.size())) m_t.resize(t + 1, Tri{-1, -1, -1});
+        if (m_t[t][0] >= 0) {  // its old edges, unless another triangle has one now
+            for (int k = 0; k < 3; ++k) {
+                const auto it = m_edge.find({m_t[t][k], m_t[t][(k + 1) % 3]});
+                if (it != m_edge.end() && it->second == t) m_edge.erase(it);
+            }
+        }
+        m_t[t] = tri;
+        for (int k = 0; k < 3; ++k) m_edge[{tri[k], tri[(k + 1) % 3]}] = t;
+    }
+
+    void emit(const char* op, std::initializer_list<int> tris) {
+        nlohmann::json j;
+        j["op"] = op;
+        if (tris.size()) {
+            j["triangles"] = nlohmann::json::array();
+            for (int t : tris) j["triangles"].push_back({t, m_t[t][0], m_t[t][1], m_t[t][2]});
+        }
+        m_out << j.dump() << "\n";
+    }
+
+    void snapshot() {
+        std::vector<Triple> ts;
+        for (const Tri& t : m_t) ts.push_back(canonical(t[0], t[1], t[2]));
+        std::sort(ts.begin(), ts.end());
+        m_history.push_back(ts);
+    }
+
+    void insert(int v) {
+        const int insertion = v + 1;
+        for (int w = 0; w < v; ++w) {
+            if (m_p[w] == m_p[v]) {  // a duplicate: the point that came first stays
+                emit("SkipDuplicate", {});
+                snapshot();
+                return;
+            }
+        }
+        if (m_bug == Bug::SkipPoint && bugOn(insertion)) {
+            acted(insertion);
+            emit("SkipDuplicate", {});
+            snapshot();
+            return;
+        }
+        // Brute force: the first triangle with v on no edge's right.
+        for (int t = 0; t < static_cast<int>(m_t.size()); ++t) {
+            const Tri tri = m_t[t];
+            int zeroEdge = -1, outside = 0;
+            for (int k = 0; k < 3; ++k) {
+                const int o = orient2d(m_p[tri[k]], m_p[tri[(k + 1) % 3]], m_p[v]);
+                if (o < 0) outside = 1;
+                if (o == 0) zeroEdge = k;
+            }
+            if (outside) continue;
+            if (zeroEdge < 0) {
+                splitInside(t, v);
+            } else if (m_bug == Bug::OnEdgeOneSide && bugOn(insertion)) {
+                acted(insertion);
+                splitOneSide(t, zeroEdge, v);
+            } else {
+                splitOnEdge(t, zeroEdge, v);
+            }
+            break;
+        }
+        legalize(v, insertion);
+        snapshot();
+    }
+
+    // 1 -> 3: t = (a, b, c) keeps its number for (v, b, c); (v, c, a) and (v, a, b) are new.
+    void splitInside(int t, int v) {
+        const auto [a, b, c] = m_t[t];
+        const int t1 = static_cast<int>(m_t.size()), t2 = t1 + 1;
+        setTriangle(t, {v, b, c});
+        setTriangle(t1, {v, c, a});
+        setTriangle(t2, {v, a, b});
+        emit("Split", {t, t1, t2});
+        m_stack.push_back({a, b});
+        m_stack.push_back({b, c});
+        m_stack.push_back({c, a});
+    }
+
+    // 2 -> 4: v on edge x-y of t = (x, y, z); u = (y, x, w) across it.
+    void splitOnEdge(int t, int k, int v) {
+        const int x = m_t[t][k], y = m_t[t][(k + 1) % 3], z = m_t[t][(k + 2) % 3];
+        const int u = m_edge.at({y, x});
+        const int w = third(m_t[u], x, y);
+        const int t1 = static_cast<int>(m_t.size()), t2 = t1 + 1;
+        setTriangle(t, {v, z, x});
+        setTriangle(u, {v, x, w});
+        setTriangle(t1, {v, y, z});
+        setTriangle(t2, {v, w, y});
+        emit("SplitEdge", {t, u, t1, t2});
+        for (std::pair<int, int> e : {std::pair{y, z}, {z, x}, {x, w}, {w, y}})
+            m_stack.push_back(e);
+    }
+
+    // The planted bug: only the triangle the point was found in is split (1 -> 2), the one
+    // across the edge is left as it was.
+    void splitOneSide(int t, int k, int v) {
+        const int x = m_t[t][k], y = m_t[t][(k + 1) % 3], z = m_t[t][(k + 2) % 3];
+        const int t1 = static_cast<int>(m_t.size());
+        setTriangle(t, {v, z, x});
+        setTriangle(t1, {v, y, z});
+        emit("Split", {t, t1});
+        m_stack.push_back({y, z});
+        m_stack.push_back({z, x});
+    }
+
+    static int third(const Tri& t, int a, int b) {
+        for (int v : t) {
+            if (v != a && v != b) return v;
+        }
+        return -1;
+    }
+
+    // The edges opposite v wait on the stack; the last pushed is tested first.
+    void legalize(int v, int insertion) {
+        while (!m_stack.empty()) {
+            const auto [a, b] = m_stack.back();
+            m_stack.pop_back();
+            const auto across = m_edge.find({b, a});
+            if (across == m_edge.end()) continue;  // the super-triangle's edge
+            const int t = m_edge.at({a, b}), u = across->second;
+            const int d = third(m_t[u], a, b);
+            bool flip = incircle(m_p[a], m_p[b], m_p[v], m_p[d]) > 0;
+            if (flip && m_bug == Bug::MissingFlip && bugOn(insertion) && m_bugAt == 0) {
+                acted(insertion);
+                continue;
+            }
+            if (!flip && m_bug == Bug::FlipDelaunayEdge && bugOn(insertion) && m_bugAt == 0 &&
+                orient2d(m_p[v], m_p[a], m_p[d]) > 0 && orient2d(m_p[v], m_p[d], m_p[b]) > 0) {
+                acted(insertion);
+                flip = true;
+            }
+            if (!flip) continue;
+            // (v, a, b) and (b, a, d) become (v, d, b) in t and (v, a, d) in u.
+            setTriangle(t, {v, d, b});
+            setTriangle(u, {v, a, d});
+            emit("Flip", {t, u});
+            if (m_bug == Bug::ForgottenPush && bugOn(insertion)) {
+                acted(insertion);
+                continue;
+            }
+            m_stack.push_back({a, d});
+            m_stack.push_back({d, b});
+        }
+    }
+
+    std::vector<Vec2> m_p;
+    int m_n;
+    Bug m_bug;
+    int m_bugFrom;
+    int m_bugAt = 0;
+    std::vector<Tri> m_t;
+    std::map<std::pair<int, int>, int> m_edge;  // directed edge -> the triangle on its left
+    std::vector<std::pair<int, int>> m_stack;
+    std::ostringstream m_out;
+    std::vector<std::vector<Triple>> m_history;
+};
+
+const std::string kAssignment =
+    std::string(DLAB_SOURCE_DIR) + "/lessons/10_assignment_insertion.toml";
+
+TraceFile assignmentReference() {
+    Lesson l = loadLesson(kAssignment);
+    auto ins = makeInserter(l);
+    return traceOfRun(*ins, "ours");
+}
+
+std::vector<Vec2> assignmentPoints() { return loadLesson(kAssignment).points; }
+
+// Runs a student with `bug` from insertion `from` on; the insertion where the student's mesh
+// first differs from the correct student's (by the test's own bookkeeping, not the checker's).
+struct Planted {
+    TraceDiff diff;
+    int wrongFrom = 0;
+    int bugAt = 0;
+    std::string report;
+};
+
+Planted plant(Bug bug, int from) {
+    StudentTriangulator good(assignmentPoints(), Bug::None, 0), bad(assignmentPoints(), bug, from);
+    good.run();
+    bad.run();
+    Planted p;
+    p.bugAt = bad.bugAt();
+    for (std::size_t k = 0; k < good.history().size(); ++k) {
+        if (good.history()[k] != bad.history()[k]) {
+            p.wrongFrom = static_cast<int>(k) + 1;
+            break;
+        }
+    }
+    const TraceFile ref = assignmentReference(), student = parse(bad.trace());
+    p.diff = diffTraces(ref, student);
+    p.report = formatDiff(p.diff, ref, student);
+    return p;
+}
+
+}  // namespace
+
+TEST(AssignmentChecker, IndependentCorrectImplementationPasses) {
+    StudentTriangulator student(assignmentPoints(), Bug::None, 0);
+    student.run();
+    const TraceFile ref = assignmentReference(), theirs = parse(student.trace());
+    const TraceDiff d = diffTraces(ref, theirs);
+    EXPECT_TRUE(d.equal) << formatDiff(d, ref, theirs);
+    EXPECT_NE(d.what.find("the runs agree"), std::string::npos) << d.what;
+    // The conventions differ: op by op, corner by corner, it is not ours.
+    DiffOptions corners;
+    corners.corners = true;
+    EXPECT_FALSE(diffTraces(ref, theirs, corners).equal);
+    // The same through the command line, the assignment as the reference.
+    const fs::path file = scratch() / "student.jsonl";
+    std::ofstream(file) << student.trace();
+    const Result r = dtlab("diff-trace " + kAssignment + " " + file.string());
+    EXPECT_EQ(r.status, 0) << r.out;
+}
+
+TEST(AssignmentChecker, EmptyFinalizeListIsNotAnEmptyMesh) {
+    const TraceFile ref = assignmentReference();
+    std::string text = minimalText(ref);
+    for (bool byOp : {false, true}) {
+        DiffOptions o;
+        o.byOp = byOp;
+        const TraceFile withList =
+            parse(text + "{\"op\": \"Finalize\", \"triangles\": []}\n", "s.jsonl");
+        const TraceFile bare = parse(text, "s.jsonl");
+        // minimalText ends with a bare Finalize; swap it for the empty list.
+        TraceFile swapped = bare;
+        swapped.ops.back() = withList.ops.back();
+        const TraceDiff d = diffTraces(ref, swapped, o);
+        EXPECT_TRUE(d.equal) << formatDiff(d, ref, swapped, o);
+    }
+}
+
+TEST(AssignmentChecker, MissingFlipIsNamedAtItsInsertion) {
+    const Planted p = plant(Bug::MissingFlip, 10);
+    ASSERT_GT(p.bugAt, 0);
+    ASSERT_FALSE(p.diff.equal);
+    EXPECT_EQ(p.diff.insertion, p.bugAt) << p.report;
+    EXPECT_EQ(p.diff.insertion, p.wrongFrom);
+    EXPECT_EQ(p.diff.vertex, p.bugAt - 1);
+    EXPECT_NE(p.diff.what.find("not Delaunay at edge"), std::string::npos) << p.report;
+    EXPECT_NE(p.diff.what.find("is inside the circle of"), std::string::npos) << p.report;
+    EXPECT_NE(p.diff.what.find("missing flip of edge"), std::string::npos) << p.report;
+    // The message README.md quotes.
+    EXPECT_EQ(p.diff.what,
+              "after inserting point 9 (insertion 10 of 38): not Delaunay at edge 1\u20136: vertex "
+              "4 is inside the circle of 1 6 9; missing flip of edge 1\u20136 (expected 4\u20139)");
+}
+
+TEST(AssignmentChecker, FlipOfADelaunayEdgeIsNamed) {
+    const Planted p = plant(Bug::FlipDelaunayEdge, 10);
+    ASSERT_GT(p.bugAt, 0);
+    ASSERT_FALSE(p.diff.equal);
+    EXPECT_EQ(p.diff.insertion, p.bugAt) << p.report;
+    EXPECT_NE(p.diff.what.find("which is Delaunay (it should stay)"), std::string::npos)
+        << p.report;
+}
+
+TEST(AssignmentChecker, ForgottenPushAfterAFlipIsNamed) {
+    const Planted p = plant(Bug::ForgottenPush, 1);
+    ASSERT_GT(p.wrongFrom, 0) << "the bug changes the result";
+    ASSERT_FALSE(p.diff.equal);
+    EXPECT_EQ(p.diff.insertion, p.wrongFrom) << p.report;
+    EXPECT_NE(p.diff.what.find("missing flip of edge"), std::string::npos) << p.report;
+    EXPECT_NE(p.report.find("after a flip, push both edges opposite the new point"),
+              std::string::npos)
+        << p.report;
+}
+
+TEST(AssignmentChecker, WrongOnEdgeSplitIsNamed) {
+    const Planted p = plant(Bug::OnEdgeOneSide, 1);
+    ASSERT_GT(p.bugAt, 0) << "the assignment has a point on an edge";
+    ASSERT_FALSE(p.diff.equal);
+    EXPECT_EQ(p.diff.insertion, p.bugAt) << p.report;
+    EXPECT_NE(p.diff.what.find("point " + std::to_string(p.bugAt - 1) + " lies on edge"),
+              std::string::npos)
+        << p.report;
+    EXPECT_NE(p.diff.what.find("which was not split"), std::string::npos) << p.report;
+    EXPECT_NE(p.diff.what.find("splits the two triangles beside it"), std::string::npos);
+}
+
+TEST(AssignmentChecker, PointNotInsertedIsNamed) {
+    const Planted p = plant(Bug::SkipPoint, 7);
+    ASSERT_FALSE(p.diff.equal);
+    EXPECT_EQ(p.diff.insertion, 7) << p.report;
+    EXPECT_NE(p.diff.what.find("point 6 was not inserted"), std::string::npos) << p.report;
 }

@@ -15,6 +15,8 @@
 #include <random>
 #include <set>
 #include <stdexcept>
+#include <string>
+#include <vector>
 
 using namespace dlab;
 
@@ -158,6 +160,62 @@ TEST(Circumcenter, AccurateOnRandomTrianglesAtAnyScaleAndOffset) {
         }
     }
     EXPECT_GT(checked, 2000);
+}
+
+// |computed - exact| in units of the spacing of doubles at the exact value (the subnormal
+// spacing near zero); infinity when the computed value is not finite.
+static double ulpsOff(double computed, const mpq_class& exact) {
+    if (!std::isfinite(computed)) return INFINITY;
+    const double e = std::fabs(exact.get_d());
+    const double spacing = std::isfinite(e) ? std::nextafter(e, INFINITY) - e : 0x1p971;
+    return mpq_class(abs(mpq_class(computed) - exact) / mpq_class(spacing)).get_d();
+}
+
+static bool exactFits(const mpq_class& v) { return abs(v) <= mpq_class(DBL_MAX); }
+
+// Triangles mixing 1e-300 and 1e300, DBL_MAX and subnormals: whenever the exact center is a
+// finite double, the computed one is finite and within a few ulps of it, coordinate by
+// coordinate (checked against exact rationals).
+TEST(Circumcenter, WithinAFewUlpsForMixedMagnitudes) {
+    struct Tri {
+        Vec2 a, b, c;
+    };
+    std::vector<Tri> tris = {
+        {{0, 0}, {1e-300, 0}, {0, 1e300}},
+        {{0, 0}, {1e-160, 0}, {0, 1e160}},
+        {{0, 0}, {DBL_MAX, 0}, {0, 1e-300}},
+        {{1e-300, 1e-300}, {-DBL_MAX / 2, 0}, {0, DBL_MAX / 2}},
+        {{1e300, 1}, {1e300, -1}, {1e300 - 1e285, 0}},
+        {{0x1p-1074, 0}, {0, 0x1p-1074}, {1e10, 1e10}},
+        {{1e10, 1e10}, {1e10 + 1e-5, 1e10}, {1e10, 1e10 + 3e-5}},
+    };
+    std::mt19937_64 rng(77);
+    std::uniform_real_distribution<double> unit(-1.0, 1.0);
+    std::uniform_int_distribution<int> exponent(-1000, 1000);
+    auto coordinate = [&] { return std::ldexp(unit(rng), exponent(rng)); };
+    for (int k = 0; k < 3000; ++k)
+        tris.push_back({{coordinate(), coordinate()},
+                        {coordinate(), coordinate()},
+                        {coordinate(), coordinate()}});
+    int checked = 0;
+    for (const Tri& t : tris) {
+        const mpq_class bx = mpq_class(t.b.x) - t.a.x, by = mpq_class(t.b.y) - t.a.y;
+        const mpq_class cx = mpq_class(t.c.x) - t.a.x, cy = mpq_class(t.c.y) - t.a.y;
+        if (bx * cy == by * cx) continue;  // collinear: no center
+        const ExactCenter e = exactCircumcenter(t.a, t.b, t.c);
+        const Vec2 o = circumcenter(t.a, t.b, t.c);
+        const std::string where = "(" + std::to_string(t.a.x) + "," + std::to_string(t.a.y) +
+                                  ") (" + std::to_string(t.b.x) + "," + std::to_string(t.b.y) +
+                                  ") (" + std::to_string(t.c.x) + "," + std::to_string(t.c.y) + ")";
+        if (exactFits(e.x)) EXPECT_LE(ulpsOff(o.x, e.x), 5.0) << where;
+        if (exactFits(e.y)) EXPECT_LE(ulpsOff(o.y, e.y), 5.0) << where;
+        ++checked;
+    }
+    EXPECT_GT(checked, 2900);
+    // The first case of all: the exact center is (5e-301, 5e299).
+    const Vec2 o = circumcenter({0, 0}, {1e-300, 0}, {0, 1e300});
+    EXPECT_LE(ulpsOff(o.x, mpq_class(1e-300) / 2), 1.0);
+    EXPECT_LE(ulpsOff(o.y, mpq_class(1e300) / 2), 1.0);
 }
 
 TEST(Voronoi, EdgeNormalPointsOutOfItsTriangle) {

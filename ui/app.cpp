@@ -64,6 +64,13 @@ void ShowApplication(AppState& state) {
     ImGui::Begin("Delaunay Lab", nullptr, hostFlags);
     ImGui::PopStyleVar();
     ShowMenuBar(state);
+    if (slideMode(state)) {  // presentation with a lesson: the slide layout (lesson.cpp)
+        ShowSlide(state);
+        ImGui::End();
+        if (state.showHelp) ShowHelp(state);
+        ShowFileDialogs(state);
+        return;
+    }
     ShowToolbar(state);
     ShowCaption(state);
 
@@ -224,12 +231,17 @@ void handleShortcuts(AppState& state) {
         if (pressed(key::kDown)) v.center.y -= step;
         return;
     }
-    // Stepping: arrows and presentation clickers (Page Up / Page Down).
-    if (pressed(key::kRight) || pressed(key::kPageDown)) {
+    // Stepping: arrows and presentation clickers (Page Up / Page Down); on slides the clickers
+    // move between the lesson's stops.
+    const bool slides = slideMode(state);
+    if (slides && once(key::kPageDown)) goToStop(state, state.lessonPlayer.progress.stop + 1);
+    if (slides && once(key::kPageUp) && state.lessonPlayer.progress.stop > 0)
+        goToStop(state, state.lessonPlayer.progress.stop - 1);
+    if (pressed(key::kRight) || (!slides && pressed(key::kPageDown))) {
         state.run.running = false;
         shift ? e.forwardInsertion() : e.forward();
     }
-    if (pressed(key::kLeft) || pressed(key::kPageUp)) {
+    if (pressed(key::kLeft) || (!slides && pressed(key::kPageUp))) {
         state.run.running = false;
         shift ? e.backInsertion() : e.back();
     }

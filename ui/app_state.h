@@ -24,6 +24,7 @@
 namespace dlab::ui {
 
 struct CanvasCache;  // canvas.cpp: the mesh renderer's arrays and the drag in progress
+class Renderer;      // ui/render/renderer.h: what the canvas and image views draw through
 
 // The canvas' one world <-> screen transform: y up in the world, y down on the screen.
 struct View {
@@ -96,8 +97,9 @@ struct RunControl {
     double carry = 0.0;         // fractional ops owed from earlier frames
     double frameBudgetMs = 25;  // stepping time per frame at full speed, at most
     // At full speed the stepping gets what is left of this frame time after the rest of the
-    // last frame (drawing, the mesh rebuild, the GL render): large meshes stay interactive.
-    double targetFrameMs = 24;
+    // last frame (drawing, the mesh rebuild, the GL render): 60 frames a second with ~3 ms to
+    // spare for a frame that costs more than the last.
+    double targetFrameMs = 13;
     double lastStepMs = 0;         // the stepping part of the last frame
     double lastAdvanceMs = -1;     // when advanceRun last ran (steady clock ms), -1: not yet
     std::string stopReason;        // why the last run stopped ("end", "breakpoint: next flip", ...)
@@ -254,6 +256,10 @@ struct FileState {
     std::string dialogPath;        // the path field of the open dialog
     int meshFormat = 0;            // export dialog: 0 .ele/.neigh, 1 OFF, 2 OBJ
     GifRequest gifDraft;           // the GIF dialog's fields
+
+    // The platform's own file chooser (the browser's), used for Open instead of our dialog; it
+    // opens the chosen file itself, later.
+    std::function<void()> platformOpenDialog;
 };
 
 struct AppState {
@@ -272,6 +278,7 @@ struct AppState {
     double gridStep = 10.0;
     bool quitRequested = false;
     std::shared_ptr<CanvasCache> canvas;  // created by the canvas on its first frame
+    Renderer* renderer = nullptr;         // the Gui's (GL or null); none: nothing is drawn
     DialogState dialogs;
     FrameStats frameStats;
     LessonState lessonPlayer;        // the lesson on show, if any (lesson_player.h)

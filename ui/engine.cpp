@@ -1,7 +1,7 @@
 // The GUI's run: restart on new points or options, step, and derive what the canvas highlights.
 #include "ui/engine.h"
 
-#include "ui/gl/idbuffer_gl.h"
+#include "ui/render/renderer.h"
 
 #include <algorithm>
 #include <exception>
@@ -15,7 +15,7 @@ Engine::Engine() {
 
 Engine::~Engine() = default;
 
-void Engine::attachGl(std::shared_ptr<GlContext> gl) { m_gl = std::move(gl); }
+void Engine::attachGl(std::shared_ptr<GpuDevice> gl) { m_gl = std::move(gl); }
 
 void Engine::detachGl() {
     if (m_gl) m_gl->lose();
@@ -31,7 +31,7 @@ bool Engine::reset(std::vector<Vec2> points, const InsertOptions& options, std::
 bool Engine::resetAt(std::vector<Vec2> points, const InsertOptions& options, std::size_t position,
                      std::string& error) {
     std::unique_ptr<Inserter> ins;
-    IdBufferGl* gl = nullptr;
+    GpuIdBuffer* gl = nullptr;
     try {
         std::unique_ptr<Locator> locator;
         if (needsGl(options.locator)) {
@@ -40,8 +40,7 @@ bool Engine::resetAt(std::vector<Vec2> points, const InsertOptions& options, std
                         " needs a GL context, and this view has none";
                 return false;
             }
-            auto made = std::make_unique<IdBufferGl>(
-                m_gl, IdBufferGlOptions::from(options.locator, options.locatorOptions));
+            auto made = m_gl->makeIdBuffer(options.locator, options.locatorOptions);
             gl = made.get();
             locator = std::move(made);
         }
@@ -52,6 +51,7 @@ bool Engine::resetAt(std::vector<Vec2> points, const InsertOptions& options, std
         return false;
     }
     m_journal.reset();
+    ++m_run;
     m_ins = std::move(ins);
     m_idBufferGl = gl;
     m_points = std::move(points);

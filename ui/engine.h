@@ -16,8 +16,8 @@
 
 namespace dlab::ui {
 
-class GlContext;
-class IdBufferGl;
+class GpuDevice;  // ui/render/renderer.h: a GL context (ui/gl/gl_api.h), or none
+class GpuIdBuffer;
 
 // An edge as two vertex ids (the canvas draws it from G).
 struct VertexEdge {
@@ -55,12 +55,12 @@ public:
     // or OSMesa headless). Without one, idbuffer-gl is refused with a message. The owner of the
     // context detaches it before destroying the context; a GL locator still running then stops
     // drawing.
-    void attachGl(std::shared_ptr<GlContext> gl);
+    void attachGl(std::shared_ptr<GpuDevice> gl);
     void detachGl();
     bool hasGl() const;
-    const std::shared_ptr<GlContext>& glContext() const { return m_gl; }
+    const std::shared_ptr<GpuDevice>& glContext() const { return m_gl; }
     // The run's GL ID buffer when the locator is one, else nullptr (the ID-buffer view panel).
-    IdBufferGl* idBufferGl() const { return m_idBufferGl; }
+    GpuIdBuffer* idBufferGl() const { return m_idBufferGl; }
 
     const std::vector<Vec2>& points() const { return m_points; }
     const InsertOptions& options() const { return m_options; }
@@ -72,6 +72,8 @@ public:
     const std::string& batchReason() const { return m_batchReason; }
     // Bumps whenever the mesh or the position changes: renderers cache on it.
     std::uint64_t version() const { return m_version; }
+    // Bumps on every reset (new points or options): the journal's positions belong to one run.
+    std::uint64_t run() const { return m_run; }
 
     // ---- Stepping. Each returns whether anything moved. -------------------------------------
     bool forward();
@@ -118,12 +120,13 @@ private:
 
     std::vector<Vec2> m_points;
     InsertOptions m_options;
-    std::shared_ptr<GlContext> m_gl;
-    IdBufferGl* m_idBufferGl = nullptr;  // owned by m_ins
+    std::shared_ptr<GpuDevice> m_gl;
+    GpuIdBuffer* m_idBufferGl = nullptr;  // owned by m_ins
     std::unique_ptr<Inserter> m_ins;
     std::unique_ptr<Journal> m_journal;
     std::vector<std::int32_t> m_rank;  // position of each input point in the insertion order
     std::uint64_t m_version = 0;
+    std::uint64_t m_run = 0;
     mutable std::vector<PointState> m_states;
     mutable std::uint64_t m_statesVersion = ~std::uint64_t{0};
     std::string m_notice;

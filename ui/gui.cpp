@@ -1,13 +1,12 @@
 // Gui: ImGui context, fonts (DejaVu when installed), light theme, frames and PNG screenshots.
 #include "ui/gui.h"
 
-#include "ui/gl/gl_api.h"
-#include "ui/gl/imgui_gl.h"
-
 #include <imgui.h>
 #include <stb_image_write.h>
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <filesystem>
 
 namespace dlab::ui {
@@ -34,19 +33,21 @@ const char* firstExisting(std::initializer_list<const char*> paths) {
 
 const Fonts& fonts() { return g_fonts; }
 
-Gui::Gui(Platform& platform, AppState& state) : m_platform(platform), m_state(state) {
+Gui::Gui(Platform& platform, AppState& state)
+    : m_platform(platform), m_state(state), m_renderer(platform.makeRenderer()) {
     IMGUI_CHECKVERSION();
     ImGui::CreateContext();
     ImGuiIO& io = ImGui::GetIO();
     io.IniFilename = nullptr;  // the layout is ours (settings.json), not ImGui's window list
     io.ConfigWindowsMoveFromTitleBarOnly = true;
     m_platform.initImGui();
-    // The platform made a context that runs our shaders (OpenGL 3.3 core, or ES 3.0): ImGui,
-    // the mesh renderer and the GL ID-buffer locators draw on it.
+    // The renderer draws ImGui, the canvas' mesh and the image views; its device (the platform's
+    // context that runs our shaders; none with the null renderer) runs the GL ID-buffer locators.
     std::string glError;
-    m_glReady = initImGuiGl(glError);
-    if (m_glReady) {
-        m_state.engine.attachGl(GlContext::fromCurrent(glError));
+    m_rendererReady = m_renderer->init(glError);
+    if (m_rendererReady) {
+        m_state.engine.attachGl(m_renderer->device());
+        m_state.renderer = m_renderer.get();
     } else {
         m_state.log(Message::Level::Error, std::string(m_platform.name()) + ": " + glError);
     }
@@ -57,7 +58,9 @@ Gui::Gui(Platform& platform, AppState& state) : m_platform(platform), m_state(st
 
 Gui::~Gui() {
     m_state.engine.detachGl();  // the context may go away with us
-    if (m_glReady) shutdownImGuiGl();
+    m_state.renderer = nullptr;
+    m_state.canvas.reset();  // its mesh belongs to the renderer
+    if (m_rendererReady) m_renderer->shutdown();
     m_platform.shutdownImGui();
     ImGui::DestroyContext();
     g_fonts = {};
@@ -68,7 +71,7 @@ void Gui::loadFonts() {
     const char* sans = firstExisting({"/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf"});
     const char* mono = firstExisting({"/usr/share/fonts/truetype/dejavu/DejaVuSansMono.ttf"});
     const char* bold = firstExisting({"/usr/share/fonts/truetype/dejavu/DejaVuSans-Bold.ttf"});
-    const float base = m_state.presentation ? 26.0f : 16.0f;
+    const float base = fontSize();
     io.Fonts->Clear();
     ImFontConfig cfg;
     cfg.OversampleH = 2;
@@ -93,8 +96,18 @@ void Gui::loadFonts() {
     if (!m_fonts.mono) m_fonts.mono = m_fonts.ui;
     if (!m_fonts.bold) m_fonts.bold = m_fonts.ui;
     io.FontDefault = m_fonts.ui;
-    if (m_glReady) reloadImGuiFontsGl();
+    if (m_rendererReady) m_renderer->reloadFonts();
     m_presentationApplied = m_state.presentation;
+    m_fontSizeApplied = base;
+}
+
+// Presentation mode reads from the back of a room: the text is about 1/34 of the window's
+// height (21 px at 720, 32 px at 1080).
+float Gui::fontSize() const {
+    if (!m_state.presentation) return 16.0f;
+    int w = 0, h = 0;
+    m_platform.framebufferSize(w, h);
+    return h > 0 ? std::clamp(std::round(static_cast<float>(h) / 34.0f), 18.0f, 40.0f) : 26.0f;
 }
 
 void Gui::applyTheme() {
@@ -119,7 +132,7 @@ void Gui::applyTheme() {
 
 bool Gui::frame() {
     const double t0 = nowMs();
-    if (m_presentationApplied != m_state.presentation) {
+    if (m_presentationApplied != m_state.presentation || fontSize() != m_fontSizeApplied) {
         loadFonts();
         applyTheme();
     }
@@ -130,7 +143,7 @@ bool Gui::frame() {
     m_lastTime = t0;
     const bool open = m_platform.newFrame();
     g_fonts = m_fonts;
-    if (m_glReady) newFrameImGuiGl();
+    if (m_rendererReady) m_renderer->newFrame();
     ImGui::NewFrame();
     ShowApplication(m_state);
     ImGui::Render();
@@ -138,7 +151,7 @@ bool Gui::frame() {
     int w = 0, h = 0;
     m_platform.framebufferSize(w, h);
     static constexpr float kBackground[4] = {0.95f, 0.95f, 0.96f, 1.0f};
-    if (m_glReady) renderImGuiGl(ImGui::GetDrawData(), w, h, kBackground);
+    if (m_rendererReady) m_renderer->render(ImGui::GetDrawData(), w, h, kBackground);
     if (m_capture) readFramebuffer();
     m_pixelsStale = !m_capture;
     m_platform.present();
@@ -150,7 +163,10 @@ bool Gui::frame() {
 void Gui::readFramebuffer() {
     int w = 0, h = 0;
     m_platform.framebufferSize(w, h);
-    readFramebufferGl(w, h, m_platform.headless(), m_pixels);
+    if (!m_rendererReady || !m_renderer->readPixels(w, h, m_platform.headless(), m_pixels)) {
+        m_pixels.clear();  // nothing drawn (the null renderer)
+        w = h = 0;
+    }
     m_pixelsW = w;
     m_pixelsH = h;
     m_pixelsStale = false;

@@ -1,12 +1,14 @@
 // The GUI driver: the ImGui context, fonts and theme, one frame of the whole application, and
-// screenshots. The same class runs in a real window (GLFW) and headless (OSMesa): tests and
-// `dtlab render` drive it with synthetic input through ImGui's io.
+// screenshots. The same class runs in a real window (GLFW), headless (OSMesa) and with no GL at
+// all (the null platform): tests and `dtlab render` drive it with synthetic input through
+// ImGui's io. It draws through the platform's renderer (ui/render/renderer.h).
 #pragma once
 
 #include "ui/app_state.h"
 #include "ui/platform/platform.h"
 
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -45,18 +47,22 @@ public:
     double lastFrameMs() const { return m_frameMs; }
     double lastUiMs() const { return m_uiMs; }
     Platform& platform() { return m_platform; }
+    Renderer& renderer() { return *m_renderer; }
     AppState& state() { return m_state; }
 
 private:
     void loadFonts();
     void readFramebuffer();
     void applyTheme();
+    float fontSize() const;  // presentation: grows with the window's height
 
     Platform& m_platform;
     AppState& m_state;
+    std::unique_ptr<Renderer> m_renderer;
     Fonts m_fonts;
-    bool m_glReady = false;  // ImGui's GL renderer runs on the platform's context
+    bool m_rendererReady = false;  // the renderer draws ImGui (on the platform's context)
     bool m_presentationApplied = false;
+    float m_fontSizeApplied = 0;
     bool m_capture = false;
     std::vector<std::uint8_t> m_pixels;
     int m_pixelsW = 0, m_pixelsH = 0;

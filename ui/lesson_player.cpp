@@ -4,6 +4,7 @@
 #include "ui/app_state.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 
 namespace dlab::ui {
@@ -23,6 +24,40 @@ bool* overlaySwitch(Overlays& o, const std::string& name) {
     if (name == "pending-points") return &o.pendingPoints;
     if (name == "virtual-triangles") return &o.virtualTriangles;
     return nullptr;  // e.g. "idbuffer": shown by its panel
+}
+
+// The stop's view for the canvas' next frame; a stop without one shows all the points, so that a
+// slide looks the same whichever stop came before it.
+void applyView(AppState& st, const LessonStop& stop) {
+    LessonState& L = st.lessonPlayer;
+    L.pendingView.reset();
+    if (stop.view.empty()) {
+        st.fitPending = true;
+        return;
+    }
+    if (stop.view.rect) {
+        L.pendingView = *stop.view.rect;
+    } else {
+        const auto& G = st.engine.mesh().G;
+        double x0 = HUGE_VAL, y0 = HUGE_VAL, x1 = -HUGE_VAL, y1 = -HUGE_VAL;
+        for (std::int32_t v : stop.view.fit) {
+            // The super-triangle's vertices are gone after Finalize: fit what is there.
+            if (v < 0 || static_cast<std::size_t>(v) >= G.size()) continue;
+            if (st.engine.options().boundary == Boundary::Exact &&
+                v == static_cast<std::int32_t>(st.engine.points().size()))
+                continue;  // the ghost vertex has no position
+            x0 = std::min(x0, G[v].x);
+            y0 = std::min(y0, G[v].y);
+            x1 = std::max(x1, G[v].x);
+            y1 = std::max(y1, G[v].y);
+        }
+        if (!(x0 <= x1)) {
+            st.fitPending = true;
+            return;
+        }
+        L.pendingView = std::array<double, 4>{x0, y0, x1, y1};
+    }
+    st.fitPending = false;
 }
 
 void saveProgress(AppState& st) {
@@ -49,6 +84,9 @@ bool openLesson(AppState& st, const std::string& path) {
     if (!st.setOptions(lesson->options) || !st.loadPoints(lesson->points, lesson->title))
         return false;
     LessonState& L = st.lessonPlayer;
+    if (!L.userOverlays) {  // a lesson opened over another keeps the user's from before both
+        L.userOverlays = std::make_shared<const Overlays>(st.overlays);
+    }
     L.lesson = lesson;
     L.plan = std::move(plan);
     L.progress = {};
@@ -70,8 +108,22 @@ bool openLesson(AppState& st, const std::string& path) {
 
 void closeLesson(AppState& st) {
     saveProgress(st);
-    st.lessonPlayer.lesson.reset();
-    st.lessonPlayer.plan = {};
+    LessonState& L = st.lessonPlayer;
+    L.lesson.reset();
+    L.plan = {};
+    L.pendingView.reset();
+    if (L.userOverlays) st.overlays = *L.userOverlays;
+    L.userOverlays.reset();
+    st.fitPending = true;  // a stop's zoom is the lesson's too
+}
+
+const Overlays& userOverlays(const AppState& st) {
+    return st.lessonPlayer.userOverlays ? *st.lessonPlayer.userOverlays : st.overlays;
+}
+
+bool slideMode(const AppState& st) {
+    const LessonState& L = st.lessonPlayer;
+    return st.presentation && L.lesson && !L.lesson->stops.empty();
 }
 
 bool lessonStateChanged(const AppState& st) {
@@ -111,12 +163,15 @@ void goToStop(AppState& st, std::size_t k) {
             if (bool* b = overlaySwitch(o, name)) *b = true;
         }
     }
+    applyView(st, stop);
     L.progress.stop = k;
     L.progress.furthest = std::max(L.progress.furthest, k);
     L.typed.clear();
     L.feedback = LessonState::Feedback::None;
     L.showHint = false;
-    L.pendingTabSelect = true;
+    // The stop's tab in front, or else the first panel it names.
+    L.pendingTabSelect = stop.tab.empty();
+    st.pendingTab = stop.tab;
     saveProgress(st);
 }
 

@@ -1,17 +1,21 @@
 // The lesson player: a loaded lesson, its plan (every stop's position, selection and answer,
 // computed headlessly by core/lesson), the stop on show, and the student's answers. Going to a
-// stop seeks the run, selects the stop's corner and shows the stop's panels and overlays.
+// stop seeks the run, selects the stop's corner and shows the stop's panels, overlays, view and
+// side tab. The lesson's overlays are the lesson's: the user's come back when it closes.
 #pragma once
 
 #include "core/teaching/lesson.h"
 
+#include <array>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 
 namespace dlab::ui {
 
 struct AppState;
+struct Overlays;
 
 struct LessonState {
     std::shared_ptr<const Lesson> lesson;  // null: no lesson open
@@ -21,6 +25,13 @@ struct LessonState {
     enum class Feedback : std::uint8_t { None, Right, Wrong, Shown } feedback = Feedback::None;
     bool showHint = false;
     bool pendingTabSelect = false;  // the side column shows the stop's panel once
+    // The box (x0, y0, x1, y1) the canvas fits at its next frame: the stop's view.
+    std::optional<std::array<double, 4>> pendingView;
+    // The user's overlays from before the lesson opened: back when it closes (and what the
+    // settings save while a lesson is open).
+    std::shared_ptr<const Overlays> userOverlays;
+    float slideQuestionHeight = 0;  // the slide's question block, as laid out last frame
+    float slideTextHeight = 0;      // and the height the stop's text needed
     // Progress of every lesson opened, by path (persisted with the settings).
     std::map<std::string, LessonProgress> saved;
 };
@@ -38,5 +49,9 @@ bool lessonStateChanged(const AppState& state);
 bool checkAnswer(AppState& state);
 // The side-column tab and the visibility of the inspector/messages a stop asks for.
 bool lessonWantsPanel(const AppState& state, const char* panelName);
+// The slide layout: presentation mode with a lesson (that has stops) open.
+bool slideMode(const AppState& state);
+// The overlays the settings keep: the user's, also while a lesson shows its own.
+const Overlays& userOverlays(const AppState& state);
 
 }  // namespace dlab::ui

@@ -92,122 +92,143 @@ std::vector<Generator> allGenerators() {
     return all;
 }
 
+namespace {
+constexpr double kBox = 1600.0;  // the paper's square
+
+// The generators whose points are drawn independently of each other, one point per call.
+Vec2 uniformPoint(SplitMix64& rng) { return {rng.uniform01() * kBox, rng.uniform01() * kBox}; }
+
+Vec2 circlePoint(SplitMix64& rng) {
+    const double t = 2 * std::numbers::pi * rng.uniform01();
+    return {800 + 700 * std::cos(t), 800 + 700 * std::sin(t)};
+}
+
+// Three lines (y = 0, x = 0, y = x) with integer positions, and one point in four anywhere.
+Vec2 collinearPoint(SplitMix64& rng) {
+    const std::uint32_t line = rng.below(4);
+    const double t = double(rng.below(1000));
+    switch (line) {
+        case 0: return {t, 0};
+        case 1: return {0, t};
+        case 2: return {t, t};
+        default: return {rng.uniform01() * 1000, rng.uniform01() * 1000};
+    }
+}
+
+// ulp(1e15) = 0.125: only 512 distinct values per axis, every test is close.
+Vec2 hugeTinyBoxPoint(SplitMix64& rng) {
+    return {1e15 + rng.uniform01() * 64, -3e15 + rng.uniform01() * 64};
+}
+
+// Integer x and y = x/2 + 3: exactly on one line (no rounding anywhere).
+Vec2 allCollinearPoint(SplitMix64& rng) {
+    const double t = double(rng.below(100000));
+    return {t, 0.5 * t + 3};
+}
+
+Vec2 gaussianPoint(SplitMix64& rng) {
+    return {800 + 200 * gaussian(rng), 800 + 200 * gaussian(rng)};
+}
+
+// The inverse of Kuzmin's mass function; 1 - s > 0, so r is finite (at most ~2^53).
+Vec2 kuzminPoint(SplitMix64& rng) {
+    const double s = rng.uniform01();
+    return onCircle(rng, std::sqrt(1 / ((1 - s) * (1 - s)) - 1));
+}
+
+Vec2 logRadialPoint(SplitMix64& rng) {
+    return onCircle(rng, std::pow(10.0, -12 * rng.uniform01()));
+}
+
+// One point in ten anywhere in the box, the rest in a disc of radius 4 at its centre.
+Vec2 discInBoxPoint(SplitMix64& rng) {
+    if (rng.below(10) == 0) return uniformPoint(rng);
+    const Vec2 d = onCircle(rng, 4 * std::sqrt(rng.uniform01()));
+    return {800 + d.x, 800 + d.y};
+}
+
+// About sqrt(n/16) clusters of spread 20, each point in one picked at random.
+void clusters(std::vector<Vec2>& pts, std::size_t n, SplitMix64& rng) {
+    const std::size_t k = std::max<std::size_t>(1, static_cast<std::size_t>(std::sqrt(n / 16.0)));
+    std::vector<Vec2> centres;
+    for (std::size_t i = 0; i < k; ++i) centres.push_back(uniformPoint(rng));
+    for (std::size_t i = 0; i < n; ++i) {
+        const Vec2 c = centres[rng.below(static_cast<std::uint32_t>(k))];
+        pts.push_back({c.x + gaussian(rng) * 20, c.y + gaussian(rng) * 20});
+    }
+}
+
+// A square integer lattice, rotated by `angle` radians.
+void lattice(std::vector<Vec2>& pts, std::size_t n, double angle) {
+    const std::size_t side =
+        std::max<std::size_t>(1, static_cast<std::size_t>(std::ceil(std::sqrt(double(n)))));
+    for (std::size_t i = 0; i < n; ++i) {
+        const double x = double(i % side), y = double(i / side);
+        pts.push_back(
+            {x * std::cos(angle) - y * std::sin(angle), x * std::sin(angle) + y * std::cos(angle)});
+    }
+}
+
+// A regular n-gon: multiples of 45 degrees are exact; the rest are within an ulp of the circle.
+void ngon(std::vector<Vec2>& pts, std::size_t n) {
+    for (std::size_t i = 0; i < n; ++i) {
+        const double t = 2 * std::numbers::pi * double(i) / double(n);
+        pts.push_back({800 + 700 * std::cos(t), 800 + 700 * std::sin(t)});
+    }
+}
+
+// One point in three on an integer position; the others copy an earlier point and move it by
+// 0 to 4 ulps in x and 0 to 2 in y (0: an exact duplicate).
+void nearDuplicates(std::vector<Vec2>& pts, std::size_t n, SplitMix64& rng) {
+    for (std::size_t i = 0; i < n; ++i) {
+        if (i % 3 == 0 || pts.empty()) {
+            pts.push_back({std::round(rng.uniform01() * 100), std::round(rng.uniform01() * 100)});
+            continue;
+        }
+        Vec2 p = pts[rng.below(static_cast<std::uint32_t>(pts.size()))];
+        const std::uint32_t ulps = rng.below(5);
+        for (std::uint32_t k = 0; k < ulps; ++k) p.x = std::nextafter(p.x, 1e300);
+        for (std::uint32_t k = 0; k < rng.below(3); ++k) p.y = std::nextafter(p.y, -1e300);
+        pts.push_back(p);
+    }
+}
+
+using PointFn = Vec2 (*)(SplitMix64&);
+
+// The per-point function of an independent generator; nullptr for those that need the whole set.
+PointFn pointFunction(Generator kind) {
+    switch (kind) {
+        case Generator::Uniform: return uniformPoint;
+        case Generator::Circle: return circlePoint;
+        case Generator::Collinear: return collinearPoint;
+        case Generator::HugeTinyBox: return hugeTinyBoxPoint;
+        case Generator::AllCollinear: return allCollinearPoint;
+        case Generator::Gaussian: return gaussianPoint;
+        case Generator::Kuzmin: return kuzminPoint;
+        case Generator::LogRadial: return logRadialPoint;
+        case Generator::DiscInBox: return discInBoxPoint;
+        case Generator::Curves: return onCurve;
+        default: return nullptr;
+    }
+}
+}  // namespace
+
 std::vector<Vec2> generatePoints(Generator kind, std::size_t n, std::uint64_t seed) {
     SplitMix64 rng(seed);
     std::vector<Vec2> pts;
     pts.reserve(n);
-    const double box = 1600.0;
+    if (const PointFn point = pointFunction(kind)) {
+        for (std::size_t i = 0; i < n; ++i) pts.push_back(point(rng));
+        return pts;
+    }
     switch (kind) {
-        case Generator::Uniform:
-            for (std::size_t i = 0; i < n; ++i)
-                pts.push_back({rng.uniform01() * box, rng.uniform01() * box});
-            break;
-        case Generator::Clusters: {
-            const std::size_t k =
-                std::max<std::size_t>(1, static_cast<std::size_t>(std::sqrt(n / 16.0)));
-            std::vector<Vec2> centres;
-            for (std::size_t i = 0; i < k; ++i)
-                centres.push_back({rng.uniform01() * box, rng.uniform01() * box});
-            for (std::size_t i = 0; i < n; ++i) {
-                const Vec2 c = centres[rng.below(static_cast<std::uint32_t>(k))];
-                pts.push_back({c.x + gaussian(rng) * 20, c.y + gaussian(rng) * 20});
-            }
-            break;
-        }
-        case Generator::Grid:
-        case Generator::RotatedGrid: {
-            const std::size_t side =
-                std::max<std::size_t>(1, static_cast<std::size_t>(std::ceil(std::sqrt(double(n)))));
-            const double a = kind == Generator::RotatedGrid ? 0.5 : 0.0;  // radians, irrational-ish
-            for (std::size_t i = 0; i < n; ++i) {
-                const double x = double(i % side), y = double(i / side);
-                pts.push_back(
-                    {x * std::cos(a) - y * std::sin(a), x * std::sin(a) + y * std::cos(a)});
-            }
-            break;
-        }
-        case Generator::Ngon:
-            for (std::size_t i = 0; i < n; ++i) {
-                // Multiples of 45 degrees are exact; the rest are within an ulp of the circle.
-                const double t = 2 * std::numbers::pi * double(i) / double(n);
-                pts.push_back({800 + 700 * std::cos(t), 800 + 700 * std::sin(t)});
-            }
-            break;
-        case Generator::Circle:
-            for (std::size_t i = 0; i < n; ++i) {
-                const double t = 2 * std::numbers::pi * rng.uniform01();
-                pts.push_back({800 + 700 * std::cos(t), 800 + 700 * std::sin(t)});
-            }
-            break;
-        case Generator::Collinear:
-            for (std::size_t i = 0; i < n; ++i) {
-                const std::uint32_t line = rng.below(4);
-                const double t = double(rng.below(1000));
-                switch (line) {
-                    case 0: pts.push_back({t, 0}); break;
-                    case 1: pts.push_back({0, t}); break;
-                    case 2: pts.push_back({t, t}); break;
-                    default: pts.push_back({rng.uniform01() * 1000, rng.uniform01() * 1000}); break;
-                }
-            }
-            break;
-        case Generator::NearDuplicates:
-            for (std::size_t i = 0; i < n; ++i) {
-                if (i % 3 == 0 || pts.empty()) {
-                    pts.push_back(
-                        {std::round(rng.uniform01() * 100), std::round(rng.uniform01() * 100)});
-                } else {
-                    Vec2 p = pts[rng.below(static_cast<std::uint32_t>(pts.size()))];
-                    const std::uint32_t ulps = rng.below(5);  // 0: an exact duplicate
-                    for (std::uint32_t k = 0; k < ulps; ++k) p.x = std::nextafter(p.x, 1e300);
-                    for (std::uint32_t k = 0; k < rng.below(3); ++k)
-                        p.y = std::nextafter(p.y, -1e300);
-                    pts.push_back(p);
-                }
-            }
-            break;
-        case Generator::HugeTinyBox:
-            for (std::size_t i = 0; i < n; ++i) {
-                // ulp(1e15) = 0.125: only 512 distinct values per axis, every test is close.
-                pts.push_back({1e15 + rng.uniform01() * 64, -3e15 + rng.uniform01() * 64});
-            }
-            break;
-        case Generator::AllCollinear:
-            for (std::size_t i = 0; i < n; ++i) {
-                // Integer x and y = x/2 + 3: exactly on one line (no rounding anywhere).
-                const double t = double(rng.below(100000));
-                pts.push_back({t, 0.5 * t + 3});
-            }
-            break;
-        case Generator::Gaussian:
-            for (std::size_t i = 0; i < n; ++i)
-                pts.push_back({800 + 200 * gaussian(rng), 800 + 200 * gaussian(rng)});
-            break;
+        case Generator::Clusters: clusters(pts, n, rng); break;
+        case Generator::Grid: lattice(pts, n, 0.0); break;
+        case Generator::RotatedGrid: lattice(pts, n, 0.5); break;  // radians, irrational-ish
+        case Generator::Ngon: ngon(pts, n); break;
+        case Generator::NearDuplicates: nearDuplicates(pts, n, rng); break;
         case Generator::UnevenClusters: unevenClusters(pts, n, rng); break;
-        case Generator::Kuzmin:
-            for (std::size_t i = 0; i < n; ++i) {
-                // The inverse of the mass function; 1 - s > 0, so r is finite (at most ~2^53).
-                const double s = rng.uniform01();
-                pts.push_back(onCircle(rng, std::sqrt(1 / ((1 - s) * (1 - s)) - 1)));
-            }
-            break;
-        case Generator::LogRadial:
-            for (std::size_t i = 0; i < n; ++i)
-                pts.push_back(onCircle(rng, std::pow(10.0, -12 * rng.uniform01())));
-            break;
-        case Generator::DiscInBox:
-            for (std::size_t i = 0; i < n; ++i) {
-                if (rng.below(10) == 0) {
-                    pts.push_back({rng.uniform01() * box, rng.uniform01() * box});
-                } else {
-                    const Vec2 d = onCircle(rng, 4 * std::sqrt(rng.uniform01()));
-                    pts.push_back({800 + d.x, 800 + d.y});
-                }
-            }
-            break;
-        case Generator::Curves:
-            for (std::size_t i = 0; i < n; ++i) pts.push_back(onCurve(rng));
-            break;
+        default: break;
     }
     return pts;
 }

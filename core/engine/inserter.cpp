@@ -2,6 +2,7 @@
 // each a recorded operation that the Journal can undo exactly.
 #include "core/engine/inserter.h"
 
+#include "core/engine/checks.h"
 #include "core/engine/predicates.h"
 
 #include <algorithm>
@@ -73,8 +74,6 @@ struct JournalRec {
     }
 };
 
-constexpr std::int32_t kMaxInputPoints = 1 << 26;  // corners and slots stay inside int32
-
 // Within one triangle: the index of next(c) and prev(c) for c = 3t + k.
 constexpr int kNext[3] = {1, 2, 0};
 constexpr int kPrev[3] = {2, 0, 1};
@@ -123,9 +122,9 @@ void adviseHugePages(void* data, std::size_t bytes) {
 Inserter::Inserter(std::vector<Vec2> points, const InsertOptions& options,
                    std::unique_ptr<Locator> locator)
     : m_options(options), m_locator(std::move(locator)) {
-    if (points.size() > static_cast<std::size_t>(kMaxInputPoints)) {
+    if (points.size() > kMaxPoints) {
         throw std::invalid_argument("too many points: " + std::to_string(points.size()) +
-                                    " (the limit is " + std::to_string(kMaxInputPoints) + ")");
+                                    " (the limit is " + std::to_string(kMaxPoints) + ")");
     }
     for (std::size_t i = 0; i < points.size(); ++i) {
         if (!std::isfinite(points[i].x) || !std::isfinite(points[i].y)) {
@@ -269,6 +268,8 @@ void Inserter::setBulk(bool on) {
 //          a -------b              a ------- b
 template <class Rec>
 void Inserter::split(Rec& rec, std::int32_t t, std::int32_t v) {
+    DLAB_ASSERT(t >= 0 && t < m_mesh.numTriangles() && m_mesh.V[3 * t] != kNone,
+                "split of a triangle that is not in the mesh");
     const std::int32_t c0 = 3 * t, c1 = c0 + 1, c2 = c0 + 2;
     const std::int32_t a = m_mesh.V[c0], b = m_mesh.V[c1], c = m_mesh.V[c2];
     const std::int32_t oa = m_mesh.O[c0], ob = m_mesh.O[c1];
@@ -298,6 +299,10 @@ void Inserter::split(Rec& rec, std::int32_t t, std::int32_t v) {
 //   u = (D, B, A) becomes (D, B, v), appended u' = (D, v, A).
 template <class Rec>
 void Inserter::splitEdge(Rec& rec, std::int32_t c, std::int32_t v) {
+    DLAB_ASSERT(c >= 0 && c < m_mesh.numCorners() && m_mesh.V[c] != kNone,
+                "edge split at a corner that is not in the mesh");
+    DLAB_ASSERT(m_mesh.O[c] == kNone || m_mesh.O[m_mesh.O[c]] == c,
+                "edge split across corners that are not opposite");
     const std::int32_t cn = next(c), cp = prev(c);
     const std::int32_t d = m_mesh.O[c];
     const std::int32_t C = m_mesh.V[c], B = m_mesh.V[cp];
@@ -351,6 +356,8 @@ void Inserter::splitEdge(Rec& rec, std::int32_t c, std::int32_t v) {
 template <class Rec>
 void Inserter::flip(Rec& rec, std::int32_t c) {
     const std::int32_t d = m_mesh.O[c];
+    DLAB_ASSERT(d != kNone && m_mesh.O[d] == c, "flip of corners that are not opposite");
+    DLAB_ASSERT(tri(c) != tri(d), "flip of two corners of one triangle");
     const std::int32_t cn = next(c), cp = prev(c), dn = next(d), dp = prev(d);
     const std::int32_t P = m_mesh.V[c], D = m_mesh.V[d];
     const std::int32_t ocn = m_mesh.O[cn], odn = m_mesh.O[dn];
@@ -437,9 +444,14 @@ bool Inserter::onOpenSegment(Vec2 a, Vec2 b, Vec2 p) const {
         w = B;
     }
     const int s = orient2d(G[u], G[w], G[P]);
-    if (s > 0) return 1;
-    if (s == 0 && onOpenSegment(G[u], G[w], G[P])) return 1;
-    return -1;
+    // P on the open hull edge u-w cannot happen: the walk finds a point on a hull edge (from the
+    // triangle inside with a zero side, or from the ghost outside with orient2d 0 on the open
+    // segment) and splits that edge, so the edge no longer exists when P's flips test it, and
+    // every other point is on it only if it was located there. Were it reachable, P would be in
+    // the ghost's "circle" (the open segment belongs to it) and the answer 1.
+    DLAB_ASSERT(s != 0 || !onOpenSegment(G[u], G[w], G[P]),
+                "new vertex on a hull edge that should have been split");
+    return s > 0 ? 1 : -1;
 }
 
 // ============================================================================================
@@ -458,43 +470,98 @@ Inserter::HullEdge Inserter::hullEdgeOf(std::int32_t c0) const {
 void Inserter::beginLocate() {
     std::int32_t t = m_locator->hint(currentPoint(), m_ctl.lastTri);
     if (t < 0 || t >= m_mesh.numTriangles()) t = 0;
-    m_ctl.walkTri = t;
-    m_ctl.walkEntry = kNone;
-    m_ctl.walkSteps = 0;
-    m_ctl.straight = true;
+    m_ctl.walk = {t, kNone, 0, true, m_ctl.walk.origin};
     m_ctl.where = Where::None;
     m_ctl.whereCorner = kNone;
 }
 
-// One step: true when walkTri contains the point (closed); otherwise moves to a neighbour.
+// The start triangle of the line walk: L runs from q, the centroid, to p. When q is strictly
+// inside t, L leaves t through one edge (its start right of L, its end left) and p on L not
+// beyond that edge lies in the closed triangle, so one test of p decides. Returns false when q
+// is not strictly inside (a needle): then the visibility walk takes over, with L's origin kept.
+[[gnu::always_inline]] inline Inserter::StartStep Inserter::walkStart(WalkState& w, Vec2 p) {
+    const auto& G = m_mesh.G;
+    const auto& V = m_mesh.V;
+    const std::int32_t c0 = 3 * w.tri;
+    const Vec2 v[3] = {G[V[c0]], G[V[c0 + 1]], G[V[c0 + 2]]};
+    const Vec2 q{v[0].x / 3 + v[1].x / 3 + v[2].x / 3, v[0].y / 3 + v[1].y / 3 + v[2].y / 3};
+    if (!(orient2d(v[0], v[1], q) > 0 && orient2d(v[1], v[2], q) > 0 &&
+          orient2d(v[2], v[0], q) > 0)) {
+        return StartStep::Undecided;
+    }
+    // Only one edge goes from right of L to left of L (three vertices in a cycle): when v0 is
+    // right and v1 left it is v0->v1 (opposite corner 2), and v2 needs no test.
+    const bool left0 = orient2d(q, p, v[0]) >= 0, left1 = orient2d(q, p, v[1]) >= 0;
+    int k = 2;
+    if (left0 || !left1) {
+        const bool left[3] = {left0, left1, orient2d(q, p, v[2]) >= 0};
+        for (k = 0; k < 3 && !(!left[kNext[k]] && left[kPrev[k]]); ++k) {}
+        // No exit edge: p == q (both sides of L hold a vertex of a triangle around q
+        // otherwise), strictly inside t; the side tests say so.
+        if (k == 3) return StartStep::Undecided;
+    }
+    const int s = orient2d(v[kNext[k]], v[kPrev[k]], p);
+    if (s >= 0) {
+        walkFound(w.tri, c0 + k, s, kNone, 0);
+        return StartStep::Found;
+    }
+    w.origin = q;
+    walkMove(w, c0 + k, true);
+    return StartStep::Moved;
+}
+
+[[gnu::always_inline]] inline bool Inserter::walkFound(std::int32_t t, std::int32_t c1, int s1,
+                                                       std::int32_t c2, int s2) {
+    m_known = {t, {kUnknownSide, kUnknownSide, kUnknownSide}};
+    if (c1 != kNone) m_known.side[c1 - 3 * t] = static_cast<std::int8_t>(s1);
+    if (c2 != kNone) m_known.side[c2 - 3 * t] = static_cast<std::int8_t>(s2);
+    return true;
+}
+
+[[gnu::always_inline]] inline bool Inserter::walkMove(WalkState& w, std::int32_t corner,
+                                                      bool keepEntry) {
+    const std::int32_t o = m_mesh.O[corner];
+    DLAB_ASSERT(o != kNone, "the walk leaves the mesh");
+#if DLAB_CHECKS_ON
+    // A straight walk crosses each triangle at most once (its line meets a triangle in one
+    // segment): a revisit means inconsistent orientation decisions. The list restarts with every
+    // line (the start triangle, or inside again after a ghost) and with another point or inserter.
+    static thread_local struct {
+        const Inserter* owner = nullptr;
+        std::int32_t cursor = kNone;
+        std::vector<std::int32_t> tris;
+    } visited;
+    if (visited.owner != this || visited.cursor != m_ctl.cursor || w.entry == kNone) {
+        visited.owner = this;
+        visited.cursor = m_ctl.cursor;
+        visited.tris.assign(1, w.tri);
+    }
+    if (w.straight && keepEntry) {
+        DLAB_ASSERT(
+            std::find(visited.tris.begin(), visited.tris.end(), tri(o)) == visited.tris.end(),
+            "the straight walk enters a triangle it has left");
+        visited.tris.push_back(tri(o));
+    }
+#endif
+    w.tri = tri(o);
+    w.entry = keepEntry ? o : kNone;
+    ++w.steps;
+    return false;
+}
+
+// One step: true when w.tri contains the point (closed); otherwise moves to a neighbour.
 //
 // The line walk follows L from q (inside the start triangle) to p. Entering triangle t through
 // the edge opposite corner e, its third vertex w = V[e] is left or right of L: L leaves through
 // the edge on the far side of w (c.l or c.r in the paper). A vertex exactly on L counts as left,
 // the same as moving L an infinitesimal amount to the right, so every decision stays consistent.
-// One step of the walk on a copy of its state (the batch path keeps it in registers while it
-// walks many steps; walkStep() does one and stores it back).
+// A step in the line walk costs two orientation tests: the edge it entered through is never
+// tested again (p is strictly beyond it, seen from the triangle before).
 [[gnu::always_inline]] inline bool Inserter::walkOnce(WalkState& w, Vec2 p) {
     const auto& G = m_mesh.G;
     const auto& V = m_mesh.V;
-    const auto& O = m_mesh.O;
     const std::int32_t t = w.tri;
     const std::int32_t c0 = 3 * t;
-    auto moveTo = [&](std::int32_t corner, bool keepEntry) {
-        const std::int32_t o = O[corner];
-        w.tri = tri(o);
-        w.entry = keepEntry ? o : kNone;
-        ++w.steps;
-        return false;
-    };
-    // The walk ends in t: keep the signs it already knows for classify().
-    auto found = [&](std::int32_t c1, int s1, std::int32_t c2, int s2, std::int32_t c3, int s3) {
-        m_known = {t, {kUnknownSide, kUnknownSide, kUnknownSide}};
-        if (c1 != kNone) m_known.side[c1 - c0] = static_cast<std::int8_t>(s1);
-        if (c2 != kNone) m_known.side[c2 - c0] = static_cast<std::int8_t>(s2);
-        if (c3 != kNone) m_known.side[c3 - c0] = static_cast<std::int8_t>(s3);
-        return true;
-    };
     m_known.tri = kNone;
 
     // Corners are c0 + k; the edge opposite c0 + k runs from c0 + kNext[k] to c0 + kPrev[k]
@@ -504,13 +571,13 @@ void Inserter::beginLocate() {
         const std::int32_t g = c0 + k;
         const int s = orient2d(x, y, p);
         if (s > 0 || (s == 0 && (onOpenSegment(x, y, p) || p == x || p == y))) {
-            return found(g, s, kNone, 0, kNone, 0);
+            return walkFound(t, g, s, kNone, 0);
         }
         // Not beyond this hull edge: restart the walk inside the mesh, across the edge.
-        return moveTo(g, false);
+        return walkMove(w, g, false);
     }
 
-    // We entered t across the edge opposite walkEntry because p is strictly beyond it: seen
+    // We entered t across the edge opposite w.entry because p is strictly beyond it: seen
     // from t, p is strictly inside that edge (orient2d is exact, hence antisymmetric).
     const std::int32_t entry = w.entry;
     if (w.straight && entry != kNone) {
@@ -521,89 +588,48 @@ void Inserter::beginLocate() {
         const std::int32_t exitCorner = c0 + (left ? kNext[k] : kPrev[k]);
         const Vec2 from = left ? c : a, to = left ? a : b;
         const int s = orient2d(from, to, p);
-        if (s < 0) return moveTo(exitCorner, true);
-        return found(entry, 1, exitCorner, s, kNone, 0);
+        if (s < 0) return walkMove(w, exitCorner, true);
+        return walkFound(t, entry, 1, exitCorner, s);
     }
-
-    // Start triangle of the line walk: L runs from q, strictly inside t, to p. L leaves t
-    // through one edge; p on L not beyond that edge lies in the closed triangle, so one test
-    // of p decides (plus three for q and three for the sides of L).
-    Vec2 q{};
-    bool qInside = false;
     if (w.straight) {
-        const Vec2 a = G[V[c0]], b = G[V[c0 + 1]], c = G[V[c0 + 2]];
-        q = {a.x / 3 + b.x / 3 + c.x / 3, a.y / 3 + b.y / 3 + c.y / 3};
-        qInside = orient2d(a, b, q) > 0 && orient2d(b, c, q) > 0 && orient2d(c, a, q) > 0;
-        if (qInside) {
-            bool left[3];
-            for (int k = 0; k < 3; ++k) left[k] = orient2d(q, p, G[V[c0 + k]]) >= 0;
-            for (int k = 0; k < 3; ++k) {
-                // Exit edge n(c)->p(c): its start right of L, its end left of L.
-                if (!left[kNext[k]] && left[kPrev[k]]) {
-                    const std::int32_t c = c0 + k;
-                    const int s = orient2d(G[V[c0 + kNext[k]]], G[V[c0 + kPrev[k]]], p);
-                    if (s >= 0) return found(c, s, kNone, 0, kNone, 0);
-                    w.origin = q;
-                    return moveTo(c, true);
-                }
-            }
-            // No exit edge: p == q, inside t; the side tests below say so.
-        }
+        const StartStep start = walkStart(w, p);
+        if (start != StartStep::Undecided) return start == StartStep::Found;
     }
 
-    // The visibility walk (or a start triangle whose centroid test failed): every side.
+    // The visibility walk (or a start triangle whose centroid test failed): every side but the
+    // one we came through.
     int side[3];
     for (int k = 0; k < 3; ++k) {
         const std::int32_t c = c0 + k;
-        if (c == entry) {
-            side[k] = 1;
-            continue;
-        }  // we came from there
-        side[k] = orient2d(G[V[c0 + kNext[k]]], G[V[c0 + kPrev[k]]], p);
+        side[k] = c == entry ? 1 : orient2d(G[V[c0 + kNext[k]]], G[V[c0 + kPrev[k]]], p);
     }
-    if (side[0] >= 0 && side[1] >= 0 && side[2] >= 0)
-        return found(c0, side[0], c0 + 1, side[1], c0 + 2, side[2]);
-    if (w.straight) {
-        if (qInside) w.origin = q;
-        w.straight = false;  // needle triangle or a degenerate case: walk by visibility
+    if (side[0] >= 0 && side[1] >= 0 && side[2] >= 0) {
+        m_known = {t,
+                   {static_cast<std::int8_t>(side[0]), static_cast<std::int8_t>(side[1]),
+                    static_cast<std::int8_t>(side[2])}};
+        return true;
     }
+    w.straight = false;  // needle triangle or a degenerate case: walk by visibility
     for (int k = 0; k < 3; ++k) {
-        if (side[k] < 0) return moveTo(c0 + k, true);
+        if (side[k] < 0) return walkMove(w, c0 + k, true);
     }
     return true;
 }
 
-Inserter::WalkState Inserter::walkState() const {
-    return {m_ctl.walkTri, m_ctl.walkEntry, m_ctl.walkSteps, m_ctl.straight, m_ctl.walkOrigin};
-}
-
-void Inserter::setWalkState(const WalkState& w) {
-    m_ctl.walkTri = w.tri;
-    m_ctl.walkEntry = w.entry;
-    m_ctl.walkSteps = w.steps;
-    m_ctl.straight = w.straight;
-    m_ctl.walkOrigin = w.origin;
-}
-
-bool Inserter::walkStep() {
-    WalkState w = walkState();
-    const bool found = walkOnce(w, currentPoint());
-    setWalkState(w);
-    return found;
-}
-
-void Inserter::walkToTarget() {
-    WalkState w = walkState();
+bool Inserter::walk(bool oneStep) {
     const Vec2 p = currentPoint();
-    while (!walkOnce(w, p)) {}
-    setWalkState(w);
+    WalkState w = m_ctl.walk;  // a local copy: the batch path keeps it in registers
+    bool found = walkOnce(w, p);
+    while (!found && !oneStep) found = walkOnce(w, p);
+    m_ctl.walk = w;
+    return found;
 }
 
 void Inserter::classify() {
     const auto& G = m_mesh.G;
     const auto& V = m_mesh.V;
     const Vec2 p = currentPoint();
-    const std::int32_t t = m_ctl.walkTri, c0 = 3 * t;
+    const std::int32_t t = m_ctl.walk.tri, c0 = 3 * t;
     // The side of p for the edge opposite c0 + k: from the walk when it knows it.
     const bool known = m_known.tri == t;
     m_known.tri = kNone;
@@ -740,7 +766,7 @@ void Inserter::doPlace(Rec& rec, Op& op) {
             keepFirstOccurrence(rec, c, v);
             ++m_stats.duplicates;
             ++m_ctl.cursor;
-            m_ctl.walkTri = kNone;
+            m_ctl.walk.tri = kNone;
             m_ctl.phase = m_ctl.cursor < m_numInput ? Phase::Locate : Phase::Finalize;
             return;
     }
@@ -794,7 +820,6 @@ void Inserter::doFinalize(Rec& rec, Op& op) {
 template <class Rec>
 Op Inserter::stepImpl(Rec& rec) {
     Op op;
-    op.before = m_ctl;
     op.vertex = currentVertex();
     op.trianglesBefore = m_mesh.numTriangles();
     op.verticesBefore = m_mesh.numVertices();
@@ -804,18 +829,18 @@ Op Inserter::stepImpl(Rec& rec) {
             doStart(rec, op);
             break;
         case Phase::Locate: {
-            if (m_ctl.walkTri == kNone) beginLocate();
-            const std::int32_t from = m_ctl.walkTri;
+            if (m_ctl.walk.tri == kNone) beginLocate();
+            const std::int32_t from = m_ctl.walk.tri;
             op.a = from;
-            if (!walkStep()) {
+            if (!walk(true)) {
                 op.type = OpType::LocateStep;
-                op.b = m_ctl.walkTri;
+                op.b = m_ctl.walk.tri;
                 ++m_stats.walkSteps;
                 break;
             }
             classify();
             if (m_ctl.where == Where::None) {  // cannot happen with exact predicates; stay safe
-                m_ctl.straight = false;
+                m_ctl.walk.straight = false;
                 op.type = OpType::LocateStep;
                 op.b = from;
                 break;
@@ -823,7 +848,7 @@ Op Inserter::stepImpl(Rec& rec) {
             op.type = OpType::Located;
             op.where = m_ctl.where;
             op.b = m_ctl.whereCorner;
-            m_locator->located(currentPoint(), m_ctl.walkTri, m_ctl.walkSteps);
+            m_locator->located(currentPoint(), m_ctl.walk.tri, m_ctl.walk.steps);
             m_ctl.phase = Phase::Place;
             break;
         }
@@ -865,7 +890,7 @@ Op Inserter::stepImpl(Rec& rec) {
             m_ctl.lastTri = t;
             ++m_stats.inserted;
             ++m_ctl.cursor;
-            m_ctl.walkTri = kNone;
+            m_ctl.walk.tri = kNone;
             m_ctl.phase = m_ctl.cursor < m_numInput ? Phase::Locate : Phase::Finalize;
             break;
         }
@@ -883,11 +908,12 @@ Op Inserter::stepImpl(Rec& rec) {
 Op Inserter::step(Journal* journal) {
     JournalRec rec{journal};
     const std::uint32_t first = journal ? journal->changeCount() : 0;
+    const Control before = m_ctl;
     Op op = stepImpl(rec);
     if (journal) {
         op.firstChange = first;
         op.numChanges = journal->changeCount() - first;
-        journal->push(op);
+        journal->push(op, before);
     }
     return op;
 }
@@ -931,7 +957,7 @@ void Inserter::run() {
     if (m_ctl.phase == Phase::Start) permuteForBatch();
     // Finish whatever the state machine was in the middle of.
     while (m_ctl.phase != Phase::Done &&
-           !(m_ctl.phase == Phase::Locate && m_ctl.walkTri == kNone)) {
+           !(m_ctl.phase == Phase::Locate && m_ctl.walk.tri == kNone)) {
         if (m_ctl.phase == Phase::Finalize) break;
         stepImpl(rec);
     }
@@ -948,13 +974,13 @@ void Inserter::run() {
         for (; m_ctl.cursor < n; ++m_ctl.cursor) {
             beginLocate();
             while (true) {
-                walkToTarget();
+                walk(false);
                 classify();
                 if (m_ctl.where != Where::None) break;
-                m_ctl.straight = false;
+                m_ctl.walk.straight = false;
             }
-            m_stats.walkSteps += m_ctl.walkSteps;
-            m_locator->located(currentPoint(), m_ctl.walkTri, m_ctl.walkSteps);
+            m_stats.walkSteps += m_ctl.walk.steps;
+            m_locator->located(currentPoint(), m_ctl.walk.tri, m_ctl.walk.steps);
             // Permuted (a batch from the start): vertex id = insertion rank; a run finishing a
             // recorded one mid-way keeps the input ids.
             const std::int32_t v = vertexAt(m_ctl.cursor);
@@ -982,7 +1008,7 @@ void Inserter::run() {
             m_ctl.lastTri = m_mesh.numTriangles() - 1;
             ++m_stats.inserted;
         }
-        m_ctl.walkTri = kNone;
+        m_ctl.walk.tri = kNone;
         m_ctl.phase = Phase::Finalize;
     }
     if (m_ctl.phase == Phase::Finalize) {
@@ -1010,7 +1036,7 @@ int pushesOf(const Op& op) {
 
 }  // namespace
 
-void Inserter::undo(const Op& op, const std::vector<CellChange>& changes) {
+void Inserter::undo(const Op& op, const std::vector<CellChange>& changes, const Control& before) {
     const std::size_t big =
         3 * static_cast<std::size_t>(std::max(op.trianglesBefore, op.trianglesAfter));
     m_mesh.V.resize(big, kNone);
@@ -1042,7 +1068,7 @@ void Inserter::undo(const Op& op, const std::vector<CellChange>& changes) {
         case OpType::Inserted: --m_stats.inserted; break;
         default: break;
     }
-    m_ctl = op.before;
+    m_ctl = before;
     if (m_locatorWantsChanges && !m_bulk && op.type != OpType::Finalize) {
         std::vector<std::int32_t> tris;
         for (std::uint32_t i = 0; i < op.numChanges; ++i) {
@@ -1122,24 +1148,77 @@ void Inserter::redo(const Op& op, const std::vector<CellChange>& changes, const 
 // [SECTION] Journal
 // ============================================================================================
 
+void Journal::push(Op op, const Control& before) {
+    if (hasControlSnapshot(op.type)) {
+        op.control = static_cast<std::uint32_t>(m_controls.size());
+        m_controls.push_back(before);
+    } else {
+        // Back to this insertion's Place op: the ops between are tests, flips and Inserted.
+        std::size_t place = m_ops.size();
+        while (place > 0 && !hasControlSnapshot(m_ops[place - 1].type)) --place;
+        op.control = static_cast<std::uint32_t>(m_ops.size() - (place - 1));
+    }
+    m_ops.push_back(op);
+    ++m_pos;
+}
+
+namespace {
+Phase phaseBefore(OpType t) {
+    switch (t) {
+        case OpType::InCircleTest: return Phase::Test;
+        case OpType::Flip: return Phase::Flip;
+        case OpType::Inserted: return Phase::Finish;
+        default: return Phase::Place;
+    }
+}
+}  // namespace
+
+Control Journal::controlBefore(std::size_t i) const {
+    const Op& op = m_ops[i];
+    if (hasControlSnapshot(op.type)) return m_controls[op.control];
+    // After the Place op (a split: SkipDuplicate is followed by a walk or Finalize) only the
+    // phase and the flip corner change until the next point.
+    Control c = m_controls[m_ops[i - op.control].control];
+    c.phase = phaseBefore(op.type);
+    c.flipCorner = op.type == OpType::Flip ? op.a : kNone;
+    return c;
+}
+
 const Op* Journal::forward() {
     if (m_pos < m_ops.size()) {
         const Op& op = m_ops[m_pos];
-        const Control& after = m_pos + 1 < m_ops.size() ? m_ops[m_pos + 1].before : m_tip;
+        const Control after = m_pos + 1 < m_ops.size() ? controlBefore(m_pos + 1) : m_tip;
         m_ins->redo(op, m_changes, after);
         ++m_pos;
         return &op;
     }
     if (m_ins->done()) return nullptr;
+    if (!fitsBudget()) {
+        m_budgetReached = true;
+        return nullptr;
+    }
     m_ins->step(this);
     return &m_ops.back();
+}
+
+bool Journal::fitsBudget() const {
+    // What the vectors hold after one more op if they grow (doubling; an op records at most a
+    // few dozen cell changes and one control snapshot).
+    constexpr std::size_t kChangesPerOpAtMost = 64;
+    auto grown = [](std::size_t size, std::size_t capacity, std::size_t more) {
+        return size + more <= capacity ? capacity : std::max(2 * capacity, size + more);
+    };
+    const std::size_t ops = grown(m_ops.size(), m_ops.capacity(), 1);
+    const std::size_t controls = grown(m_controls.size(), m_controls.capacity(), 1);
+    const std::size_t changes = grown(m_changes.size(), m_changes.capacity(), kChangesPerOpAtMost);
+    return ops * sizeof(Op) + controls * sizeof(Control) + changes * sizeof(CellChange) <= m_budget;
 }
 
 const Op* Journal::back() {
     if (m_pos == 0) return nullptr;
     if (m_pos == m_ops.size()) m_tip = m_ins->control();
     --m_pos;
-    m_ins->undo(m_ops[m_pos], m_changes);
+    m_ins->undo(m_ops[m_pos], m_changes, controlBefore(m_pos));
     return &m_ops[m_pos];
 }
 

@@ -65,15 +65,20 @@ struct CellChange {
 
 enum class Phase : std::uint8_t { Start, Locate, Place, Test, Flip, Finish, Finalize, Done };
 
+// The walk towards the point being inserted.
+struct WalkState {
+    std::int32_t tri = kNone;    // current triangle of the walk (kNone: not started)
+    std::int32_t entry = kNone;  // corner of tri facing the edge we entered through
+    std::int32_t steps = 0;
+    bool straight = true;  // the paper's line walk (false: visibility-walk fallback)
+    Vec2 origin{};         // q, the start of the line L = q->p of the straight walk
+};
+
 // Everything the state machine needs besides the mesh and the flip stack.
 struct Control {
     Phase phase = Phase::Start;
-    std::int32_t cursor = 0;         // position in the insertion order of the current point
-    std::int32_t walkTri = kNone;    // current triangle of the walk
-    std::int32_t walkEntry = kNone;  // corner of walkTri facing the edge we entered through
-    std::int32_t walkSteps = 0;
-    bool straight = true;              // the paper's line walk (false: visibility-walk fallback)
-    Vec2 walkOrigin{};                 // q, the start of the line L = q->p of the straight walk
+    std::int32_t cursor = 0;  // position in the insertion order of the current point
+    WalkState walk;
     Where where = Where::None;         // classification once located
     std::int32_t whereCorner = kNone;  // Located: corner facing the edge / at the vertex
     std::int32_t flipCorner = kNone;   // the edge (opposite this corner) a positive test flips
@@ -93,8 +98,18 @@ struct Op {
     std::int32_t verticesAfter = 0;
     std::uint32_t firstChange = 0;  // range in Journal::changes()
     std::uint32_t numChanges = 0;
-    Control before;  // control state before the op, for exact undo
+    // The control state before the op, for exact undo (Journal::controlBefore): ops that start
+    // or move a walk, end it, or place the point (hasControlSnapshot) keep a snapshot, this is
+    // its index in the Journal; the in-circle tests, flips and Inserted of an insertion differ
+    // from the snapshot before their Place op only in phase and flip corner, this is how many
+    // ops back that Place op is.
+    std::uint32_t control = 0;
 };
+
+// Ops whose control state before cannot be derived from an earlier op's (see Op::control).
+inline bool hasControlSnapshot(OpType t) {
+    return t != OpType::InCircleTest && t != OpType::Flip && t != OpType::Inserted;
+}
 
 struct InsertOptions {
     Boundary boundary = Boundary::Exact;
@@ -155,8 +170,9 @@ public:
     // The point currently being inserted (kNone when none).
     std::int32_t currentVertex() const;
 
-    // Journal support: revert / re-apply one recorded op.
-    void undo(const Op& op, const std::vector<CellChange>& changes);
+    // Journal support: revert / re-apply one recorded op; `before` and `after` are the control
+    // states around it.
+    void undo(const Op& op, const std::vector<CellChange>& changes, const Control& before);
     // Bulk mode (long seeks): undo/redo stop notifying the locator; leaving it rebuilds the
     // locator's index once from the current mesh.
     void setBulk(bool on);
@@ -197,20 +213,16 @@ private:
         Vec2 x, y;  // the hull edge opposite it
     };
     HullEdge hullEdgeOf(std::int32_t c0) const;
-    // The walk's part of Control, as locals while it runs.
-    struct WalkState {
-        std::int32_t tri;
-        std::int32_t entry;
-        std::int32_t steps;
-        bool straight;
-        Vec2 origin;
-    };
-    WalkState walkState() const;
-    void setWalkState(const WalkState& w);
+    // The walk: one step (the recorded path) or every step until found (the batch path); true
+    // when m_ctl.walk.tri contains the current point.
+    bool walk(bool oneStep);
     bool walkOnce(WalkState& w, Vec2 p);  // one step; true when w.tri contains p
-    bool walkStep();      // one step of the walk; true when the walk has found the triangle
-    void walkToTarget();  // walkStep() until it returns true, with the state in registers
-    void classify();      // sets where / whereCorner for walkTri
+    enum class StartStep : std::uint8_t { Found, Moved, Undecided };
+    StartStep walkStart(WalkState& w, Vec2 p);  // the first step of the line walk
+    // The walk stops in t: the sides of p it knows (corner, sign; kNone for none) for classify().
+    bool walkFound(std::int32_t t, std::int32_t c1, int s1, std::int32_t c2, int s2);
+    bool walkMove(WalkState& w, std::int32_t corner, bool keepEntry);  // across that edge
+    void classify();                         // sets where / whereCorner for m_ctl.walk.tri
     int inCircleSign(std::int32_t c) const;  // is V[c] inside the circle across the edge?
     bool onOpenSegment(Vec2 a, Vec2 b, Vec2 p) const;
     void notifyChanged(const std::int32_t* tris, int count);
@@ -239,7 +251,7 @@ private:
     Control m_ctl;
     // Signs of orient2d(edge opposite corner 3*tri+k, p) that the walk computed (or derived
     // exactly) when it stopped in tri, so that classify() does not evaluate them again. Valid
-    // only between a walkStep() that returns true and the classify() right after it.
+    // only between a walk that returns true and the classify() right after it.
     static constexpr std::int8_t kUnknownSide = 2;
     struct KnownSides {
         std::int32_t tri = kNone;
@@ -251,12 +263,17 @@ private:
     InsertStats m_stats;
 };
 
+// The most memory a Journal's history takes by default: 1 GiB (about 10 million operations
+// with their cell changes). Past it the journal stops recording: forward() returns nullptr and
+// budgetReached() says why; the run itself can go on unrecorded (Inserter::step(nullptr)).
+inline constexpr std::size_t kHistoryBudgetBytes = std::size_t{1} << 30;
+
 // The record of a run: ops and their cell changes, with a cursor for undo/redo.
 class Journal {
 public:
     explicit Journal(Inserter& inserter) : m_ins(&inserter) {}
     // Reserves room for this many ops and cell changes up front: a vector doubling at millions
-    // of ops (96 bytes each) copies hundreds of megabytes in one step, a visible stall.
+    // of ops copies hundreds of megabytes in one step, a visible stall.
     Journal(Inserter& inserter, std::size_t expectedOps, std::size_t expectedChanges)
         : m_ins(&inserter) {
         m_ops.reserve(expectedOps);
@@ -273,21 +290,39 @@ public:
     const std::vector<Op>& ops() const { return m_ops; }
     const std::vector<CellChange>& changes() const { return m_changes; }
     const Op* current() const { return m_pos > 0 ? &m_ops[m_pos - 1] : nullptr; }
+    // The inserter's control state before recorded op i (i < recorded()).
+    Control controlBefore(std::size_t i) const;
+    // Memory the record holds: ops, control snapshots and cell changes (sizes, not capacities).
+    std::size_t bytesUsed() const {
+        return m_ops.size() * sizeof(Op) + m_controls.size() * sizeof(Control) +
+               m_changes.size() * sizeof(CellChange);
+    }
+    std::size_t controlSnapshots() const { return m_controls.size(); }
+    // The history's memory budget (bytes of reserved ops, control snapshots and cell changes), and whether
+    // forward() stopped at it: then the run is not done, but nothing more is recorded.
+    void setBudget(std::size_t bytes) { m_budget = bytes; }
+    std::size_t budget() const { return m_budget; }
+    std::size_t memoryBytes() const {
+        return m_ops.capacity() * sizeof(Op) + m_controls.capacity() * sizeof(Control) +
+               m_changes.capacity() * sizeof(CellChange);
+    }
+    bool budgetReached() const { return m_budgetReached; }
 
     // Used by the inserter while recording.
     void record(const CellChange& c) { m_changes.push_back(c); }
     std::uint32_t changeCount() const { return static_cast<std::uint32_t>(m_changes.size()); }
-    void push(const Op& op) {
-        m_ops.push_back(op);
-        ++m_pos;
-    }
+    void push(Op op, const Control& before);
 
 private:
     Inserter* m_ins;
     std::vector<Op> m_ops;
+    std::vector<Control> m_controls;  // snapshots, see Op::control
     std::vector<CellChange> m_changes;
     std::size_t m_pos = 0;
     Control m_tip;  // the inserter's control state after the last recorded op
+    std::size_t m_budget = kHistoryBudgetBytes;
+    bool m_budgetReached = false;
+    bool fitsBudget() const;  // room for one more op without passing the budget
 };
 
 }  // namespace dlab

@@ -24,6 +24,11 @@
 #include <memory>
 #include <system_error>
 #include <utility>
+#include <vector>
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 namespace dlab {
 
@@ -213,8 +218,14 @@ public:
             }
             ++m_line;
             std::string_view content = m_text.substr(start, end - start);
-            if (const std::size_t hash = content.find('#'); hash != std::string_view::npos) {
+            // A '#' glued to a number ("1.#INF", "1.#QNAN": old MSVC output) is part of the
+            // field, which then fails as a number; elsewhere it starts a comment.
+            for (std::size_t hash = content.find('#'); hash != std::string_view::npos;
+                 hash = content.find('#', hash + 1)) {
+                const char before = hash > 0 ? content[hash - 1] : ' ';
+                if ((before >= '0' && before <= '9') || before == '.') continue;
                 content = content.substr(0, hash);
+                break;
             }
             content = trim(content);
             if (!content.empty()) {
@@ -712,56 +723,65 @@ Format sniffFormat(std::string_view text) {
     return Format::XY;
 }
 
-struct FileCloser {
-    void operator()(std::FILE* f) const { std::fclose(f); }
-};
-
 std::string errnoText(int e) { return std::generic_category().message(e); }
 
-// Reads the whole file, refusing oversized files before reading and binary ones after the first
-// chunk: /dev/zero or a stray image fails fast instead of being slurped and parsed.
-std::string readFileText(const std::string& path) {
-    errno = 0;
-    std::unique_ptr<std::FILE, FileCloser> file(std::fopen(path.c_str(), "rb"));
-    if (!file) fail(path, 0, "cannot open file: " + errnoText(errno));
+// What a path is when it is not a regular file, in a user's words.
+const char* kindOfFile(mode_t mode) {
+    if (S_ISDIR(mode)) return "a directory";
+    if (S_ISFIFO(mode)) return "a named pipe (FIFO)";
+    if (S_ISCHR(mode) || S_ISBLK(mode)) return "a device";
+    if (S_ISSOCK(mode)) return "a socket";
+    return "not a regular file";
+}
 
-    std::error_code ec;
-    const auto status = std::filesystem::status(path, ec);
-    if (!ec && std::filesystem::is_directory(status))
-        fail(path, 0, "cannot read: it is a directory");
-    std::string text;
-    if (!ec && std::filesystem::is_regular_file(status)) {
-        const std::uintmax_t size = std::filesystem::file_size(path, ec);
-        if (!ec && size > kMaxFileBytes) {
-            fail(path, 0,
-                 "file is " + std::to_string(size) + " bytes; the maximum is " +
-                     std::to_string(kMaxFileBytes) + " (kMaxFileBytes)");
-        }
-        if (!ec) text.reserve(static_cast<std::size_t>(size));
+struct FdCloser {
+    int fd;
+    ~FdCloser() {
+        if (fd >= 0) ::close(fd);
     }
+};
 
+}  // namespace
+
+std::string readRegularFile(const std::string& path, std::size_t maxBytes,
+                            const std::function<void(std::string_view)>& firstChunk) {
+    // O_NONBLOCK: opening a FIFO without a writer returns at once (and is refused below).
+    const FdCloser file{::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC | O_NOCTTY)};
+    if (file.fd < 0) fail(path, 0, "cannot open file: " + errnoText(errno));
+    struct stat st {};
+    if (::fstat(file.fd, &st) != 0) fail(path, 0, "cannot read the file: " + errnoText(errno));
+    if (!S_ISREG(st.st_mode)) {
+        fail(path, 0,
+             std::string("cannot read: it is ") + kindOfFile(st.st_mode) + ", not a regular file");
+    }
+    const auto size = static_cast<std::uintmax_t>(st.st_size);
+    const std::string tooLarge = " bytes; the maximum is " + std::to_string(maxBytes);
+    if (size > maxBytes) fail(path, 0, "file is " + std::to_string(size) + tooLarge);
+    std::string text;
+    text.reserve(static_cast<std::size_t>(size));
     std::vector<char> chunk(kBinarySniffBytes);
-    bool first = true;
-    for (;;) {
-        errno = 0;
-        const std::size_t got = std::fread(chunk.data(), 1, chunk.size(), file.get());
-        if (text.size() + got > kMaxFileBytes) {
-            fail(path, 0,
-                 "file is larger than the maximum of " + std::to_string(kMaxFileBytes) +
-                     " bytes (kMaxFileBytes)");
-        }
-        text.append(chunk.data(), got);
-        if (first && !text.empty()) {
-            checkNotBinary(text, path);
-            first = false;
-        }
-        if (got < chunk.size()) {
-            if (std::ferror(file.get()))
-                fail(path, 0, "cannot read file: " + errnoText(errno != 0 ? errno : EIO));
-            break;
-        }
+    for (bool first = true;;) {
+        const ssize_t got = ::read(file.fd, chunk.data(), chunk.size());
+        if (got < 0 && errno == EINTR) continue;
+        if (got < 0) fail(path, 0, "cannot read the file: " + errnoText(errno));
+        if (got == 0) break;
+        const auto n = static_cast<std::size_t>(got);
+        if (text.size() + n > maxBytes)  // the file grew while it was read
+            fail(path, 0, "file is more than " + std::to_string(maxBytes) + " bytes long");
+        text.append(chunk.data(), n);
+        if (first && firstChunk) firstChunk(text);
+        first = false;
     }
     return text;
+}
+
+namespace {
+
+// Reads the whole point file, refusing oversized files before reading and binary ones after the
+// first chunk: a stray image fails fast instead of being slurped and parsed.
+std::string readFileText(const std::string& path) {
+    return readRegularFile(path, kMaxFileBytes,
+                           [&](std::string_view head) { checkNotBinary(head, path); });
 }
 
 std::string lowercaseExtension(const std::string& path) {
@@ -783,14 +803,21 @@ PointSet readPointsFile(const std::string& path) {
 
     checkText(text, path);  // sniff only text that passed the same checks the parsers make
     const Format format = sniffFormat(text);
-    PointSet ps = format == Format::Node  ? parseNode(text, path)
-                  : format == Format::Pts ? parsePts(text, path)
-                                          : parseXY(text, path);
     const char* guess = format == Format::Node  ? "Triangle .node"
                         : format == Format::Pts ? "Rossignac .pts"
                                                 : "XY";
     const std::string shown =
         ext.empty() ? "no extension" : "unknown extension '" + printable(ext, 20, false) + "'";
+    PointSet ps;
+    try {
+        ps = format == Format::Node  ? parseNode(text, path)
+             : format == Format::Pts ? parsePts(text, path)
+                                     : parseXY(text, path);
+    } catch (const InputError& e) {  // say what the file was taken for, and how to choose
+        throw InputError(e.file(), e.line(),
+                         e.message() + " (" + shown + ": read as " + guess +
+                             " by its content; name it .node, .csv, .xy or .pts to choose)");
+    }
     ps.warnings.insert(ps.warnings.begin(), shown + ": read as " + guess + " by its content");
     return ps;
 }

@@ -6,7 +6,8 @@
 // double written with enough digits (17 significant, or the shortest round-trip form) comes back
 // bit-for-bit, subnormals and ±DBL_MAX included.
 //
-// Formats (comments start with '#' anywhere on a line; blank lines are ignored; lines may end
+// Formats (comments start with '#' anywhere on a line, except one glued to a number, as in
+// MSVC's "1.#INF", which is refused as a number; blank lines are ignored; lines may end
 // in \n, \r\n or a lone \r; a UTF-8 byte-order mark at the start is skipped):
 //
 //   .node  Shewchuk's Triangle. First line: <#vertices> [<dimension = 2> [<#attributes>
@@ -39,6 +40,7 @@
 #include "core/engine/geometry.h"
 
 #include <cstddef>
+#include <functional>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -68,18 +70,21 @@ private:
     std::string m_message;
 };
 
-// 2^25 = 33,554,432 points. The corner table indexes corners with int32: about 6n corners for
-// n points, so 2^25 stays 10x below INT32_MAX, leaving room for ghost/super vertices and
-// step-by-step journals. It is also a memory bound: ~64 bytes per point across G, V and O is
-// about 2 GiB, the most a lab session should ask for. Counts above it are refused before any
-// allocation.
-inline constexpr std::size_t kMaxPoints = std::size_t{1} << 25;
-
 // 2 GiB. A point line with two full-precision doubles ("-1.7976931348623157e+308") plus an
 // index, attributes and a marker is at most ~64 bytes, so kMaxPoints points fit; the reader
 // holds the whole file in memory, so this also caps that buffer. Larger inputs are refused
 // before they are read.
 inline constexpr std::size_t kMaxFileBytes = std::size_t{1} << 31;
+
+// Reads a whole regular file of at most maxBytes bytes: the one reader of every file the tools
+// take (points, sessions, lessons, traces, settings). Without blocking it refuses what is not a
+// regular file, also behind a symbolic link: "FILE: cannot read: it is a named pipe (FIFO), not
+// a regular file" (a directory, a device, a socket alike). The size is checked before reading
+// and again while reading, so /dev/zero behind a link or a growing file cannot exhaust memory.
+// firstChunk, when given, sees the first chunk read (up to 64 KiB) and may throw, e.g. to refuse
+// binary content early. Throws InputError(path, 0, ...).
+std::string readRegularFile(const std::string& path, std::size_t maxBytes,
+                            const std::function<void(std::string_view)>& firstChunk = {});
 
 // Reads a file and dispatches on its extension (case-insensitive): .node, .pts,
 // .csv/.xy/.txt/.dat; anything else is sniffed. Refuses unreadable, empty, oversized and binary

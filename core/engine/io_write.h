@@ -16,14 +16,32 @@
 #include <functional>
 #include <iosfwd>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace dlab {
 
-// Writes body's output to path + ".tmp", then renames it over path (atomic on POSIX: readers
-// see the old file or the new one, never half of one). Throws std::runtime_error("cannot write
-// PATH: <strerror>") when the file cannot be created, written or renamed; the temporary is
-// removed then, and also when body throws (the exception is passed on).
+// One output file and what to write into it.
+struct OutputFile {
+    std::string path;
+    std::function<void(std::ostream&)> body;
+};
+
+// Writes several outputs so that either all of them replace their files or none does: every
+// body is written to a unique temporary beside its file (".NAME.tmp.XXXXXX", the user's own
+// NAME.tmp untouched), then all are renamed over their files (atomic on POSIX: readers see the
+// old file or the new one). A symbolic link is followed (its target is replaced, not the link);
+// a device or pipe (/dev/null, a terminal) is written straight through; a directory is refused.
+// Before anything is written, refuses (std::runtime_error "cannot write PATH: why") an empty
+// file name, an output that is one of `inputs` (also through a link), and two outputs that are
+// the same file. Throws the same on any failure to create, write or rename, after removing the
+// temporaries; an exception from a body is passed on, the temporaries removed.
+void writeTextFiles(const std::vector<OutputFile>& outputs,
+                    const std::vector<std::string>& inputs = {});
+// writeTextFiles' checks alone (the bodies are not called): to refuse before any work.
+void checkOutputFiles(const std::vector<OutputFile>& outputs,
+                      const std::vector<std::string>& inputs = {});
+// writeTextFiles with one output.
 void writeTextFile(const std::string& path, const std::function<void(std::ostream&)>& body);
 
 // Triangle .node: "N 2 0 0", then "i x y" per point.
@@ -53,6 +71,11 @@ struct SvgOptions {
     std::vector<std::int32_t> highlight;  // triangles to fill, one <polygon> each
     std::string title;                    // shown as <title> and as a caption (escaped)
 };
+
+// XML text and attribute content, the one escaping of every SVG writer: markup characters
+// escaped; what XML 1.0 forbids (control characters other than tab and newlines, malformed
+// UTF-8) replaced by '?', so any title gives a well-formed document.
+std::string xmlEscape(std::string_view s);
 
 // A standalone SVG, y axis up, the points' bounding box fitted with a margin. Coordinates are
 // mapped to pixels here (exact power-of-two prescaling, so 1e-300 and 1e300 wide inputs work), so

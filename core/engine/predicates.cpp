@@ -1,5 +1,6 @@
-// Exact orient2d and incircle: a floating-point filter, expansion arithmetic, and a big-integer
-// tier for coordinates whose exponents span too wide a range for expansions.
+// Exact orient2d and incircle: a floating-point filter, an adaptive stage on the rounded
+// coordinate differences (zero tail, stage B), expansion arithmetic, and a big-integer tier for
+// coordinates whose exponents span too wide a range for expansions.
 //
 // Index
 //   [SECTION] Error-free transformations (two-sum, two-product by Dekker's split)
@@ -16,6 +17,7 @@
 #include "core/engine/predicates.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -137,16 +139,6 @@ int multiply(const double* e, int en, const double* f, int fn, double* h) {
         hn = an;
     }
     return hn;
-}
-
-// The exact difference a - b as an expansion of at most two components.
-int difference(double a, double b, double* h) {
-    double x, y;
-    twoSum(a, -b, x, y);
-    int k = 0;
-    if (y != 0.0) h[k++] = y;
-    if (x != 0.0) h[k++] = x;
-    return k;
 }
 
 // e * e' - f * f' for two-component factors: the 2x2 determinant of exact differences.
@@ -316,7 +308,19 @@ int incircleBig(Vec2 a, Vec2 b, Vec2 c, Vec2 d) {
 //   orient2d (degree 2): products < 2^(2 top + 4), sum < 2^(2 top + 6); Dekker's split needs
 //     factors < 2^995. Products are exact down to 2^-1074, so bottom >= -537. top = 500.
 //   incircle (degree 4): sum < 2^(4 top + 12) < 2^1023, so top = 250; bottom >= -268.
-// Returns the exponent k to scale by, or false when no k fits (then: big integers).
+// Inside that range every product's round-off is representable (two-product is exact) and a
+// rounded product or sum has relative error at most eps, which the stage-B bounds rely on.
+// Sets k = 0 when the coordinates are already in range (the usual case: no scaling at all),
+// else the exponent to scale by; returns false when no k fits (then: big integers).
+
+// floor(log2 |x|) for finite nonzero x, from the bits (ilogb is a library call).
+inline int exponentOf(double x) {
+    std::uint64_t bits;
+    std::memcpy(&bits, &x, sizeof bits);
+    const int biased = static_cast<int>((bits >> 52) & 0x7ff);
+    return biased == 0 ? std::ilogb(x) : biased - 1023;
+}
+
 template <std::size_t N>
 bool chooseScale(const double (&v)[N], int top, int bottom, int& k, bool& allZero) {
     int maxExp = 0, minLow = 0;
@@ -324,56 +328,136 @@ bool chooseScale(const double (&v)[N], int top, int bottom, int& k, bool& allZer
     for (double x : v) {
         if (!std::isfinite(x)) return false;  // outside the contract: the big-integer tier says 0
         if (x == 0.0) continue;
-        const int e = std::ilogb(x);
+        const int e = exponentOf(x);
         maxExp = allZero ? e : std::max(maxExp, e);
         minLow = allZero ? e - 52 : std::min(minLow, e - 52);
         allZero = false;
     }
-    if (allZero) return true;
+    k = 0;
+    if (allZero || (maxExp <= top && minLow >= bottom)) return true;
     k = top - maxExp;
     return minLow + k >= bottom;
 }
 
-int orient2dExact(Vec2 a, Vec2 b, Vec2 c, PredicateTier& tier) {
-    const double v[6] = {a.x, a.y, b.x, b.y, c.x, c.y};
+// A coordinate difference: x rounded, t its exact round-off (x + t = the exact difference).
+struct Diff {
+    double x, t;
+};
+inline Diff diff(double a, double b) {
+    Diff d;
+    twoSum(a, -b, d.x, d.t);
+    return d;
+}
+// As an expansion of at most two components (zeros dropped).
+inline int asExpansion(Diff d, double* h) {
     int k = 0;
-    bool allZero = false;
-    if (!chooseScale(v, 500, -537, k, allZero)) {
-        tier = PredicateTier::BigInteger;
-        return orient2dBig(a, b, c);
-    }
-    tier = PredicateTier::Expansion;
-    if (allZero) return 0;
-    double s[6];
-    for (int i = 0; i < 6; ++i) s[i] = std::ldexp(v[i], k);
-    double bx[2], by[2], cx[2], cy[2], h[32];
-    const int bxn = difference(s[2], s[0], bx), byn = difference(s[3], s[1], by);
-    const int cxn = difference(s[4], s[0], cx), cyn = difference(s[5], s[1], cy);
-    const int hn = crossTerm(bx, bxn, cy, cyn, by, byn, cx, cxn, h);
-    return hn == 0 ? 0 : (h[hn - 1] > 0) - (h[hn - 1] < 0);
+    if (d.t != 0.0) h[k++] = d.t;
+    if (d.x != 0.0) h[k++] = d.x;
+    return k;
 }
 
-int incircleExact(Vec2 a, Vec2 b, Vec2 c, Vec2 d, PredicateTier& tier) {
-    const double v[8] = {a.x, a.y, b.x, b.y, c.x, c.y, d.x, d.y};
+// Stage B's test: is |h| (an exact expansion) provably greater than bound? The components below
+// the largest sum to less than it in magnitude; their sum is taken with a margin of 2^-40 for
+// its own round-off, and the difference with a margin for its rounding, so a true answer is
+// certain. (A false answer only sends the call to the next stage.)
+inline bool exceedsBound(const double* h, int n, double bound) {
+    if (n == 0) return false;
+    double lower = 0.0;
+    for (int i = 0; i < n - 1; ++i) lower += std::fabs(h[i]);
+    const double magnitude = std::fabs(h[n - 1]) - lower * (1.0 + 0x1p-40);
+    return magnitude * (1.0 - 0x1p-40) > bound;
+}
+
+// a * b exactly, as an expansion of at most two components.
+inline int productOf(double a, double b, double* h) {
+    double x, y;
+    twoProduct(a, b, x, y);
     int k = 0;
-    bool allZero = false;
-    if (!chooseScale(v, 250, -268, k, allZero)) {
-        tier = PredicateTier::BigInteger;
-        return incircleBig(a, b, c, d);
+    if (y != 0.0) h[k++] = y;
+    if (x != 0.0) h[k++] = x;
+    return k;
+}
+
+// Exponent of the lowest set bit of a finite nonzero x: x is an odd integer times 2^result.
+inline int lowestSetBit(double x) {
+    std::uint64_t bits;
+    std::memcpy(&bits, &x, sizeof bits);
+    std::uint64_t mantissa = bits & ((std::uint64_t{1} << 52) - 1);
+    int biased = static_cast<int>((bits >> 52) & 0x7ff);
+    if (biased != 0)
+        mantissa |= std::uint64_t{1} << 52;
+    else
+        biased = 1;  // subnormal: mantissa * 2^-1074
+    return biased - 1075 + std::countr_zero(mantissa);
+}
+
+// Whether exact differences span at most `width` bits, from the highest set bit of the largest
+// to the lowest set bit of any: then they are integers below 2^width in units of that lowest
+// bit, and a determinant of low degree evaluates exactly in plain doubles (every product and
+// sum an integer below 2^53 in units of a power of two that, in the safe range, stays at or
+// above 2^-1074). Lattices and most grid-like inputs pass.
+template <int N>
+bool shortSpan(const double* d, int width) {
+    int hi = 0, lo = 0;
+    bool any = false;
+    for (int i = 0; i < N; ++i) {
+        if (d[i] == 0.0) continue;
+        const int h = exponentOf(d[i]), l = lowestSetBit(d[i]);
+        hi = any ? std::max(hi, h) : h;
+        lo = any ? std::min(lo, l) : l;
+        any = true;
+    }
+    return hi - lo < width;
+}
+
+inline int signOf(double x) { return (x > 0) - (x < 0); }
+
+inline int signOf(const double* h, int n) { return n == 0 ? 0 : (h[n - 1] > 0) - (h[n - 1] < 0); }
+
+// The stage-B bounds. With exact differences x(1 + d), |d| <= eps, a product of two differences
+// moves by at most (2 eps + eps^2) of its magnitude, a lift times a cross term by at most
+// (4 eps + 6 eps^2 + ...); the permanents are computed in floating point (a few eps of relative
+// error each). The constants keep a wide margin over all of that: 2 eps and 4 eps plus 256 eps^2.
+constexpr double kEps = 0x1p-53;
+constexpr double kOrientBoundB = (2.0 + 256.0 * kEps) * kEps;
+constexpr double kIncircleBoundB = (4.0 + 256.0 * kEps) * kEps;
+
+// orient2d on coordinates in the safe range (s = ax, ay, bx, by, cx, cy).
+int orient2dStages(const double* s, PredicateTier& tier) {
+    const Diff bx = diff(s[2], s[0]), by = diff(s[3], s[1]);
+    const Diff cx = diff(s[4], s[0]), cy = diff(s[5], s[1]);
+    const bool zeroTail = bx.t == 0.0 && by.t == 0.0 && cx.t == 0.0 && cy.t == 0.0;
+    // Degree 2: integers below 2^26 make products below 2^52 and their difference below 2^53.
+    const double d[4] = {bx.x, by.x, cx.x, cy.x};
+    if (zeroTail && shortSpan<4>(d, 26)) {
+        tier = PredicateTier::ZeroTail;
+        return signOf(bx.x * cy.x - by.x * cx.x);
+    }
+    // B = bx.x cy.x - by.x cx.x, exactly: two two-products and their difference.
+    double l[2], r[2], det[4];
+    const int ln = productOf(bx.x, cy.x, l), rn = productOf(-by.x, cx.x, r);
+    const int dn = expansionSum(l, ln, r, rn, det);
+    if (zeroTail) {
+        tier = PredicateTier::ZeroTail;
+        return signOf(det, dn);
+    }
+    if (exceedsBound(det, dn, kOrientBoundB * (std::fabs(bx.x * cy.x) + std::fabs(by.x * cx.x)))) {
+        tier = PredicateTier::StageB;
+        return signOf(det, dn);
     }
     tier = PredicateTier::Expansion;
-    if (allZero) return 0;
-    double s[8];
-    for (int i = 0; i < 8; ++i) s[i] = std::ldexp(v[i], k);
-    double dx[3][2], dy[3][2];
-    int dxn[3], dyn[3];
-    for (int i = 0; i < 3; ++i) {
-        dxn[i] = difference(s[2 * i], s[6], dx[i]);
-        dyn[i] = difference(s[2 * i + 1], s[7], dy[i]);
-    }
-    // det = lift(a) * cross(b, c) + lift(b) * cross(c, a) + lift(c) * cross(a, b), with
-    // lift(p) = dx^2 + dy^2 and cross(p, q) = dx(p) dy(q) - dx(q) dy(p).
-    static thread_local Expansion terms[3], total, partial;
+    double ex[4][2], h[32];
+    int en[4];
+    const Diff full[4] = {bx, by, cx, cy};
+    for (int i = 0; i < 4; ++i) en[i] = asExpansion(full[i], ex[i]);
+    const int hn = crossTerm(ex[0], en[0], ex[3], en[3], ex[1], en[1], ex[2], en[2], h);
+    return signOf(h, hn);
+}
+
+// lift(i) * cross(j, m) summed over the three rotations, each factor an expansion.
+int incircleSum(const double (*dx)[2], const int* dxn, const double (*dy)[2], const int* dyn,
+                double* out) {
+    static thread_local Expansion terms[3], partial;
     for (int i = 0; i < 3; ++i) {
         const int j = (i + 1) % 3, m = (i + 2) % 3;
         double xx[8], yy[8], lift[16], cross[16];
@@ -385,8 +469,112 @@ int incircleExact(Vec2 a, Vec2 b, Vec2 c, Vec2 d, PredicateTier& tier) {
         terms[i].n = multiply(lift, liftn, cross, crossn, terms[i].e);
     }
     partial.n = expansionSum(terms[0].e, terms[0].n, terms[1].e, terms[1].n, partial.e);
-    total.n = expansionSum(partial.e, partial.n, terms[2].e, terms[2].n, total.e);
+    return expansionSum(partial.e, partial.n, terms[2].e, terms[2].n, out);
+}
+
+// The same sum when every difference is one double: lift(i) * cross(j, m) as
+// dx(i) * (dx(i) * cross) + dy(i) * (dy(i) * cross), four scalings of a four-component cross
+// term instead of general products (Shewchuk's way; about half the work of incircleSum).
+int incircleSumOfDoubles(const double* dx, const double* dy, double* out) {
+    double terms[3][32];
+    int termn[3];
+    for (int i = 0; i < 3; ++i) {
+        const int j = (i + 1) % 3, m = (i + 2) % 3;
+        double l[2], r[2], cross[4], x1[8], x2[16], y1[8], y2[16];
+        const int ln = productOf(dx[j], dy[m], l), rn = productOf(-dx[m], dy[j], r);
+        const int cn = expansionSum(l, ln, r, rn, cross);
+        const int x1n = scaleExpansion(cross, cn, dx[i], x1);
+        const int x2n = scaleExpansion(x1, x1n, dx[i], x2);
+        const int y1n = scaleExpansion(cross, cn, dy[i], y1);
+        const int y2n = scaleExpansion(y1, y1n, dy[i], y2);
+        termn[i] = expansionSum(x2, x2n, y2, y2n, terms[i]);
+    }
+    double partial[64];
+    const int pn = expansionSum(terms[0], termn[0], terms[1], termn[1], partial);
+    return expansionSum(partial, pn, terms[2], termn[2], out);
+}
+
+// incircle on coordinates in the safe range (s = ax, ay, bx, by, cx, cy, dx, dy).
+// det = lift(a) * cross(b, c) + lift(b) * cross(c, a) + lift(c) * cross(a, b), with
+// lift(p) = dx^2 + dy^2 and cross(p, q) = dx(p) dy(q) - dx(q) dy(p), differences taken from d.
+int incircleStages(const double* s, PredicateTier& tier) {
+    Diff x[3], y[3];
+    bool zeroTail = true;
+    for (int i = 0; i < 3; ++i) {
+        x[i] = diff(s[2 * i], s[6]);
+        y[i] = diff(s[2 * i + 1], s[7]);
+        zeroTail = zeroTail && x[i].t == 0.0 && y[i].t == 0.0;
+    }
+    // Degree 4: integers below 2^12 make lifts and cross terms below 2^25, their products
+    // below 2^50 and the sum of three below 2^53.
+    const double d[6] = {x[0].x, y[0].x, x[1].x, y[1].x, x[2].x, y[2].x};
+    if (zeroTail && shortSpan<6>(d, 12)) {
+        tier = PredicateTier::ZeroTail;
+        double det = 0.0;
+        for (int i = 0; i < 3; ++i) {
+            const int j = (i + 1) % 3, m = (i + 2) % 3;
+            det += (d[2 * i] * d[2 * i] + d[2 * i + 1] * d[2 * i + 1]) *
+                   (d[2 * j] * d[2 * m + 1] - d[2 * m] * d[2 * j + 1]);
+        }
+        return signOf(det);
+    }
+    static thread_local Expansion total;
+    const double rx[3] = {x[0].x, x[1].x, x[2].x}, ry[3] = {y[0].x, y[1].x, y[2].x};
+    total.n = incircleSumOfDoubles(rx, ry, total.e);  // the rounded differences alone
+    if (zeroTail) {
+        tier = PredicateTier::ZeroTail;
+        return total.sign();
+    }
+    double permanent = 0.0;
+    for (int i = 0; i < 3; ++i) {
+        const int j = (i + 1) % 3, m = (i + 2) % 3;
+        const double lift = x[i].x * x[i].x + y[i].x * y[i].x;
+        permanent += lift * (std::fabs(x[j].x * y[m].x) + std::fabs(x[m].x * y[j].x));
+    }
+    if (exceedsBound(total.e, total.n, kIncircleBoundB * permanent)) {
+        tier = PredicateTier::StageB;
+        return total.sign();
+    }
+    tier = PredicateTier::Expansion;
+    double dx[3][2], dy[3][2];
+    int dxn[3], dyn[3];
+    for (int i = 0; i < 3; ++i) {
+        dxn[i] = asExpansion(x[i], dx[i]);
+        dyn[i] = asExpansion(y[i], dy[i]);
+    }
+    total.n = incircleSum(dx, dxn, dy, dyn, total.e);
     return total.sign();
+}
+
+template <std::size_t N>
+void scaleInto(const double (&v)[N], int k, double (&s)[N]) {
+    for (std::size_t i = 0; i < N; ++i) s[i] = k == 0 ? v[i] : std::ldexp(v[i], k);
+}
+
+int orient2dExact(Vec2 a, Vec2 b, Vec2 c, PredicateTier& tier) {
+    const double v[6] = {a.x, a.y, b.x, b.y, c.x, c.y};
+    int k = 0;
+    bool allZero = false;
+    if (!chooseScale(v, 500, -537, k, allZero)) {
+        tier = PredicateTier::BigInteger;
+        return orient2dBig(a, b, c);
+    }
+    double s[6];
+    scaleInto(v, k, s);
+    return orient2dStages(s, tier);
+}
+
+int incircleExact(Vec2 a, Vec2 b, Vec2 c, Vec2 d, PredicateTier& tier) {
+    const double v[8] = {a.x, a.y, b.x, b.y, c.x, c.y, d.x, d.y};
+    int k = 0;
+    bool allZero = false;
+    if (!chooseScale(v, 250, -268, k, allZero)) {
+        tier = PredicateTier::BigInteger;
+        return incircleBig(a, b, c, d);
+    }
+    double s[8];
+    scaleInto(v, k, s);
+    return incircleStages(s, tier);
 }
 
 // ============================================================================================
@@ -400,15 +588,19 @@ thread_local PredicateCounters t_counters;
 namespace detail {
 
 int orient2dSlow(Vec2 a, Vec2 b, Vec2 c) {
+    PredicateTier tier = PredicateTier::Expansion;
+    const int sign = orient2dExact(a, b, c, tier);
     ++t_counters.orientExact;
-    PredicateTier tier;
-    return orient2dExact(a, b, c, tier);
+    ++t_counters.orientByTier[static_cast<int>(tier)];
+    return sign;
 }
 
 int incircleSlow(Vec2 a, Vec2 b, Vec2 c, Vec2 d) {
+    PredicateTier tier = PredicateTier::Expansion;
+    const int sign = incircleExact(a, b, c, d, tier);
     ++t_counters.incircleExact;
-    PredicateTier tier;
-    return incircleExact(a, b, c, d, tier);
+    ++t_counters.incircleByTier[static_cast<int>(tier)];
+    return sign;
 }
 
 }  // namespace detail
@@ -441,5 +633,16 @@ PredicateReport incircleReport(Vec2 a, Vec2 b, Vec2 c, Vec2 d) {
 }
 
 PredicateCounters& predicateCounters() { return t_counters; }
+
+const char* toString(PredicateTier tier) {
+    switch (tier) {
+        case PredicateTier::Filter: return "filter";
+        case PredicateTier::ZeroTail: return "zero-tail";
+        case PredicateTier::StageB: return "stage-b";
+        case PredicateTier::Expansion: return "expansion";
+        case PredicateTier::BigInteger: return "big-integer";
+    }
+    return "?";
+}
 
 }  // namespace dlab

@@ -12,10 +12,17 @@
 //     For a, b, c counter-clockwise: +1 if d is strictly inside their circumcircle,
 //     -1 strictly outside, 0 on it. The sign flips when a, b, c are clockwise.
 //
-// Evaluation has three tiers: a floating-point filter with a forward error bound (almost
-// every call ends here), an exact evaluation with floating-point expansions (after exact
-// power-of-two scaling), and an exact big-integer evaluation for calls whose coordinates
-// span an exponent range too wide for expansions (e.g. 1e-300 next to 1e300).
+// Evaluation is adaptive, each stage exact or bounded, cheapest first:
+//   1. a floating-point filter with a forward error bound (almost every call ends here);
+//   2. the coordinate differences, rounded, with their exact round-off (two-sum): when every
+//      round-off is zero (integer lattices, most cocircular inputs) the determinant of the
+//      rounded differences, computed exactly, is the answer ("zero tail");
+//   3. otherwise that exact determinant of the rounded differences decides when its magnitude
+//      exceeds a bound on what the round-off of the differences can change (Shewchuk's stage B);
+//   4. the full determinant in floating-point expansions (after exact power-of-two scaling);
+//   5. big integers for calls whose coordinates span an exponent range too wide for expansions
+//      (e.g. 1e-300 next to 1e300).
+// Stages 2 to 4 run on the scaled coordinates, where no product overflows or underflows.
 #pragma once
 
 #include "core/engine/geometry.h"
@@ -30,7 +37,9 @@ inline int orient2d(Vec2 a, Vec2 b, Vec2 c);
 inline int incircle(Vec2 a, Vec2 b, Vec2 c, Vec2 d);
 
 // How a predicate reached its answer, for the GUI's predicate inspector and for tests.
-enum class PredicateTier : std::uint8_t { Filter, Expansion, BigInteger };
+enum class PredicateTier : std::uint8_t { Filter, ZeroTail, StageB, Expansion, BigInteger };
+inline constexpr int kNumPredicateTiers = 5;
+const char* toString(PredicateTier tier);  // "filter", "zero-tail", "stage-b", ...
 
 struct PredicateReport {
     double approx = 0.0;      // the determinant evaluated in plain double arithmetic
@@ -43,11 +52,14 @@ struct PredicateReport {
 PredicateReport orient2dReport(Vec2 a, Vec2 b, Vec2 c);
 PredicateReport incircleReport(Vec2 a, Vec2 b, Vec2 c, Vec2 d);
 
-// How many calls of this thread the filter could not decide (for statistics). Only the slow
-// path counts, so the filter's hot path stays a few flops.
+// How many calls of this thread the filter could not decide, and which stage decided them (for
+// statistics). Only the slow path counts, so the filter's hot path stays a few flops: the
+// Filter entries of the arrays stay zero.
 struct PredicateCounters {
-    std::uint64_t orientExact = 0;
+    std::uint64_t orientExact = 0;  // orient2d calls past the filter
     std::uint64_t incircleExact = 0;
+    std::uint64_t orientByTier[kNumPredicateTiers] = {};
+    std::uint64_t incircleByTier[kNumPredicateTiers] = {};
 };
 PredicateCounters& predicateCounters();
 
@@ -70,8 +82,8 @@ PredicateCounters& predicateCounters();
 
 namespace detail {
 
-int orient2dSlow(Vec2 a, Vec2 b, Vec2 c);          // exact; counts in predicateCounters()
-int incircleSlow(Vec2 a, Vec2 b, Vec2 c, Vec2 d);  // exact; counts in predicateCounters()
+int orient2dSlow(Vec2 a, Vec2 b, Vec2 c);          // stages 2-5; counts in predicateCounters()
+int incircleSlow(Vec2 a, Vec2 b, Vec2 c, Vec2 d);  // stages 2-5; counts in predicateCounters()
 
 constexpr double kEpsilon = 0x1p-53;
 constexpr double kOrientBound = (3.0 + 16.0 * kEpsilon) * kEpsilon + 0x1p-90;

@@ -54,4 +54,20 @@ inline std::string escapeControls(std::string_view s) {
     return out;
 }
 
+// Untrusted text for a terminal, over several lines: newlines and tabs kept, every other
+// control character (ESC, BEL, a lone CR...) written as an escape, as escapeControls does.
+inline std::string escapeControlsKeepLines(std::string_view s) {
+    std::string out;
+    out.reserve(s.size());
+    std::size_t from = 0;
+    for (std::size_t i = 0; i <= s.size(); ++i) {
+        if (i == s.size() || s[i] == '\n' || s[i] == '\t') {
+            out += escapeControls(s.substr(from, i - from));
+            if (i < s.size()) out += s[i];
+            from = i + 1;
+        }
+    }
+    return out;
+}
+
 }  // namespace dlab

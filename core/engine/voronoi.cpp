@@ -4,9 +4,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <initializer_list>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace dlab {
 
@@ -25,41 +29,227 @@ double diffOfProducts(double a, double b, double c, double d) {
 
 bool finite(Vec2 p) { return std::isfinite(p.x) && std::isfinite(p.y); }
 
+// ---- Exact arithmetic for the circumcenters the double formula cannot promise ---------------
+// Every finite double is an integer multiple of 2^-1074, so in those units the circumcenter is
+// a ratio of integers (of at most ~6,300 bits): computed exactly, then rounded once.
+
+struct BigInt {
+    bool negative = false;
+    std::vector<std::uint32_t> mag;  // little-endian limbs, no leading zero limbs
+
+    static BigInt ofDouble(double v, int unit) {  // v * 2^-unit, exactly (an integer)
+        BigInt r;
+        if (v == 0.0) return r;
+        int e = 0;
+        const double m = std::frexp(std::fabs(v), &e);  // |v| = m * 2^e, m in [0.5, 1)
+        auto bits = static_cast<std::uint64_t>(std::ldexp(m, 53));
+        int shift = e - 53 - unit;
+        if (shift < 0) {  // the low bits of its 53 are zeros (unit <= the lowest bit set)
+            bits >>= -shift;
+            shift = 0;
+        }
+        r.mag = {static_cast<std::uint32_t>(bits), static_cast<std::uint32_t>(bits >> 32)};
+        r.negative = v < 0;
+        r.trim();
+        return r.shifted(shift);
+    }
+    void trim() {
+        while (!mag.empty() && mag.back() == 0) mag.pop_back();
+        if (mag.empty()) negative = false;
+    }
+    bool zero() const { return mag.empty(); }
+    std::size_t bitLength() const {
+        if (mag.empty()) return 0;
+        std::size_t n = 32 * (mag.size() - 1);
+        for (std::uint32_t top = mag.back(); top; top >>= 1) ++n;
+        return n;
+    }
+    BigInt shifted(int left) const {  // left >= 0
+        BigInt r;
+        r.negative = negative;
+        const auto limbs = static_cast<std::size_t>(left / 32);
+        const int bits = left % 32;
+        r.mag.assign(limbs + mag.size() + 1, 0);
+        for (std::size_t i = 0; i < mag.size(); ++i) {
+            const std::uint64_t v = static_cast<std::uint64_t>(mag[i]) << bits;
+            r.mag[i + limbs] |= static_cast<std::uint32_t>(v);
+            r.mag[i + limbs + 1] |= static_cast<std::uint32_t>(v >> 32);
+        }
+        r.trim();
+        return r;
+    }
+    static int compareMag(const BigInt& a, const BigInt& b) {
+        if (a.mag.size() != b.mag.size()) return a.mag.size() < b.mag.size() ? -1 : 1;
+        for (std::size_t i = a.mag.size(); i-- > 0;)
+            if (a.mag[i] != b.mag[i]) return a.mag[i] < b.mag[i] ? -1 : 1;
+        return 0;
+    }
+    static BigInt addMag(const BigInt& a, const BigInt& b) {
+        BigInt r;
+        r.mag.resize(std::max(a.mag.size(), b.mag.size()) + 1, 0);
+        std::uint64_t carry = 0;
+        for (std::size_t i = 0; i < r.mag.size(); ++i) {
+            carry += (i < a.mag.size() ? a.mag[i] : 0u) +
+                     std::uint64_t{i < b.mag.size() ? b.mag[i] : 0u};
+            r.mag[i] = static_cast<std::uint32_t>(carry);
+            carry >>= 32;
+        }
+        r.trim();
+        return r;
+    }
+    static BigInt subMag(const BigInt& a, const BigInt& b) {  // |a| >= |b|
+        BigInt r;
+        r.mag.resize(a.mag.size(), 0);
+        std::int64_t borrow = 0;
+        for (std::size_t i = 0; i < a.mag.size(); ++i) {
+            std::int64_t d = std::int64_t{a.mag[i]} - (i < b.mag.size() ? b.mag[i] : 0) - borrow;
+            borrow = d < 0;
+            r.mag[i] = static_cast<std::uint32_t>(d + (borrow << 32));
+        }
+        r.trim();
+        return r;
+    }
+    void subtract(const BigInt& b) {  // |*this| -= |b|, |*this| >= |b|
+        std::int64_t borrow = 0;
+        for (std::size_t i = 0; i < mag.size(); ++i) {
+            const std::int64_t d =
+                std::int64_t{mag[i]} - (i < b.mag.size() ? b.mag[i] : 0) - borrow;
+            borrow = d < 0;
+            mag[i] = static_cast<std::uint32_t>(d + (borrow << 32));
+        }
+        trim();
+    }
+    void halve() {  // |*this| >>= 1
+        for (std::size_t i = 0; i < mag.size(); ++i)
+            mag[i] = (mag[i] >> 1) | (i + 1 < mag.size() ? mag[i + 1] << 31 : 0u);
+        trim();
+    }
+    friend BigInt operator+(const BigInt& a, const BigInt& b) {
+        if (a.negative == b.negative) {
+            BigInt r = addMag(a, b);
+            r.negative = a.negative && !r.zero();
+            return r;
+        }
+        const bool aBigger = compareMag(a, b) >= 0;
+        BigInt r = aBigger ? subMag(a, b) : subMag(b, a);
+        r.negative = (aBigger ? a.negative : b.negative) && !r.zero();
+        return r;
+    }
+    friend BigInt operator-(const BigInt& a, BigInt b) {
+        b.negative = !b.negative && !b.zero();
+        return a + b;
+    }
+    friend BigInt operator*(const BigInt& a, const BigInt& b) {
+        BigInt r;
+        if (a.zero() || b.zero()) return r;
+        r.mag.assign(a.mag.size() + b.mag.size(), 0);
+        for (std::size_t i = 0; i < a.mag.size(); ++i) {
+            std::uint64_t carry = 0;
+            for (std::size_t j = 0; j < b.mag.size(); ++j) {
+                carry += std::uint64_t{a.mag[i]} * b.mag[j] + r.mag[i + j];
+                r.mag[i + j] = static_cast<std::uint32_t>(carry);
+                carry >>= 32;
+            }
+            r.mag[i + b.mag.size()] = static_cast<std::uint32_t>(carry);
+        }
+        r.negative = a.negative != b.negative;
+        r.trim();
+        return r;
+    }
+};
+
+// p / q * 2^unit rounded to a double (q != 0): a 64-bit quotient with a sticky bit, so the
+// conversion to double rounds once; ±inf when the value is beyond DBL_MAX.
+double ratioToDouble(const BigInt& p, const BigInt& q, int unit) {
+    if (p.zero()) return 0.0;
+    const int k = 63 + static_cast<int>(q.bitLength()) - static_cast<int>(p.bitLength());
+    BigInt num = p.shifted(std::max(k, 0)), den = q.shifted(std::max(-k, 0));
+    num.negative = den.negative = false;
+    std::uint64_t quotient = 0;
+    BigInt step = den.shifted(63);
+    for (int bit = 63; bit >= 0; --bit) {
+        if (BigInt::compareMag(num, step) >= 0) {
+            num.subtract(step);
+            quotient |= std::uint64_t{1} << bit;
+        }
+        step.halve();
+    }
+    if (!num.zero()) quotient |= 1;  // sticky: the exact value lies above
+    const double v = std::ldexp(static_cast<double>(quotient), unit - k);
+    return p.negative != q.negative ? -v : v;
+}
+
+// The weight of the lowest bit set in any of the coordinates (2^-1074 at the least): in that
+// unit every coordinate is an integer, and small inputs keep small integers.
+int commonUnit(std::initializer_list<double> values) {
+    int unit = std::numeric_limits<int>::max();
+    for (double v : values) {
+        if (v == 0.0) continue;
+        int e = 0;
+        auto bits = static_cast<std::uint64_t>(std::ldexp(std::frexp(std::fabs(v), &e), 53));
+        int low = e - 53;
+        for (; (bits & 1) == 0; bits >>= 1) ++low;
+        unit = std::min(unit, low);
+    }
+    return unit == std::numeric_limits<int>::max() ? 0 : unit;
+}
+
+// The circumcenter computed exactly, rounded once per coordinate.
+Vec2 exactCircumcenter(Vec2 a, Vec2 b, Vec2 c) {
+    const int unit = commonUnit({a.x, a.y, b.x, b.y, c.x, c.y});
+    auto big = [unit](double v) { return BigInt::ofDouble(v, unit); };
+    const BigInt ax = big(a.x), ay = big(a.y);
+    const BigInt bx = big(b.x) - ax, by = big(b.y) - ay;
+    const BigInt cx = big(c.x) - ax, cy = big(c.y) - ay;
+    const BigInt det = (bx * cy - by * cx).shifted(1);
+    if (det.zero()) return {kNaN, kNaN};  // collinear
+    const BigInt b2 = bx * bx + by * by, c2 = cx * cx + cy * cy;
+    const BigInt ux = cy * b2 - by * c2, uy = bx * c2 - cx * b2;  // over det, in units
+    return {ratioToDouble(ax * det + ux, det, unit), ratioToDouble(ay * det + uy, det, unit)};
+}
+
+// The double formula, when its error bound proves the answer within a few ulps; else nullopt.
+std::optional<Vec2> fastCircumcenter(Vec2 a, Vec2 b, Vec2 c) {
+    const double d[4] = {b.x - a.x, b.y - a.y, c.x - a.x, c.y - a.y};  // 1/2 ulp each
+    double big = 0;
+    for (double x : d) {
+        if (!std::isfinite(x)) return std::nullopt;
+        big = std::max(big, std::fabs(x));
+    }
+    if (big == 0.0) return Vec2{kNaN, kNaN};  // three coincident points
+    // Scale so the largest difference lies in [1, 2): exact, as long as no component falls
+    // under 2^-300 (checked: then no square or product below underflows either).
+    const int e = std::ilogb(big);
+    for (double x : d)
+        if (x != 0.0 && std::ilogb(x) - e < -300) return std::nullopt;
+    const double bx = std::ldexp(d[0], -e), by = std::ldexp(d[1], -e);
+    const double cx = std::ldexp(d[2], -e), cy = std::ldexp(d[3], -e);
+    const double det = 2.0 * diffOfProducts(bx, cy, by, cx);
+    if (det == 0.0) return std::nullopt;  // collinear, or nearly: the exact path decides
+    const double b2 = bx * bx + by * by, c2 = cx * cx + cy * cy;
+    const double ux = diffOfProducts(cy, b2, by, c2) / det;
+    const double uy = diffOfProducts(bx, c2, cx, b2) / det;
+    const Vec2 r{a.x + std::ldexp(ux, e), a.y + std::ldexp(uy, e)};
+    if (!finite(r)) return std::nullopt;
+    // First-order error of u in units of eps: the rounded differences and squares move the
+    // numerator by at most 3 (|cy b2| + |by c2|) and the determinant by 2 (|bx cy| + |by cx|)
+    // (relative), the products and the division add 4 |u|; doubled for safety. Accepted when
+    // that stays within 2 eps of the answer (with the final rounding: 3 ulps).
+    const double t = 2.0 * (std::fabs(bx * cy) + std::fabs(by * cx)) / std::fabs(det);
+    const double sx = (std::fabs(cy * b2) + std::fabs(by * c2)) / std::fabs(det);
+    const double sy = (std::fabs(bx * c2) + std::fabs(cx * b2)) / std::fabs(det);
+    const double boundX = std::ldexp(2 * (3 * sx + (2 * t + 4) * std::fabs(ux)), e);
+    const double boundY = std::ldexp(2 * (3 * sy + (2 * t + 4) * std::fabs(uy)), e);
+    if (!(boundX <= 2.0 * std::fabs(r.x)) || !(boundY <= 2.0 * std::fabs(r.y))) return std::nullopt;
+    return r;
+}
+
 }  // namespace
 
 Vec2 circumcenter(Vec2 a, Vec2 b, Vec2 c) {
     if (!finite(a) || !finite(b) || !finite(c)) return {kNaN, kNaN};
-    double bx = b.x - a.x, by = b.y - a.y, cx = c.x - a.x, cy = c.y - a.y;
-    // The differences overflow only for coordinates near ±DBL_MAX; halving first is exact there
-    // (only subnormal bits, far below the rounding of the result, can be lost) and the result
-    // is doubled back at the end, by the same exact power-of-two scaling as below.
-    int extra = 0;
-    if (!std::isfinite(bx) || !std::isfinite(by) || !std::isfinite(cx) || !std::isfinite(cy)) {
-        bx = b.x * 0.5 - a.x * 0.5;
-        by = b.y * 0.5 - a.y * 0.5;
-        cx = c.x * 0.5 - a.x * 0.5;
-        cy = c.y * 0.5 - a.y * 0.5;
-        extra = 1;
-    }
-    const double big =
-        std::max(std::max(std::fabs(bx), std::fabs(by)), std::max(std::fabs(cx), std::fabs(cy)));
-    if (big == 0.0) return {kNaN, kNaN};  // three coincident points
-    // Scale so the largest difference lies in [1, 2): the squares below neither overflow nor
-    // underflow, whatever the triangle's size. Powers of two scale exactly (up, always; down,
-    // up to subnormal bits of components 2^-1000 times smaller than the largest one).
-    const int e = std::ilogb(big);
-    bx = std::ldexp(bx, -e);
-    by = std::ldexp(by, -e);
-    cx = std::ldexp(cx, -e);
-    cy = std::ldexp(cy, -e);
-
-    const double det = 2.0 * diffOfProducts(bx, cy, by, cx);
-    const double b2 = bx * bx + by * by;
-    const double c2 = cx * cx + cy * cy;
-    const double ux = diffOfProducts(cy, b2, by, c2) / det;
-    const double uy = diffOfProducts(bx, c2, cx, b2) / det;
-    // det == 0 (collinear) gives ±inf or NaN, as documented.
-    return {a.x + std::ldexp(ux, e + extra), a.y + std::ldexp(uy, e + extra)};
+    if (const std::optional<Vec2> fast = fastCircumcenter(a, b, c)) return *fast;
+    return exactCircumcenter(a, b, c);
 }
 
 Vec2 edgeNormal(const Mesh& m, std::int32_t c) {

@@ -48,10 +48,11 @@ struct VoronoiDiagram {
     std::vector<Edge> edges;
 };
 
-// Circumcenter of a, b, c in double arithmetic. Computed relative to a, after an exact
-// power-of-two scaling of b - a and c - a, so neither the absolute position of the triangle
-// nor its size (1e-300 ... 1e300) costs accuracy or overflows. Collinear points give
-// non-finite coordinates; a valid mesh has none, but a needle-thin triangle's center may be far.
+// Circumcenter of a, b, c, within a few ulps of the exact one whenever that is a finite double,
+// for any finite inputs (1e-300 and 1e300 in one triangle, ±DBL_MAX, subnormals). The double
+// formula (relative to a, after an exact power-of-two scaling) is used where its error bound
+// proves that; elsewhere the exact rational value is computed with integers and rounded once.
+// Collinear points give non-finite coordinates, as does a center beyond ±DBL_MAX.
 Vec2 circumcenter(Vec2 a, Vec2 b, Vec2 c);
 
 // Outward normal (dy, -dx) of the edge opposite corner c, V[n(c)] -> V[p(c)]: the right-hand

@@ -830,7 +830,7 @@ public:
         s.line = lineOf(t);
         checkKeys(t,
                   {"run_to", "count", "panels", "overlays", "select", "text", "question", "answer",
-                   "hint"},
+                   "hint", "view", "tab"},
                   "in a [[stop]]");
         if (auto r = string(t, "run_to")) {
             std::string why;
@@ -875,7 +875,59 @@ public:
         }
         if (s.text.empty() && s.question.empty())
             fail(s.line, "a stop needs a \"text\" or a \"question\"");
+        stopView(t, s);
+        stopTab(t, s);
         return s;
+    }
+
+    // view = { fit = [0, 4, 7] } (vertex ids) or view = { rect = [x0, y0, x1, y1] }.
+    void stopView(const toml::table& t, LessonStop& s) {
+        const toml::node* n = t.get("view");
+        if (!n) return;
+        const char* form =
+            "view = { fit = [0, 4, 7] } (vertices) or view = { rect = [x0, y0, "
+            "x1, y1] }";
+        const toml::table* v = n->as_table();
+        if (!v) fail(lineOf(*n), std::string("\"view\" must be ") + form);
+        checkKeys(*v, {"fit", "rect"}, "in a view");
+        const toml::array* fit = v->get("fit") ? v->get("fit")->as_array() : nullptr;
+        const toml::array* rect = v->get("rect") ? v->get("rect")->as_array() : nullptr;
+        if ((v->get("fit") && !fit) || (v->get("rect") && !rect) || (!fit && !rect) ||
+            (fit && rect))
+            fail(lineOf(*n), std::string("\"view\" must be ") + form);
+        if (fit) {
+            for (const toml::node& e : *fit) {
+                const auto id = e.value<std::int64_t>();
+                if (!e.is_integer() || !id || *id < 0 ||
+                    *id >= static_cast<std::int64_t>(m_numVertices))
+                    fail(lineOf(e), "view: fit takes vertex numbers from 0 to " +
+                                        std::to_string(m_numVertices - 1));
+                s.view.fit.push_back(static_cast<std::int32_t>(*id));
+            }
+            if (s.view.fit.empty()) fail(lineOf(*n), "view: fit needs at least one vertex");
+        }
+        if (rect) {
+            std::array<double, 4> r{};
+            bool ok = rect->size() == 4;
+            for (std::size_t k = 0; ok && k < 4; ++k) {
+                const auto x = (*rect)[k].value<double>();
+                ok = x && std::isfinite(*x);
+                if (ok) r[k] = *x;
+            }
+            if (!ok || !(r[0] < r[2]) || !(r[1] < r[3]))
+                fail(lineOf(*n), "view: rect is [x0, y0, x1, y1] with x0 < x1 and y0 < y1");
+            s.view.rect = r;
+        }
+    }
+
+    void stopTab(const toml::table& t, LessonStop& s) {
+        const auto tab = string(t, "tab");
+        if (!tab) return;
+        if (std::none_of(std::begin(kTabNames), std::end(kTabNames),
+                         [&](const char* k) { return *tab == k; }))
+            fail(lineOf(*t.get("tab")),
+                 "unknown tab \"" + *tab + "\" (known: " + joinNames(kTabNames) + ")");
+        s.tab = *tab;
     }
 
     Lesson lesson(std::string_view source, const std::string& path) {
@@ -901,7 +953,10 @@ public:
                 fail(lineOf(*root.get("kind")), "kind must be \"lesson\" or \"assignment\"");
             L.assignment = *k == "assignment";
         }
-        if (auto x = string(root, "text")) text(*x, lineOf(*root.get("text")));
+        if (auto x = string(root, "text")) {
+            text(*x, lineOf(*root.get("text")));
+            L.text = *x;
+        }
         if (const toml::node* o = root.get("options")) {
             if (!o->is_table()) fail(lineOf(*o), "\"options\" must be a table: [options]");
             options(*o->as_table(), L.options);
@@ -934,6 +989,7 @@ public:
             if (a->size() > kMaxLessonStops)
                 fail(lineOf(*st),
                      "too many stops (at most " + std::to_string(kMaxLessonStops) + ")");
+            m_numVertices = L.points.size() + 3;  // the super-triangle's (or the ghost) follow
             for (const toml::node& n : *a) {
                 m_stop = static_cast<int>(L.stops.size()) + 1;
                 L.stops.push_back(stop(*n.as_table()));
@@ -948,6 +1004,7 @@ public:
 private:
     const std::string& m_file;
     int m_stop = 0;
+    std::size_t m_numVertices = 0;  // vertex ids a stop's view may name
 };
 
 }  // namespace
@@ -957,16 +1014,13 @@ Lesson parseLesson(std::string_view text, const std::string& path) {
 }
 
 Lesson loadLesson(const std::string& path) {
-    std::error_code ec;
-    if (!fs::is_regular_file(path, ec)) throw LessonError(path, 0, 0, "no such lesson file");
-    const auto size = fs::file_size(path, ec);
-    if (ec || size > kMaxLessonFileBytes)
-        throw LessonError(path, 0, 0, "lesson file unreadable or too large (at most 1 MiB)");
-    std::ifstream in(path, std::ios::binary);
-    std::stringstream ss;
-    ss << in.rdbuf();
-    if (!in && !in.eof()) throw LessonError(path, 0, 0, "cannot read the lesson file");
-    return parseLesson(ss.str(), path);
+    std::string text;
+    try {
+        text = readRegularFile(path, kMaxLessonFileBytes);
+    } catch (const InputError& e) {
+        throw LessonError(path, 0, 0, e.message());
+    }
+    return parseLesson(text, path);
 }
 
 // ============================================================================================
@@ -979,6 +1033,15 @@ std::unique_ptr<Inserter> makeInserter(const Lesson& lesson) {
     } catch (const std::exception& e) {
         throw LessonError(lesson.file, 0, 0, std::string("cannot start the run: ") + e.what());
     }
+}
+
+// Why a stop cannot be reached: the history is full (target 0: the stop's breakpoint).
+static std::string historyFull(const Journal& journal, std::size_t target) {
+    return "this stop" + (target ? " (op " + std::to_string(target) + ")" : std::string()) +
+           " lies past the step-by-step history's memory budget of " +
+           std::to_string(journal.budget() >> 20) + " MiB, reached after " +
+           std::to_string(journal.recorded()) +
+           " operations; stop earlier, or use fewer points or the brio order (it walks far less)";
 }
 
 LessonPlan planLesson(const Lesson& lesson) {
@@ -1002,6 +1065,7 @@ LessonPlan planLesson(const Lesson& lesson) {
                                      std::to_string(journal.position()) + ")");
                 }
                 journal.seek(target);
+                if (journal.budgetReached()) fail(s.line, historyFull(journal, target));
                 if (journal.position() != target) {
                     fail(s.line, "run_to op:" + std::to_string(target) +
                                      " is past the end of the run (" +
@@ -1011,6 +1075,7 @@ LessonPlan planLesson(const Lesson& lesson) {
                 for (int i = 0; i < s.count; ++i) {
                     const RunResult r = runUntil(journal, *ins, std::span(&bp, 1),
                                                  std::numeric_limits<std::size_t>::max());
+                    if (journal.budgetReached()) fail(s.line, historyFull(journal, 0));
                     if (r.reason != StopReason::Hit) {
                         fail(s.line,
                              "run_to \"" + toString(bp) + "\" (" + explain(bp) +
@@ -1052,6 +1117,8 @@ LessonPlan planLesson(const Lesson& lesson) {
     }
     runUntil(journal, *ins, {}, std::numeric_limits<std::size_t>::max());
     plan.totalOps = journal.position();
+    // Past the history's budget the rest of the run is only counted.
+    for (; journal.budgetReached() && !ins->done(); ++plan.totalOps) ins->step(nullptr);
     return plan;
 }
 

@@ -33,6 +33,7 @@
 #include "core/engine/inserter.h"
 #include "core/teaching/breakpoint.h"
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <memory>
@@ -72,6 +73,18 @@ private:
     std::string m_message;
 };
 
+// What the canvas shows at a stop: a world rectangle, or the box around some vertices (ids; the
+// super-triangle's or the ghost follow the input points). Empty: the view stays as it is.
+struct StopView {
+    std::optional<std::array<double, 4>> rect;  // x0, y0, x1, y1
+    std::vector<std::int32_t> fit;
+    bool empty() const { return !rect && fit.empty(); }
+};
+
+// The side tabs a stop can bring to the front (`tab = "idbuffer"`).
+inline constexpr const char* kTabNames[] = {"corner-table", "vertex-table", "expressions",
+                                            "predicates",   "idbuffer",     "statistics"};
+
 struct LessonStop {
     int line = 0;                     // line of its [[stop]] header
     std::optional<Breakpoint> runTo;  // nullopt: stay at the previous stop's position
@@ -81,11 +94,14 @@ struct LessonStop {
     std::string text;
     std::string question, answer, hint;
     int answerLine = 0;
+    StopView view;    // view = { fit = [0, 4, 7] } or view = { rect = [x0, y0, x1, y1] }
+    std::string tab;  // a side tab in front at this stop (kTabNames), empty: as it is
 };
 
 struct Lesson {
     std::string file;  // as given to loadLesson
     std::string title, summary;
+    std::string text;  // the lesson's own text (an assignment's instructions), Markdown-light
     bool assignment = false;
     InsertOptions options;
     std::vector<Vec2> points;

@@ -118,6 +118,9 @@ TraceOp parseLine(const std::string& text, const std::string& name, int line) {
                 v[k] = static_cast<std::int32_t>(integer(t[k], "a vertex", 0, kMaxId, name, line));
             op.triangles.push_back(v);
         }
+        // Finalize with an empty list means "not given" (as our own traces write it), never
+        // "the final mesh is empty": a finished run always has its triangles.
+        if (op.type == OpType::Finalize && op.triangles.empty()) op.hasTriangles = false;
     }
     return op;
 }
@@ -152,17 +155,31 @@ TraceFile parseTraceText(std::istream& in, const std::string& name) {
 }
 
 TraceFile readTraceFile(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw InputError(path, 0, "cannot open the trace");
+    std::istringstream in(readRegularFile(path, kMaxTraceFileBytes));
     return parseTraceText(in, path);
 }
 
 TraceFile traceOfRun(Inserter& ins, const std::string& name) {
     Journal journal(ins);
+    MeshGeometry geometry;
+    geometry.numInput = ins.numInput();
+    geometry.ghost = ins.options().boundary == Boundary::Exact;
     std::stringstream text;
-    while (journal.forward())
+    while (journal.forward()) {
+        // The virtual vertices' positions exist from Start until Finalize.
+        if (ins.mesh().G.size() > geometry.points.size()) geometry.points = ins.mesh().G;
         text << toJsonLine(traceRecord(journal, journal.position() - 1, ins.mesh())) << '\n';
-    return parseTraceText(text, name);
+    }
+    if (journal.budgetReached()) {
+        throw InputError(name, 0,
+                         "the reference run passes the history's memory budget (" +
+                             std::to_string(journal.budget() >> 20) + " MiB) after " +
+                             std::to_string(journal.recorded()) +
+                             " operations: compare a smaller or a brio-order run");
+    }
+    TraceFile f = parseTraceText(text, name);
+    f.geometry = std::move(geometry);
+    return f;
 }
 
 Triple canonical(std::int32_t v0, std::int32_t v1, std::int32_t v2) {
@@ -380,26 +397,166 @@ std::string cell(const std::vector<std::int32_t>& t, std::int32_t c) {
     return static_cast<std::size_t>(c) < t.size() ? std::to_string(t[c]) : "(none)";
 }
 
-}  // namespace
+// The vertices the reference keeps at the end: a student's bare Finalize drops the others.
+std::vector<bool> finalVertices(const TraceFile& ref) {
+    std::vector<bool> real;
+    TraceReplay end;
+    for (const TraceOp& op : ref.ops) end.apply(op);
+    for (const Triple& t : end.triangles()) {
+        for (std::int32_t v : t) {
+            if (static_cast<std::size_t>(v) >= real.size()) real.resize(v + 1, false);
+            real[v] = true;
+        }
+    }
+    return real;
+}
 
-TraceDiff diffTraces(const TraceFile& ref, const TraceFile& student, const DiffOptions& options) {
+bool bareFinalize(const TraceOp& op) {
+    return op.type == OpType::Finalize && !op.hasChanges && !op.hasTriangles;
+}
+
+// ---- Insertion by insertion ------------------------------------------------------------------
+
+bool startsStep(OpType t) {
+    return t == OpType::Start || t == OpType::Split || t == OpType::SplitEdge ||
+           t == OpType::SkipDuplicate || t == OpType::Finalize;
+}
+
+// One step of a run: the ops [begin, end), led by the op at `lead` (Start, a split, a skipped
+// duplicate or Finalize), with the flips that follow it.
+struct Step {
+    std::size_t begin = 0, end = 0, lead = 0;
+};
+
+std::vector<Step> stepsOf(const TraceFile& f) {
+    std::vector<Step> steps;
+    for (std::size_t i = 0; i < f.ops.size(); ++i) {
+        if (!startsStep(f.ops[i].type)) continue;
+        // The walk that found this point belongs to its step, not to the one before.
+        std::size_t begin = i;
+        while (!steps.empty() && begin > steps.back().lead + 1 &&
+               (f.ops[begin - 1].type == OpType::LocateStep ||
+                f.ops[begin - 1].type == OpType::Located))
+            --begin;
+        if (!steps.empty()) steps.back().end = begin;
+        steps.push_back({steps.empty() ? 0 : begin, f.ops.size(), i});
+    }
+    return steps;
+}
+
+// The step's last op that changed the mesh: after it, the mesh is the step's result.
+std::size_t lastChange(const TraceFile& f, const Step& step) {
+    for (std::size_t i = step.end; i-- > step.lead;) {
+        if (f.ops[i].changesMesh()) return i;
+    }
+    return step.lead;
+}
+
+// The flip a Flip op made, from the two triangles it left: they share the new edge; their
+// other vertices are the ends of the removed one.
+std::optional<FlipMade> flipOf(const std::vector<Triple>& two) {
+    if (two.size() != 2) return std::nullopt;
+    std::vector<std::int32_t> shared, other;
+    for (std::int32_t v : two[0])
+        (std::count(two[1].begin(), two[1].end(), v) ? shared : other).push_back(v);
+    for (std::int32_t v : two[1]) {
+        if (!std::count(two[0].begin(), two[0].end(), v)) other.push_back(v);
+    }
+    if (shared.size() != 2 || other.size() != 2) return std::nullopt;
+    return FlipMade{{other[0], other[1]}, {shared[0], shared[1]}};
+}
+
+std::string stepName(const TraceOp& lead, int insertion, int insertions) {
+    const std::string v = lead.vertex ? std::to_string(*lead.vertex) : "?";
+    switch (lead.type) {
+        case OpType::Start: return "after the start (the first triangles)";
+        case OpType::SkipDuplicate:
+            return "after skipping duplicate point " + v + " (insertion " +
+                   std::to_string(insertion) + " of " + std::to_string(insertions) + ")";
+        case OpType::Finalize: return "after Finalize";
+        default:
+            return "after inserting point " + v + " (insertion " + std::to_string(insertion) +
+                   " of " + std::to_string(insertions) + ")";
+    }
+}
+
+TraceDiff diffInsertions(const TraceFile& ref, const TraceFile& student) {
+    TraceDiff d;
+    TriangleBalance balance;
+    Tracked r(balance, +1), s(balance, -1);
+    const std::vector<bool> realVertices = finalVertices(ref);
+    const std::vector<Step> rs = stepsOf(ref), ss = stepsOf(student);
+    int insertions = 0;
+    for (const Step& st : rs)
+        insertions +=
+            !(ref.ops[st.lead].type == OpType::Start || ref.ops[st.lead].type == OpType::Finalize);
+    int insertion = 0;
+    for (std::size_t k = 0; k < std::max(rs.size(), ss.size()); ++k) {
+        d.refOp = k < rs.size() ? rs[k].lead : ref.ops.size();
+        d.studentOp = k < ss.size() ? ss[k].lead : student.ops.size();
+        d.equal = false;
+        if (k >= ss.size()) {
+            const TraceOp& next = ref.ops[rs[k].lead];
+            d.what = "your trace ends early: ours goes on with " +
+                     std::string(toString(next.type)) +
+                     (next.vertex ? " of point " + std::to_string(*next.vertex) : "") + " (" +
+                     ref.name + ":" + std::to_string(next.line) + ")";
+            return d;
+        }
+        if (k >= rs.size()) {
+            d.what = "your trace goes on after ours has ended, with " +
+                     std::string(toString(student.ops[ss[k].lead].type)) + " (" + student.name +
+                     ":" + std::to_string(student.ops[ss[k].lead].line) + ")";
+            return d;
+        }
+        const TraceOp& lead = ref.ops[rs[k].lead];
+        insertion = lead.type == OpType::Start      ? 0
+                    : lead.type == OpType::Finalize ? insertions + 1
+                                                    : insertion + 1;
+        for (std::size_t i = rs[k].begin; i < rs[k].end; ++i) r.apply(ref.ops[i]);
+        std::vector<FlipMade> flips;
+        for (std::size_t j = ss[k].begin; j < ss[k].end; ++j) {
+            s.apply(student.ops[j]);
+            if (student.ops[j].type != OpType::Flip) continue;
+            if (auto f = flipOf(s.replay().touched())) flips.push_back(*f);
+        }
+        if (bareFinalize(student.ops[ss[k].lead])) s.dropOutside(realVertices);
+        d.equal = true;
+        ++d.compared;
+        if (balance.equal()) continue;
+        const bool inserts = lead.type == OpType::Split || lead.type == OpType::SplitEdge;
+        const std::int32_t v = inserts && lead.vertex ? *lead.vertex : -1;
+        const MeshVerdict verdict = checkStudentMesh(s.replay().triangles(), r.replay().triangles(),
+                                                     ref.geometry, v, flips);
+        d.equal = false;
+        d.insertion = insertion;
+        d.vertex = lead.vertex && lead.type != OpType::Finalize ? *lead.vertex : -1;
+        d.refOp = lastChange(ref, rs[k]);
+        d.studentOp = lastChange(student, ss[k]);
+        d.what = stepName(lead, insertion, insertions) + ": " + verdict.reason;
+        const TraceOp& theirs = student.ops[ss[k].lead];
+        if (theirs.type != lead.type)
+            d.details.push_back(std::string("ours does ") + toString(lead.type) + " here, yours " +
+                                toString(theirs.type));
+        d.details.insert(d.details.end(), verdict.details.begin(), verdict.details.end());
+        return d;
+    }
+    d.refOp = ref.ops.size();
+    d.studentOp = student.ops.size();
+    d.what = "the runs agree: the triangles are the same after each of the " +
+             std::to_string(d.compared) + " steps (start, " + std::to_string(insertions) +
+             " insertions, Finalize)";
+    return d;
+}
+
+// ---- Op by op ----------------------------------------------------------------------------
+
+TraceDiff diffByOp(const TraceFile& ref, const TraceFile& student, const DiffOptions& options) {
     TraceDiff d;
     TriangleBalance balance;
     Tracked r(balance, +1), s(balance, -1);
     auto compared = [&](const TraceOp& op) { return options.allOps || op.changesMesh(); };
-    // The vertices the reference keeps at the end: a student's bare Finalize drops the others.
-    std::vector<bool> realVertices;
-    {
-        TraceReplay end;
-        for (const TraceOp& op : ref.ops) end.apply(op);
-        for (const Triple& t : end.triangles()) {
-            for (std::int32_t v : t) {
-                if (static_cast<std::size_t>(v) >= realVertices.size())
-                    realVertices.resize(v + 1, false);
-                realVertices[v] = true;
-            }
-        }
-    }
+    const std::vector<bool> realVertices = finalVertices(ref);
     std::size_t i = 0, j = 0;
     auto fail = [&](std::string what) {
         d.equal = false;
@@ -441,8 +598,7 @@ TraceDiff diffTraces(const TraceFile& ref, const TraceFile& student, const DiffO
         }
         r.apply(a);
         s.apply(b);
-        if (b.type == OpType::Finalize && !b.hasChanges && !b.hasTriangles)
-            s.dropOutside(realVertices);
+        if (bareFinalize(b)) s.dropOutside(realVertices);
         ++d.compared;
         if (!balance.equal()) {
             const auto rt = r.replay().triangles(), st = s.replay().triangles();
@@ -471,7 +627,7 @@ TraceDiff diffTraces(const TraceFile& ref, const TraceFile& student, const DiffO
             }
             return out;
         }
-        if (options.corners && !(b.type == OpType::Finalize && !b.hasChanges && !b.hasTriangles)) {
+        if (options.corners && !bareFinalize(b)) {
             const std::int32_t cv = firstCornerDiff(r.replay().V(), s.replay().V());
             if (cv != kNone) {
                 TraceDiff out = fail(std::string("same triangles, but the corners differ after ") +
@@ -503,6 +659,13 @@ TraceDiff diffTraces(const TraceFile& ref, const TraceFile& student, const DiffO
     d.what = "the runs agree: " + std::to_string(d.compared) + " operations compared" +
              (options.corners ? ", corner by corner" : ", by their triangles");
     return d;
+}
+
+}  // namespace
+
+TraceDiff diffTraces(const TraceFile& ref, const TraceFile& student, const DiffOptions& options) {
+    if (options.byOp || options.corners || options.allOps) return diffByOp(ref, student, options);
+    return diffInsertions(ref, student);
 }
 
 std::string summarize(const TraceFile& f, std::size_t k) {

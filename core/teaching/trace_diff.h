@@ -1,8 +1,10 @@
 // Comparing two runs by their traces (JSON Lines, core/teaching/trace.h): ours and a student's.
-// Finds the
-// first operation where the student's run differs, by the triangles (vertex triples, up to
-// rotation) and the flips made, and, for a student who follows the paper's corner-reuse
-// convention, corner by corner.
+// By default, insertion by insertion: after each insertion the student's triangles (vertex
+// triples, up to rotation) must be ours, and where they are not, the student's mesh is checked
+// (core/teaching/mesh_check.h) to say why in triangle terms. Every correct implementation agrees
+// on these, whatever its triangle numbering, corner order, walk or flip order. As options: op by
+// op (the flips made), and, for a student who follows the paper's corner-reuse convention, corner
+// by corner.
 //
 // A student's trace may hold only some fields. The minimum, one JSON object per line:
 //   {"op": "Split", "triangles": [[t, v0, v1, v2], ...]}
@@ -11,11 +13,13 @@
 // and are shown as context), and "triangles" lists the triangles the operation created or
 // changed, as they are after it: t is the student's own triangle number, so that a later line
 // can replace triangle t. Instead of "triangles" a line may give "changes" (V/O cell changes,
-// as dtlab trace writes them). Finalize may list every final triangle, or nothing: then the
-// triangles that touch a ghost/super vertex are dropped. "vertex", "a", "b", "i" are optional.
+// as dtlab trace writes them). Finalize may list every final triangle, or nothing (no
+// "triangles", or an empty list): then the triangles that touch a ghost/super vertex are
+// dropped. "vertex", "a", "b", "i" are optional.
 #pragma once
 
 #include "core/engine/inserter.h"
+#include "core/teaching/mesh_check.h"
 
 #include <array>
 #include <cstddef>
@@ -46,7 +50,11 @@ struct TraceOp {
 struct TraceFile {
     std::string name;
     std::vector<TraceOp> ops;
+    MeshGeometry geometry;  // known for our own runs (traceOfRun), not for a file
 };
+
+// The largest trace file read: 1 GiB (about 5 million operations of a few hundred bytes each).
+inline constexpr std::size_t kMaxTraceFileBytes = std::size_t{1} << 30;
 
 // Reads a trace leniently (only "op" is required on each line; blank lines are skipped).
 // Throws InputError ("NAME:LINE: what") on anything that is not such a trace.
@@ -54,11 +62,6 @@ TraceFile readTraceFile(const std::string& path);
 TraceFile parseTraceText(std::istream& in, const std::string& name);
 // Our own run as a trace (what dtlab trace writes), without going through a file.
 TraceFile traceOfRun(Inserter& ins, const std::string& name);
-
-// A triangle as a vertex triple rotated so that its smallest vertex comes first (orientation
-// kept): (5, 2, 9) and (2, 9, 5) are the same triangle, (2, 5, 9) is the other orientation.
-using Triple = std::array<std::int32_t, 3>;
-Triple canonical(std::int32_t v0, std::int32_t v1, std::int32_t v2);
 
 // The mesh a trace describes, op by op: V and O from "changes", or triangle t -> triple from
 // "triangles".
@@ -83,6 +86,7 @@ private:
 };
 
 struct DiffOptions {
+    bool byOp = false;     // compare op by op (each flip), not insertion by insertion
     bool allOps = false;   // compare every op one to one (types, vertices), not only mesh changes
     bool corners = false;  // the student follows the corner-reuse convention: compare V (and O)
     int context = 3;       // lines of context before the difference
@@ -93,6 +97,10 @@ struct TraceDiff {
     std::size_t compared = 0;  // operations compared
     // Where the first difference is: indices into ref.ops / student.ops (== size(): past the end).
     std::size_t refOp = 0, studentOp = 0;
+    // Insertion by insertion: the step whose result is wrong (0: the start, 1..n: the n-th
+    // insertion or skipped duplicate, n + 1: Finalize; -1 op by op) and the point it inserts.
+    int insertion = -1;
+    std::int32_t vertex = -1;
     std::string what;                  // one line: "the triangles differ after Flip"
     std::vector<std::string> details;  // the evidence, one line each
 };

@@ -734,7 +734,7 @@ TEST(IdBufferGlGui, TheGuiRunsTheGlLocatorOnItsContext) {
         o.locatorOptions.idBufferHeight = 300;
         o.locatorOptions.idBufferBatch = 32;
         ASSERT_TRUE(st.setOptions(o)) << st.messages.back().text;
-        IdBufferGl* gl = st.engine.idBufferGl();
+        auto* gl = static_cast<IdBufferGl*>(st.engine.idBufferGl());
         ASSERT_NE(gl, nullptr);
         EXPECT_EQ(gl->name(),
                   kind == LocatorKind::IdBufferGl ? "idbuffer-gl" : "idbuffer-gl-batched");

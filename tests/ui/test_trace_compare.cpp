@@ -41,7 +41,7 @@ std::string writeLines(const std::string& name, const std::vector<std::string>& 
 
 }  // namespace
 
-TEST(TraceCompare, AStudentWhoMissedAFlipIsShownAtThatFlipAndBothRunsStepTogether) {
+TEST(TraceCompare, AStudentWhoMissedAFlipIsShownAtThatInsertionAndBothRunsStepTogether) {
     UiHarness h;
     auto& st = h.state();
     std::vector<std::string> lines = traceLines(st);
@@ -59,9 +59,20 @@ TEST(TraceCompare, AStudentWhoMissedAFlipIsShownAtThatFlipAndBothRunsStepTogethe
     const auto& tc = st.traceCompare;
     ASSERT_TRUE(tc.student);
     EXPECT_FALSE(tc.diff.equal);
-    EXPECT_EQ(tc.diff.refOp, flip) << tc.diff.what;
-    EXPECT_EQ(st.engine.position(), flip + 1);  // just after our flip
-    EXPECT_EQ(st.engine.current()->type, dlab::OpType::Flip);
+    // Named at the insertion that flip belongs to: the canvas shows our mesh after it.
+    std::size_t stepEnd = flip + 1;
+    while (stepEnd < lines.size() && lines[stepEnd].find("\"op\":\"Split") == std::string::npos &&
+           lines[stepEnd].find("\"op\":\"SkipDuplicate") == std::string::npos &&
+           lines[stepEnd].find("\"op\":\"Finalize") == std::string::npos)
+        ++stepEnd;
+    EXPECT_GT(tc.diff.insertion, 0) << tc.diff.what;
+    EXPECT_GE(tc.diff.refOp, flip) << tc.diff.what;
+    EXPECT_LT(tc.diff.refOp, stepEnd) << tc.diff.what;
+    EXPECT_TRUE(st.engine.current()->type == dlab::OpType::Flip ||
+                st.engine.current()->type == dlab::OpType::Split ||
+                st.engine.current()->type == dlab::OpType::SplitEdge)
+        << "the canvas shows our mesh as that insertion left it";
+    EXPECT_EQ(st.engine.position(), tc.diff.refOp + 1);
     EXPECT_EQ(st.engine.points(), points);  // nothing else changed
     EXPECT_EQ(st.messages.back().level, dlab::ui::Message::Level::Warning);
     EXPECT_NE(st.messages.back().text.find("dlab_student_missed_flip.jsonl"), std::string::npos);
@@ -83,7 +94,7 @@ TEST(TraceCompare, AStudentWhoMissedAFlipIsShownAtThatFlipAndBothRunsStepTogethe
     EXPECT_EQ(tc.studentPos, theirs);
     h.clickItem("trace-forward");
     h.clickItem("trace-difference");
-    EXPECT_EQ(st.engine.position(), flip + 1);
+    EXPECT_EQ(st.engine.position(), tc.diff.refOp + 1);
 }
 
 TEST(TraceCompare, TheSameRunIsSaidToBeTheSame) {

@@ -1,8 +1,8 @@
-// UiHarness: OSMesa platform + AppState + Gui on the built-in demo, and synthetic input.
+// UiHarness: the test platform (harness_gl.cpp: OSMesa; harness_null.cpp: no GL) + AppState +
+// Gui on the built-in demo, and synthetic input.
 #include "tests/ui/ui_harness.h"
 
 #include "core/engine/generators.h"
-#include "ui/gl/gl_api.h"
 
 #include <gtest/gtest.h>
 #include <imgui.h>
@@ -11,15 +11,9 @@
 
 namespace dlab::test {
 
-bool HeadlessGl::open(std::string& error) {
-    platform = ui::makeOsmesaPlatform(16, 16, error);
-    if (platform) gl = ui::GlContext::fromCurrent(error);
-    return gl != nullptr;
-}
-
 UiHarness::UiHarness(int width, int height) {
     std::string error;
-    m_platform = ui::makeOsmesaPlatform(width, height, error);
+    m_platform = makeTestPlatform(width, height, error);
     if (!m_platform) throw std::runtime_error(error);
     m_gui = std::make_unique<ui::Gui>(*m_platform, m_state);
     m_state.setOptions(ui::demoOptions());

@@ -1,4 +1,4 @@
-// A headless instance of the whole GUI (OSMesa) driven with synthetic input, as a user would:
+// A headless instance of the whole GUI driven with synthetic input, as a user would:
 // ImGui 1.86 has no input-event API, so the harness sets io.MousePos, io.MouseDown[],
 // io.MouseWheel and io.KeysDown[] (GLFW key codes, as in the real window) between frames.
 #pragma once
@@ -7,8 +7,13 @@
 
 #include <array>
 #include <cstdint>
+#include <cstring>
+#include <filesystem>
 #include <memory>
 #include <string>
+#include <vector>
+
+#include <unistd.h>
 
 namespace dlab::ui {
 class GlContext;
@@ -16,7 +21,34 @@ class GlContext;
 
 namespace dlab::test {
 
-// A headless GL context (OSMesa, 16 x 16), current, for tests of the GL layer without the GUI.
+// A fresh folder per test, removed at the end.
+struct TempDir {
+    std::filesystem::path path;
+    explicit TempDir(const std::string& name) {
+        path = std::filesystem::temp_directory_path() /
+               ("dlab_files_" + name + "_" + std::to_string(::getpid()));
+        std::filesystem::remove_all(path);
+        std::filesystem::create_directories(path);
+    }
+    ~TempDir() {
+        std::error_code ec;
+        std::filesystem::remove_all(path, ec);
+    }
+    std::string operator/(const std::string& f) const { return (path / f).string(); }
+};
+
+// Same coordinates, bit for bit.
+inline bool sameBits(const std::vector<Vec2>& a, const std::vector<Vec2>& b) {
+    return a.size() == b.size() &&
+           (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(Vec2)) == 0);
+}
+
+// The platform the harness runs on: OSMesa in dlab_ui_tests (harness_gl.cpp), the null platform
+// (no GL, no pixels) in dlab_ui_logic_tests (harness_null.cpp).
+std::unique_ptr<ui::Platform> makeTestPlatform(int width, int height, std::string& error);
+
+// A headless GL context (OSMesa, 16 x 16), current, for tests of the GL layer without the GUI
+// (dlab_ui_tests only).
 struct HeadlessGl {
     std::unique_ptr<ui::Platform> platform;
     std::shared_ptr<ui::GlContext> gl;

@@ -87,8 +87,13 @@ bool openFile(AppState& st, const std::string& path) {
         fileError(st, path + ": no such file");
         return false;
     }
-    if (fs::is_directory(path, ec)) {
+    const fs::file_status status = fs::status(path, ec);
+    if (fs::is_directory(status)) {
         fileError(st, path + ": is a folder, not a file");
+        return false;
+    }
+    if (!ec && !fs::is_regular_file(status)) {  // a FIFO would block, a device never end
+        fileError(st, path + ": is a pipe, device or socket, not a regular file");
         return false;
     }
     bool ok = false;
@@ -221,20 +226,6 @@ bool exportMesh(AppState& st, const std::string& path, MeshFormat format) {
 // ============================================================================================
 
 namespace {
-
-std::string xmlEscape(const std::string& s) {
-    std::string out;
-    for (char c : s) {
-        switch (c) {
-            case '&': out += "&amp;"; break;
-            case '<': out += "&lt;"; break;
-            case '>': out += "&gt;"; break;
-            case '"': out += "&quot;"; break;
-            default: out += c;
-        }
-    }
-    return out;
-}
 
 struct SvgScene {
     const AppState& st;

@@ -485,6 +485,23 @@ bool saveSession(const AppState& st, const std::string& path, std::string& error
     return true;
 }
 
+// nlohmann's out_of_range 406, "number overflow parsing '1e400'", has no position: the line
+// is the number's first occurrence.
+static std::string numberTooLarge(std::string_view text, const std::string& name,
+                                  const std::string& what) {
+    const auto q1 = what.find('\''), q2 = what.rfind('\'');
+    const std::string number =
+        q1 < q2 && q2 != std::string::npos ? what.substr(q1 + 1, q2 - q1 - 1) : "";
+    int line = 0;
+    if (const auto at = number.empty() ? std::string_view::npos : text.find(number);
+        at != std::string_view::npos) {
+        line = 1;
+        for (std::size_t k = 0; k < at; ++k) line += text[k] == '\n';
+    }
+    return name + (line > 0 ? ":" + std::to_string(line) : "") + ": the number " +
+           escapeControls(number) + " is too large (a coordinate must be a finite double)";
+}
+
 bool loadSessionText(AppState& st, std::string_view textIn, const std::string& name,
                      std::string& error) {
     Session s;
@@ -501,6 +518,9 @@ bool loadSessionText(AppState& st, std::string_view textIn, const std::string& n
             what = what.substr(colon + 2);
         error =
             name + ":" + std::to_string(line) + ": not valid JSON (" + escapeControls(what) + ")";
+        return false;
+    } catch (const Json::out_of_range& e) {
+        error = numberTooLarge(textIn, name, e.what());
         return false;
     } catch (const SessionError& e) {
         LineFinder finder(textIn);
@@ -578,37 +598,26 @@ bool loadSessionText(AppState& st, std::string_view textIn, const std::string& n
 }
 
 bool loadSession(AppState& st, const std::string& path, std::string& error) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) {
-        error = path + ": cannot open the file";
-        return false;
-    }
-    std::ostringstream buf;
-    buf << in.rdbuf();
-    if (in.bad()) {
-        error = path + ": cannot read the file";
-        return false;
-    }
-    const std::string body = buf.str();
-    if (body.size() > kMaxFileBytes) {
-        error = path + ": larger than " + std::to_string(kMaxFileBytes >> 20) + " MiB";
+    std::string body;
+    try {
+        body = readRegularFile(path, kMaxFileBytes);
+    } catch (const InputError& e) {
+        error = escapeControls(e.what());
         return false;
     }
     return loadSessionText(st, body, path, error);
 }
 
 bool peekSession(const std::string& path, SessionSummary& out, std::string& error) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) {
-        error = path + ": cannot open the file";
-        return false;
-    }
     try {
-        const Json j = Json::parse(in);
+        const Json j = Json::parse(readRegularFile(path, kMaxFileBytes));
         const Session s = parseSession(j);
         out.points = s.points.size();
         out.position = s.position;
         out.source = s.source;
+    } catch (const InputError& e) {
+        error = escapeControls(e.what());
+        return false;
     } catch (const SessionError& e) {
         error = path + (e.pointer.empty() ? "" : ": " + readablePath(e.pointer)) + ": " +
                 escapeControls(e.message);

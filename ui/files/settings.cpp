@@ -1,6 +1,8 @@
 // Settings as JSON (nlohmann): every field optional, unknown fields ignored, ranges clamped.
 #include "ui/files/settings.h"
 
+#include "core/engine/io_read.h"
+
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
@@ -36,11 +38,14 @@ std::string defaultSettingsPath() {
 void loadSettings(const std::string& path, AppState& st, WindowOptions& window,
                   std::string& warning) {
     if (path.empty()) return;
-    std::ifstream in(path);
-    if (!in) return;
+    std::error_code ec;
+    if (!std::filesystem::exists(path, ec)) return;  // no settings yet: the defaults
     nlohmann::json j;
     try {
-        j = nlohmann::json::parse(in);
+        j = nlohmann::json::parse(readRegularFile(path, kMaxSettingsFileBytes));
+    } catch (const InputError& e) {
+        warning = std::string(e.what()) + " (settings ignored)";
+        return;
     } catch (const nlohmann::json::exception& e) {
         warning = path + ": damaged settings file ignored (" + e.what() + ")";
         return;
@@ -113,7 +118,7 @@ void clampWindowToWorkArea(WindowOptions& window, int areaX, int areaY, int area
 bool saveSettings(const std::string& path, const AppState& st, const WindowOptions& window,
                   std::string& error) {
     if (path.empty()) return true;
-    const Overlays& ov = st.overlays;
+    const Overlays& ov = userOverlays(st);  // not a lesson's
     nlohmann::json j = {
         {"window",
          {{"x", window.x},

@@ -5,6 +5,7 @@
 #include "ui/app_state.h"
 #include "ui/platform/platform.h"
 
+#include <cstddef>
 #include <string>
 
 namespace dlab::ui {
@@ -12,6 +13,9 @@ namespace dlab::ui {
 // $XDG_CONFIG_HOME/delaunay-lab/settings.json, else ~/.config/delaunay-lab/settings.json;
 // empty when neither is known.
 std::string defaultSettingsPath();
+
+// The largest settings file read (they are a few hundred bytes).
+inline constexpr std::size_t kMaxSettingsFileBytes = std::size_t{1} << 20;
 
 // Reads what it can; a missing file is not an error, a damaged one gives a warning (and the
 // defaults). Never throws.

@@ -1,7 +1,9 @@
 // GlContext, shader programs, texture upload and GlStateScope on the GL of every target.
 #include "ui/gl/gl_api.h"
 
+#include <algorithm>
 #include <array>
+#include <cstdint>
 #include <vector>
 
 namespace dlab::ui {
@@ -125,7 +127,7 @@ GLuint buildProgram(const char* vertexBody, const char* fragmentBody, std::strin
 }
 
 void uploadRgbaTexture(GLuint& texture, int& textureW, int& textureH, int width, int height,
-                       const void* rgba) {
+                       const void* rgba, int rowsY0, int rowsY1) {
     const GlStateScope scope;  // tight unpacking, no unpack buffer; the binding put back
     if (texture == 0) {
         glGenTextures(1, &texture);
@@ -140,6 +142,10 @@ void uploadRgbaTexture(GLuint& texture, int& textureW, int& textureH, int width,
         glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, width, height, 0, GL_RGBA, GL_UNSIGNED_BYTE, rgba);
         textureW = width;
         textureH = height;
+    } else if (rowsY0 < rowsY1) {
+        const int y0 = std::max(0, rowsY0), y1 = std::min(height, rowsY1);
+        const auto* rows = static_cast<const std::uint8_t*>(rgba) + std::size_t{4} * width * y0;
+        glTexSubImage2D(GL_TEXTURE_2D, 0, 0, y0, width, y1 - y0, GL_RGBA, GL_UNSIGNED_BYTE, rows);
     } else {
         glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, rgba);
     }

@@ -22,6 +22,8 @@
 #define DLAB_GL_ES 0
 #endif
 
+#include "ui/render/renderer.h"
+
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -43,16 +45,18 @@ inline constexpr const char* kGlslPreamble = kGlslCorePreamble;
 #endif
 
 // The GL context our renderers draw on, and a flag that its owner clears before destroying it,
-// so that objects outliving the context never call into it.
-class GlContext {
+// so that objects outliving the context never call into it. The engine sees it as a GpuDevice.
+class GlContext final : public GpuDevice, public std::enable_shared_from_this<GlContext> {
 public:
     // The current context if it runs our shaders (OpenGL 3.3 or OpenGL ES 3.0 and later);
     // nullptr and a one-line reason otherwise.
     static std::shared_ptr<GlContext> fromCurrent(std::string& error);
 
-    bool alive() const { return m_alive; }
-    // The context is about to go away: GL objects are leaked with it instead of deleted.
-    void lose() { m_alive = false; }
+    bool alive() const override { return m_alive; }
+    void lose() override { m_alive = false; }
+    // ui/gl/idbuffer_gl.cpp
+    std::unique_ptr<GpuIdBuffer> makeIdBuffer(LocatorKind kind,
+                                              const LocatorOptions& options) override;
     const std::string& version() const { return m_version; }  // GL_VERSION
 
 private:
@@ -67,10 +71,10 @@ GLuint buildProgram(const char* vertexBody, const char* fragmentBody, std::strin
                     const char* preamble = kGlslPreamble);
 
 // Uploads RGBA pixels (rows of `width`, tightly packed) to `texture`, made on first use with
-// nearest filtering; the storage is reallocated only when the size changes. The GL state is left
-// as it was.
+// nearest filtering; the storage is reallocated only when the size changes. Rows [rowsY0, rowsY1)
+// only, when that range is not empty and the size did not change. The GL state is left as it was.
 void uploadRgbaTexture(GLuint& texture, int& textureW, int& textureH, int width, int height,
-                       const void* rgba);
+                       const void* rgba, int rowsY0 = 0, int rowsY1 = 0);
 
 // ImU32 colours (ABGR bytes) as the four floats a shader takes.
 void setColourUniform(GLint location, std::uint32_t abgr);

@@ -34,7 +34,6 @@ double msSince(Clock::time_point t0) {
 }
 
 constexpr int kGatherWidth = 256;  // the gather target: 256 ids per row
-constexpr std::uint32_t kNoTriangle = 0xFFFFFFFFu;
 
 // Pixel coordinates go to GL as floats; a super-triangle corner can lie far outside the box
 // (and a point at 1e308 overflows the map to inf): clamp to a range the rasterizer handles.
@@ -112,21 +111,14 @@ IdBufferGlOptions IdBufferGlOptions::from(LocatorKind kind, const LocatorOptions
     return g;
 }
 
-std::array<std::uint8_t, 4> encodeTriangleId(std::int32_t id) {
-    const std::uint32_t v = id < 0 ? kNoTriangle : static_cast<std::uint32_t>(id);
-    return {static_cast<std::uint8_t>((v >> 16) & 255), static_cast<std::uint8_t>((v >> 8) & 255),
-            static_cast<std::uint8_t>(v & 255), static_cast<std::uint8_t>((v >> 24) & 255)};
-}
-
-std::int32_t decodeTriangleId(const std::uint8_t* c) {
-    const std::uint32_t v = (std::uint32_t{c[3]} << 24) | (std::uint32_t{c[0]} << 16) |
-                            (std::uint32_t{c[1]} << 8) | c[2];
-    return v == kNoTriangle ? kNone : static_cast<std::int32_t>(v & 0x7FFFFFFFu);
-}
-
 // ============================================================================================
 // [SECTION] GL objects
 // ============================================================================================
+
+std::unique_ptr<GpuIdBuffer> GlContext::makeIdBuffer(LocatorKind kind,
+                                                     const LocatorOptions& options) {
+    return std::make_unique<IdBufferGl>(shared_from_this(), IdBufferGlOptions::from(kind, options));
+}
 
 IdBufferGl::IdBufferGl(std::shared_ptr<GlContext> gl, const IdBufferGlOptions& options)
     : m_gl(std::move(gl)), m_opt(options) {

@@ -34,6 +34,8 @@
 
 #include "core/engine/locator.h"
 #include "ui/gl/gl_api.h"
+#include "ui/render/renderer.h"
+#include "ui/render/triangle_ids.h"
 
 #include <array>
 #include <cstdint>
@@ -60,10 +62,6 @@ struct IdBufferGlOptions {
     static IdBufferGlOptions from(LocatorKind kind, const LocatorOptions& options);
 };
 
-// The paper's encoding, RGBA bytes in memory order.
-std::array<std::uint8_t, 4> encodeTriangleId(std::int32_t id);  // kNone -> the "no triangle" colour
-std::int32_t decodeTriangleId(const std::uint8_t* rgba);        // the "no triangle" colour -> kNone
-
 struct IdBufferGlStats {
     std::uint64_t reads = 0;       // readbacks that waited for the drawing (one per batch)
     std::uint64_t pixelsRead = 0;  // ids fetched for the locator
@@ -81,7 +79,7 @@ struct IdBufferGlStats {
     std::uint64_t noPixel = 0;  // no triangle under the point (outside the hull) or a vanished id
 };
 
-class IdBufferGl final : public Locator {
+class IdBufferGl final : public GpuIdBuffer {
 public:
     // Needs the context current. Throws std::runtime_error (one line) when the context cannot
     // hold the buffer (size beyond the GL limits, incomplete framebuffer).
@@ -101,24 +99,24 @@ public:
 
     // The points in insertion order, so that the batched modes can read ahead. Call it after
     // the Inserter is built and before it runs (its order is fixed by then).
-    void followOrder(const Inserter& inserter);
+    void followOrder(const Inserter& inserter) override;
     void setInsertionOrder(std::vector<Vec2> pointsInOrder);
 
     // ---- Read API (the ID-buffer view panel, tests). Each read first paints what is pending, so
     // it sees the mesh as it is now; each one waits for the drawing (a sync, ~0.1 ms on llvmpipe).
-    int width() const { return m_opt.width; }
-    int height() const { return m_opt.height; }
-    bool ready() const;                   // reset() happened and the context is alive
-    std::int32_t idAt(int i, int j);      // pixel (i, j), row 0 = lowest y; kNone: no triangle
-    std::vector<std::int32_t> readAll();  // width*height ids, row 0 = lowest y (as IdBufferCpu)
+    int width() const override { return m_opt.width; }
+    int height() const override { return m_opt.height; }
+    bool ready() const override;      // reset() happened and the context is alive
+    std::int32_t idAt(int i, int j);  // pixel (i, j), row 0 = lowest y; kNone: no triangle
+    std::vector<std::int32_t> readAll() override;  // width*height ids, row 0 = lowest y
     // The pixel under p; false when p lies outside the box (left of or below it).
     bool pixelOf(Vec2 p, int& i, int& j) const {
         return m_map.pixel(p, m_opt.width, m_opt.height, i, j);
     }
-    Vec2 pixelCentre(int i, int j) const { return m_map.centre(i, j); }
+    Vec2 pixelCentre(int i, int j) const override { return m_map.centre(i, j); }
     const PixelMap& map() const { return m_map; }
     unsigned texture() const { return m_tex; }  // GL_RGBA8, the encoded ids (for a GL viewer)
-    std::uint64_t version() const { return m_version; }  // bumps whenever pixels changed
+    std::uint64_t version() const override { return m_version; }  // bumps when pixels changed
     const IdBufferGlOptions& options() const { return m_opt; }
     const IdBufferGlStats& glStats() const { return m_glStats; }
 

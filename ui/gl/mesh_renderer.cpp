@@ -29,47 +29,40 @@ bool sameStyle(const MeshStyle& a, const MeshStyle& b) {
 // where float arithmetic and the rasterizer's loops stay sane; culling drops what is outside.
 float clampCoord(double v) { return static_cast<float>(std::clamp(v, -1e7, 1e7)); }
 
-}  // namespace
+bool g_patching = true;
 
-bool MeshRenderer::update(const Engine& engine, const View& view, const MeshStyle& style) {
-    m_context = engine.glContext();
-    if (engine.version() == m_version && sameView(view, m_view) && sameStyle(style, m_style))
-        return false;
-    const auto t0 = std::chrono::steady_clock::now();
-    m_version = engine.version();
-    m_view = view;
-    m_style = style;
-    ++m_built;
-    m_fill.clear();
-    m_edges.clear();
-    m_virtualEdges.clear();
-    m_points.clear();
-    m_pending.clear();
-    const Mesh& m = engine.mesh();
-    const Inserter& ins = engine.inserter();
-    const bool ghostMode = ins.options().boundary == Boundary::Exact;
-    const bool running = !ins.done();
-    const float left = static_cast<float>(view.origin.x), top = static_cast<float>(view.origin.y);
-    const float right = left + static_cast<float>(view.size.x),
-                bottom = top + static_cast<float>(view.size.y);
+// The edges and triangles the renderer draws, over the screen positions of the last update.
+struct MeshScan {
+    const Mesh& m;
+    const Inserter& ins;
+    const std::vector<float>& xy;
+    bool ghostMode, running, drawVirtual;
+    float left, top, right, bottom;
 
-    // Screen positions of every vertex, once (the ghost vertex has a placeholder, never drawn).
-    std::vector<float> xy(2 * static_cast<std::size_t>(m.numVertices()));
-    for (std::int32_t v = 0; v < m.numVertices(); ++v) {
-        const glm::dvec2 s = view.toScreen(m.G[v]);
-        xy[2 * v] = clampCoord(s.x);
-        xy[2 * v + 1] = clampCoord(s.y);
+    MeshScan(const Engine& engine, const std::vector<float>& screen, const View& view,
+             const MeshStyle& style)
+        : m(engine.mesh()),
+          ins(engine.inserter()),
+          xy(screen),
+          ghostMode(engine.inserter().options().boundary == Boundary::Exact),
+          running(!engine.inserter().done()),
+          drawVirtual(style.drawVirtual),
+          left(static_cast<float>(view.origin.x)),
+          top(static_cast<float>(view.origin.y)),
+          right(left + static_cast<float>(view.size.x)),
+          bottom(top + static_cast<float>(view.size.y)) {}
+
+    bool skipped(std::int32_t t) const {
+        return running && ins.isVirtualTriangle(t) && (ghostMode || !drawVirtual);
     }
-    auto skipped = [&](std::int32_t t) {
-        return running && ins.isVirtualTriangle(t) && (ghostMode || !style.drawVirtual);
-    };
-    auto visible = [&](std::int32_t a, std::int32_t b) {
+    bool visible(std::int32_t a, std::int32_t b) const {
         const float x0 = xy[2 * a], y0 = xy[2 * a + 1], x1 = xy[2 * b], y1 = xy[2 * b + 1];
         return std::max(x0, x1) >= left && std::min(x0, x1) <= right && std::max(y0, y1) >= top &&
                std::min(y0, y1) <= bottom;
-    };
+    }
     // Each edge once: from its lower corner, unless the other side is not drawn.
-    auto forEachEdge = [&](auto&& f) {
+    template <class F>
+    void forEachEdge(F&& f) const {
         for (std::int32_t t = 0; t < m.numTriangles(); ++t) {
             if (skipped(t)) continue;
             for (int k = 0; k < 3; ++k) {
@@ -79,72 +72,273 @@ bool MeshRenderer::update(const Engine& engine, const View& view, const MeshStyl
                 if (visible(a, b)) f(a, b, running && (ins.isVirtual(a) || ins.isVirtual(b)));
             }
         }
-    };
-    m_visibleEdges = 0;
-    forEachEdge([&](std::int32_t, std::int32_t, bool) { ++m_visibleEdges; });
-    // Points cost llvmpipe a primitive each too.
-    m_dense = m_visibleEdges + (style.drawPoints ? engine.points().size() : 0) > kDenseEdges;
-
-    if (m_dense) {
-        m_rasterW = std::max(1, static_cast<int>(view.size.x));
-        m_rasterH = std::max(1, static_cast<int>(view.size.y));
-        m_raster.assign(static_cast<std::size_t>(m_rasterW) * m_rasterH, 0u);
-        forEachEdge([&](std::int32_t a, std::int32_t b, bool virt) {
-            rasterLine(xy[2 * a] - left, xy[2 * a + 1] - top, xy[2 * b] - left, xy[2 * b + 1] - top,
-                       virt ? style.virtualEdge : style.edge);
-        });
-        if (style.drawPoints) {
-            const auto& states = engine.pointStates();
-            for (std::size_t i = 0; i < states.size(); ++i) {
-                const bool pending = states[i] == Engine::PointState::Pending;
-                if (pending || states[i] == Engine::PointState::Inserted) {
-                    rasterDot(xy[2 * i] - left, xy[2 * i + 1] - top, 2,
-                              pending ? style.pending : style.point);
-                }
-            }
-        }
-        m_rasterDirty = true;
-    } else {
-        auto push = [&](std::vector<float>& out, std::int32_t v) {
-            out.push_back(xy[2 * v]);
-            out.push_back(xy[2 * v + 1]);
-        };
-        if (style.drawFill) {
-            for (std::int32_t t = 0; t < m.numTriangles(); ++t) {
-                if (skipped(t) || (running && ins.isVirtualTriangle(t))) continue;
-                const std::int32_t a = m.V[3 * t], b = m.V[3 * t + 1], c = m.V[3 * t + 2];
-                if (!visible(a, b) && !visible(b, c) && !visible(c, a)) {
-                    // A triangle can cover the canvas with all its edges outside: keep it if
-                    // its box overlaps the canvas.
-                    const float x0 = std::min({xy[2 * a], xy[2 * b], xy[2 * c]}),
-                                x1 = std::max({xy[2 * a], xy[2 * b], xy[2 * c]});
-                    const float y0 = std::min({xy[2 * a + 1], xy[2 * b + 1], xy[2 * c + 1]});
-                    const float y1 = std::max({xy[2 * a + 1], xy[2 * b + 1], xy[2 * c + 1]});
-                    if (x1 < left || x0 > right || y1 < top || y0 > bottom) continue;
-                }
-                push(m_fill, a);
-                push(m_fill, b);
-                push(m_fill, c);
-            }
-        }
-        forEachEdge([&](std::int32_t a, std::int32_t b, bool virt) {
-            std::vector<float>& out = virt ? m_virtualEdges : m_edges;
-            push(out, a);
-            push(out, b);
-        });
-        if (style.drawPoints) {
-            const auto& states = engine.pointStates();
-            for (std::size_t i = 0; i < states.size(); ++i) {
-                if (states[i] == Engine::PointState::Inserted)
-                    push(m_points, static_cast<std::int32_t>(i));
-                if (states[i] == Engine::PointState::Pending)
-                    push(m_pending, static_cast<std::int32_t>(i));
-            }
-        }
     }
+    // Whether vertex v has no position on the screen (the ghost vertex).
+    bool placeholder(std::int32_t v) const { return ghostMode && ins.isVirtual(v); }
+};
+
+}  // namespace
+
+void MeshRenderer::setPatching(bool on) { g_patching = on; }
+
+bool MeshRenderer::update(const Engine& engine, const View& view, const MeshStyle& style) {
+    // The engine's device is a GlContext wherever a MeshRenderer exists (the GL renderer made
+    // both).
+    m_context = std::static_pointer_cast<GlContext>(engine.glContext());
+    const bool sameLook = sameView(view, m_view) && sameStyle(style, m_style);
+    if (engine.version() == m_version && sameLook) return false;
+    const auto t0 = std::chrono::steady_clock::now();
+    const bool wasDense = m_dense;
+    m_version = engine.version();
+    m_view = view;
+    m_style = style;
+    ++m_built;
+    screenPositions(engine.mesh(), view);
+    const MeshScan scan(engine, m_xy, view, style);
+    // Points cost llvmpipe a primitive each too: with enough of them the raster is certain, and
+    // its drawing counts the visible edges.
+    const std::size_t points = style.drawPoints ? engine.points().size() : 0;
+    m_visibleEdges = 0;
+    if (points <= kDenseEdges)
+        scan.forEachEdge([&](std::int32_t, std::int32_t, bool) { ++m_visibleEdges; });
+    m_dense = m_visibleEdges + points > kDenseEdges;
+    m_visibleEdges = 0;
+    m_patched = false;
+    if (m_dense) {
+        m_patched = g_patching && sameLook && wasDense && patchRaster(engine);
+        if (!m_patched) drawRasterAll(engine, false);
+    } else {
+        buildArrays(engine);
+    }
+    if (!m_dense) m_visibleEdges = (m_edges.size() + m_virtualEdges.size()) / 4;
+    m_run = engine.run();
+    m_position = engine.position();
+    m_currentVertex = engine.currentVertex();
+    m_running = scan.running;
     m_buildMs =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     return true;
+}
+
+// Screen positions of every vertex (the ghost vertex has a placeholder, never drawn).
+void MeshRenderer::screenPositions(const Mesh& m, const View& view) {
+    m_xy.resize(2 * static_cast<std::size_t>(m.numVertices()));
+    for (std::int32_t v = 0; v < m.numVertices(); ++v) {
+        const glm::dvec2 s = view.toScreen(m.G[v]);
+        m_xy[2 * v] = clampCoord(s.x);
+        m_xy[2 * v + 1] = clampCoord(s.y);
+    }
+}
+
+// Sparse mode: the fill, edges and points as vertex arrays, culled to the canvas.
+void MeshRenderer::buildArrays(const Engine& engine) {
+    m_fill.clear();
+    m_edges.clear();
+    m_virtualEdges.clear();
+    m_points.clear();
+    m_pending.clear();
+    const MeshScan scan(engine, m_xy, m_view, m_style);
+    const Mesh& m = scan.m;
+    const std::vector<float>& xy = m_xy;
+    auto push = [&](std::vector<float>& out, std::int32_t v) {
+        out.push_back(xy[2 * v]);
+        out.push_back(xy[2 * v + 1]);
+    };
+    if (m_style.drawFill) {
+        for (std::int32_t t = 0; t < m.numTriangles(); ++t) {
+            if (scan.skipped(t) || (scan.running && scan.ins.isVirtualTriangle(t))) continue;
+            const std::int32_t a = m.V[3 * t], b = m.V[3 * t + 1], c = m.V[3 * t + 2];
+            if (!scan.visible(a, b) && !scan.visible(b, c) && !scan.visible(c, a)) {
+                // A triangle can cover the canvas with all its edges outside: keep it if its box
+                // overlaps the canvas.
+                const float x0 = std::min({xy[2 * a], xy[2 * b], xy[2 * c]}),
+                            x1 = std::max({xy[2 * a], xy[2 * b], xy[2 * c]});
+                const float y0 = std::min({xy[2 * a + 1], xy[2 * b + 1], xy[2 * c + 1]});
+                const float y1 = std::max({xy[2 * a + 1], xy[2 * b + 1], xy[2 * c + 1]});
+                if (x1 < scan.left || x0 > scan.right || y1 < scan.top || y0 > scan.bottom)
+                    continue;
+            }
+            push(m_fill, a);
+            push(m_fill, b);
+            push(m_fill, c);
+        }
+    }
+    scan.forEachEdge([&](std::int32_t a, std::int32_t b, bool virt) {
+        std::vector<float>& out = virt ? m_virtualEdges : m_edges;
+        push(out, a);
+        push(out, b);
+    });
+    if (m_style.drawPoints) {
+        const auto& states = engine.pointStates();
+        for (std::size_t i = 0; i < states.size(); ++i) {
+            if (states[i] == Engine::PointState::Inserted)
+                push(m_points, static_cast<std::int32_t>(i));
+            if (states[i] == Engine::PointState::Pending)
+                push(m_pending, static_cast<std::int32_t>(i));
+        }
+    }
+}
+
+// Dense mode: every edge and point into the raster, in one order. `masked`: only the pixels of
+// dirty tiles are written (the rest is left as it is), and only what can reach them is drawn.
+void MeshRenderer::drawRasterAll(const Engine& engine, bool masked) {
+    const MeshScan scan(engine, m_xy, m_view, m_style);
+    const float left = scan.left, top = scan.top;
+    const std::vector<float>& xy = m_xy;
+    if (!masked) {
+        m_rasterW = std::max(1, static_cast<int>(m_view.size.x));
+        m_rasterH = std::max(1, static_cast<int>(m_view.size.y));
+        m_raster.assign(static_cast<std::size_t>(m_rasterW) * m_rasterH, 0u);
+        m_uploadY0 = 0;
+        m_uploadY1 = m_rasterH;
+    }
+    m_masked = masked;
+    m_visibleEdges = 0;
+    scan.forEachEdge([&](std::int32_t a, std::int32_t b, bool virt) {
+        ++m_visibleEdges;
+        const float x0 = xy[2 * a] - left, y0 = xy[2 * a + 1] - top;
+        const float x1 = xy[2 * b] - left, y1 = xy[2 * b + 1] - top;
+        // Two pixels of margin: the DDA's float steps may end a pixel past an endpoint.
+        if (masked && !boxDirty(std::min(x0, x1) - 2, std::min(y0, y1) - 2, std::max(x0, x1) + 2,
+                                std::max(y0, y1) + 2))
+            return;
+        rasterLine(x0, y0, x1, y1, virt ? m_style.virtualEdge : m_style.edge);
+    });
+    if (m_style.drawPoints) {
+        const auto& states = engine.pointStates();
+        for (std::size_t i = 0; i < states.size(); ++i) {
+            const bool pending = states[i] == Engine::PointState::Pending;
+            if (!pending && states[i] != Engine::PointState::Inserted) continue;
+            const float x = xy[2 * i] - left, y = xy[2 * i + 1] - top;
+            if (masked && !boxDirty(x - 2, y - 2, x + 2, y + 2)) continue;
+            rasterDot(x, y, 2, pending ? m_style.pending : m_style.point);
+        }
+    }
+    m_masked = false;
+    if (!masked) m_rasterDirty = true;
+}
+
+// Redraws only the tiles that the operations since the last update touched: the triangles whose
+// corners changed cover, before and after, the same part of the plane, and the points whose
+// state changed are the operations' vertices. False (nothing done) when a full rebuild is due:
+// another run, no history, the end of the run (virtual triangles go), or most tiles dirty.
+bool MeshRenderer::patchRaster(const Engine& engine) {
+    const Journal* journal = engine.journal();
+    if (!journal || engine.run() != m_run || m_running != !engine.inserter().done()) return false;
+    if (m_rasterW != std::max(1, static_cast<int>(m_view.size.x)) ||
+        m_rasterH != std::max(1, static_cast<int>(m_view.size.y)))
+        return false;
+    if (!markChanges(engine)) return false;
+    int y0 = m_tilesH, y1 = -1;
+    for (int ty = 0; ty < m_tilesH; ++ty) {
+        for (int tx = 0; tx < m_tilesW; ++tx) {
+            if (!m_tiles[ty * m_tilesW + tx]) continue;
+            y0 = std::min(y0, ty);
+            y1 = std::max(y1, ty);
+            for (int y = ty * kTile; y < std::min(m_rasterH, (ty + 1) * kTile); ++y) {
+                std::uint32_t* row = m_raster.data() + static_cast<std::size_t>(y) * m_rasterW;
+                std::fill(row + tx * kTile, row + std::min(m_rasterW, (tx + 1) * kTile), 0u);
+            }
+        }
+    }
+    drawRasterAll(engine, true);  // with no dirty tile it only counts the visible edges
+    if (y1 >= 0) {
+        m_rasterDirty = true;
+        const int rowsY0 = y0 * kTile, rowsY1 = std::min(m_rasterH, (y1 + 1) * kTile);
+        if (m_uploadY1 <= m_uploadY0) {
+            m_uploadY0 = rowsY0;
+            m_uploadY1 = rowsY1;
+        } else {
+            m_uploadY0 = std::min(m_uploadY0, rowsY0);
+            m_uploadY1 = std::max(m_uploadY1, rowsY1);
+        }
+    }
+    return true;
+}
+
+// Marks the tiles of every triangle and point that the journal's operations between the last
+// update's position and now touched. False when a full rebuild is cheaper or needed.
+bool MeshRenderer::markChanges(const Engine& engine) {
+    const Journal& journal = *engine.journal();
+    const std::size_t lo = std::min(m_position, engine.position()),
+                      hi = std::max(m_position, engine.position());
+    const Mesh& m = engine.mesh();
+    if (hi > journal.recorded()) return false;
+    m_tilesW = (m_rasterW + kTile - 1) / kTile;
+    m_tilesH = (m_rasterH + kTile - 1) / kTile;
+    m_tiles.assign(static_cast<std::size_t>(m_tilesW) * m_tilesH, 0);
+    const MeshScan scan(engine, m_xy, m_view, m_style);
+    const float left = scan.left, top = scan.top;
+    auto markPoint = [&](std::int32_t v) {
+        if (v < 0 || v >= m.numVertices() || scan.placeholder(v)) return;
+        const float x = m_xy[2 * v] - left, y = m_xy[2 * v + 1] - top;
+        markBox(x - 2, y - 2, x + 2, y + 2);
+    };
+    markPoint(m_currentVertex);
+    markPoint(engine.currentVertex());
+    std::size_t changes = 0;
+    for (std::size_t i = lo; i < hi; ++i) {
+        const Op& op = journal.ops()[i];
+        if (op.type == OpType::Finalize) return false;
+        changes += op.numChanges;
+        if (changes > static_cast<std::size_t>(m.numCorners())) return false;
+        markPoint(op.vertex);
+        for (std::uint32_t k = 0; k < op.numChanges; ++k) {
+            const std::int32_t t = tri(journal.changes()[op.firstChange + k].corner());
+            if (t >= m.numTriangles()) continue;  // removed by stepping back
+            float x0 = 1e30f, y0 = 1e30f, x1 = -1e30f, y1 = -1e30f;
+            for (int j = 0; j < 3; ++j) {
+                const std::int32_t v = m.V[3 * t + j];
+                if (v < 0 || scan.placeholder(v)) continue;
+                x0 = std::min(x0, m_xy[2 * v] - left);
+                x1 = std::max(x1, m_xy[2 * v] - left);
+                y0 = std::min(y0, m_xy[2 * v + 1] - top);
+                y1 = std::max(y1, m_xy[2 * v + 1] - top);
+            }
+            markBox(x0 - 2, y0 - 2, x1 + 2, y1 + 2);  // the DDA may end a pixel past a vertex
+        }
+    }
+    std::size_t dirty = 0;
+    for (std::uint8_t d : m_tiles) dirty += d;
+    return 2 * dirty <= m_tiles.size();  // most of the canvas: a full rebuild is cheaper
+}
+
+namespace {
+
+// The tile range [t0, t1] that pixels from a to b (inclusive, as float coordinates truncated)
+// fall in, clamped to [0, n); false when none does.
+bool tileRange(float a, float b, int pixels, int n, int& t0, int& t1) {
+    if (b < 0 || a >= static_cast<float>(pixels) || a > b) return false;
+    const int p0 = std::max(0, static_cast<int>(std::max(a, -1.0f)));
+    const int p1 = std::min(pixels - 1, static_cast<int>(std::min(b, 1e7f)));
+    t0 = std::min(n - 1, p0 / MeshRenderer::kTile);
+    t1 = std::min(n - 1, p1 / MeshRenderer::kTile);
+    return true;
+}
+
+}  // namespace
+
+void MeshRenderer::markBox(float x0, float y0, float x1, float y1) {
+    int tx0 = 0, tx1 = 0, ty0 = 0, ty1 = 0;
+    if (!tileRange(x0, x1, m_rasterW, m_tilesW, tx0, tx1) ||
+        !tileRange(y0, y1, m_rasterH, m_tilesH, ty0, ty1))
+        return;
+    for (int ty = ty0; ty <= ty1; ++ty)
+        std::fill(m_tiles.begin() + ty * m_tilesW + tx0, m_tiles.begin() + ty * m_tilesW + tx1 + 1,
+                  std::uint8_t{1});
+}
+
+bool MeshRenderer::boxDirty(float x0, float y0, float x1, float y1) const {
+    int tx0 = 0, tx1 = 0, ty0 = 0, ty1 = 0;
+    if (!tileRange(x0, x1, m_rasterW, m_tilesW, tx0, tx1) ||
+        !tileRange(y0, y1, m_rasterH, m_tilesH, ty0, ty1))
+        return false;
+    for (int ty = ty0; ty <= ty1; ++ty) {
+        for (int tx = tx0; tx <= tx1; ++tx) {
+            if (m_tiles[ty * m_tilesW + tx]) return true;
+        }
+    }
+    return false;
 }
 
 // Bresenham-style DDA over the longer axis; clipped to the raster.
@@ -167,17 +361,14 @@ void MeshRenderer::rasterLine(float x0, float y0, float x1, float y1, std::uint3
     const float sx = steps ? dx / steps : 0, sy = steps ? dy / steps : 0;
     float x = x0, y = y0;
     for (int i = 0; i <= steps; ++i, x += sx, y += sy) {
-        const int px = static_cast<int>(x), py = static_cast<int>(y);
-        if (px >= 0 && py >= 0 && px < m_rasterW && py < m_rasterH)
-            m_raster[static_cast<std::size_t>(py) * m_rasterW + px] = colour;
+        put(static_cast<int>(x), static_cast<int>(y), colour);
     }
 }
 
 void MeshRenderer::rasterDot(float x, float y, int size, std::uint32_t colour) {
     const int px = static_cast<int>(x) - size / 2, py = static_cast<int>(y) - size / 2;
     for (int j = std::max(0, py); j < std::min(m_rasterH, py + size); ++j) {
-        for (int i = std::max(0, px); i < std::min(m_rasterW, px + size); ++i)
-            m_raster[static_cast<std::size_t>(j) * m_rasterW + i] = colour;
+        for (int i = std::max(0, px); i < std::min(m_rasterW, px + size); ++i) put(i, j, colour);
     }
 }
 
@@ -300,8 +491,9 @@ void MeshRenderer::upload() {
     if (m_dense) {
         if (m_rasterDirty) {
             uploadRgbaTexture(m_gl.texture, m_gl.textureW, m_gl.textureH, m_rasterW, m_rasterH,
-                              m_raster.data());
+                              m_raster.data(), m_uploadY0, m_uploadY1);
             m_rasterDirty = false;
+            m_uploadY0 = m_uploadY1 = 0;
         }
         return;
     }

@@ -9,11 +9,15 @@
 //     are rasterized on the CPU into one RGBA texture (a few pixel writes per short edge) and
 //     drawn as a single quad; the fill is skipped (the edges cover it anyway).
 // Arrays and textures are rebuilt only when the mesh (engine version), the view or the style
-// changed, and uploaded on the next draw, so an idle frame costs a few draws. One shader program
+// changed, and uploaded on the next draw, so an idle frame costs a few draws. When only the mesh
+// moved along its journal, the dense raster is patched: the pixels of the canvas tiles that the
+// operations' triangles cover are cleared and drawn again (the same pixels as a full rebuild),
+// and only the rows of those tiles are uploaded. One shader program
 // (ui/gl/gl_api.h: GLSL 3.30 core or ES 3.00) serves every target.
 #pragma once
 
 #include "ui/app_state.h"
+#include "ui/render/renderer.h"
 
 #include <cstdint>
 #include <memory>
@@ -25,33 +29,32 @@ namespace dlab::ui {
 
 class GlContext;
 
-struct MeshStyle {
-    std::uint32_t fill = 0, edge = 0, virtualEdge = 0, point = 0,
-                  pending = 0;  // ImU32 colours (ABGR)
-    float edgeWidth = 1.0f, pointSize = 4.0f;
-    bool drawFill = true, drawVirtual = true, drawPoints = true;
-};
-
-class MeshRenderer {
+class MeshRenderer final : public CanvasMesh {
 public:
     static constexpr std::size_t kDenseEdges = 40000;
 
     MeshRenderer() = default;
-    ~MeshRenderer();
+    ~MeshRenderer() override;
     MeshRenderer(const MeshRenderer&) = delete;  // the passes point back at this object
     MeshRenderer& operator=(const MeshRenderer&) = delete;
 
     // Rebuilds the arrays if the mesh (engine version), the view or the style changed; returns
     // whether it did. It draws on the engine's GL context (nothing when it has none).
-    bool update(const Engine& engine, const View& view, const MeshStyle& style);
+    bool update(const Engine& engine, const View& view, const MeshStyle& style) override;
     // Adds a GL draw (clipped to the rectangle) to the draw list; it leaves ImGui's GL state as
     // it found it. Two passes, so that highlights can go between the fill and the edges.
-    enum class Pass : std::uint8_t { Fill, Lines };
     void enqueue(ImDrawList* drawList, Pass pass, float clipX0, float clipY0, float clipX1,
-                 float clipY1);
-    bool dense() const { return m_dense; }
-    std::size_t visibleEdges() const { return m_visibleEdges; }
-    double lastBuildMs() const { return m_buildMs; }
+                 float clipY1) override;
+    bool dense() const override { return m_dense; }
+    std::size_t visibleEdges() const override { return m_visibleEdges; }
+    double lastBuildMs() const override { return m_buildMs; }
+    // Whether the last update patched the raster instead of drawing it whole.
+    bool lastPatched() const { return m_patched; }
+    // Dense mode: the canvas' pixels (RGBA, row 0 at the top), as the next draw shows them.
+    const std::vector<std::uint32_t>& raster() const { return m_raster; }
+    static constexpr int kTile = 32;  // the raster is patched in tiles of kTile x kTile pixels
+    // Patching on (the default) or off: every change redraws the raster whole (benchmarks).
+    static void setPatching(bool on);
 
 private:
     struct PassData {
@@ -75,14 +78,39 @@ private:
                        float size);
     void drawRaster();
     void releaseGl();
+    void screenPositions(const Mesh& m, const View& view);
+    void buildArrays(const Engine& engine);
+    void drawRasterAll(const Engine& engine, bool masked);
+    bool patchRaster(const Engine& engine);
+    bool markChanges(const Engine& engine);
+    void markBox(float x0, float y0, float x1, float y1);
+    bool boxDirty(float x0, float y0, float x1, float y1) const;
+    void clearDirtyTiles();
     void rasterLine(float x0, float y0, float x1, float y1, std::uint32_t colour);
     void rasterDot(float x, float y, int size, std::uint32_t colour);
+    void put(int px, int py, std::uint32_t colour) {
+        if (px < 0 || py < 0 || px >= m_rasterW || py >= m_rasterH) return;
+        if (m_masked && !m_tiles[(py / kTile) * m_tilesW + px / kTile]) return;
+        m_raster[static_cast<std::size_t>(py) * m_rasterW + px] = colour;
+    }
 
     std::vector<float> m_fill, m_edges, m_virtualEdges, m_points, m_pending;
     // Dense mode: RGBA pixels of the canvas, row 0 at the top; uploaded to the texture when dirty.
     std::vector<std::uint32_t> m_raster;
     int m_rasterW = 0, m_rasterH = 0;
     bool m_dense = false, m_rasterDirty = false;
+    std::vector<float> m_xy;  // screen position of every vertex at the last update
+    // Patching: the dirty tiles of this update, and the rows not yet uploaded ([y0, y1)).
+    std::vector<std::uint8_t> m_tiles;
+    int m_tilesW = 0, m_tilesH = 0;
+    bool m_masked = false, m_patched = false;
+    int m_uploadY0 = 0, m_uploadY1 = 0;
+    // Where the raster was drawn: the engine's run, journal position, current vertex, and
+    // whether the run was still going (virtual triangles hidden).
+    std::uint64_t m_run = ~std::uint64_t{0};
+    std::size_t m_position = 0;
+    std::int32_t m_currentVertex = -1;
+    bool m_running = false;
     std::uint64_t m_built = 0;             // rebuilds so far
     std::shared_ptr<GlContext> m_context;  // the engine's, at the last update
     Gl m_gl;

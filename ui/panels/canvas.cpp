@@ -11,9 +11,10 @@
 //   [SECTION] Input
 //   [SECTION] ShowCanvas
 #include "core/engine/voronoi.h"
-#include "ui/gl/mesh_renderer.h"
 #include "ui/gui.h"
+#include "ui/panels/labels.h"
 #include "ui/panels/panels.h"
+#include "ui/render/renderer.h"
 
 #include <imgui.h>
 
@@ -32,7 +33,9 @@ constexpr unsigned kVerticesPerPoint = 64;
 constexpr int kSkippedDrawn = 300;  // crosses for skipped duplicates when there are many points
 
 struct CanvasCache {
-    MeshRenderer renderer;
+    // The mesh as the renderer draws it (GL, or counted by the null renderer), made by it.
+    std::unique_ptr<CanvasMesh> renderer;
+    Renderer* madeBy = nullptr;
     bool rebuiltLastFrame = false;
     View builtView;  // the view of the last rebuild
     // The view the last fit made: while center and scale are still these, the user has not
@@ -170,6 +173,10 @@ struct Scene {
     Palette pal;
     bool running;  // virtual vertices still present
     bool ghostMode;
+    // Labels placed so far this frame (x0, y0, x1, y1), and where each vertex label goes (its
+    // top-left; NaN: none): later labels avoid earlier ones (labels.cpp).
+    mutable LabelBoxes labels{};
+    mutable std::vector<ImVec2> vertexLabelAt{};
 
     ImVec2 screen(std::int32_t v) const { return toIm(view.toScreen(m.G[v])); }
     bool virtualTri(std::int32_t t) const { return running && ins.isVirtualTriangle(t); }
@@ -424,9 +431,9 @@ void DrawOpOverlay(const Scene& s) {
             if (!ov.walk) break;
             const Control& ctl = s.ins.control();
             const std::int32_t v = op->vertex;
-            if (v >= 0 && v < m.numVertices() && ctl.straight && ctl.walkSteps > 0) {
+            if (v >= 0 && v < m.numVertices() && ctl.walk.straight && ctl.walk.steps > 0) {
                 // The paper's line L from q (inside the start triangle) to the new point.
-                Arrow(s.dl, toIm(s.view.toScreen(ctl.walkOrigin)), s.screen(v), s.pal.lineL,
+                Arrow(s.dl, toIm(s.view.toScreen(ctl.walk.origin)), s.screen(v), s.pal.lineL,
                       w * 0.7f);
             }
             break;
@@ -562,6 +569,7 @@ void DrawLabels(const Scene& s, std::int32_t& hoveredCorner, ImVec2 mouse, bool 
                 std::snprintf(buf, sizeof buf, "t%d", t);
                 LabelBox(s.dl, mono, fs, centre, s.pal.triangleId, IM_COL32(255, 255, 255, 200),
                          buf);
+                s.labels.add(centre, mono->CalcTextSizeA(fs, 1e9f, 0, buf));
             }
         }
         for (int k = 0; k < 3; ++k) {
@@ -577,6 +585,7 @@ void DrawLabels(const Scene& s, std::int32_t& hoveredCorner, ImVec2 mouse, bool 
             }
             if (!ov.cornerIds || !s.room(48 + s.pointReserve())) continue;
             const bool isChanged = std::find(changed.begin(), changed.end(), c) != changed.end();
+<<<<<<< HEAD
             // A ghost triangle's corners in the ghost colour; the ghost corner itself says so.
             const bool ghostCorner = ghost && s.ins.isVirtual(m.V[c]);
             std::snprintf(buf, sizeof buf, ghostCorner ? "%d g" : "%d", c);
@@ -584,6 +593,12 @@ void DrawLabels(const Scene& s, std::int32_t& hoveredCorner, ImVec2 mouse, bool 
                                : ghost   ? s.pal.ghostId
                                          : s.pal.cornerId;
             LabelBox(s.dl, mono, fs, a, text, isChanged ? s.pal.cornerChanged : 0, buf);
+=======
+            std::snprintf(buf, sizeof buf, "%d", c);
+            a = placeAlong(s.labels, s.screen(m.V[c]), a, p, mono->CalcTextSizeA(fs, 1e9f, 0, buf));
+            LabelBox(s.dl, mono, fs, a, isChanged ? IM_COL32(255, 255, 255, 255) : s.pal.cornerId,
+                     isChanged ? s.pal.cornerChanged : 0, buf);
+>>>>>>> main
         }
     }
 }
@@ -634,7 +649,11 @@ void DrawPoints(const Scene& s, std::int32_t draggedPoint, Vec2 dragTo) {
         }
         if (ids) {
             std::snprintf(buf, sizeof buf, "%zu", i);
-            s.dl->AddText(mono, fs, ImVec2(q.x + r + 2, q.y - r - fs), idCol, buf);
+            const bool placed = i < s.vertexLabelAt.size() &&
+                                static_cast<std::int32_t>(i) != draggedPoint &&
+                                !std::isnan(s.vertexLabelAt[i].x);
+            s.dl->AddText(mono, fs, placed ? s.vertexLabelAt[i] : ImVec2(q.x + r + 2, q.y - r - fs),
+                          idCol, buf);
         }
     }
 }
@@ -861,6 +880,10 @@ void ShowCanvas(AppState& st) {
         cache.fitCenter = view.center;
         cache.fitScale = view.scale;
     }
+    if (auto& box = st.lessonPlayer.pendingView) {  // a lesson stop's view
+        view.fit({(*box)[0], (*box)[1]}, {(*box)[2], (*box)[3]});
+        box.reset();
+    }
     ImGui::InvisibleButton("##canvas", size,
                            ImGuiButtonFlags_MouseButtonLeft | ImGuiButtonFlags_MouseButtonRight |
                                ImGuiButtonFlags_MouseButtonMiddle);
@@ -904,17 +927,29 @@ void ShowCanvas(AppState& st) {
     const bool sameView =
         view.center == cache.builtView.center && view.scale == cache.builtView.scale &&
         view.origin == cache.builtView.origin && view.size == cache.builtView.size;
+<<<<<<< HEAD
     const bool defer = st.run.running && st.run.fullSpeed() && cache.rebuiltLastFrame && sameView &&
                        cache.renderer.lastBuildMs() > 5.0;
     const bool rebuilt = !defer && cache.renderer.update(e, view, ms);
+=======
+    if (!cache.renderer || cache.madeBy != st.renderer) {
+        cache.renderer =
+            st.renderer ? st.renderer->makeCanvasMesh() : makeNullRenderer()->makeCanvasMesh();
+        cache.madeBy = st.renderer;
+    }
+    CanvasMesh& mesh = *cache.renderer;
+    const bool defer = st.run.running && st.run.opsPerSecond >= RunControl::kFullSpeed &&
+                       cache.rebuiltLastFrame && sameView && mesh.lastBuildMs() > 5.0;
+    const bool rebuilt = !defer && mesh.update(e, view, ms);
+>>>>>>> main
     cache.rebuiltLastFrame = rebuilt;
     if (rebuilt) cache.builtView = view;
-    st.frameStats.meshBuildMs = rebuilt ? cache.renderer.lastBuildMs() : 0.0;
-    st.frameStats.visibleEdges = cache.renderer.visibleEdges();
-    st.frameStats.denseMesh = cache.renderer.dense();
-    if (ms.drawFill) cache.renderer.enqueue(dl, MeshRenderer::Pass::Fill, p0.x, p0.y, p1.x, p1.y);
+    st.frameStats.meshBuildMs = rebuilt ? mesh.lastBuildMs() : 0.0;
+    st.frameStats.visibleEdges = mesh.visibleEdges();
+    st.frameStats.denseMesh = mesh.dense();
+    if (ms.drawFill) mesh.enqueue(dl, CanvasMesh::Pass::Fill, p0.x, p0.y, p1.x, p1.y);
     DrawOpUnderlay(scene);
-    cache.renderer.enqueue(dl, MeshRenderer::Pass::Lines, p0.x, p0.y, p1.x, p1.y);
+    mesh.enqueue(dl, CanvasMesh::Pass::Lines, p0.x, p0.y, p1.x, p1.y);
     if (st.overlays.circumcircles) {
         for (std::int32_t t = 0; t < e.mesh().numTriangles(); ++t) {
             Vec2 c;
@@ -925,8 +960,13 @@ void ShowCanvas(AppState& st) {
         }
     }
     if (st.overlays.voronoi) DrawVoronoi(scene);
+    DrawGhostTriangles(st, dl);
     DrawOpOverlay(scene);
     std::int32_t hoveredCorner = kNone;
+    if (st.overlays.vertexIds && e.points().size() <= kFewPoints)
+        scene.vertexLabelAt =
+            placeVertexLabels(scene.labels, view, e.points(), fonts().mono,
+                              ImGui::GetFontSize() * 0.9f, st.presentation ? 5.5f : 4.0f);
     DrawLabels(scene, hoveredCorner, ImGui::GetIO().MousePos, hovered);
     st.selection.hoveredCorner = hoveredCorner;
     const Vec2 dragTo =

@@ -207,6 +207,10 @@ void ShowFileDialogs(AppState& st) {
     FileState& f = st.files;
     ShowNotice(st);
     ShowRecoveryOffer(st);
+    if (f.dialog == FileState::Dialog::OpenFile && f.platformOpenDialog) {
+        f.dialog = FileState::Dialog::None;
+        f.platformOpenDialog();
+    }
     if (f.dialog != FileState::Dialog::None) {
         for (const DialogInfo& d : dialogs()) {
             if (d.kind != f.dialog) continue;

@@ -5,10 +5,10 @@
 // walk. The buffer is read through readIdBuffer() only, so that another buffer (the GL one) plugs
 // in beside the CPU one.
 #include "core/engine/predicates.h"
-#include "ui/gl/gl_api.h"
-#include "ui/gl/idbuffer_gl.h"
 #include "ui/gui.h"
 #include "ui/panels/panels.h"
+#include "ui/render/renderer.h"
+#include "ui/render/triangle_ids.h"
 
 #include <imgui.h>
 
@@ -20,9 +20,8 @@ namespace dlab::ui {
 
 // The texture the view shows and what it was made from.
 struct IdBufferView {
-    GLuint texture = 0;  // GL name; freed with the context, as the canvas' texture is
+    ImageSlot image;  // the renderer's (a GL texture, freed with the context)
     int texW = 0, texH = 0;
-    int glW = 0, glH = 0;  // the texture's storage
     std::uint64_t version = ~std::uint64_t{0};
     bool trueColours = false;
     int bufW = 0, bufH = 0;
@@ -50,7 +49,7 @@ bool realTriangle(const Engine& e, std::int32_t t) {
     return t >= 0 && t < e.mesh().numTriangles() && (ins.done() || !ins.isVirtualTriangle(t));
 }
 
-void rebuildTexture(IdBufferView& v, const IdBufferFrame& f, bool trueColours) {
+void rebuildTexture(Renderer* renderer, IdBufferView& v, const IdBufferFrame& f, bool trueColours) {
     const double scale =
         std::min(1.0, static_cast<double>(kMaxTexture) / std::max(f.width, f.height));
     v.texW = std::max(1, static_cast<int>(f.width * scale));
@@ -74,7 +73,7 @@ void rebuildTexture(IdBufferView& v, const IdBufferFrame& f, bool trueColours) {
             px[3] = 255;  // the encoded alpha is data, not transparency
         }
     }
-    uploadRgbaTexture(v.texture, v.glW, v.glH, v.texW, v.texH, v.rgba.data());
+    if (renderer) renderer->uploadImage(v.image, v.texW, v.texH, v.rgba.data());
     v.bufW = f.width;
     v.bufH = f.height;
 }
@@ -127,7 +126,7 @@ std::uint32_t IdFalseColour(std::int32_t id) {
 }
 
 bool readIdBuffer(const Engine& e, IdBufferFrame& out, IdBufferCopy& copy) {
-    if (IdBufferGl* gl = e.idBufferGl()) {
+    if (GpuIdBuffer* gl = e.idBufferGl()) {
         if (!gl->ready()) return false;
         // Reading back paints what is pending first (and bumps its version): read when the run
         // moved or the buffer changed since the copy.
@@ -204,7 +203,7 @@ void IdBufferBody(AppState& st) {
     }
     if (v.version != e.version() || v.trueColours != vs.trueColours || v.bufW != f.width ||
         v.bufH != f.height) {
-        rebuildTexture(v, f, vs.trueColours);
+        rebuildTexture(st.renderer, v, f, vs.trueColours);
         v.version = e.version();
         v.trueColours = vs.trueColours;
     }
@@ -258,7 +257,7 @@ void IdBufferBody(AppState& st) {
     const float sx = size.x / static_cast<float>(v.texW),
                 sy = size.y / static_cast<float>(v.texH);  // screen px per texel
     const ImVec2 p0 = ImGui::GetCursorScreenPos();
-    ImGui::Image(reinterpret_cast<ImTextureID>(static_cast<std::intptr_t>(v.texture)), size);
+    ImGui::Image(v.image.id(), size);
     RecordItem(st, "idbuffer-image");
     const bool hovered = ImGui::IsItemHovered();
     ImDrawList* dl = ImGui::GetWindowDrawList();

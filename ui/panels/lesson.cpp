@@ -1,6 +1,7 @@
 // The lesson panel: the stop's text (Markdown-light: bold, code, lists), its question with an
 // answer field and immediate feedback, a hint, and the way between stops. Shown at the top of
 // the side column while a lesson is open.
+#include "core/teaching/describe.h"
 #include "ui/gui.h"
 #include "ui/lesson_player.h"
 #include "ui/panels/panels.h"
@@ -8,7 +9,9 @@
 #include <imgui.h>
 #include <imgui_stdlib.h>
 
+#include <algorithm>
 #include <string>
+#include <utility>
 
 namespace dlab::ui {
 
@@ -71,7 +74,143 @@ void RichText(const std::string& text) {
     }
 }
 
+// The stop's question, the answer field, Check, Hint and the feedback (wrapped: nothing runs
+// past the column).
+void Question(AppState& st, const LessonStop& stop, std::size_t k) {
+    LessonState& L = st.lessonPlayer;
+    if (stop.question.empty()) return;
+    ImGui::Spacing();
+    ImGui::PushFont(fonts().bold);
+    ImGui::TextWrapped("%s", stop.question.c_str());
+    ImGui::PopFont();
+    ImGui::SetNextItemWidth(std::min(260.0f, ImGui::GetContentRegionAvail().x * 0.6f));
+    const bool enter = ImGui::InputText("##answer", &L.typed, ImGuiInputTextFlags_EnterReturnsTrue);
+    RecordItem(st, "lesson-answer");
+    ImGui::SameLine();
+    if (ImGui::Button("Check") || enter) checkAnswer(st);
+    RecordItem(st, "lesson-check");
+    if (!stop.hint.empty()) {
+        ImGui::SameLine();
+        if (ImGui::SmallButton("Hint")) L.showHint = !L.showHint;
+        RecordItem(st, "lesson-hint");
+    }
+    auto coloured = [](ImVec4 colour, const std::string& text) {
+        ImGui::PushStyleColor(ImGuiCol_Text, colour);
+        ImGui::TextWrapped("%s", text.c_str());
+        ImGui::PopStyleColor();
+    };
+    if (L.feedback == LessonState::Feedback::Right) {
+        coloured(ImVec4(0.1f, 0.55f, 0.2f, 1), "Right: " + L.plan.stops[k].answer->display());
+    } else if (L.feedback == LessonState::Feedback::Wrong) {
+        coloured(ImVec4(0.8f, 0.2f, 0.1f, 1),
+                 "Not quite. Look again at the canvas and the tables, and try again.");
+        if (ImGui::SmallButton("Show the answer")) L.feedback = LessonState::Feedback::Shown;
+    }
+    if (L.feedback == LessonState::Feedback::Shown)
+        ImGui::TextWrapped("The answer: %s", L.plan.stops[k].answer->display().c_str());
+    if (L.showHint) ImGui::TextWrapped("Hint: %s", stop.hint.c_str());
+}
+
+// The side tab a slide shows: the `tab` of this stop or of the last stop before it that named
+// one (the same whichever way the slides are visited); none when no stop named one.
+using PanelFn = void (*)(AppState&);
+PanelFn SlideTab(const Lesson& lesson, std::size_t k) {
+    static const std::pair<const char*, PanelFn> tabs[] = {
+        {"corner-table", ShowCornerTable}, {"vertex-table", ShowVertexTable},
+        {"expressions", ShowExpressions},  {"predicates", ShowPredicates},
+        {"idbuffer", ShowIdBuffer},        {"statistics", ShowStatistics},
+    };
+    for (std::size_t i = k + 1; i-- > 0;) {
+        const std::string& name = lesson.stops[i].tab;
+        if (name.empty()) continue;
+        for (const auto& [id, fn] : tabs) {
+            if (name == id) return fn;
+        }
+        return nullptr;
+    }
+    return nullptr;
+}
+
+// The slide's top rows: the way between stops, the title, and the operation on show.
+void SlideHeader(AppState& st, std::size_t k, std::size_t n) {
+    const Lesson& lesson = *st.lessonPlayer.lesson;
+    if (ImGui::Button("<") && k > 0) goToStop(st, k - 1);
+    RecordItem(st, "lesson-previous");  // the same buttons as the panel's
+    ImGui::SameLine();
+    ImGui::Text("%zu / %zu", k + 1, n);
+    ImGui::SameLine();
+    if (ImGui::Button(">") && k + 1 < n) goToStop(st, k + 1);
+    RecordItem(st, "lesson-next");
+    ImGui::SameLine();
+    if (ImGui::Button("Close")) {
+        closeLesson(st);
+        return;
+    }
+    RecordItem(st, "lesson-close");
+    ImGui::SameLine();
+    ImGui::PushFont(fonts().bold);
+    ImGui::TextWrapped("%s", lesson.title.c_str());
+    ImGui::PopFont();
+    const Engine& e = st.engine;
+    if (const Op* op = e.current()) {
+        ImGui::TextWrapped("[%zu] %s: %s", e.position() - 1, toString(op->type),
+                           describe(*op, e.inserter()).c_str());
+    } else {
+        ImGui::TextWrapped("%zu points, before the first operation", e.points().size());
+    }
+    RecordItem(st, "slide-banner");
+}
+
 }  // namespace
+
+void ShowSlide(AppState& st) {
+    LessonState& L = st.lessonPlayer;
+    const std::size_t n = L.lesson->stops.size(), k = std::min(L.progress.stop, n - 1);
+    SlideHeader(st, k, n);
+    if (!L.lesson) return;  // closed
+    const LessonStop& stop = L.lesson->stops[k];
+    const ImGuiWindowFlags still =
+        ImGuiWindowFlags_NoScrollbar | ImGuiWindowFlags_NoScrollWithMouse;
+    const ImVec2 avail = ImGui::GetContentRegionAvail();
+    const float gap = ImGui::GetStyle().ItemSpacing.x;
+    // A slide with a side tab gives the column more room.
+    const PanelFn tab = SlideTab(*L.lesson, k);
+    const float sideW = std::clamp(avail.x * (tab ? 0.48f : 0.4f), std::min(300.0f, avail.x * 0.5f),
+                                   avail.x * 0.6f);
+    ImGui::BeginChild("##slidecanvas", ImVec2(avail.x - sideW - gap, avail.y), false, still);
+    ShowCanvas(st);
+    DrawDebugOverlays(st);
+    ShowCanvasNotice(st);
+    ShowTimeline(st);
+    ImGui::EndChild();
+    ImGui::SameLine(0, gap);
+    ImGui::BeginChild("##slideside", ImVec2(sideW, avail.y), false, still);
+    // The question and the text's heights come from the last frame: the question is pinned to
+    // the bottom, the text takes what it needs (at most 70 % with a tab), the tab the rest.
+    const float rest = std::max(0.0f, avail.y - L.slideQuestionHeight);
+    const float textH = tab ? std::clamp(L.slideTextHeight, rest * 0.3f, rest * 0.7f) : rest;
+    ImGui::BeginChild("##slidetext", ImVec2(0, std::max(1.0f, textH)), false);
+    RichText(stop.text);
+    L.slideTextHeight = ImGui::GetCursorPosY() + ImGui::GetStyle().ItemSpacing.y;
+    ImGui::EndChild();
+    RecordItem(st, "slide-text");
+    if (tab) {
+        ImGui::BeginChild("##slidetab", ImVec2(0, std::max(1.0f, rest - textH)), true);
+        tab(st);
+        ImGui::EndChild();
+        RecordItem(st, "slide-tab");
+    }
+    const float y0 = ImGui::GetCursorScreenPos().y;
+    const float x0 = ImGui::GetCursorScreenPos().x;
+    Question(st, stop, k);
+    // The cursor waits one item spacing below the last item (and the text child above keeps one).
+    const float spacing = ImGui::GetStyle().ItemSpacing.y;
+    const float y1 = ImGui::GetCursorScreenPos().y - spacing;
+    L.slideQuestionHeight = stop.question.empty() ? 0.0f : y1 - y0 + 2 * spacing;
+    // Not clipped (unlike RecordItem): tests check that the whole question is on the slide.
+    if (!stop.question.empty()) st.itemRects["slide-question"] = {x0, y0, x0 + sideW, y1};
+    ImGui::EndChild();
+}
 
 void ShowLesson(AppState& st) {
     LessonState& L = st.lessonPlayer;
@@ -86,9 +225,17 @@ void ShowLesson(AppState& st) {
         ImGui::TextDisabled(
             lesson.assignment
                 ? "An assignment: the points are loaded. Step through them, or compare your own "
-                  "run with `dtlab diff-trace`."
+                  "run with `dtlab diff-trace` (or the Trace compare panel)."
                 : "This lesson has no stops.");
         if (ImGui::Button("Close lesson")) closeLesson(st);
+        RecordItem(st, "lesson-close");
+        if (!lesson.text.empty()) {
+            ImGui::Separator();
+            ImGui::BeginChild("##assignmenttext", ImVec2(0, 0), false);
+            RichText(lesson.text);
+            ImGui::EndChild();
+            RecordItem(st, "assignment-text");
+        }
         return;
     }
     const std::size_t k = std::min(L.progress.stop, n - 1);
@@ -117,6 +264,7 @@ void ShowLesson(AppState& st) {
         closeLesson(st);
         return;
     }
+    RecordItem(st, "lesson-close");
     // Progress: one box per stop (green answered right, orange tried, grey seen).
     {
         ImDrawList* dl = ImGui::GetWindowDrawList();
@@ -138,35 +286,7 @@ void ShowLesson(AppState& st) {
     ImGui::BeginChild("##lessontext", ImVec2(0, 0), false);
     const LessonStop& stop = lesson.stops[k];
     RichText(stop.text);
-    if (!stop.question.empty()) {
-        ImGui::Spacing();
-        ImGui::PushFont(fonts().bold);
-        ImGui::TextWrapped("%s", stop.question.c_str());
-        ImGui::PopFont();
-        ImGui::SetNextItemWidth(std::min(260.0f, ImGui::GetContentRegionAvail().x * 0.6f));
-        const bool enter =
-            ImGui::InputText("##answer", &L.typed, ImGuiInputTextFlags_EnterReturnsTrue);
-        RecordItem(st, "lesson-answer");
-        ImGui::SameLine();
-        if (ImGui::Button("Check") || enter) checkAnswer(st);
-        RecordItem(st, "lesson-check");
-        if (!stop.hint.empty()) {
-            ImGui::SameLine();
-            if (ImGui::SmallButton("Hint")) L.showHint = !L.showHint;
-        }
-        if (L.feedback == LessonState::Feedback::Right) {
-            ImGui::TextColored(ImVec4(0.1f, 0.55f, 0.2f, 1), "Right: %s",
-                               L.plan.stops[k].answer->display().c_str());
-        } else if (L.feedback == LessonState::Feedback::Wrong) {
-            ImGui::TextColored(
-                ImVec4(0.8f, 0.2f, 0.1f, 1),
-                "Not quite. Look again at the canvas and the tables, and try again.");
-            if (ImGui::SmallButton("Show the answer")) L.feedback = LessonState::Feedback::Shown;
-        }
-        if (L.feedback == LessonState::Feedback::Shown)
-            ImGui::Text("The answer: %s", L.plan.stops[k].answer->display().c_str());
-        if (L.showHint) ImGui::TextWrapped("Hint: %s", stop.hint.c_str());
-    }
+    Question(st, stop, k);
     ImGui::EndChild();
     RecordItem(st, "lesson-text");
 }

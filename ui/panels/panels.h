@@ -32,7 +32,10 @@ void ShowTimeline(AppState& state);  // toolbar.cpp: scrubber over all operation
 std::string timelineText(const Engine& engine);
 // "9 of 12 points inserted, 1 duplicate skipped": the one count of points done, everywhere.
 std::string pointCountsText(const Engine& engine);
-void ShowCanvas(AppState& state);       // canvas.cpp: the mesh and every overlay
+void ShowCanvas(AppState& state);  // canvas.cpp: the mesh and every overlay
+// ghosts.cpp: exact mode's ghost triangles as grey bands beyond the hull edges (overlay
+// "virtual-triangles"), labelled when triangle ids are on.
+void DrawGhostTriangles(AppState& state, ImDrawList* dl);
 void ShowCornerTable(AppState& state);  // corner_table.cpp: c, t, V, O, n, p, l, r
 void ShowVertexTable(AppState& state);  // corner_table.cpp: G (vertex coordinates)
 void ShowInspector(AppState& state);    // inspector.cpp: the selected corner's operators
@@ -41,6 +44,9 @@ void ShowHelp(AppState& state);         // help.cpp: F1 overlay with all shortcu
 // The help's rows: keys, and what they do.
 const std::vector<std::array<const char*, 2>>& helpRows();
 void ShowLesson(AppState& state);  // lesson.cpp: the lesson's text and questions
+// lesson.cpp: presentation mode with a lesson: canvas, the stop's text, its side tab and its
+// question, sized to the window (nothing scrolls the question away), no toolbar or messages.
+void ShowSlide(AppState& state);
 
 // Loads a point file into the run; on bad input logs one line (file:line: what) and changes
 // nothing (menu.cpp).

@@ -22,6 +22,8 @@ constexpr ImU32 kWarningFill = IM_COL32(200, 20, 30, 255);
 const char* tierName(PredicateTier t) {
     switch (t) {
         case PredicateTier::Filter: return "floating-point filter";
+        case PredicateTier::ZeroTail: return "exact: differences without round-off";
+        case PredicateTier::StageB: return "adaptive: exact product beyond its error bound";
         case PredicateTier::Expansion: return "exact: floating-point expansions";
         case PredicateTier::BigInteger: return "exact: big integers";
     }

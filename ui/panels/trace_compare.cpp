@@ -104,8 +104,7 @@ bool openStudentTrace(AppState& st, const std::string& path) {
         st.engine.seek(tc.ours->ops.size());
         tc.studentPos = tc.student->ops.size();
         st.log(Message::Level::Info, path + ": the same run as ours (" +
-                                         std::to_string(tc.diff.compared) +
-                                         " operations compared)");
+                                         std::to_string(tc.diff.compared) + " steps compared)");
     } else {
         goToDifference(st);
         st.log(Message::Level::Warning,
@@ -140,7 +139,7 @@ void ShowTraceCompare(AppState& st) {
     ImGui::TextWrapped("%s", tc.student->name.c_str());
     if (tc.diff.equal) {
         ImGui::TextColored(ImVec4(0.1f, 0.55f, 0.2f, 1),
-                           "The same run as ours: %zu operations compared.", tc.diff.compared);
+                           "The same run as ours: %zu steps compared.", tc.diff.compared);
     } else {
         ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(0.8f, 0.1f, 0.1f, 1));
         ImGui::TextWrapped("First difference: %s", tc.diff.what.c_str());

@@ -1,10 +1,13 @@
 // What the UI needs from a window system: a current GL context that runs our shaders (OpenGL 3.3
 // core; ui/gl/gl_api.h), frames, and input for ImGui.
 //
-// Two implementations, one file each, each in its own library because each brings its own GL
-// provider: platform_glfw.cpp (a real window, libGL) and platform_osmesa.cpp (headless, OSMesa;
-// the only file that includes OSMesa, so that EGL can replace it when Mesa drops OSMesa).
+// Three implementations, one file each, each in its own library because each brings its own GL
+// provider or none: platform_glfw.cpp (a real window, libGL), platform_osmesa.cpp (headless,
+// OSMesa; the only file that includes OSMesa, so that EGL can replace it when Mesa drops OSMesa)
+// and platform_null.cpp (headless, no GL at all: the null renderer).
 #pragma once
+
+#include "ui/render/renderer.h"
 
 #include <memory>
 #include <string>
@@ -32,7 +35,13 @@ public:
     virtual void setTitle(const std::string& /*title*/) {}
     // Headless only: a new framebuffer size.
     virtual bool resize(int /*width*/, int /*height*/) { return false; }
+    // What draws on this platform: the GL renderer on the platform's context, or the null one.
+    virtual std::unique_ptr<Renderer> makeRenderer() = 0;
 };
+
+// Headless, no GL: ImGui on synthetic input, the null renderer (counts into `counts` if given).
+std::unique_ptr<Platform> makeNullPlatform(int width, int height,
+                                           NullRendererCounts* counts = nullptr);
 
 // Headless, OSMesa: a core-profile context (3.3 asked for; Mesa gives 4.5). Returns nullptr and
 // sets `error` when no context can be made.

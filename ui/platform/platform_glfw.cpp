@@ -1,5 +1,6 @@
 // The windowed platform: GLFW with an OpenGL 3.3 core context, ImGui's GLFW backend for input.
 #include "ui/files/settings.h"
+#include "ui/gl/gl_renderer.h"
 #include "ui/platform/platform.h"
 
 #define GLFW_INCLUDE_NONE  // GL comes from ui/gl/gl_api.h, never from here
@@ -32,6 +33,7 @@ public:
     }
     const char* name() const override { return "glfw"; }
     bool headless() const override { return false; }
+    std::unique_ptr<Renderer> makeRenderer() override { return makeGlRenderer(); }
     void framebufferSize(int& width, int& height) const override {
         glfwGetFramebufferSize(m_window, &width, &height);
     }

@@ -1,9 +1,9 @@
 // The headless platform: an OSMesa context rendering into memory (software GL, llvmpipe).
 // The only file that includes OSMesa: when Mesa's OSMesa goes away, an EGL pbuffer replaces it.
-#include "ui/platform/platform.h"
+#include "ui/gl/gl_renderer.h"
+#include "ui/platform/headless.h"
 
 #include <GL/osmesa.h>
-#include <imgui.h>
 
 #include <vector>
 
@@ -11,43 +11,12 @@ namespace dlab::ui {
 
 namespace {
 
-class OsmesaPlatform final : public Platform {
+class OsmesaPlatform final : public HeadlessPlatform {
 public:
     OsmesaPlatform(OSMesaContext ctx, int width, int height) : m_ctx(ctx) { resize(width, height); }
     ~OsmesaPlatform() override { OSMesaDestroyContext(m_ctx); }
     const char* name() const override { return "osmesa"; }
-    bool headless() const override { return true; }
-    void framebufferSize(int& width, int& height) const override {
-        width = m_width;
-        height = m_height;
-    }
-    void initImGui() override {
-        ImGuiIO& io = ImGui::GetIO();
-        io.BackendPlatformName = "dlab_headless";
-        // Key indices are GLFW's key codes (ui/platform/keys.h), as in the real window.
-        for (int k = 0; k < ImGuiKey_COUNT; ++k) io.KeyMap[k] = -1;
-        const int map[][2] = {{ImGuiKey_Tab, 258},        {ImGuiKey_LeftArrow, 263},
-                              {ImGuiKey_RightArrow, 262}, {ImGuiKey_UpArrow, 265},
-                              {ImGuiKey_DownArrow, 264},  {ImGuiKey_PageUp, 266},
-                              {ImGuiKey_PageDown, 267},   {ImGuiKey_Home, 268},
-                              {ImGuiKey_End, 269},        {ImGuiKey_Insert, 260},
-                              {ImGuiKey_Delete, 261},     {ImGuiKey_Backspace, 259},
-                              {ImGuiKey_Space, 32},       {ImGuiKey_Enter, 257},
-                              {ImGuiKey_Escape, 256},     {ImGuiKey_KeyPadEnter, 335},
-                              {ImGuiKey_A, 'A'},          {ImGuiKey_C, 'C'},
-                              {ImGuiKey_V, 'V'},          {ImGuiKey_X, 'X'},
-                              {ImGuiKey_Y, 'Y'},          {ImGuiKey_Z, 'Z'}};
-        for (const auto& m : map) io.KeyMap[m[0]] = m[1];
-    }
-    void shutdownImGui() override {}
-    bool newFrame() override {
-        ImGuiIO& io = ImGui::GetIO();
-        io.DisplaySize = ImVec2(static_cast<float>(m_width), static_cast<float>(m_height));
-        io.DisplayFramebufferScale = ImVec2(1, 1);
-        if (io.DeltaTime <= 0) io.DeltaTime = 1.0f / 60.0f;
-        return true;
-    }
-    void present() override {}
+    std::unique_ptr<Renderer> makeRenderer() override { return makeGlRenderer(); }
     bool resize(int width, int height) override {
         if (width < 1 || height < 1 || width > 16384 || height > 16384) return false;
         m_buffer.assign(static_cast<std::size_t>(width) * height * 4, 0);
@@ -62,7 +31,6 @@ public:
 private:
     OSMesaContext m_ctx;
     std::vector<unsigned char> m_buffer;
-    int m_width = 0, m_height = 0;
 };
 
 }  // namespace

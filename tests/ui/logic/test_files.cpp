@@ -9,15 +9,15 @@
 #include "ui/files/files.h"
 #include "ui/files/gif_export.h"
 #include "ui/files/session.h"
+#include "ui/files/settings.h"
 #include "ui/panels/panels.h"
 #include "ui/platform/keys.h"
 
-#include <gif_lib.h>
 #include <gtest/gtest.h>
 #include <imgui.h>
-#include <stb_image.h>
 
 #include <signal.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -33,41 +33,19 @@
 
 using dlab::kNone;
 using dlab::Vec2;
+using dlab::test::sameBits;
+using dlab::test::TempDir;
 using dlab::test::UiHarness;
 namespace fs = std::filesystem;
 namespace key = dlab::ui::key;
 
 namespace {
 
-constexpr std::array<int, 3> kNoticeRgb = {191, 20,
-                                           26};  // the notice's background (0.75, 0.08, 0.10)
-
-// A fresh folder per test, removed at the end.
-struct TempDir {
-    fs::path path;
-    explicit TempDir(const std::string& name) {
-        path =
-            fs::temp_directory_path() / ("dlab_files_" + name + "_" + std::to_string(::getpid()));
-        fs::remove_all(path);
-        fs::create_directories(path);
-    }
-    ~TempDir() {
-        std::error_code ec;
-        fs::remove_all(path, ec);
-    }
-    std::string operator/(const std::string& f) const { return (path / f).string(); }
-};
-
 std::string slurp(const std::string& path) {
     std::ifstream in(path, std::ios::binary);
     std::ostringstream s;
     s << in.rdbuf();
     return s.str();
-}
-
-bool sameBits(const std::vector<Vec2>& a, const std::vector<Vec2>& b) {
-    return a.size() == b.size() &&
-           (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(Vec2)) == 0);
 }
 
 // Lines of a text file split into whitespace fields, comments ('#') dropped.
@@ -119,6 +97,56 @@ TEST(Files, ASessionErrorQuotingAControlCharacterStaysOneLine) {
     EXPECT_EQ(error.rfind("bad.json:2:", 0), 0u) << error;
     EXPECT_NE(error.find("sup\\nper"), std::string::npos) << error;
     EXPECT_EQ(st.engine.points(), before);
+}
+
+TEST(Files, PipesAndDevicesAreRefusedWithoutReadingThem) {
+    TempDir dir("nonregular");
+    const std::string fifo = dir / "pipe.json";
+    ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+    const std::string zero = dir / "z.json";
+    fs::create_symlink("/dev/zero", zero);
+    dlab::ui::AppState st;
+    std::string error;
+    // No writer on the pipe and endless zeros: each is refused at once, in one line.
+    EXPECT_FALSE(dlab::ui::loadSession(st, fifo, error));
+    EXPECT_EQ(error, fifo + ": cannot read: it is a named pipe (FIFO), not a regular file");
+    EXPECT_FALSE(dlab::ui::loadSession(st, zero, error));
+    EXPECT_EQ(error, zero + ": cannot read: it is a device, not a regular file");
+    dlab::ui::SessionSummary summary;
+    EXPECT_FALSE(dlab::ui::peekSession(zero, summary, error));
+    EXPECT_NE(error.find("device"), std::string::npos) << error;
+    EXPECT_FALSE(dlab::ui::openFile(st, fifo));
+    EXPECT_FALSE(dlab::ui::openFile(st, dir / "z.json"));
+    // Settings: ignored with a warning, never waited on.
+    dlab::ui::WindowOptions window;
+    std::string warning;
+    dlab::ui::loadSettings(fifo, st, window, warning);
+    EXPECT_NE(warning.find("named pipe"), std::string::npos) << warning;
+}
+
+TEST(Files, ASessionNumberBeyondDoubleNamesItsLine) {
+    dlab::ui::AppState st;
+    const std::string text =
+        "{\"format\": \"delaunay-lab session\", \"version\": 1,\n"
+        "  \"points\": [[0, 0], [1e400, 0], [0, 1]]}";
+    std::string error;
+    ASSERT_FALSE(dlab::ui::loadSessionText(st, text, "big.json", error));
+    EXPECT_EQ(error.rfind("big.json:2: the number 1e400 is too large", 0), 0u) << error;
+    EXPECT_EQ(error.find("json.exception"), std::string::npos) << error;
+}
+
+TEST(Files, ViewSvgEscapesControlCharactersInItsTitle) {
+    UiHarness h;
+    auto& st = h.state();
+    st.source = "lesson \x1b[31mred\x07 <&>";
+    std::ostringstream out;
+    dlab::ui::writeViewSvg(out, st);
+    const std::string svg = out.str();
+    for (char c : svg) {
+        const auto u = static_cast<unsigned char>(c);
+        EXPECT_FALSE(u < 0x20 && c != '\n' && c != '\t' && c != '\r') << static_cast<int>(u);
+    }
+    EXPECT_NE(svg.find("lesson ?[31mred? &lt;&amp;&gt;"), std::string::npos);
 }
 
 TEST(Files, PointsRoundTripBitExactAsNodeAndCsv) {
@@ -265,102 +293,6 @@ TEST(Files, ViewSvgHasEveryVisibleEdgeAndPointWhereTheCanvasDrawsThem) {
 }
 
 // ============================================================================================
-// Captures
-// ============================================================================================
-
-TEST(Files, F12WritesAPngOfTheWindow) {
-    TempDir dir("png");
-    UiHarness h(1000, 700);
-    auto& st = h.state();
-    st.files.screenshotFolder = dir.path.string();
-    st.engine.seek(30);
-    h.frames(2);
-    h.press(key::kF12);
-    ASSERT_TRUE(st.files.screenshotRequested);
-    dlab::ui::serviceCaptures(h.gui());
-    EXPECT_FALSE(st.files.screenshotRequested);
-    std::vector<fs::path> pngs;
-    for (const auto& e : fs::directory_iterator(dir.path)) pngs.push_back(e.path());
-    ASSERT_EQ(pngs.size(), 1u);
-    EXPECT_EQ(pngs[0].extension(), ".png");
-    int w = 0, hgt = 0, n = 0;
-    unsigned char* data = stbi_load(pngs[0].string().c_str(), &w, &hgt, &n, 4);
-    ASSERT_NE(data, nullptr);
-    int fw = 0, fh = 0;
-    const auto& frame = h.gui().lastFrame(fw, fh);
-    ASSERT_EQ(w, fw);
-    ASSERT_EQ(hgt, fh);
-    std::size_t diff = 0;
-    for (std::size_t i = 0; i < static_cast<std::size_t>(w) * hgt * 4; ++i)
-        diff += (i % 4 != 3) && data[i] != frame[i];
-    stbi_image_free(data);
-    EXPECT_EQ(diff, 0u);
-}
-
-TEST(Files, AnimatedGifHasOneFramePerStepAsRendered) {
-    TempDir dir("gif");
-    UiHarness h(1000, 700);
-    auto& st = h.state();
-    st.engine.seek(5);
-    h.frames(2);
-    dlab::ui::GifRequest req;
-    req.path = dir / "steps.gif";
-    req.from = 10;
-    req.to = 40;
-    req.every = 10;
-    req.delayMs = 300;
-    st.files.gif = req;
-    dlab::ui::serviceCaptures(h.gui());
-    EXPECT_FALSE(st.files.gif.has_value());
-    EXPECT_EQ(st.engine.position(), 5u);  // back where it was
-    int err = 0;
-    GifFileType* gif = DGifOpenFileName(req.path.c_str(), &err);
-    ASSERT_NE(gif, nullptr) << GifErrorString(err);
-    ASSERT_EQ(DGifSlurp(gif), GIF_OK);
-    ASSERT_EQ(gif->ImageCount, 4);
-    const auto canvas = h.rect("canvas");
-    EXPECT_EQ(gif->SWidth, static_cast<int>(std::lround(canvas[2] - canvas[0])));
-    EXPECT_EQ(gif->SHeight, static_cast<int>(std::lround(canvas[3] - canvas[1])));
-    GraphicsControlBlock gcb;
-    ASSERT_EQ(DGifSavedExtensionToGCB(gif, 0, &gcb), GIF_OK);
-    EXPECT_EQ(gcb.DelayTime, 30);
-    // Frame k is the canvas at step 10 + 10 k: compare with a fresh rendering (the palette
-    // quantization costs a little precision, nothing more).
-    for (int k = 0; k < 4; ++k) {
-        st.engine.seek(10 + 10 * k);
-        h.frames(2);
-        int w = 0, hh = 0;
-        const auto px = dlab::ui::CaptureRegion(h.gui(), false, w, hh);
-        ASSERT_EQ(w, gif->SWidth);
-        const SavedImage& img = gif->SavedImages[k];
-        const ColorMapObject* map =
-            img.ImageDesc.ColorMap ? img.ImageDesc.ColorMap : gif->SColorMap;
-        ASSERT_NE(map, nullptr);
-        // 256 colours cannot hold every antialiased shade: most pixels come back exact, nearly
-        // all close.
-        int exact = 0, close = 0;
-        for (int i = 0; i < w * hh; ++i) {
-            const GifColorType c = map->Colors[img.RasterBits[i]];
-            const int d = std::max({std::abs(c.Red - px[4 * i]), std::abs(c.Green - px[4 * i + 1]),
-                                    std::abs(c.Blue - px[4 * i + 2])});
-            exact += d == 0;
-            close += d <= 24;
-        }
-        std::printf("[ info ] GIF frame %d: %.1f%% of pixels exact, %.2f%% within 24\n", k,
-                    100.0 * exact / (w * hh), 100.0 * close / (w * hh));
-        EXPECT_GT(exact, 0.9 * w * hh) << "frame " << k;
-        EXPECT_GT(close, 0.99 * w * hh) << "frame " << k;
-    }
-    DGifCloseFile(gif, &err);
-    // A request beyond the frame limit is refused with one line naming the file.
-    req.to = 100000;
-    req.every = 1;
-    st.files.gif = req;
-    dlab::ui::serviceCaptures(h.gui());
-    EXPECT_NE(st.files.notice.find("steps.gif"), std::string::npos) << st.files.notice;
-}
-
-// ============================================================================================
 // Sessions
 // ============================================================================================
 
@@ -447,77 +379,6 @@ TEST(Files, ASessionWhoseMeshDiffersSaysSo) {
         << st.messages.back().text;
 }
 
-TEST(Files, ABadFileChangesNothingAndShowsOneLineNamingFileAndLine) {
-    TempDir dir("bad");
-    UiHarness h;
-    auto& st = h.state();
-    st.engine.seek(33);
-    st.select(4);
-    h.frames(2);
-    const auto points = st.engine.points();
-    const auto view = st.view;
-    const auto options = st.engine.options();
-    const std::string good = dlab::ui::sessionText(st);
-    auto lineOf = [&](const std::string& text, const std::string& needle) {
-        const auto at = text.find(needle);
-        return 1 + static_cast<int>(std::count(
-                       text.begin(), text.begin() + static_cast<std::ptrdiff_t>(at), '\n'));
-    };
-    struct Case {
-        std::string name, text, expect;
-    };
-    std::string badPoint = good;
-    const std::string third = "\n    [";
-    std::size_t at = 0;
-    for (int k = 0; k < 4; ++k) at = badPoint.find(third, at + 1);
-    badPoint.insert(at + third.size(), "\"x\", ");  // point 3 becomes ["x", x, y]
-    std::string badVersion =
-        std::regex_replace(good, std::regex("\"version\": 1"), "\"version\": 9");
-    std::string badLocator =
-        std::regex_replace(good, std::regex("\"locator\": \"walk\""), "\"locator\": \"teleport\"");
-    std::string syntax = good;
-    syntax.insert(syntax.find("\"view\""), "oops ");
-    const std::vector<Case> cases = {
-        {"point.json", badPoint,
-         ":" + std::to_string(lineOf(badPoint, "\"x\", ")) + ": points[3]: expected [x, y]"},
-        {"version.json", badVersion,
-         ":" + std::to_string(lineOf(badVersion, "\"version\"")) +
-             ": version: session version 9 is newer"},
-        {"locator.json", badLocator,
-         ":" + std::to_string(lineOf(badLocator, "teleport")) +
-             ": options.locator: unknown locator"},
-        {"syntax.json", syntax, ":" + std::to_string(lineOf(syntax, "oops")) + ": not valid JSON"},
-        {"other.json", "{\"hello\": 1}\n", ": not a Delaunay Lab session"},
-        {"points.csv", "1,2\n3,4\n5,inf\n", ":3:"},
-    };
-    for (const Case& c : cases) {
-        const std::string path = dir / c.name;
-        std::ofstream(path) << c.text;
-        st.files.notice.clear();
-        const std::size_t before = st.messages.size();
-        EXPECT_FALSE(dlab::ui::openFile(st, path)) << c.name;
-        EXPECT_TRUE(sameBits(st.engine.points(), points)) << c.name;
-        EXPECT_EQ(st.engine.position(), 33u) << c.name;
-        EXPECT_EQ(st.engine.options().locator, options.locator) << c.name;
-        EXPECT_EQ(st.view.center, view.center) << c.name;
-        EXPECT_EQ(st.selection.corner, 4) << c.name;
-        ASSERT_GT(st.messages.size(), before);
-        const std::string& msg = st.messages.back().text;
-        EXPECT_EQ(st.messages.back().level, dlab::ui::Message::Level::Error);
-        EXPECT_EQ(msg.find('\n'), std::string::npos) << msg;
-        EXPECT_EQ(msg.rfind(path, 0), 0u) << "does not start with the file: " << msg;
-        EXPECT_NE(msg.find(c.expect), std::string::npos) << c.name << ": " << msg;
-        EXPECT_FALSE(st.files.notice.empty());
-        // The notice is on the screen, red, over the canvas.
-        st.itemRects.erase("file-notice");
-        h.frames(2);
-        ASSERT_TRUE(st.itemRects.count("file-notice")) << c.name;
-        EXPECT_GT(h.countColour(h.rect("file-notice"), kNoticeRgb), 500) << c.name;
-    }
-    h.clickItem("notice-dismiss");
-    EXPECT_TRUE(st.files.notice.empty());
-}
-
 // ============================================================================================
 // Autosave and recovery after kill -9
 // ============================================================================================
@@ -553,7 +414,7 @@ TEST(Files, RecoveryAfterKillRestoresEveryPoint) {
     ::setenv("DLAB_RECOVERY_DIR", dir.path.c_str(), 1);
     const pid_t child = ::fork();
     if (child == 0) {
-        ::execl("/proc/self/exe", "dlab_ui_tests", "--gtest_also_run_disabled_tests",
+        ::execl("/proc/self/exe", "dlab_ui_logic_tests", "--gtest_also_run_disabled_tests",
                 "--gtest_filter=Files.DISABLED_RecoveryChildEditsUntilKilled",
                 static_cast<char*>(nullptr));
         ::_exit(127);

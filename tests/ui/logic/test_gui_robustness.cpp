@@ -8,7 +8,7 @@
 // back to operation 0 and forward again gives the same V/O, and equals a fresh replay.
 //
 // A failure prints the seed and the whole action log. Replay one seed, longer or shorter:
-//   DLAB_GUI_ROBUST_SEED=7 DLAB_GUI_ROBUST_ACTIONS=2000 build/tests/ui/dlab_ui_tests
+//   DLAB_GUI_ROBUST_SEED=7 DLAB_GUI_ROBUST_ACTIONS=2000 build/tests/ui/dlab_ui_logic_tests
 //       --gtest_filter='Seeds/GuiRobustness.*/0'
 // Every action is also appended (flushed) to $TMPDIR/dlab_gui_robust_SEED.log, which survives a
 // crash.

@@ -1,0 +1,17 @@
+// The GL tests' platform: OSMesa, a software OpenGL core-profile context.
+#include "tests/ui/ui_harness.h"
+#include "ui/gl/gl_api.h"
+
+namespace dlab::test {
+
+std::unique_ptr<ui::Platform> makeTestPlatform(int width, int height, std::string& error) {
+    return ui::makeOsmesaPlatform(width, height, error);
+}
+
+bool HeadlessGl::open(std::string& error) {
+    platform = ui::makeOsmesaPlatform(16, 16, error);
+    if (platform) gl = ui::GlContext::fromCurrent(error);
+    return gl != nullptr;
+}
+
+}  // namespace dlab::test

@@ -1,0 +1,316 @@
+// The lesson player in the GUI: open a lesson, go from stop to stop, answer its questions.
+#include "core/teaching/lesson.h"
+#include "tests/ui/ui_harness.h"
+#include "ui/files/settings.h"
+#include "ui/lesson_player.h"
+#include "ui/panels/panels.h"
+#include "ui/platform/keys.h"
+
+#include <gtest/gtest.h>
+#include <imgui.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <tuple>
+#include <vector>
+
+using dlab::test::UiHarness;
+
+namespace {
+
+std::string lessonPath(const char* name) {
+    return std::string(DLAB_SOURCE_DIR) + "/lessons/" + name;
+}
+
+// Types text into the focused-by-click answer field, then clicks Check.
+void typeAnswer(UiHarness& h, const std::string& text) {
+    h.clickItem("lesson-answer");
+    ImGuiIO& io = ImGui::GetIO();
+    for (char c : text) io.AddInputCharacter(static_cast<unsigned>(c));
+    h.frames(2);
+    h.clickItem("lesson-check");
+}
+
+}  // namespace
+
+TEST(LessonPlayer, StopsSeekTheRunAndSelectTheirCorner) {
+    UiHarness h;
+    auto& st = h.state();
+    ASSERT_TRUE(dlab::ui::openLesson(st, lessonPath("05_flips.toml"))) << st.messages.back().text;
+    h.frames(2);
+    const auto& L = st.lessonPlayer;
+    ASSERT_TRUE(L.lesson);
+    EXPECT_EQ(L.progress.stop, 0u);
+    EXPECT_EQ(st.engine.position(), L.plan.stops[0].position);
+    // Next goes to stop 2, at its planned position; Previous comes back.
+    h.clickItem("lesson-next");
+    EXPECT_EQ(L.progress.stop, 1u);
+    EXPECT_EQ(st.engine.position(), L.plan.stops[1].position);
+    EXPECT_EQ(st.engine.current()->type, dlab::OpType::Split);
+    h.clickItem("lesson-previous");
+    EXPECT_EQ(L.progress.stop, 0u);
+    EXPECT_EQ(st.engine.position(), L.plan.stops[0].position);
+    // Every stop's selection is applied.
+    for (std::size_t k = 0; k < L.plan.stops.size(); ++k) {
+        dlab::ui::goToStop(st, k);
+        EXPECT_EQ(st.selection.corner, L.plan.stops[k].selected) << "stop " << k + 1;
+        EXPECT_EQ(st.engine.position(), L.plan.stops[k].position) << "stop " << k + 1;
+    }
+}
+
+TEST(LessonPlayer, AfterTheUserChangesThePointsNextBringsTheLessonBackAndCtrlZTheirs) {
+    UiHarness h;
+    auto& st = h.state();
+    ASSERT_TRUE(dlab::ui::openLesson(st, lessonPath("05_flips.toml")));
+    h.frames(2);
+    const auto& L = st.lessonPlayer;
+    const std::vector<dlab::Vec2> mine = {{0, 0}, {4, 0}, {0, 3}, {5, 5}};
+    ASSERT_TRUE(st.loadPoints(mine, "mine"));
+    dlab::InsertOptions other = st.engine.options();
+    other.order = dlab::OrderKind::Input;
+    other.boundary = dlab::Boundary::Super;
+    ASSERT_TRUE(st.setOptions(other));
+    h.frames(2);
+    EXPECT_TRUE(dlab::ui::lessonStateChanged(st));
+    ASSERT_TRUE(st.itemRects.count("lesson-next"));
+    h.clickItem("lesson-next");
+    EXPECT_EQ(L.progress.stop, 1u);
+    EXPECT_FALSE(dlab::ui::lessonStateChanged(st));
+    EXPECT_EQ(st.engine.points(), L.lesson->points);
+    EXPECT_EQ(st.engine.options().boundary, L.lesson->options.boundary);
+    EXPECT_EQ(st.engine.position(), L.plan.stops[1].position);
+    EXPECT_EQ(st.engine.current()->type, dlab::OpType::Split);
+    // The user's points are one undo away.
+    h.press(dlab::ui::key::letter('Z'), false, true);
+    EXPECT_EQ(st.engine.points(), mine);
+}
+
+TEST(LessonPlayer, AnswersAreCheckedAgainstTheEngine) {
+    UiHarness h;
+    auto& st = h.state();
+    ASSERT_TRUE(dlab::ui::openLesson(st, lessonPath("05_flips.toml")));
+    auto& L = st.lessonPlayer;
+    dlab::ui::goToStop(st, 1);  // "How many edges wait in the queue?"
+    h.frames(2);
+    ASSERT_TRUE(L.plan.stops[1].answer);
+    const std::string right = L.plan.stops[1].answer->display();
+    EXPECT_EQ(right, std::to_string(st.engine.inserter().flipStack().size()));
+    typeAnswer(h, "99");
+    EXPECT_EQ(L.feedback, dlab::ui::LessonState::Feedback::Wrong);
+    EXPECT_EQ(L.progress.answers[1], 1);
+    L.typed.clear();
+    typeAnswer(h, right);
+    EXPECT_EQ(L.feedback, dlab::ui::LessonState::Feedback::Right);
+    EXPECT_EQ(L.progress.answers[1], 2);
+}
+
+TEST(LessonPlayer, AStopShowsOnlyThePanelsItNames) {
+    UiHarness h;
+    auto& st = h.state();
+    ASSERT_TRUE(dlab::ui::openLesson(st, lessonPath("05_flips.toml")));
+    h.frames(2);
+    // Stop 1 names canvas and statistics: the corner table's tab is not there, Statistics is.
+    const auto& panels = st.lessonPlayer.lesson->stops[0].panels;
+    ASSERT_FALSE(panels.empty());
+    st.itemRects.clear();
+    h.frames(2);
+    EXPECT_EQ(st.itemRects.count("Corner table"), 0u);
+    EXPECT_EQ(st.itemRects.count("Statistics"), 1u);
+    EXPECT_FALSE(dlab::ui::lessonWantsPanel(st, "inspector"));
+    dlab::ui::closeLesson(st);
+    st.itemRects.clear();
+    h.frames(2);
+    EXPECT_EQ(st.itemRects.count("Corner table"), 1u);
+}
+
+TEST(LessonPlayer, ABrokenLessonChangesNothing) {
+    UiHarness h;
+    auto& st = h.state();
+    const auto points = st.engine.points();
+    const auto bad = std::filesystem::temp_directory_path() / "dlab_broken_lesson.toml";
+    std::ofstream(bad)
+        << "title = \"x\"\npoints = [[0, 0], [1, 0], [0, 1]]\n[[stop]]\nrun_to = \"flop\"\n";
+    EXPECT_FALSE(dlab::ui::openLesson(st, bad.string()));
+    EXPECT_FALSE(st.lessonPlayer.lesson);
+    EXPECT_EQ(st.engine.points(), points);
+    ASSERT_FALSE(st.messages.empty());
+    EXPECT_NE(st.messages.back().text.find("dlab_broken_lesson.toml:4"), std::string::npos)
+        << st.messages.back().text;
+}
+
+// ---- Slides: presentation mode with a lesson open ----------------------------------------------
+
+namespace {
+
+std::vector<std::string> lessonsWithStops() {
+    std::vector<std::string> out;
+    for (const auto& e : std::filesystem::directory_iterator(lessonPath(""))) {
+        if (e.path().extension() != ".toml") continue;
+        if (!dlab::loadLesson(e.path().string()).stops.empty()) out.push_back(e.path().string());
+    }
+    std::sort(out.begin(), out.end());
+    return out;
+}
+
+bool inside(const std::array<float, 4>& r, float w, float h) {
+    return r[0] >= 0 && r[1] >= 0 && r[2] <= w && r[3] <= h && r[0] < r[2] && r[1] < r[3];
+}
+
+// Every stop of every lesson on a slide of this size: the text and the whole question (answer
+// field, Check) are on the slide, and the message log is not.
+void everyStopFits(int width, int height) {
+    UiHarness h(width, height);
+    auto& st = h.state();
+    st.presentation = true;
+    const std::vector<std::string> lessons = lessonsWithStops();
+    ASSERT_GE(lessons.size(), 9u);
+    for (const std::string& path : lessons) {
+        ASSERT_TRUE(dlab::ui::openLesson(st, path)) << st.messages.back().text;
+        const auto& stops = st.lessonPlayer.lesson->stops;
+        for (std::size_t k = 0; k < stops.size(); ++k) {
+            const std::string where = path + " stop " + std::to_string(k + 1);
+            dlab::ui::goToStop(st, k);
+            st.itemRects.clear();
+            h.frames(3);
+            ASSERT_TRUE(dlab::ui::slideMode(st)) << where;
+            EXPECT_TRUE(st.itemRects.count("slide-text")) << where;
+            EXPECT_FALSE(st.itemRects.count("messages")) << where;
+            EXPECT_TRUE(st.itemRects.count("lesson-next")) << where;
+            if (stops[k].question.empty()) continue;
+            ASSERT_TRUE(st.itemRects.count("slide-question")) << where;
+            EXPECT_TRUE(inside(st.itemRects["slide-question"], width, height))
+                << where << ": the question ends at y = " << st.itemRects["slide-question"][3];
+            // The field and the button are whole (RecordItem clips what is cut off).
+            for (const char* item : {"lesson-answer", "lesson-check"}) {
+                ASSERT_TRUE(st.itemRects.count(item)) << where << " " << item;
+                const auto r = st.itemRects[item];
+                EXPECT_GT(r[3] - r[1], ImGui::GetFontSize()) << where << " " << item;
+            }
+        }
+        dlab::ui::closeLesson(st);
+    }
+}
+
+}  // namespace
+
+TEST(LessonSlides, EveryStopShowsItsWholeQuestionAt1280x720) { everyStopFits(1280, 720); }
+
+TEST(LessonSlides, EveryStopShowsItsWholeQuestionAt1920x1080) { everyStopFits(1920, 1080); }
+
+TEST(LessonSlides, FontsGrowWithTheWindowHeight) {
+    float small = 0, large = 0;
+    for (auto [w, h, out] : {std::tuple{1280, 720, &small}, std::tuple{1920, 1080, &large}}) {
+        UiHarness harness(w, h);
+        harness.state().presentation = true;
+        harness.frames(2);
+        *out = ImGui::GetFontSize();
+    }
+    EXPECT_GE(small, 20.0f);
+    EXPECT_GT(large, small * 1.4f);
+}
+
+TEST(LessonSlides, PageDownAndPageUpMoveBetweenStops) {
+    UiHarness h(1280, 720);
+    auto& st = h.state();
+    st.presentation = true;
+    ASSERT_TRUE(dlab::ui::openLesson(st, lessonPath("05_flips.toml")));
+    h.frames(2);
+    const auto& L = st.lessonPlayer;
+    h.press(dlab::ui::key::kPageDown);
+    EXPECT_EQ(L.progress.stop, 1u);
+    EXPECT_EQ(st.engine.position(), L.plan.stops[1].position);
+    h.press(dlab::ui::key::kPageDown);
+    h.press(dlab::ui::key::kPageUp);
+    EXPECT_EQ(L.progress.stop, 1u);
+    EXPECT_EQ(st.engine.position(), L.plan.stops[1].position);
+    // Out of presentation mode, Page Down steps one operation as before.
+    st.presentation = false;
+    h.frames(2);
+    h.press(dlab::ui::key::kPageDown);
+    EXPECT_EQ(L.progress.stop, 1u);
+    EXPECT_EQ(st.engine.position(), L.plan.stops[1].position + 1);
+}
+
+TEST(LessonSlides, AStopsViewFitsItsVerticesAndItsTabIsShown) {
+    UiHarness h(1280, 720);
+    auto& st = h.state();
+    st.presentation = true;
+    // Lesson 5 zooms on the cascade (vertices 1 to 10), away from vertex 0 high above.
+    ASSERT_TRUE(dlab::ui::openLesson(st, lessonPath("05_flips.toml")));
+    dlab::ui::goToStop(st, 1);
+    h.frames(3);
+    const auto canvas = h.rect("canvas");
+    const auto& G = st.engine.mesh().G;
+    const auto left = st.view.toScreen(G[1]), right = st.view.toScreen(G[9]);
+    EXPECT_GE(left.x, canvas[0]);
+    EXPECT_LE(right.x, canvas[2]);
+    EXPECT_GT(right.x - left.x, 0.7 * (canvas[2] - canvas[0]));
+    EXPECT_LT(st.view.toScreen(G[0]).y, canvas[1]) << "vertex 0 is off the slide";
+    EXPECT_FALSE(st.itemRects.count("slide-tab"));
+    // Its last stop shows the whole run, with the statistics in front.
+    dlab::ui::goToStop(st, st.lessonPlayer.lesson->stops.size() - 1);
+    st.itemRects.clear();
+    h.frames(3);
+    EXPECT_GE(st.view.toScreen(G[0]).y, canvas[1]);
+    EXPECT_TRUE(st.itemRects.count("slide-tab"));
+    // Lesson 8 shows its ID buffer beside the canvas.
+    ASSERT_TRUE(dlab::ui::openLesson(st, lessonPath("08_idbuffer.toml")));
+    st.itemRects.clear();
+    h.frames(3);
+    EXPECT_TRUE(st.itemRects.count("slide-tab"));
+}
+
+TEST(LessonPlayer, ClosingALessonBringsBackTheUsersOverlays) {
+    UiHarness h;
+    auto& st = h.state();
+    st.overlays.cornerIds = true;
+    st.overlays.walk = true;
+    st.overlays.circumcircles = false;
+    h.frames(2);
+    ASSERT_TRUE(dlab::ui::openLesson(st, lessonPath("05_flips.toml")));
+    h.frames(2);
+    // The lesson's overlays: no corner ids, no walk, circumcircles.
+    EXPECT_FALSE(st.overlays.cornerIds);
+    EXPECT_FALSE(st.overlays.walk);
+    EXPECT_TRUE(st.overlays.circumcircles);
+    // Settings saved while the lesson is open keep the user's overlays.
+    const auto settings = std::filesystem::temp_directory_path() / "dlab_lesson_settings.json";
+    std::string error;
+    ASSERT_TRUE(dlab::ui::saveSettings(settings.string(), st, {}, error)) << error;
+    {
+        dlab::ui::AppState fresh;
+        dlab::ui::WindowOptions window;
+        fresh.overlays.cornerIds = false;
+        fresh.overlays.circumcircles = true;
+        dlab::ui::loadSettings(settings.string(), fresh, window, error);
+        EXPECT_TRUE(fresh.overlays.cornerIds);
+        EXPECT_TRUE(fresh.overlays.walk);
+        EXPECT_FALSE(fresh.overlays.circumcircles);
+    }
+    h.clickItem("lesson-close");
+    EXPECT_FALSE(st.lessonPlayer.lesson);
+    EXPECT_TRUE(st.overlays.cornerIds);
+    EXPECT_TRUE(st.overlays.walk);
+    EXPECT_FALSE(st.overlays.circumcircles);
+    // A stop's zoom is not left behind: the canvas shows every point again.
+    const auto canvas = h.rect("canvas");
+    for (const dlab::Vec2& p : st.engine.points()) {
+        const auto q = st.view.toScreen(p);
+        EXPECT_TRUE(q.x >= canvas[0] && q.x <= canvas[2] && q.y >= canvas[1] && q.y <= canvas[3]);
+    }
+}
+
+TEST(LessonPlayer, AnAssignmentShowsItsText) {
+    UiHarness h;
+    auto& st = h.state();
+    ASSERT_TRUE(dlab::ui::openLesson(st, lessonPath("10_assignment_insertion.toml")));
+    st.itemRects.clear();
+    h.frames(3);
+    ASSERT_TRUE(st.itemRects.count("assignment-text"));
+    const auto r = st.itemRects["assignment-text"];
+    EXPECT_GT(r[3] - r[1], 5 * ImGui::GetFontSize()) << "several lines of the text are on show";
+    h.clickItem("lesson-close");
+    EXPECT_FALSE(st.lessonPlayer.lesson);
+}

@@ -1,0 +1,36 @@
+// Label placement on the canvas: vertex labels try the four sides of their point, corner labels
+// slide along their bisector, each to the first spot that meets no label placed before it, so
+// that crowded vertices stay readable.
+#pragma once
+
+#include "core/engine/geometry.h"
+#include "ui/app_state.h"
+
+#include <imgui.h>
+
+#include <array>
+#include <vector>
+
+namespace dlab::ui {
+
+struct LabelBoxes {
+    std::vector<std::array<float, 4>> boxes;  // x0, y0, x1, y1
+    void add(ImVec2 centre, ImVec2 size);
+    void addBox(float x0, float y0, float x1, float y1) { boxes.push_back({x0, y0, x1, y1}); }
+    bool isFree(float x0, float y0, float x1, float y1) const;
+};
+
+// Where corner labels go: `anchor` is the usual spot on the bisector from `vertex`; the label
+// moves along it (within the triangle `tri`) to the first spot that is free. Returns the
+// label's centre and registers it.
+ImVec2 placeAlong(LabelBoxes& labels, ImVec2 vertex, ImVec2 anchor, const ImVec2 (&tri)[3],
+                  ImVec2 size);
+
+// The top-left corner of each point's label (top-right of the point, else top-left,
+// bottom-right, bottom-left, right, left of it), registered with the points' markers; NaN for
+// points off the canvas.
+std::vector<ImVec2> placeVertexLabels(LabelBoxes& labels, const View& view,
+                                      const std::vector<Vec2>& points, ImFont* font, float fontSize,
+                                      float radius);
+
+}  // namespace dlab::ui
