@@ -585,20 +585,17 @@ void DrawLabels(const Scene& s, std::int32_t& hoveredCorner, ImVec2 mouse, bool 
             }
             if (!ov.cornerIds || !s.room(48 + s.pointReserve())) continue;
             const bool isChanged = std::find(changed.begin(), changed.end(), c) != changed.end();
-<<<<<<< HEAD
-            // A ghost triangle's corners in the ghost colour; the ghost corner itself says so.
+            // A ghost triangle's corners in the ghost colour, beside its hull edge; the ghost
+            // corner itself says so.
             const bool ghostCorner = ghost && s.ins.isVirtual(m.V[c]);
             std::snprintf(buf, sizeof buf, ghostCorner ? "%d g" : "%d", c);
+            if (!ghost)
+                a = placeAlong(s.labels, s.screen(m.V[c]), a, p,
+                               mono->CalcTextSizeA(fs, 1e9f, 0, buf));
             const ImU32 text = isChanged ? IM_COL32(255, 255, 255, 255)
                                : ghost   ? s.pal.ghostId
                                          : s.pal.cornerId;
             LabelBox(s.dl, mono, fs, a, text, isChanged ? s.pal.cornerChanged : 0, buf);
-=======
-            std::snprintf(buf, sizeof buf, "%d", c);
-            a = placeAlong(s.labels, s.screen(m.V[c]), a, p, mono->CalcTextSizeA(fs, 1e9f, 0, buf));
-            LabelBox(s.dl, mono, fs, a, isChanged ? IM_COL32(255, 255, 255, 255) : s.pal.cornerId,
-                     isChanged ? s.pal.cornerChanged : 0, buf);
->>>>>>> main
         }
     }
 }
@@ -927,21 +924,15 @@ void ShowCanvas(AppState& st) {
     const bool sameView =
         view.center == cache.builtView.center && view.scale == cache.builtView.scale &&
         view.origin == cache.builtView.origin && view.size == cache.builtView.size;
-<<<<<<< HEAD
-    const bool defer = st.run.running && st.run.fullSpeed() && cache.rebuiltLastFrame && sameView &&
-                       cache.renderer.lastBuildMs() > 5.0;
-    const bool rebuilt = !defer && cache.renderer.update(e, view, ms);
-=======
     if (!cache.renderer || cache.madeBy != st.renderer) {
         cache.renderer =
             st.renderer ? st.renderer->makeCanvasMesh() : makeNullRenderer()->makeCanvasMesh();
         cache.madeBy = st.renderer;
     }
     CanvasMesh& mesh = *cache.renderer;
-    const bool defer = st.run.running && st.run.opsPerSecond >= RunControl::kFullSpeed &&
-                       cache.rebuiltLastFrame && sameView && mesh.lastBuildMs() > 5.0;
+    const bool defer = st.run.running && st.run.fullSpeed() && cache.rebuiltLastFrame && sameView &&
+                       mesh.lastBuildMs() > 5.0;
     const bool rebuilt = !defer && mesh.update(e, view, ms);
->>>>>>> main
     cache.rebuiltLastFrame = rebuilt;
     if (rebuilt) cache.builtView = view;
     st.frameStats.meshBuildMs = rebuilt ? mesh.lastBuildMs() : 0.0;
