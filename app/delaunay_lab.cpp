@@ -1,7 +1,6 @@
 // delaunay-lab: the step-through GUI in a real window (GLFW + libGL). With no display it says
 // so and renders the same view headlessly to a PNG (through `dtlab render`, which uses OSMesa:
 // one GL provider per executable).
-#include "core/engine/generators.h"
 #include "ui/files/files.h"
 #include "ui/files/settings.h"
 #include "ui/gui.h"
@@ -71,13 +70,8 @@ int main(int argc, char** argv) {
     if (!platform) return renderHeadless(input, fallbackPng, error);
 
     dlab::ui::Gui gui(*platform, state);
-    if (input.empty()) {
-        state.setOptions(dlab::ui::demoOptions());
-        state.loadPoints(dlab::demoPoints(), "built-in demo");
-    } else if (!dlab::ui::openFile(state, input)) {
+    if (!dlab::ui::openStartupInput(state, input))
         std::cerr << "delaunay-lab: " << state.files.notice << "\n";
-        state.loadPoints(dlab::demoPoints(), "built-in demo");
-    }
     // The user's points are autosaved after every change; a session that did not exit cleanly
     // left its autosave behind, and the first frame offers it.
     const std::string autosaveFolder =

@@ -228,7 +228,8 @@ TEST(ReadNode, Errors) {
     nodeError("1 2 1 0\n0 1 2 nan\n", 2, "non-finite value 'nan' for attribute 1");
     // Fewer vertex lines than the header says: caught at the header when the rest is too short
     // to hold them, else at the end of the file.
-    nodeError("3 2 0 0\n0 0 0\n1 1 1\n", 1, "header declares 3 vertices but only 12 bytes follow");
+    nodeError("3 2 0 0\n0 0 0\n1 1 1\n", 1,
+              "the header says 3 vertices but only 2 lines follow: the file is cut short");
     nodeError("3 2 0 0\n0 0.000000 0.0000\n1 1.000000 1.0000\n", 3,
               "end of file: expected 3 vertices");
     nodeError("3 2 0 0\n0 0.000000 0.0000\n1 1.000000 1.0000\n# trailing comment\n\n", 5,
@@ -241,7 +242,7 @@ TEST(ReadNode, Errors) {
     nodeError("1e12 2 0 0\n0 0 0\n", 1, "expected an integer for vertex count");
     nodeError("99999999999999999999999999 2 0 0\n0 0 0\n", 1, "exceeds the maximum");
     nodeError("33554433 2 0 0\n0 0 0\n", 1, "exceeds the maximum");
-    nodeError("33554432 2 0 0\n0 0 0\n", 1, "bytes follow");
+    nodeError("33554432 2 0 0\n0 0 0\n", 1, "33554432 vertices but only 1 line follows");
     nodeError("-3 2 0 0\n0 0 0\n", 1, "must not be negative");
     nodeError("3.5 2 0 0\n0 0 0\n", 1, "expected an integer");
     // Header shape.
@@ -250,7 +251,7 @@ TEST(ReadNode, Errors) {
     nodeError("1 2 -1 0\n0 0 0\n", 1, "attribute count");
     nodeError("1 2 0 0 0\n0 0 0\n", 1, "header has 5 fields");
     nodeError("1 2 2000000000 0\n0 0 0\n", 1, "attribute count");
-    nodeError("1 2 1000000000 0\n0 0 0\n", 1, "bytes follow");
+    nodeError("1 2 1000000000 0\n0 0 0\n", 1, "too short to hold them");
     // Vertex indices: the first is 0 or 1, the rest consecutive.
     nodeError("3 2 0 0\n0 0 0\n2 1 1\n1 2 2\n", 3, "vertex index 2 out of sequence: expected 1");
     nodeError("3 2 0 0\n1 0 0\n2 1 1\n2 2 2\n", 4, "out of sequence: expected 3");
@@ -387,7 +388,7 @@ TEST(ReadPts, Errors) {
     ptsError("x\n1,2\n", 1, "expected an integer for point count");
     ptsError("4000000000\n1,2\n", 1, "exceeds the maximum");
     ptsError("1e12\n1,2\n", 1, "expected an integer");
-    ptsError("3\n1,2\n3,4\n", 1, "bytes follow");
+    ptsError("3\n1,2\n3,4\n", 1, "says 3 points but only 2 lines follow");
     ptsError("3\n1.000000,2.000000\n3.000000,4.000000\n", 3, "end of file: expected 3 points");
     ptsError("1\n1,2\n3,4\n", 3, "extra point line");
     ptsError("2\n1,2\n3,4,5,6\n", 3, "4 fields separated by ','");

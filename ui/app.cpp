@@ -14,14 +14,16 @@ namespace dlab::ui {
 
 namespace {
 
+// Short labels, so that every tab shows whole in a 1600-pixel window; the full title in the
+// tooltip (and as the name tests and lessons find it by).
 const SideTab kSideTabs[] = {
-    {"Corner table", ShowCornerTable, "corner-table"},
-    {"G (vertices)", ShowVertexTable, "vertex-table"},
-    {"Expressions", ShowExpressions, "expressions"},
-    {"Predicates", ShowPredicates, "predicates"},
-    {"ID buffer", ShowIdBuffer, "idbuffer"},
-    {"Statistics", ShowStatistics, "statistics"},
-    {"Student trace", ShowTraceCompare, "trace-compare"},
+    {"Corners", ShowCornerTable, "corner-table", "Corner table"},
+    {"G", ShowVertexTable, "vertex-table", "G (vertices)"},
+    {"Expressions", ShowExpressions, "expressions", "Expressions"},
+    {"Predicates", ShowPredicates, "predicates", "Predicates"},
+    {"ID buffer", ShowIdBuffer, "idbuffer", "ID buffer"},
+    {"Statistics", ShowStatistics, "statistics", "Statistics"},
+    {"Trace", ShowTraceCompare, "trace-compare", "Student trace"},
 };
 
 // A draggable bar; returns the drag delta in pixels along its axis.
@@ -122,7 +124,10 @@ void ShowApplication(AppState& state) {
     if (firstWanted) {
         ImGui::BeginChild("##tabs", ImVec2(0, showInspector ? sideH - inspH - kBar : sideH), false,
                           ImGuiWindowFlags_NoScrollbar);
-        if (ImGui::BeginTabBar("##sidetabs")) {
+        // Narrower than every tab: the tabs scroll (arrows, and a list of them) instead of
+        // cutting their labels.
+        if (ImGui::BeginTabBar("##sidetabs", ImGuiTabBarFlags_FittingPolicyScroll |
+                                                 ImGuiTabBarFlags_TabListPopupButton)) {
             const bool traceOpened = studentTraceSelectTab(state);
             for (const SideTab& tab : kSideTabs) {
                 if (tab.id && !lessonWantsPanel(state, tab.id)) continue;
@@ -132,7 +137,8 @@ void ShowApplication(AppState& state) {
                     (tab.id && state.pendingTab == tab.id);
                 const bool open = ImGui::BeginTabItem(tab.name, nullptr,
                                                       select ? ImGuiTabItemFlags_SetSelected : 0);
-                RecordItem(state, tab.name);
+                RecordItem(state, tab.title);
+                if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", tab.title);
                 if (open) {
                     tab.show(state);
                     ImGui::EndTabItem();
@@ -187,6 +193,14 @@ void RecordItem(AppState& state, const char* name) {
 
 void handleShortcuts(AppState& state) {
     const ImGuiIO& io = ImGui::GetIO();
+    // A text field has the keyboard (or takes it back this frame, after Enter): every key is
+    // typing, no shortcut fires.
+    ExpressionState& ex = state.expressions;
+    if (ex.refocusInput > 0 || ex.refocusWatch > 0) {
+        ex.refocusInput = std::max(0, ex.refocusInput - 1);
+        ex.refocusWatch = std::max(0, ex.refocusWatch - 1);
+        return;
+    }
     if (io.WantTextInput || ImGui::IsAnyItemActive()) return;
     auto pressed = [](int k) { return ImGui::IsKeyPressed(k, true); };
     auto once = [](int k) { return ImGui::IsKeyPressed(k, false); };
@@ -195,7 +209,8 @@ void handleShortcuts(AppState& state) {
 
     if (once(key::kF1)) state.showHelp = !state.showHelp;
     if (once(key::kF12)) state.files.screenshotRequested = true;  // serviceCaptures writes it
-    if (once(key::kEscape)) {
+    // Esc closes a popup first (the popup does it), then the help, then the selection.
+    if (once(key::kEscape) && !ImGui::IsPopupOpen("", ImGuiPopupFlags_AnyPopupId)) {
         if (state.showHelp)
             state.showHelp = false;
         else
@@ -234,10 +249,7 @@ void handleShortcuts(AppState& state) {
         state.run.running = false;
         e.toStart();
     }
-    if (once(key::kEnd)) {
-        state.run.running = true;
-        state.run.opsPerSecond = RunControl::kFullSpeed;
-    }
+    if (once(key::kEnd)) state.run.runToEnd();
     if (once(key::kSpace)) state.run.running = !state.run.running;
     // Corner operators on the selection.
     for (char op : {'n', 'p', 'o', 'l', 'r', 's', 'u'}) {

@@ -1,6 +1,9 @@
 // AppState's actions: loading and editing points, options, selection moves, the message log.
 #include "ui/app_state.h"
 
+#include "core/engine/generators.h"
+#include "ui/files/files.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -33,6 +36,21 @@ InsertOptions demoOptions() {
     return o;
 }
 
+void loadDemo(AppState& state) {
+    state.setOptions(demoOptions());
+    state.loadPoints(demoPoints(), "built-in demo");
+}
+
+bool openStartupInput(AppState& state, const std::string& input) {
+    if (input.empty()) {
+        loadDemo(state);
+        return true;
+    }
+    if (openFile(state, input)) return true;
+    loadDemo(state);  // in the demo's own order, whatever the failed file had set
+    return false;
+}
+
 void AppState::log(Message::Level level, std::string text) {
     messages.push_back({level, std::move(text)});
     if (messages.size() > 5000) messages.erase(messages.begin(), messages.begin() + 1000);
@@ -55,10 +73,7 @@ bool AppState::loadPoints(std::vector<Vec2> points, std::string sourceName) {
     run.running = false;
     fitPending = true;
     log(Message::Level::Info, source + ": " + std::to_string(n) + " points");
-    if (engine.batch()) {
-        log(Message::Level::Warning, "more than " + std::to_string(Engine::kHistoryLimit) +
-                                         " points: triangulated in one batch, stepping is off");
-    }
+    if (engine.batch()) log(Message::Level::Warning, engine.batchReason());
     return true;
 }
 

@@ -87,6 +87,13 @@ struct RunControl {
     std::vector<BreakpointEntry> breakpoints;  // a running animation stops where one hits
     float opsPerSecond = 6.0f;  // the slider; kFullSpeed runs as many as a frame allows
     static constexpr float kFullSpeed = 1000.0f;
+    // End (and >|): this run goes to the end at full speed; the slider keeps the user's speed.
+    bool toEnd = false;
+    bool fullSpeed() const { return toEnd || opsPerSecond >= kFullSpeed; }
+    void runToEnd() {
+        running = true;
+        toEnd = true;
+    }
     double carry = 0.0;         // fractional ops owed from earlier frames
     double frameBudgetMs = 25;  // stepping time per frame at full speed, at most
     // At full speed the stepping gets what is left of this frame time after the rest of the
@@ -151,7 +158,11 @@ struct WatchEntry {
 };
 
 struct ExpressionState {
-    std::string input;              // the console's input line
+    std::string input;  // the console's input line
+    // After Enter a field takes the keyboard back; until it has it (a few frames at most), no
+    // shortcut fires: the next key typed is for the field.
+    static constexpr int kRefocusFrames = 4;
+    int refocusInput = 0;
     std::vector<ExprLine> history;  // newest last
     std::string live;               // the expression shown on the canvas, re-evaluated each step
     std::vector<PathStep> path;     // its moves, drawn on the canvas as arrows between corners
@@ -160,6 +171,7 @@ struct ExpressionState {
     std::int32_t liveCorner = kNone;                // the c it was computed with
     std::vector<WatchEntry> watches;
     std::string watchInput;
+    int refocusWatch = 0;                              // the watch field, likewise
     bool pauseOnFailure = true;                        // a failing watch pauses a running animation
     std::uint64_t watchedVersion = ~std::uint64_t{0};  // engine version the watches last saw
     std::size_t watchedPosition = 0;  // and its position (for the replay on failure)
@@ -320,5 +332,11 @@ struct AppState {
 
 // The built-in demo: the demo points with options chosen for teaching (input order).
 InsertOptions demoOptions();
+// Loads the built-in demo with those options.
+void loadDemo(AppState& state);
+// What the program starts with: the file named on the command line (a point file, a session, a
+// lesson...), or the demo when none is named. A file that cannot be opened leaves its one-line
+// reason in state.files.notice and the demo, in its own order, runs instead (false).
+bool openStartupInput(AppState& state, const std::string& input);
 
 }  // namespace dlab::ui

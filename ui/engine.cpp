@@ -56,13 +56,17 @@ bool Engine::resetAt(std::vector<Vec2> points, const InsertOptions& options, std
     m_idBufferGl = gl;
     m_points = std::move(points);
     m_options = options;
+    m_batchReason.clear();
     if (m_points.size() > kHistoryLimit) {
         m_ins->run();
+        m_batchReason = "more than " + std::to_string(kHistoryLimit) +
+                        " points: triangulated in one batch, stepping is off";
     } else {
         // Reserved for a BRIO-like run (~18 ops and ~42 cell changes a point).
         const std::size_t n = m_points.size();
-        m_journal = std::make_unique<Journal>(*m_ins, std::min(kOpLimit, 20 * n + 64), 44 * n + 64);
-        if (n <= kPrerecordLimit) m_journal->seek(kPrerecordOps);
+        m_journal =
+            std::make_unique<Journal>(*m_ins, std::min(m_opLimit, 20 * n + 64), 44 * n + 64);
+        if (n <= kPrerecordLimit) m_journal->seek(std::min(kPrerecordOps, m_opLimit));
         seek(position);
     }
     m_rank.assign(m_points.size(), 0);
@@ -73,15 +77,16 @@ bool Engine::resetAt(std::vector<Vec2> points, const InsertOptions& options, std
 }
 
 void Engine::capHistory() {
-    if (!m_journal || m_journal->recorded() < kOpLimit ||
+    if (!m_journal || m_journal->recorded() < m_opLimit ||
         m_journal->position() < m_journal->recorded() || m_ins->done()) {
         return;
     }
     m_ins->run();
     m_journal.reset();
-    m_notice = "the history reached " + std::to_string(kOpLimit) +
-               " operations: the run was finished in one batch and stepping is off (BRIO order "
-               "walks far less)";
+    m_batchReason = "the history reached " + std::to_string(m_opLimit) +
+                    " operations: the run was finished in one batch and stepping is off (BRIO "
+                    "order walks far less)";
+    m_notice = m_batchReason;
     bump();
 }
 
@@ -131,7 +136,7 @@ bool Engine::toEnd(std::size_t maxOps) {
 void Engine::seek(std::size_t position) {
     if (!m_journal || position == m_journal->position()) return;
     // Recording stops at the op limit; a seek beyond it (the End key) finishes the run.
-    m_journal->seek(std::min(position, std::max(m_journal->recorded(), kOpLimit)));
+    m_journal->seek(std::min(position, std::max(m_journal->recorded(), m_opLimit)));
     if (position > m_journal->position()) capHistory();
     bump();
 }

@@ -6,6 +6,7 @@
 #include "core/engine/inserter.h"
 #include "core/teaching/breakpoint.h"
 
+#include <algorithm>
 #include <cstdint>
 #include <memory>
 #include <span>
@@ -36,6 +37,8 @@ public:
     // BRIO order needs ~18 per point, but input or random order walk far, ~350 per point at
     // 200000 points. Past it the run is finished in one batch and stepping is off (takeNotice()).
     static constexpr std::size_t kOpLimit = 4000000;
+    // The op limit of the runs reset from now on (tests use a small one).
+    void setOpLimit(std::size_t ops) { m_opLimit = std::max<std::size_t>(ops, 1); }
 
     Engine();
     ~Engine();
@@ -65,6 +68,8 @@ public:
     const Mesh& mesh() const { return m_ins->mesh(); }
     const Journal* journal() const { return m_journal.get(); }
     bool batch() const { return m_journal == nullptr; }
+    // Why this run has no stepping, in the words of the message log ("" while it has).
+    const std::string& batchReason() const { return m_batchReason; }
     // Bumps whenever the mesh or the position changes: renderers cache on it.
     std::uint64_t version() const { return m_version; }
     // Bumps on every reset (new points or options): the journal's positions belong to one run.
@@ -125,6 +130,8 @@ private:
     mutable std::vector<PointState> m_states;
     mutable std::uint64_t m_statesVersion = ~std::uint64_t{0};
     std::string m_notice;
+    std::string m_batchReason;
+    std::size_t m_opLimit = kOpLimit;
 };
 
 }  // namespace dlab::ui

@@ -237,7 +237,7 @@ public:
         return false;
     }
 
-    std::size_t remainingBytes() const { return m_text.size() - m_pos; }
+    std::string_view remainingText() const { return m_text.substr(m_pos); }
     LineNo linesRead() const { return m_line; }
 
 private:
@@ -395,30 +395,38 @@ std::size_t parseCount(std::string_view field, const std::string& name, LineNo l
     return static_cast<std::size_t>(n);
 }
 
+// "1 vertex", "2 vertices": messages read as sentences.
+std::string plural(std::size_t n, const char* one, const char* many) {
+    return std::to_string(n) + " " + (n == 1 ? one : many);
+}
+
 // Refuses a declared count that the rest of the buffer cannot possibly hold, so that the
-// reserve() that follows is bounded by the input size, never by what a header claims.
-void checkCountFits(std::size_t count, std::uint64_t minBytesPerLine, std::size_t remaining,
-                    const std::string& name, LineNo line, const std::string& what) {
+// reserve() that follows is bounded by the input size, never by what a header claims. The
+// message says what is wrong in the file's terms: its lines, not bytes.
+void checkCountFits(std::size_t count, std::uint64_t minBytesPerLine, std::string_view rest,
+                    const std::string& name, LineNo line, const char* one, const char* many) {
     if (count == 0) return;
     // count <= 2^25 and minBytesPerLine <= 2^32: the product fits in 64 bits.
     const std::uint64_t need =
         static_cast<std::uint64_t>(count) * minBytesPerLine - 1;  // last line may lack its end
-    if (need > remaining) {
+    if (need <= rest.size()) return;
+    const auto lines = static_cast<std::size_t>(std::count(rest.begin(), rest.end(), '\n') +
+                                                (!rest.empty() && rest.back() != '\n'));
+    const std::string says = "the header says " + plural(count, one, many);
+    if (lines < count) {
         fail(name, line,
-             "header declares " + std::to_string(count) + " " + what + " but only " +
-                 std::to_string(remaining) + " bytes follow; that many lines need at least " +
-                 std::to_string(need));
+             says + " but only " + plural(lines, "line follows", "lines follow") +
+                 ": the file is cut short, or that count is wrong");
     }
+    fail(name, line,
+         says +
+             " but the rest of the file is too short to hold them with the fields the header "
+             "asks for on each line: a count in the header is wrong");
 }
 
 //-----------------------------------------------------------------------------------------------
 // [SECTION] Triangle .node
 //-----------------------------------------------------------------------------------------------
-
-// "1 vertex", "2 vertices": messages read as sentences.
-std::string plural(std::size_t n, const char* one, const char* many) {
-    return std::to_string(n) + " " + (n == 1 ? one : many);
-}
 
 }  // namespace
 
@@ -459,8 +467,8 @@ PointSet parseNode(std::string_view text, const std::string& name) {
              "boundary marker count must be 0 or 1, found " + std::to_string(markers));
     }
     const auto fieldsPerLine = static_cast<std::size_t>(3 + attributes + markers);
-    checkCountFits(count, 2 * static_cast<std::uint64_t>(fieldsPerLine), reader.remainingBytes(),
-                   name, headerLine, "vertices");
+    checkCountFits(count, 2 * static_cast<std::uint64_t>(fieldsPerLine), reader.remainingText(),
+                   name, headerLine, "vertex", "vertices");
     ps.points.reserve(count);
 
     const std::string layout = "index, x, y" +
@@ -642,7 +650,7 @@ PointSet parsePts(std::string_view text, const std::string& name) {
              "the first line must be the point count alone, found " + quoted(line.text));
     }
     const std::size_t count = parseCount(f[0], name, countLine, "point count");
-    checkCountFits(count, 4, reader.remainingBytes(), name, countLine,
+    checkCountFits(count, 4, reader.remainingText(), name, countLine, "point",
                    "points");  // "0,0\n" is the shortest line
     ps.points.reserve(count);
 

@@ -35,12 +35,12 @@ std::string describe(const Op& op, const Inserter& ins) {
     const std::string p = "vertex " + vname(ins, op.vertex);
     switch (op.type) {
         case OpType::Start:
-            if (op.a == kNone)
-                return "start: fewer than three points not on one line, so there is no triangle";
+            // The caption's prefix already says "Start": the text goes on from there.
+            if (op.a == kNone) return "fewer than three points not on one line, so no triangle";
             return ins.options().boundary == Boundary::Super
-                       ? "start: the super-triangle " + triName(ins, 0) + " holds every point"
-                       : "start: first triangle " + triName(ins, 0) +
-                             " and three ghost triangles around its hull";
+                       ? triName(ins, 0) + ", the super-triangle, holds every point"
+                       : triName(ins, 0) +
+                             ", the first triangle, and three ghost triangles around its hull";
         case OpType::LocateStep:
             return "locate " + p + ": leave triangle " + std::to_string(op.a) + " for " +
                    triName(ins, op.b);

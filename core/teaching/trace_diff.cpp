@@ -5,6 +5,7 @@
 
 #include "core/engine/io_read.h"
 #include "core/engine/text_util.h"
+#include "core/teaching/mesh_check.h"
 #include "core/teaching/trace.h"
 
 #include <nlohmann/json.hpp>
@@ -180,12 +181,6 @@ TraceFile traceOfRun(Inserter& ins, const std::string& name) {
     TraceFile f = parseTraceText(text, name);
     f.geometry = std::move(geometry);
     return f;
-}
-
-Triple canonical(std::int32_t v0, std::int32_t v1, std::int32_t v2) {
-    if (v1 < v0 && v1 <= v2) return {v1, v2, v0};
-    if (v2 < v0 && v2 < v1) return {v2, v0, v1};
-    return {v0, v1, v2};
 }
 
 // ============================================================================================

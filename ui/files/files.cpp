@@ -415,6 +415,9 @@ bool saveScreenshotFile(Gui& gui, std::string path) {
             p = folder / (std::string("delaunay-lab-") + stamp + "-" + std::to_string(k) + ".png");
         path = p.string();
     }
+    // The message names the file wherever the program was started from.
+    std::error_code ec;
+    if (const fs::path full = fs::absolute(path, ec); !ec) path = full.lexically_normal().string();
     std::string error;
     if (!gui.saveScreenshot(path, error)) {
         fileError(st, error.find(path) == std::string::npos ? path + ": " + error : error);

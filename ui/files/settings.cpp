@@ -105,6 +105,16 @@ void loadSettings(const std::string& path, AppState& st, WindowOptions& window,
     if (!(st.gridStep > 0)) st.gridStep = 10;
 }
 
+void clampWindowToWorkArea(WindowOptions& window, int areaX, int areaY, int areaWidth,
+                           int areaHeight) {
+    if (areaWidth <= 0 || areaHeight <= 0) return;
+    window.width = std::clamp(window.width, 1, areaWidth);
+    window.height = std::clamp(window.height, 1, areaHeight);
+    if (window.x < 0 || window.y < 0) return;  // the window manager places it
+    window.x = std::clamp(window.x, areaX, areaX + areaWidth - window.width);
+    window.y = std::clamp(window.y, areaY, areaY + areaHeight - window.height);
+}
+
 bool saveSettings(const std::string& path, const AppState& st, const WindowOptions& window,
                   std::string& error) {
     if (path.empty()) return true;

@@ -21,6 +21,10 @@ inline constexpr std::size_t kMaxSettingsFileBytes = std::size_t{1} << 20;
 // defaults). Never throws.
 void loadSettings(const std::string& path, AppState& state, WindowOptions& window,
                   std::string& warning);
+// Fits a remembered window into a monitor's work area (x, y, width, height: the screen less its
+// panels): a size saved on a larger screen shrinks to the area, a position off it moves onto it.
+void clampWindowToWorkArea(WindowOptions& window, int areaX, int areaY, int areaWidth,
+                           int areaHeight);
 // Writes to a temporary file and renames it over the old one. False with a reason on failure.
 bool saveSettings(const std::string& path, const AppState& state, const WindowOptions& window,
                   std::string& error);

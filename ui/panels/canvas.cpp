@@ -21,6 +21,7 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <vector>
 
 namespace dlab::ui {
 
@@ -37,6 +38,11 @@ struct CanvasCache {
     Renderer* madeBy = nullptr;
     bool rebuiltLastFrame = false;
     View builtView;  // the view of the last rebuild
+    // The view the last fit made: while center and scale are still these, the user has not
+    // moved it, and a resize fits again.
+    bool fitted = false;
+    glm::dvec2 fitCenter{0, 0};
+    double fitScale = 0;
     // Interaction in progress (press on the canvas until release).
     enum class Drag : std::uint8_t { None, Pan, Point, Pending } drag = Drag::None;
     std::int32_t dragPoint = kNone;
@@ -55,7 +61,7 @@ struct Palette {
     ImU32 background, grid, fill, edge, virtualEdge, vertex, vertexId, pending, current, skipped;
     ImU32 walk, walkNow, lineL, split[3], testEdge, circleFlip, circleKeep, flipped, queue,
         cornerId, cornerChanged;
-    ImU32 selected, hovered, arrow, triangleId, voronoi, circum;
+    ImU32 selected, hovered, arrow, triangleId, voronoi, circum, ghostId;
 };
 
 Palette palette(bool presentation) {
@@ -89,6 +95,7 @@ Palette palette(bool presentation) {
     p.triangleId = IM_COL32(90, 120, 90, 255);
     p.voronoi = IM_COL32(40, 150, 120, 255);
     p.circum = IM_COL32(150, 150, 200, 160);
+    p.ghostId = IM_COL32(150, 130, 190, 255);
     return p;
 }
 
@@ -182,6 +189,49 @@ struct Scene {
     bool drawable(std::int32_t t) const {
         return t >= 0 && t < m.numTriangles() && !(ghostMode && virtualTri(t));
     }
+    // Exact mode while the run is in progress: a ghost triangle (u, w, ghost) stands for the
+    // half-plane beyond the hull edge u -> w (on its left). Its corners are drawn just outside
+    // that edge.
+    bool ghostTri(std::int32_t t) const {
+        return ghostMode && t >= 0 && t < m.numTriangles() && virtualTri(t);
+    }
+    // The hull edge u -> w of ghost triangle t and the index (0..2) of its ghost corner.
+    bool hullEdge(std::int32_t t, std::int32_t& u, std::int32_t& w, int& k) const {
+        if (!ghostTri(t)) return false;
+        for (k = 0; k < 3 && !ins.isVirtual(m.V[3 * t + k]); ++k) {}
+        if (k == 3) return false;
+        u = m.V[3 * t + (k + 1) % 3];
+        w = m.V[3 * t + (k + 2) % 3];
+        return !ins.isVirtual(u) && !ins.isVirtual(w);
+    }
+    // The screen direction along u -> w (unit), its length, and the unit normal towards the
+    // ghost's side (the world's left of u -> w is the screen's right: y is flipped).
+    static void edgeFrame(ImVec2 pu, ImVec2 pw, ImVec2& dir, float& len, ImVec2& out) {
+        const float dx = pw.x - pu.x, dy = pw.y - pu.y;
+        len = std::sqrt(dx * dx + dy * dy);
+        dir = len > 0 ? ImVec2(dx / len, dy / len) : ImVec2(1, 0);
+        out = ImVec2(dir.y, -dir.x);
+    }
+    // A ghost triangle's corner label: the ghost corner beyond the middle of the hull edge, the
+    // two others beside their hull vertices, all on the ghost's side.
+    bool ghostAnchor(std::int32_t c, ImVec2& out) const {
+        std::int32_t u, w;
+        int k;
+        if (!hullEdge(tri(c), u, w, k)) return false;
+        const ImVec2 pu = screen(u), pw = screen(w);
+        ImVec2 dir, n;
+        float len;
+        edgeFrame(pu, pw, dir, len, n);
+        if (!(len > 60) || !std::isfinite(len)) return false;
+        if (c == 3 * tri(c) + k) {
+            out = ImVec2((pu.x + pw.x) / 2 + n.x * 26, (pu.y + pw.y) / 2 + n.y * 26);
+        } else if (m.V[c] == u) {
+            out = ImVec2(pu.x + dir.x * 20 + n.x * 13, pu.y + dir.y * 20 + n.y * 13);
+        } else {
+            out = ImVec2(pw.x - dir.x * 20 + n.x * 13, pw.y - dir.y * 20 + n.y * 13);
+        }
+        return true;
+    }
     // The three screen corners of a drawable triangle.
     void corners(std::int32_t t, ImVec2 out[3]) const {
         for (int k = 0; k < 3; ++k) out[k] = screen(m.V[3 * t + k]);
@@ -189,7 +239,9 @@ struct Scene {
     // Where corner c's label sits: on the angle bisector at c, a little inside the triangle.
     // False when the triangle is too small on screen for a label.
     bool anchor(std::int32_t c, ImVec2& out) const {
-        if (c < 0 || c >= m.numCorners() || !drawable(tri(c))) return false;
+        if (c < 0 || c >= m.numCorners()) return false;
+        if (ghostTri(tri(c))) return ghostAnchor(c, out);
+        if (!drawable(tri(c))) return false;
         const ImVec2 a = screen(m.V[c]), b = screen(m.V[next(c)]), d = screen(m.V[prev(c)]);
         const float e1x = b.x - a.x, e1y = b.y - a.y, e2x = d.x - a.x, e2y = d.y - a.y;
         const float l1 = std::sqrt(e1x * e1x + e1y * e1y), l2 = std::sqrt(e2x * e2x + e2y * e2y);
@@ -300,6 +352,60 @@ void DrawOpUnderlay(const Scene& s) {
     }
 }
 
+// Clips a convex polygon to the rectangle [lo, hi] (Sutherland-Hodgman, one side at a time).
+std::vector<ImVec2> clipPolygon(std::vector<ImVec2> poly, ImVec2 lo, ImVec2 hi) {
+    auto side = [&](int axis, float bound, bool keepBelow) {
+        std::vector<ImVec2> out;
+        auto inside = [&](ImVec2 p) {
+            const float v = axis == 0 ? p.x : p.y;
+            return keepBelow ? v <= bound : v >= bound;
+        };
+        for (std::size_t i = 0; i < poly.size(); ++i) {
+            const ImVec2 a = poly[i], b = poly[(i + 1) % poly.size()];
+            const bool ia = inside(a), ib = inside(b);
+            if (ia) out.push_back(a);
+            if (ia != ib) {
+                const float va = axis == 0 ? a.x : a.y, vb = axis == 0 ? b.x : b.y;
+                const float t = (bound - va) / (vb - va);
+                out.emplace_back(a.x + (b.x - a.x) * t, a.y + (b.y - a.y) * t);
+            }
+        }
+        poly = std::move(out);
+    };
+    side(0, lo.x, false);
+    side(0, hi.x, true);
+    side(1, lo.y, false);
+    side(1, hi.y, true);
+    return poly;
+}
+
+// An in-circle test against ghost triangle t: its "circle" is the open half-plane beyond the
+// hull edge u -> w (plus the open edge itself). Drawn as that: the hull edge, the line through
+// it (dashed) and the half-plane lightly shaded, clipped to the canvas.
+void DrawHalfPlane(const Scene& s, std::int32_t t, ImU32 col, float w) {
+    std::int32_t u, v;
+    int k;
+    if (!s.hullEdge(t, u, v, k)) return;
+    const ImVec2 pu = s.screen(u), pv = s.screen(v);
+    ImVec2 dir, n;
+    float len;
+    Scene::edgeFrame(pu, pv, dir, len, n);
+    if (!(len > 0) || !std::isfinite(len)) return;
+    // Far enough to leave the canvas in every direction.
+    const float far = 4.0f * static_cast<float>(s.view.size.x + s.view.size.y) + len;
+    const ImVec2 a(pu.x - dir.x * far, pu.y - dir.y * far),
+        b(pv.x + dir.x * far, pv.y + dir.y * far);
+    const ImVec2 lo = toIm(s.view.origin), hi = toIm(s.view.origin + s.view.size);
+    const std::vector<ImVec2> shade = clipPolygon(
+        {a, b, ImVec2(b.x + n.x * far, b.y + n.y * far), ImVec2(a.x + n.x * far, a.y + n.y * far)},
+        lo, hi);
+    if (shade.size() >= 3 && s.room(static_cast<unsigned>(shade.size()) * 2 + 8))
+        s.dl->AddConvexPolyFilled(shade.data(), static_cast<int>(shade.size()),
+                                  (col & 0x00FFFFFFu) | (36u << 24));
+    if (s.room(200)) DashedLine(s.dl, a, b, col, w * 0.6f);
+    s.edge(u, v, col, w * 1.6f);
+}
+
 void DrawOpOverlay(const Scene& s) {
     const Op* op = s.e.current();
     const Mesh& m = s.m;
@@ -339,13 +445,8 @@ void DrawOpOverlay(const Scene& s) {
             if (b == kNone || b >= m.numCorners()) break;
             const ImU32 col = op->sign > 0 ? s.pal.circleFlip : s.pal.circleKeep;
             const std::int32_t t = tri(b);
-            if (s.virtualTri(t) && s.ghostMode) {
-                // A ghost triangle's "circle" is the open half-plane beyond its hull edge.
-                const std::int32_t x = m.V[next(a)], y = m.V[prev(a)];
-                const ImVec2 px = s.screen(x), py = s.screen(y);
-                const float dx = py.x - px.x, dy = py.y - px.y;
-                DashedLine(s.dl, ImVec2(px.x - dx * 50, px.y - dy * 50),
-                           ImVec2(py.x + dx * 50, py.y + dy * 50), col, w);
+            if (s.ghostTri(t)) {
+                DrawHalfPlane(s, t, col, w);
             } else {
                 Vec2 c;
                 double r;
@@ -439,9 +540,20 @@ void DrawLabels(const Scene& s, std::int32_t& hoveredCorner, ImVec2 mouse, bool 
     hoveredCorner = kNone;
     char buf[32];
     for (std::int32_t t = 0; fewTriangles && t < m.numTriangles(); ++t) {
-        if (!s.drawable(t)) continue;
+        const bool ghost = s.ghostTri(t);
+        if (!s.drawable(t) && !ghost) continue;
         ImVec2 p[3];
-        s.corners(t, p);
+        if (ghost) {
+            // Its corners' labels sit just outside the hull edge (Scene::ghostAnchor).
+            std::int32_t u, w;
+            int k;
+            if (!s.hullEdge(t, u, w, k)) continue;
+            p[0] = s.screen(u);
+            p[1] = s.screen(w);
+            p[2] = ImVec2((p[0].x + p[1].x) / 2, (p[0].y + p[1].y) / 2);
+        } else {
+            s.corners(t, p);
+        }
         // Cull triangles off the canvas.
         const float minX = std::min({p[0].x, p[1].x, p[2].x}),
                     maxX = std::max({p[0].x, p[1].x, p[2].x});
@@ -451,7 +563,7 @@ void DrawLabels(const Scene& s, std::int32_t& hoveredCorner, ImVec2 mouse, bool 
             maxY < s.view.origin.y || minY > s.view.origin.y + s.view.size.y) {
             continue;
         }
-        if (ov.triangleIds) {
+        if (ov.triangleIds && !ghost) {
             const ImVec2 centre((p[0].x + p[1].x + p[2].x) / 3, (p[0].y + p[1].y + p[2].y) / 3);
             if (maxX - minX > 40 && maxY - minY > 30 && s.room(48 + s.pointReserve())) {
                 std::snprintf(buf, sizeof buf, "t%d", t);
@@ -473,10 +585,17 @@ void DrawLabels(const Scene& s, std::int32_t& hoveredCorner, ImVec2 mouse, bool 
             }
             if (!ov.cornerIds || !s.room(48 + s.pointReserve())) continue;
             const bool isChanged = std::find(changed.begin(), changed.end(), c) != changed.end();
-            std::snprintf(buf, sizeof buf, "%d", c);
-            a = placeAlong(s.labels, s.screen(m.V[c]), a, p, mono->CalcTextSizeA(fs, 1e9f, 0, buf));
-            LabelBox(s.dl, mono, fs, a, isChanged ? IM_COL32(255, 255, 255, 255) : s.pal.cornerId,
-                     isChanged ? s.pal.cornerChanged : 0, buf);
+            // A ghost triangle's corners in the ghost colour, beside its hull edge; the ghost
+            // corner itself says so.
+            const bool ghostCorner = ghost && s.ins.isVirtual(m.V[c]);
+            std::snprintf(buf, sizeof buf, ghostCorner ? "%d g" : "%d", c);
+            if (!ghost)
+                a = placeAlong(s.labels, s.screen(m.V[c]), a, p,
+                               mono->CalcTextSizeA(fs, 1e9f, 0, buf));
+            const ImU32 text = isChanged ? IM_COL32(255, 255, 255, 255)
+                               : ghost   ? s.pal.ghostId
+                                         : s.pal.cornerId;
+            LabelBox(s.dl, mono, fs, a, text, isChanged ? s.pal.cornerChanged : 0, buf);
         }
     }
 }
@@ -542,6 +661,9 @@ void DrawSelection(const Scene& s) {
     ImVec2 a;
     if (sel.corner != kNone && sel.corner < s.m.numCorners()) {
         s.outlineTriangle(tri(sel.corner), s.pal.selected, w);
+        std::int32_t u, v;
+        int k;
+        if (s.hullEdge(tri(sel.corner), u, v, k)) s.edge(u, v, s.pal.selected, w, true);
         if (s.anchor(sel.corner, a)) {
             s.dl->AddCircleFilled(a, 11, s.pal.selected);
             char buf[16];
@@ -738,8 +860,12 @@ void ShowCanvas(AppState& st) {
     size.y = std::max(50.0f, size.y - timelineH);
     size.x = std::max(50.0f, size.x);
     View& view = st.view;
+    const bool resized = view.size.x != size.x || view.size.y != size.y;
     view.origin = {p0.x, p0.y};
     view.size = {size.x, size.y};
+    // A new canvas size (the window or a splitter) refits a view the user had not moved.
+    if (resized && cache.fitted && view.center == cache.fitCenter && view.scale == cache.fitScale)
+        st.fitPending = true;
     if (st.fitPending) {
         const Bounds b = Bounds::of(st.engine.points());
         if (st.engine.points().empty())
@@ -747,6 +873,9 @@ void ShowCanvas(AppState& st) {
         else
             view.fit(b.lo, b.hi);
         st.fitPending = false;
+        cache.fitted = true;
+        cache.fitCenter = view.center;
+        cache.fitScale = view.scale;
     }
     if (auto& box = st.lessonPlayer.pendingView) {  // a lesson stop's view
         view.fit({(*box)[0], (*box)[1]}, {(*box)[2], (*box)[3]});
@@ -801,8 +930,8 @@ void ShowCanvas(AppState& st) {
         cache.madeBy = st.renderer;
     }
     CanvasMesh& mesh = *cache.renderer;
-    const bool defer = st.run.running && st.run.opsPerSecond >= RunControl::kFullSpeed &&
-                       cache.rebuiltLastFrame && sameView && mesh.lastBuildMs() > 5.0;
+    const bool defer = st.run.running && st.run.fullSpeed() && cache.rebuiltLastFrame && sameView &&
+                       mesh.lastBuildMs() > 5.0;
     const bool rebuilt = !defer && mesh.update(e, view, ms);
     cache.rebuiltLastFrame = rebuilt;
     if (rebuilt) cache.builtView = view;

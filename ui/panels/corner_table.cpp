@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cinttypes>
 #include <cstdio>
+#include <string>
 #include <unordered_map>
 
 namespace dlab::ui {
@@ -42,6 +43,7 @@ void ShowCornerTable(AppState& st) {
         st.select(std::clamp(jump, 0, std::max(0, m.numCorners() - 1)));
         st.selection.jumpToCorner = st.selection.corner;
     }
+    RecordItem(st, "go-to-corner");
     ImGui::SameLine();
     ImGui::Checkbox("Follow", &st.selection.followOp);
     if (ImGui::IsItemHovered()) ImGui::SetTooltip("Scroll to the cells each operation changes");
@@ -75,8 +77,18 @@ void ShowCornerTable(AppState& st) {
     const bool tableOpen = ImGui::BeginTable("##corners", 8, flags);
     if (tableOpen) {
         ImGui::TableSetupScrollFreeze(0, 1);
-        for (const char* h : {"c", "t", "V[c]", "O[c]", "n", "p", "l", "r"})
-            ImGui::TableSetupColumn(h);
+        // V[c] is as wide as its widest text, "12 (ghost)" at any font size; the others share
+        // the rest.
+        const std::string widest =
+            std::string(std::to_string(m.numVertices()).size(), '0') +
+            (e.options().boundary == Boundary::Exact ? " (ghost)" : " (super)");
+        for (const char* h : {"c", "t", "V[c]", "O[c]", "n", "p", "l", "r"}) {
+            if (h[0] == 'V')
+                ImGui::TableSetupColumn(h, ImGuiTableColumnFlags_WidthFixed,
+                                        ImGui::CalcTextSize(widest.c_str()).x);
+            else
+                ImGui::TableSetupColumn(h, ImGuiTableColumnFlags_WidthStretch);
+        }
         ImGui::TableHeadersRow();
         const float rowH = ImGui::GetTextLineHeightWithSpacing();
         if (st.selection.jumpToCorner != kNone) {
@@ -115,6 +127,12 @@ void ShowCornerTable(AppState& st) {
                                        const std::unordered_map<std::int32_t, std::int32_t>& before,
                                        std::int32_t value) {
                     ImGui::TableSetColumnIndex(column);
+                    // The whole cell, padding included: the tooltip shows anywhere over it.
+                    const ImVec2 pad = ImGui::GetStyle().CellPadding;
+                    const ImVec2 at = ImGui::GetCursorScreenPos();
+                    const float cellW = ImGui::GetContentRegionAvail().x;
+                    const ImVec2 cellMin(at.x - pad.x, at.y - pad.y),
+                        cellMax(at.x + cellW + pad.x, at.y - pad.y + rowH);
                     const auto it = before.find(c);
                     if (it != before.end())
                         ImGui::TableSetBgColor(ImGuiTableBgTarget_CellBg, kChangedCell);
@@ -122,12 +140,16 @@ void ShowCornerTable(AppState& st) {
                         ImGui::Text(
                             e.options().boundary == Boundary::Exact ? "%d (ghost)" : "%d (super)",
                             value);
+                        // For tests: the text's width against its cell's.
+                        st.itemRects["ghost-v-cell"] = {ImGui::GetItemRectSize().x, cellW, 0, 0};
                     } else {
                         IdCell(value);
                     }
-                    if (it != before.end() && ImGui::IsItemHovered()) {
+                    if (it != before.end() && ImGui::IsWindowHovered() &&
+                        ImGui::IsMouseHoveringRect(cellMin, cellMax)) {
                         ImGui::SetTooltip("%s[%d] was %d, now %d", column == 2 ? "V" : "O", c,
                                           it->second, value);
+                        st.itemRects["cell-tooltip"] = {cellMin.x, cellMin.y, cellMax.x, cellMax.y};
                     }
                 };
                 changedCell(2, beforeV, m.V[c]);

@@ -433,17 +433,22 @@ void ShowExpressions(AppState& st) {
     // ---- The console ------------------------------------------------------------------------
     ImGui::PushFont(fonts().mono);
     ImGui::SetNextItemWidth(-70);
+    // After Enter (or Eval) the field takes the keyboard back for the next expression: what is
+    // typed next goes there, not to the single-letter shortcuts.
+    if (ex.refocusInput > 0) ImGui::SetKeyboardFocusHere();
     const bool enter = ImGui::InputTextWithHint("##expr", "r(o(n(7)))  or  c.n.o.r", &ex.input,
                                                 ImGuiInputTextFlags_EnterReturnsTrue);
     RecordItem(st, "expr-input");
+    if (ImGui::IsItemActive()) ex.refocusInput = 0;
+    if (enter) ImGui::SetKeyboardFocusHere(-1);  // from the next frame on, as Enter deactivated it
     ImGui::PopFont();
     ImGui::SameLine();
     const bool eval = ImGui::Button("Eval");
     RecordItem(st, "expr-eval");
+    if (enter || eval) ex.refocusInput = ExpressionState::kRefocusFrames;
     if ((enter || eval) && !ex.input.empty()) {
         evaluateExpression(st, ex.input);
         ex.input.clear();
-        ImGui::SetKeyboardFocusHere(-1);
     }
     // Below the input line everything scrolls (the side column may be short); the history has
     // its own scrolling box that keeps the newest line in view.
@@ -527,9 +532,15 @@ void ShowExpressions(AppState& st) {
     ImGui::PopFont();
     if (remove >= 0) ex.watches.erase(ex.watches.begin() + remove);
     ImGui::SetNextItemWidth(-150);
+    if (ex.refocusWatch > 0) ImGui::SetKeyboardFocusHere();
     const bool addEnter = ImGui::InputTextWithHint(
         "##watch", "V[n(o(c))] == V[p(c)]", &ex.watchInput, ImGuiInputTextFlags_EnterReturnsTrue);
     RecordItem(st, "watch-input");
+    if (ImGui::IsItemActive()) ex.refocusWatch = 0;
+    if (addEnter) {
+        ImGui::SetKeyboardFocusHere(-1);
+        ex.refocusWatch = ExpressionState::kRefocusFrames;
+    }
     ImGui::SameLine();
     if ((ImGui::Button("Add") || addEnter) && !ex.watchInput.empty()) {
         if (addWatch(st, ex.watchInput)) ex.watchInput.clear();

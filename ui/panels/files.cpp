@@ -56,7 +56,9 @@ bool hasExtension(const fs::path& p, const std::vector<const char*>& exts) {
 }
 
 // A path field over a folder listing (files with the dialog's extensions, and subfolders).
-void PathField(AppState& st, const DialogInfo& d) {
+// True when a file was double-clicked in the Open dialog: open it at once.
+bool PathField(AppState& st, const DialogInfo& d) {
+    bool activated = false;
     std::string& path = st.files.dialogPath;
     ImGui::SetNextItemWidth(560);
     ImGui::InputText("Path", &path);
@@ -76,12 +78,17 @@ void PathField(AppState& st, const DialogInfo& d) {
         const std::string n = entry.path().filename().string();
         if (entry.is_directory(ec)) {
             if (ImGui::Selectable((n + "/").c_str())) path = (entry.path() / name).string();
-        } else if (hasExtension(entry.path(), d.extensions) &&
-                   ImGui::Selectable(n.c_str(), n == name)) {
-            path = entry.path().string();
+        } else if (hasExtension(entry.path(), d.extensions)) {
+            if (ImGui::Selectable(n.c_str(), n == name, ImGuiSelectableFlags_AllowDoubleClick)) {
+                path = entry.path().string();
+                activated |= d.kind == FileState::Dialog::OpenFile &&
+                             ImGui::IsMouseDoubleClicked(ImGuiMouseButton_Left);
+            }
+            RecordItem(st, ("dialog-file:" + n).c_str());
         }
     }
     ImGui::EndChild();
+    return activated;
 }
 
 // The fields some dialogs have besides the path.
@@ -222,9 +229,9 @@ void ShowFileDialogs(AppState& st) {
     }
     for (const DialogInfo& d : dialogs()) {
         if (!ImGui::BeginPopupModal(d.title, nullptr, ImGuiWindowFlags_AlwaysAutoResize)) continue;
-        PathField(st, d);
+        const bool activated = PathField(st, d);
         DialogFields(st, d);
-        const bool ok = ImGui::Button(d.ok);
+        const bool ok = ImGui::Button(d.ok) || activated;
         RecordItem(st, "dialog-ok");
         ImGui::SameLine();
         const bool cancel = ImGui::Button("Cancel");

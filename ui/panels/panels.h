@@ -11,6 +11,7 @@
 #include <span>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include <imgui.h>
 
@@ -21,11 +22,17 @@ inline ImVec2 toIm(glm::dvec2 v) {
     return ImVec2(static_cast<float>(v.x), static_cast<float>(v.y));
 }
 
-void ShowMenuBar(AppState& state);   // menu.cpp: File, View, Run, Generate, Help
-void ShowToolbar(AppState& state);   // toolbar.cpp: stepping, run/pause, speed, modes
-void ShowCaption(AppState& state);   // toolbar.cpp: "[17/245] edge 4-9 is Delaunay"
+void ShowMenuBar(AppState& state);  // menu.cpp: File, View, Run, Generate, Help
+void ShowToolbar(AppState& state);  // toolbar.cpp: stepping, run/pause, speed, modes
+void ShowCaption(AppState& state);  // toolbar.cpp: "[17/245] edge 4-9 is Delaunay"
+// The caption's text: the current operation, why stepping is off (batch), or how to start.
+std::string captionText(const AppState& state);
 void ShowTimeline(AppState& state);  // toolbar.cpp: scrubber over all operations
-void ShowCanvas(AppState& state);    // canvas.cpp: the mesh and every overlay
+// "op 45 of 120   |   9 of 12 points inserted, 1 duplicate skipped": the timeline's words.
+std::string timelineText(const Engine& engine);
+// "9 of 12 points inserted, 1 duplicate skipped": the one count of points done, everywhere.
+std::string pointCountsText(const Engine& engine);
+void ShowCanvas(AppState& state);  // canvas.cpp: the mesh and every overlay
 // ghosts.cpp: exact mode's ghost triangles as grey bands beyond the hull edges (overlay
 // "virtual-triangles"), labelled when triangle ids are on.
 void DrawGhostTriangles(AppState& state, ImDrawList* dl);
@@ -34,7 +41,9 @@ void ShowVertexTable(AppState& state);  // corner_table.cpp: G (vertex coordinat
 void ShowInspector(AppState& state);    // inspector.cpp: the selected corner's operators
 void ShowMessages(AppState& state);     // messages.cpp: every warning and error
 void ShowHelp(AppState& state);         // help.cpp: F1 overlay with all shortcuts
-void ShowLesson(AppState& state);       // lesson.cpp: the lesson's text and questions
+// The help's rows: keys, and what they do.
+const std::vector<std::array<const char*, 2>>& helpRows();
+void ShowLesson(AppState& state);  // lesson.cpp: the lesson's text and questions
 // lesson.cpp: presentation mode with a lesson: canvas, the stop's text, its side tab and its
 // question, sized to the window (nothing scrolls the question away), no toolbar or messages.
 void ShowSlide(AppState& state);
@@ -134,10 +143,11 @@ void DrawViolationOverlay(AppState& state);
 
 // A side-column tab: the debugging panels slot in here.
 struct SideTab {
-    const char* name;
+    const char* name;  // the tab's label
     void (*show)(AppState&);
     const char* id =
         nullptr;  // the panel's name in lesson files (core/teaching/lesson.h kPanelNames)
+    const char* title = nullptr;  // the full name: the tooltip, and itemRects' key
 };
 
 }  // namespace dlab::ui

@@ -315,8 +315,7 @@ void ShowStatistics(AppState& st) {
             ImGui::TextUnformatted(value.c_str());
         };
         auto num = [](std::int64_t v) { return std::to_string(v); };
-        row("points", num(static_cast<std::int64_t>(e.points().size())) + "  (" + num(inserted) +
-                          " inserted, " + num(dups) + " duplicates)");
+        row("points", pointCountsText(e));
         row("triangles",
             num(m.numTriangles() - virtualTriangles) +
                 (virtualTriangles ? "  (+" + num(virtualTriangles) + " virtual)" : ""));

@@ -4,6 +4,7 @@
 #include "core/teaching/describe.h"
 #include "ui/gui.h"
 #include "ui/panels/panels.h"
+#include "ui/platform/keys.h"
 
 #include <imgui.h>
 #include <imgui_stdlib.h>
@@ -12,12 +13,29 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <string>
 
 namespace dlab::ui {
 
 namespace {
 
-bool ToolButton(AppState& state, const char* label, const char* tip, bool enabled = true) {
+// The toolbar wraps: the next item goes on this row when `width` more pixels fit, else on a new
+// row (small windows, presentation mode's large fonts).
+void SameLineOrWrap(float width, float spacing = -1.0f) {
+    ImGui::SameLine(0, spacing);
+    if (ImGui::GetContentRegionAvail().x < width) ImGui::NewLine();
+}
+
+float ButtonWidth(const char* label) {
+    return ImGui::CalcTextSize(label, nullptr, true).x + 2 * ImGui::GetStyle().FramePadding.x;
+}
+
+// Widths in the toolbar are given at the normal 16-pixel font and grow with it.
+float Scaled(float width) { return width * ImGui::GetFontSize() / 16.0f; }
+
+bool ToolButton(AppState& state, const char* label, const char* tip, bool enabled = true,
+                bool first = false) {
+    if (!first) SameLineOrWrap(ButtonWidth(label));
     if (!enabled) ImGui::BeginDisabled();
     const bool clicked = ImGui::Button(label);
     if (!enabled) ImGui::EndDisabled();
@@ -28,11 +46,21 @@ bool ToolButton(AppState& state, const char* label, const char* tip, bool enable
     return clicked && enabled;
 }
 
+// "Label [combo]": the label first, so that the row reads "Boundary: exact  Locate: walk".
 template <class Enum>
-bool EnumCombo(const char* label, Enum& value, std::initializer_list<Enum> values, float width) {
+bool EnumCombo(AppState& state, const char* label, Enum& value, std::initializer_list<Enum> values,
+               float width, float spacing = -1.0f) {
+    const float w = Scaled(width);
+    SameLineOrWrap(ImGui::CalcTextSize(label).x + ImGui::GetStyle().ItemInnerSpacing.x + w,
+                   spacing);
+    ImGui::AlignTextToFramePadding();
+    ImGui::TextUnformatted(label);
+    RecordItem(state, (std::string(label) + " label").c_str());
+    ImGui::SameLine(0, ImGui::GetStyle().ItemInnerSpacing.x);
     bool changed = false;
-    ImGui::SetNextItemWidth(width);
-    if (ImGui::BeginCombo(label, toString(value))) {
+    ImGui::SetNextItemWidth(w);
+    const std::string id = std::string("##") + label;
+    if (ImGui::BeginCombo(id.c_str(), toString(value))) {
         for (Enum v : values) {
             if (ImGui::Selectable(toString(v), v == value)) {
                 changed = v != value;
@@ -41,6 +69,7 @@ bool EnumCombo(const char* label, Enum& value, std::initializer_list<Enum> value
         }
         ImGui::EndCombo();
     }
+    RecordItem(state, id.c_str() + 2);
     return changed;
 }
 
@@ -71,6 +100,11 @@ void ShowBreakpointsButton(AppState& state) {
         ImGui::SetTooltip(
             "Where Run stops: the next flip, a degenerate case, vertex k, a corner changing...");
     if (!ImGui::BeginPopup("##breakpoints")) return;
+    const ImVec2 at = ImGui::GetWindowPos(), size = ImGui::GetWindowSize();
+    state.itemRects["breakpoints-popup"] = {at.x, at.y, at.x + size.x, at.y + size.y};
+    // Esc closes it (unless a text field in it has the keyboard: there Esc leaves the field).
+    if (!ImGui::GetIO().WantTextInput && ImGui::IsKeyPressed(key::kEscape, false))
+        ImGui::CloseCurrentPopup();
     auto find = [&](const Breakpoint& bp) {
         for (std::size_t i = 0; i < run.breakpoints.size(); ++i) {
             if (run.breakpoints[i].bp == bp) return static_cast<int>(i);
@@ -95,6 +129,7 @@ void ShowBreakpointsButton(AppState& state) {
     toggle("after each whole insertion", {BreakKind::Insertion, std::nullopt});
     ImGui::SetNextItemWidth(90);
     ImGui::InputInt("##vertex", &state.dialogs.breakVertex);
+    RecordItem(state, "breakpoint-vertex");
     ImGui::SameLine();
     if (ImGui::Button("before vertex k is inserted")) {
         run.breakpoints.push_back({{BreakKind::Insert, state.dialogs.breakVertex}, true});
@@ -103,6 +138,7 @@ void ShowBreakpointsButton(AppState& state) {
     if (state.selection.corner != kNone && state.dialogs.breakCorner < 0)
         state.dialogs.breakCorner = state.selection.corner;
     ImGui::InputInt("##corner", &state.dialogs.breakCorner);
+    RecordItem(state, "breakpoint-corner");
     ImGui::SameLine();
     if (ImGui::Button("when corner c changes (V[c] or O[c])")) {
         run.breakpoints.push_back({{BreakKind::Corner, state.dialogs.breakCorner}, true});
@@ -111,6 +147,7 @@ void ShowBreakpointsButton(AppState& state) {
     const bool enter =
         ImGui::InputTextWithHint("##text", "flip, insert:5, corner:17, op:120, incircle:0...",
                                  &state.dialogs.breakText, ImGuiInputTextFlags_EnterReturnsTrue);
+    RecordItem(state, "breakpoint-text");
     ImGui::SameLine();
     if (ImGui::Button("Add") || enter) {
         std::string error;
@@ -148,106 +185,127 @@ void ShowToolbar(AppState& state) {
     const bool canStep = !e.batch();
     const bool atStart = e.position() == 0;
     const bool atEnd = e.atEnd();
-    if (ToolButton(state, "|<", "Back to the start (Home)", canStep && !atStart)) {
+    if (ToolButton(state, "|<", "Back to the start (Home)", canStep && !atStart, true)) {
         run.running = false;
         e.toStart();
     }
-    ImGui::SameLine();
     if (ToolButton(state, "<<", "Back one insertion (Shift+Left)", canStep && !atStart)) {
         run.running = false;
         e.backInsertion();
     }
-    ImGui::SameLine();
     if (ToolButton(state, "<", "Back one operation (Left, Page Up)", canStep && !atStart)) {
         run.running = false;
         e.back();
     }
-    ImGui::SameLine();
     if (ToolButton(state, ">", "Forward one operation (Right, Page Down)", canStep && !atEnd)) {
         run.running = false;
         e.forward();
     }
-    ImGui::SameLine();
     if (ToolButton(state, ">>", "Forward one insertion (Shift+Right)", canStep && !atEnd)) {
         run.running = false;
         e.forwardInsertion();
     }
-    ImGui::SameLine();
     if (ToolButton(state, ">|", "Run to the end at full speed (End)", canStep && !atEnd)) {
-        run.running = true;
-        run.opsPerSecond = RunControl::kFullSpeed;
+        run.runToEnd();
     }
-    ImGui::SameLine();
     if (ToolButton(state, run.running ? "Pause###run" : "Run###run",
                    "Run or pause the animation (Space)", canStep && (run.running || !atEnd))) {
         run.running = !run.running;
     }
-    ImGui::SameLine();
-    ImGui::SetNextItemWidth(150);
+    SameLineOrWrap(Scaled(150));
+    ImGui::SetNextItemWidth(Scaled(150));
     const bool full = run.opsPerSecond >= RunControl::kFullSpeed;
     ImGui::SliderFloat("##speed", &run.opsPerSecond, 0.5f, RunControl::kFullSpeed,
                        full ? "full speed" : "%.1f ops/s", ImGuiSliderFlags_Logarithmic);
+    RecordItem(state, "speed");
     if (ImGui::IsItemHovered())
         ImGui::SetTooltip(
             "Animation speed in operations per second (right end: as fast as possible)");
-    ImGui::SameLine();
+    SameLineOrWrap(ButtonWidth("Breakpoints (00)"));
     ShowBreakpointsButton(state);
 
-    ImGui::SameLine(0, 24);
     InsertOptions o = e.options();
-    bool changed = EnumCombo("Boundary", o.boundary, {Boundary::Exact, Boundary::Super}, 80);
+    bool changed =
+        EnumCombo(state, "Boundary", o.boundary, {Boundary::Exact, Boundary::Super}, 80, 24);
     if (ImGui::IsItemHovered())
         ImGui::SetTooltip(
             "exact: a ghost vertex, the true Delaunay triangulation with its convex hull\nsuper: "
             "the paper's finite super-triangle (can lose hull triangles)");
-    ImGui::SameLine();
     if (e.hasGl()) {  // the GL ID buffer draws on this window's context
         changed |= EnumCombo(
-            "Locate", o.locator,
+            state, "Locate", o.locator,
             {LocatorKind::Walk, LocatorKind::Naive, LocatorKind::Grid, LocatorKind::IdBufferCpu,
              LocatorKind::IdBufferGl, LocatorKind::IdBufferGlBatched},
             175);
     } else {
         changed |= EnumCombo(
-            "Locate", o.locator,
+            state, "Locate", o.locator,
             {LocatorKind::Walk, LocatorKind::Naive, LocatorKind::Grid, LocatorKind::IdBufferCpu},
             120);
     }
-    ImGui::SameLine();
-    changed |=
-        EnumCombo("Order", o.order, {OrderKind::Input, OrderKind::Random, OrderKind::Brio}, 80);
+    changed |= EnumCombo(state, "Order", o.order,
+                         {OrderKind::Input, OrderKind::Random, OrderKind::Brio}, 80);
     if (o.order != OrderKind::Input) {
-        ImGui::SameLine();
+        SameLineOrWrap(ImGui::CalcTextSize("Seed").x + Scaled(110));
+        ImGui::AlignTextToFramePadding();
+        ImGui::TextUnformatted("Seed");
+        ImGui::SameLine(0, ImGui::GetStyle().ItemInnerSpacing.x);
         int seed = static_cast<int>(o.seed);
-        ImGui::SetNextItemWidth(90);
-        if (ImGui::InputInt("Seed", &seed) && seed >= 0) {
+        ImGui::SetNextItemWidth(Scaled(100));
+        if (ImGui::InputInt("##seed", &seed) && seed >= 0) {
             o.seed = static_cast<std::uint64_t>(seed);
             changed = true;
         }
+        RecordItem(state, "seed");
     }
     if (changed) state.setOptions(o);
+}
+
+namespace {
+
+std::string opPrefix(const Engine& e, const Op& op) {
+    return "[" + std::to_string(e.position() - 1) + "] " + toString(op.type) + ": ";
+}
+
+}  // namespace
+
+std::string pointCountsText(const Engine& e) {
+    const InsertStats& st = e.inserter().stats();
+    std::string s = std::to_string(st.inserted) + " of " + std::to_string(e.points().size()) +
+                    " points inserted";
+    if (st.duplicates > 0) {
+        s += ", " + std::to_string(st.duplicates) +
+             (st.duplicates == 1 ? " duplicate skipped" : " duplicates skipped");
+    }
+    return s;
+}
+
+std::string captionText(const AppState& state) {
+    const Engine& e = state.engine;
+    if (e.batch()) {
+        return "batch result: " + std::to_string(e.mesh().numTriangles()) + " triangles, " +
+               std::to_string(e.points().size()) + " points (" + e.batchReason() + ")";
+    }
+    if (const Op* op = e.current()) return opPrefix(e, *op) + describe(*op, e.inserter());
+    return std::to_string(e.points().size()) +
+           " points ready: press Right (or >) to take the first step. F1 lists every shortcut.";
 }
 
 void ShowCaption(AppState& state) {
     const Engine& e = state.engine;
     ImGui::PushFont(fonts().caption);
-    char prefix[64];
-    if (e.batch()) {
-        ImGui::TextUnformatted(("batch result: " + std::to_string(e.mesh().numTriangles()) +
-                                " triangles, " + std::to_string(e.points().size()) +
-                                " points (no stepping above " +
-                                std::to_string(Engine::kHistoryLimit) + " points)")
-                                   .c_str());
-    } else if (const Op* op = e.current()) {
-        std::snprintf(prefix, sizeof prefix, "[%zu] %s: ", e.position() - 1, toString(op->type));
-        ImGui::TextColored(opColour(op->type), "%s", prefix);
+    const Op* op = e.batch() ? nullptr : e.current();
+    if (op) {
+        // The operation's name in its colour, then what it did.
+        ImGui::TextColored(opColour(op->type), "%s", opPrefix(e, *op).c_str());
         ImGui::SameLine(0, 0);
-        ImGui::TextUnformatted(describe(*op, e.inserter()).c_str());
+        ImGui::TextWrapped("%s", describe(*op, e.inserter()).c_str());
+    } else if (e.batch()) {
+        ImGui::TextWrapped("%s", captionText(state).c_str());
     } else {
-        ImGui::TextDisabled(
-            "%zu points ready: press Right (or >) to take the first step. F1 lists every shortcut.",
-            e.points().size());
+        ImGui::TextDisabled("%s", captionText(state).c_str());
     }
+    RecordItem(state, "caption");
     ImGui::PopFont();
     if (!state.run.stopReason.empty() && !state.run.running &&
         state.run.stopPosition == e.position()) {
@@ -256,17 +314,35 @@ void ShowCaption(AppState& state) {
     }
 }
 
+std::string timelineText(const Engine& e) {
+    if (e.batch()) return pointCountsText(e);
+    const bool complete = e.recorded() > 0 && e.journal()->ops().back().type == OpType::Finalize;
+    std::string s = "op " + std::to_string(e.position());
+    if (complete)
+        s += " of " + std::to_string(e.recorded());
+    else if (e.recorded() > 0)
+        s += " of " + std::to_string(e.recorded()) + " recorded so far";
+    else
+        s += " (recorded as you step)";
+    return s + "   |   " + pointCountsText(e);
+}
+
 void ShowTimeline(AppState& state) {
     Engine& e = state.engine;
     if (e.batch()) return;
     const int total = static_cast<int>(e.recorded());
     int pos = static_cast<int>(e.position());
-    ImGui::SetNextItemWidth(-1);
-    char fmt[96];
-    const bool complete = e.recorded() > 0 && e.journal()->ops().back().type == OpType::Finalize;
-    std::snprintf(fmt, sizeof fmt, "op %%d of %d%s   |   %zu insertions done", total,
-                  complete ? "" : "+ (recorded so far)", e.insertionsDone());
-    if (ImGui::SliderInt("##timeline", &pos, 0, std::max(total, 1), fmt)) {
+    // The position in words beside the slider, where its handle cannot cover it; on a narrow
+    // canvas only the position (the counts are in Statistics too).
+    std::string text = timelineText(e);
+    if (ImGui::CalcTextSize(text.c_str()).x + Scaled(200) > ImGui::GetContentRegionAvail().x)
+        text = text.substr(0, text.find("   |   "));
+    ImGui::AlignTextToFramePadding();
+    ImGui::TextUnformatted(text.c_str());
+    RecordItem(state, "timeline-text");
+    ImGui::SameLine();
+    ImGui::SetNextItemWidth(std::max(80.0f, ImGui::GetContentRegionAvail().x));
+    if (ImGui::SliderInt("##timeline", &pos, 0, std::max(total, 1), "")) {
         state.run.running = false;
         e.seek(static_cast<std::size_t>(std::max(0, pos)));
     }
@@ -285,10 +361,12 @@ void advanceRun(AppState& state, double dt) {
     } count{state, startPos};
     if (!run.running) {
         run.lastAdvanceMs = -1;  // a pause is not a slow frame
+        run.toEnd = false;       // a paused run goes on at the slider's speed
         return;
     }
     if (e.batch() || e.atEnd()) {
         run.running = false;
+        run.toEnd = false;
         run.stopReason = "end of the run";
         return;
     }
@@ -309,7 +387,7 @@ void advanceRun(AppState& state, double dt) {
         }
         return true;
     };
-    if (run.opsPerSecond >= RunControl::kFullSpeed) {
+    if (run.fullSpeed()) {
         const auto t0 = std::chrono::steady_clock::now();
         const double nowMs =
             std::chrono::duration<double, std::milli>(t0.time_since_epoch()).count();

@@ -1,4 +1,5 @@
 // The windowed platform: GLFW with an OpenGL 3.3 core context, ImGui's GLFW backend for input.
+#include "ui/files/settings.h"
 #include "ui/gl/gl_renderer.h"
 #include "ui/platform/platform.h"
 
@@ -77,14 +78,21 @@ std::unique_ptr<Platform> makeGlfwPlatform(const WindowOptions& options, std::st
     glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
     glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
     glfwWindowHint(GLFW_MAXIMIZED, options.maximized ? GLFW_TRUE : GLFW_FALSE);
+    // A size remembered from a larger screen is fitted into this one's work area.
+    WindowOptions placed = options;
+    if (GLFWmonitor* monitor = glfwGetPrimaryMonitor()) {
+        int x = 0, y = 0, w = 0, h = 0;
+        glfwGetMonitorWorkarea(monitor, &x, &y, &w, &h);
+        clampWindowToWorkArea(placed, x, y, w, h);
+    }
     GLFWwindow* window =
-        glfwCreateWindow(options.width, options.height, options.title.c_str(), nullptr, nullptr);
+        glfwCreateWindow(placed.width, placed.height, placed.title.c_str(), nullptr, nullptr);
     if (!window) {
         error = g_glfwError.empty() ? "GLFW could not open a window" : g_glfwError;
         glfwTerminate();
         return nullptr;
     }
-    if (options.x >= 0 && options.y >= 0) glfwSetWindowPos(window, options.x, options.y);
+    if (placed.x >= 0 && placed.y >= 0) glfwSetWindowPos(window, placed.x, placed.y);
     glfwMakeContextCurrent(window);
     glfwSwapInterval(1);
     return std::make_unique<GlfwPlatform>(window);
