@@ -150,12 +150,13 @@ void writeBody(const std::string& shownPath, const std::string& file, const Outp
     if (!os) cannotWrite(shownPath, errnoText(errno != 0 ? errno : EIO));
 }
 
-// The mode a new file gets (0666 less the umask), or the mode of the file it replaces.
+// The mode a new file gets (0666 less the umask), or the mode of the file it replaces; the owner
+// can always read and write what they asked to write (Emscripten's umask reads as 0777).
 mode_t modeFor(const struct stat* existing) {
     if (existing) return existing->st_mode & 07777;
     const mode_t mask = ::umask(0);
     ::umask(mask);
-    return 0666 & ~mask;
+    return (0666 & ~mask) | 0600;
 }
 
 void prepare(Pending& p) {

@@ -303,8 +303,12 @@ void ShowLesson(AppState& st) {
                 ? "An assignment: the points are loaded. Step through them, or compare your own "
                   "run with `dtlab diff-trace` (or the Trace compare panel)."
                 : "This lesson has no stops.");
-        if (ImGui::Button("Close lesson")) closeLesson(st);
+        const bool close = ImGui::Button("Close lesson");
         RecordItem(st, "lesson-close");
+        if (close) {
+            closeLesson(st);  // frees the lesson: nothing of it is read after this
+            return;
+        }
         if (!lesson.text.empty()) {
             ImGui::Separator();
             ImGui::BeginChild("##assignmenttext", ImVec2(0, 0), false);

@@ -242,17 +242,17 @@ TEST(LessonSlides, AStopsViewFitsItsVerticesAndItsTabIsShown) {
     UiHarness h(1280, 720);
     auto& st = h.state();
     st.presentation = true;
-    // Lesson 5 zooms on the cascade (vertices 1 to 10), away from vertex 0 high above.
+    // Lesson 5 zooms on the cascade (vertices 2 to 11), away from vertices 0 and 1 high above.
     ASSERT_TRUE(dlab::ui::openLesson(st, lessonPath("05_flips.toml")));
     dlab::ui::goToStop(st, 1);
     h.frames(3);
     const auto canvas = h.rect("canvas");
     const auto& G = st.engine.mesh().G;
-    const auto left = st.view.toScreen(G[1]), right = st.view.toScreen(G[9]);
+    const auto left = st.view.toScreen(G[2]), right = st.view.toScreen(G[10]);
     EXPECT_GE(left.x, canvas[0]);
     EXPECT_LE(right.x, canvas[2]);
     EXPECT_GT(right.x - left.x, 0.7 * (canvas[2] - canvas[0]));
-    EXPECT_LT(st.view.toScreen(G[0]).y, canvas[1]) << "vertex 0 is off the slide";
+    EXPECT_LT(st.view.toScreen(G[1]).y, canvas[1]) << "vertex 1 is off the slide";
     EXPECT_FALSE(st.itemRects.count("slide-tab"));
     // Its last stop shows the whole run, with the statistics in front.
     dlab::ui::goToStop(st, st.lessonPlayer.lesson->stops.size() - 1);
