@@ -42,12 +42,12 @@ field() { jq -r --arg k "$2" '.[$k] // "n/a"' <<<"$1"; }
 median() { printf '%s\n' "$@" | sort -g | awk '{ v[NR] = $1 } END { printf "%.1f", NR % 2 ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2 }'; }
 calc() { awk "BEGIN { printf \"$1\", $2 }"; }
 
-# Predicate calls per point by the stage that decided them, from dtlab bench's "predicates"
-# object ({"orient2d": {"filter": calls, "stage_b": calls, ...}, "incircle": {...}}, counts of
-# one timed run); "n/a" when this dtlab does not report them.
+# Predicate calls per point that the floating-point filter left, by the stage that decided them,
+# from dtlab bench's "predicates_past_filter" object ({"orient2d": {"zero-tail": calls,
+# "stage-b": calls, ...}, "incircle": {...}}, counts of one timed run); "n/a" when absent.
 predicates() {
-    jq -r --argjson n "$2" 'if (.predicates | type) != "object" then "n/a" else
-        [.predicates | to_entries[] | select(.value | type == "object") |
+    jq -r --argjson n "$2" '(.predicates_past_filter) as $p | if ($p | type) != "object" then "n/a" else
+        [$p | to_entries[] | select(.value | type == "object") |
          "\(.key) " + ([.value | to_entries[] | select(.value | type == "number") |
                        "\(.key) \(.value / $n * 1000 | round / 1000)"] | join(", "))] | join("; ")
         end' <<<"$1"
@@ -120,7 +120,7 @@ echo "Delaunay_triangulation_2<Epick> range insert, one warm-up and one timed ru
 echo "medians of $rounds alternating rounds at n = $n ($rounds_large at larger n). Peak memory:"
 echo "dtlab triangulate IN -o BASE (read, triangulate, write) and cgal_baseline IN --repeat 1."
 echo
-echo "| distribution | n | dtlab ms | CGAL ms | dtlab/CGAL | dtlab ns/point | walk steps/point | predicate calls/point by stage | dtlab peak MiB | CGAL peak MiB |"
+echo "| distribution | n | dtlab ms | CGAL ms | dtlab/CGAL | dtlab ns/point | walk steps/point | predicate calls/point past the filter, by stage | dtlab peak MiB | CGAL peak MiB |"
 echo "|---|---:|---:|---:|---:|---:|---:|---|---:|---:|"
 for kind in $kinds; do bench_row "$kind" "$n" "$rounds"; done
 for size in $large; do bench_row uniform "$size" "$rounds_large"; done
