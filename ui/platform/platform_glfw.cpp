@@ -1,12 +1,6 @@
 // The windowed platform: GLFW with an OpenGL 3.3 core context, ImGui's GLFW backend for input.
 #include "ui/files/settings.h"
-#include "ui/gl/gl_renderer.h"
-#include "ui/platform/platform.h"
-
-#define GLFW_INCLUDE_NONE  // GL comes from ui/gl/gl_api.h, never from here
-#include <GLFW/glfw3.h>
-#include <backends/imgui_impl_glfw.h>
-#include <imgui.h>
+#include "ui/platform/glfw_window.h"
 
 #include <cstdio>
 #include <cstdlib>
@@ -16,29 +10,10 @@ namespace dlab::ui {
 
 namespace {
 
-std::string g_glfwError;
-
-class GlfwPlatform final : public Platform {
+class GlfwPlatform final : public GlfwWindowPlatform {
 public:
-    explicit GlfwPlatform(GLFWwindow* window) : m_window(window) {
-        glfwSetWindowUserPointer(window, this);
-        glfwSetDropCallback(window, [](GLFWwindow* w, int count, const char** paths) {
-            auto* self = static_cast<GlfwPlatform*>(glfwGetWindowUserPointer(w));
-            for (int i = 0; i < count; ++i) self->m_dropped.emplace_back(paths[i]);
-        });
-    }
-    ~GlfwPlatform() override {
-        glfwDestroyWindow(m_window);
-        glfwTerminate();
-    }
+    using GlfwWindowPlatform::GlfwWindowPlatform;
     const char* name() const override { return "glfw"; }
-    bool headless() const override { return false; }
-    std::unique_ptr<Renderer> makeRenderer() override { return makeGlRenderer(); }
-    void framebufferSize(int& width, int& height) const override {
-        glfwGetFramebufferSize(m_window, &width, &height);
-    }
-    void initImGui() override { ImGui_ImplGlfw_InitForOpenGL(m_window, true); }
-    void shutdownImGui() override { ImGui_ImplGlfw_Shutdown(); }
     bool newFrame() override {
         glfwPollEvents();
         ImGui_ImplGlfw_NewFrame();
@@ -46,33 +21,21 @@ public:
     }
     void present() override { glfwSwapBuffers(m_window); }
     void waitForEvents(double seconds) override { glfwWaitEventsTimeout(seconds); }
-    std::vector<std::string> takeDroppedFiles() override { return std::exchange(m_dropped, {}); }
     void setTitle(const std::string& title) override {
         glfwSetWindowTitle(m_window, title.c_str());
     }
-    GLFWwindow* window() const { return m_window; }
-
-private:
-    GLFWwindow* m_window;
-    std::vector<std::string> m_dropped;
 };
 
 }  // namespace
 
 std::unique_ptr<Platform> makeGlfwPlatform(const WindowOptions& options, std::string& error) {
-    glfwSetErrorCallback([](int code, const char* text) {
-        g_glfwError = "GLFW error " + std::to_string(code) + ": " + text;
-    });
     const char* display = std::getenv("DISPLAY");
     const char* wayland = std::getenv("WAYLAND_DISPLAY");
     if ((!display || !*display) && (!wayland || !*wayland)) {
         error = "no display (DISPLAY and WAYLAND_DISPLAY are unset)";
         return nullptr;
     }
-    if (!glfwInit()) {
-        error = g_glfwError.empty() ? "GLFW could not initialise" : g_glfwError;
-        return nullptr;
-    }
+    if (!initGlfw(error)) return nullptr;
     glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
     glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
     glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
@@ -88,7 +51,7 @@ std::unique_ptr<Platform> makeGlfwPlatform(const WindowOptions& options, std::st
     GLFWwindow* window =
         glfwCreateWindow(placed.width, placed.height, placed.title.c_str(), nullptr, nullptr);
     if (!window) {
-        error = g_glfwError.empty() ? "GLFW could not open a window" : g_glfwError;
+        error = glfwErrorOr("GLFW could not open a window");
         glfwTerminate();
         return nullptr;
     }
