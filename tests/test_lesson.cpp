@@ -62,6 +62,24 @@ LessonError errorOf(const std::string& text, const std::string& name = "x.toml")
     return LessonError("", 0, 0, "");
 }
 
+// A lesson text, and the error it must raise: its line, its stop (0: none) and words it says.
+struct ErrorCase {
+    std::string text;
+    int line, stop;
+    const char* says;
+};
+
+template <std::size_t N>
+void expectErrors(const ErrorCase (&cases)[N]) {
+    for (const ErrorCase& c : cases) {
+        const LessonError e = errorOf(c.text);
+        EXPECT_EQ(e.line(), c.line) << e.what();
+        EXPECT_EQ(e.stop(), c.stop) << e.what();
+        EXPECT_NE(e.message().find(c.says), std::string::npos)
+            << e.what() << "\n  wanted: " << c.says;
+    }
+}
+
 struct LiveRun {
     std::unique_ptr<Inserter> ins;
     std::unique_ptr<Journal> journal;
@@ -171,13 +189,8 @@ TEST(LessonErrors, BadTomlNamesTheLine) {
 }
 
 TEST(LessonErrors, StructureAndNames) {
-    struct Case {
-        std::string text;
-        int line, stop;
-        const char* says;
-    };
     const std::string stop = "[[stop]]\ntext = \"x\"\n";
-    const Case cases[] = {
+    const ErrorCase cases[] = {
         {"points = [[0,0]]\n" + stop, 1, 0, "needs a \"title\""},
         {"title = \"t\"\n" + stop, 1, 0, "needs \"points\""},
         {kHead, 1, 0, "at least one [[stop]]"},
@@ -214,22 +227,11 @@ TEST(LessonErrors, StructureAndNames) {
         {kHead + "kind = \"quiz\"\n" + stop, 3, 0, "kind must be"},
         {kHead + "stop = 3\n", 3, 0, "[[stop]] tables"},
     };
-    for (const Case& c : cases) {
-        const LessonError e = errorOf(c.text);
-        EXPECT_EQ(e.line(), c.line) << e.what();
-        EXPECT_EQ(e.stop(), c.stop) << e.what();
-        EXPECT_NE(e.message().find(c.says), std::string::npos)
-            << e.what() << "\n  wanted: " << c.says;
-    }
+    expectErrors(cases);
 }
 
 TEST(LessonErrors, StopsThatCannotBeReachedOrAnswered) {
-    struct Case {
-        std::string text;
-        int line, stop;
-        const char* says;
-    };
-    const Case cases[] = {
+    const ErrorCase cases[] = {
         {kHead + "[[stop]]\nrun_to = \"inserted:99\"\ntext = \"y\"\n", 3, 1,
          "\"inserted:99\" (vertex 99 is in) is not reached"},
         {kHead + "[[stop]]\nrun_to = \"flip\"\ncount = 50\ntext = \"y\"\n", 3, 1,
@@ -252,13 +254,7 @@ TEST(LessonErrors, StopsThatCannotBeReachedOrAnswered) {
         {kHead + "[[stop]]\nrun_to = \"end\"\nquestion = \"q\"\nanswer = \"pixel\"\n", 6, 1,
          "needs locator = \"idbuffer-cpu\""},
     };
-    for (const Case& c : cases) {
-        const LessonError e = errorOf(c.text);
-        EXPECT_EQ(e.line(), c.line) << e.what();
-        EXPECT_EQ(e.stop(), c.stop) << e.what();
-        EXPECT_NE(e.message().find(c.says), std::string::npos)
-            << e.what() << "\n  wanted: " << c.says;
-    }
+    expectErrors(cases);
     // An unbuildable run (super mode cannot enclose these coordinates) is an error, not a crash.
     const LessonError huge = errorOf(
         "title = \"t\"\npoints = [[-1.7e308, 0], [1.7e308, 0], [0, 1.7e308]]\n[options]\nboundary "
@@ -682,12 +678,7 @@ TEST(LessonValues, TextEmbedsTheEngineValuesAtTheStop) {
 
 TEST(LessonValues, UnknownOrUnclosedValuesNameFileLineAndStop) {
     const std::string stop = "[[stop]]\ntext = \"x\"\n";
-    struct Case {
-        std::string text;
-        int line, stop;
-        const char* says;
-    };
-    const Case cases[] = {
+    const ErrorCase cases[] = {
         {kHead + stop + "[[stop]]\ntext = \"\"\"\nfine\n{{walk_stepz}} steps\"\"\"\n", 8, 2,
          "unknown value {{walk_stepz}} in the text"},
         {kHead + "[[stop]]\ntext = \"{{queue\"\n", 4, 1, "unclosed {{"},
@@ -702,13 +693,7 @@ TEST(LessonValues, UnknownOrUnclosedValuesNameFileLineAndStop) {
         {kHead + "[[stop]]\ntext = \"{{next_flip}}\"\nrun_to = \"end\"\n", 4, 1,
          "the run is finished"},
     };
-    for (const Case& c : cases) {
-        const LessonError e = errorOf(c.text);
-        EXPECT_EQ(e.line(), c.line) << e.what();
-        EXPECT_EQ(e.stop(), c.stop) << e.what();
-        EXPECT_NE(e.message().find(c.says), std::string::npos)
-            << e.what() << "\n  wanted: " << c.says;
-    }
+    expectErrors(cases);
 }
 
 TEST(LessonExpectations, CheckFailsWhereTheTextContradictsTheEngine) {
