@@ -23,22 +23,22 @@ std::string edgeName(std::int32_t a, std::int32_t b) {
     return std::to_string(std::min(a, b)) + "\u2013" + std::to_string(std::max(a, b));
 }
 
-namespace {
-
-using Edge = std::pair<std::int32_t, std::int32_t>;  // directed: the triangle is on its left
-using Problem = std::optional<MeshVerdict>;
-
-std::string name(const Triple& t) {
+std::string tripleText(const Triple& t) {
     return "(" + std::to_string(t[0]) + ", " + std::to_string(t[1]) + ", " + std::to_string(t[2]) +
            ")";
 }
 
-std::string names(const std::vector<Triple>& ts, std::size_t most = 6) {
+std::string triplesText(const std::vector<Triple>& ts, std::size_t most) {
     std::string s;
-    for (std::size_t i = 0; i < ts.size() && i < most; ++i) s += (i ? " " : "") + name(ts[i]);
+    for (std::size_t i = 0; i < ts.size() && i < most; ++i) s += (i ? " " : "") + tripleText(ts[i]);
     if (ts.size() > most) s += " ... (" + std::to_string(ts.size()) + " in all)";
     return s.empty() ? "none" : s;
 }
+
+namespace {
+
+using Edge = std::pair<std::int32_t, std::int32_t>;  // directed: the triangle is on its left
+using Problem = std::optional<MeshVerdict>;
 
 MeshVerdict verdict(std::string reason) {
     MeshVerdict v;
@@ -67,8 +67,8 @@ Edges edgesOf(const std::vector<Triple>& ts) {
             const Edge ab{t[k], t[(k + 1) % 3]};
             const auto [it, fresh] = e.left.emplace(ab, t);
             if (!fresh && !e.overlap) {
-                e.overlap = verdict("triangles " + name(it->second) + " and " + name(t) +
-                                    " overlap: both lie on the same side of edge " +
+                e.overlap = verdict("triangles " + tripleText(it->second) + " and " +
+                                    tripleText(t) + " overlap: both lie on the same side of edge " +
                                     edgeName(ab.first, ab.second));
             }
         }
@@ -87,11 +87,11 @@ Problem checkVertices(const std::vector<Triple>& student, const std::vector<Trip
     for (const Triple& t : student) {
         for (std::int32_t v : t) {
             if (g.known() && (v < 0 || static_cast<std::size_t>(v) >= g.points.size()))
-                return verdict("triangle " + name(t) + " uses vertex " + std::to_string(v) +
+                return verdict("triangle " + tripleText(t) + " uses vertex " + std::to_string(v) +
                                ", which does not exist");
         }
         if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2])
-            return verdict("triangle " + name(t) + " uses a vertex twice");
+            return verdict("triangle " + tripleText(t) + " uses a vertex twice");
     }
     const auto mine = verticesOf(student), theirs = verticesOf(ours);
     if (newVertex >= 0 && theirs.count(newVertex) && !mine.count(newVertex))
@@ -125,15 +125,16 @@ Problem checkOrientation(const std::vector<Triple>& student, const MeshGeometry&
         const int o = orient2d(a, b, c);
         if (o > 0) continue;
         if (o < 0)
-            return verdict("triangle " + name(t) +
+            return verdict("triangle " + tripleText(t) +
                            " is clockwise: list every triangle counter-clockwise (y up)");
         for (int k = 0; k < 3; ++k) {
             const std::int32_t v = t[k], x = t[(k + 1) % 3], y = t[(k + 2) % 3];
             if (v == newVertex && strictlyBetween(g.points[x], g.points[y], g.points[v]))
-                return verdict("triangle " + name(t) + " is flat: point " + std::to_string(v) +
-                               " lies on edge " + edgeName(x, y) + "; " + kOnEdgeRule);
+                return verdict("triangle " + tripleText(t) + " is flat: point " +
+                               std::to_string(v) + " lies on edge " + edgeName(x, y) + "; " +
+                               kOnEdgeRule);
         }
-        return verdict("triangle " + name(t) + " is flat: its three corners are on one line");
+        return verdict("triangle " + tripleText(t) + " is flat: its three corners are on one line");
     }
     return std::nullopt;
 }
@@ -150,13 +151,13 @@ Problem checkHoles(const Edges& mine, const Edges& ours, const MeshGeometry& g,
             !g.isGhost(newVertex) &&
             strictlyBetween(g.points[e.first], g.points[e.second], g.points[newVertex])) {
             return verdict("point " + std::to_string(newVertex) + " lies on edge " +
-                           edgeName(e.first, e.second) + " of triangle " + name(t) +
+                           edgeName(e.first, e.second) + " of triangle " + tripleText(t) +
                            ", which was not split: " + kOnEdgeRule);
         }
         const auto theirs = ours.left.find(back);
         if (theirs != ours.left.end())
             return verdict("a triangle is missing beside edge " + edgeName(e.first, e.second) +
-                           ": ours has " + name(theirs->second) + " there");
+                           ": ours has " + tripleText(theirs->second) + " there");
         return verdict("your mesh has a hole beside edge " + edgeName(e.first, e.second));
     }
     return std::nullopt;
@@ -265,8 +266,8 @@ MeshVerdict checkStudentMesh(const std::vector<Triple>& student, const std::vect
             "strictly inside");
         if (!g.known()) p->reason = "your triangles differ from ours";
     }
-    p->details.push_back("triangles only in ours:  " + names(minus(ours, student)));
-    p->details.push_back("triangles only in yours: " + names(minus(student, ours)));
+    p->details.push_back("triangles only in ours:  " + triplesText(minus(ours, student)));
+    p->details.push_back("triangles only in yours: " + triplesText(minus(student, ours)));
     return *p;
 }
 

@@ -17,6 +17,9 @@ namespace dlab {
 // kept): (5, 2, 9) and (2, 9, 5) are the same triangle, (2, 5, 9) is the other orientation.
 using Triple = std::array<std::int32_t, 3>;
 Triple canonical(std::int32_t v0, std::int32_t v1, std::int32_t v2);
+// "(0, 4, 7)", and a list of at most `most` of them ("none" when empty).
+std::string tripleText(const Triple& t);
+std::string triplesText(const std::vector<Triple>& ts, std::size_t most = 6);
 
 // Where the vertices are: input points, then the super-triangle's vertices or the ghost vertex.
 struct MeshGeometry {

@@ -280,18 +280,6 @@ void TraceReplay::dropTrianglesOutside(const std::vector<bool>& keep) {
 
 namespace {
 
-std::string tripleText(const Triple& t) {
-    return "(" + std::to_string(t[0]) + ", " + std::to_string(t[1]) + ", " + std::to_string(t[2]) +
-           ")";
-}
-
-std::string listText(const std::vector<Triple>& ts, std::size_t most = 6) {
-    std::string s;
-    for (std::size_t i = 0; i < ts.size() && i < most; ++i) s += (i ? " " : "") + tripleText(ts[i]);
-    if (ts.size() > most) s += " ... (" + std::to_string(ts.size()) + " in all)";
-    return s.empty() ? "none" : s;
-}
-
 // The flip's removed and new edges from the two triangles it left: they share the new edge;
 // their other vertices are the ends of the removed one.
 std::string flipText(const std::vector<Triple>& two) {
@@ -608,8 +596,8 @@ TraceDiff diffByOp(const TraceFile& ref, const TraceFile& student, const DiffOpt
                 if (!fr.empty()) out.details.push_back("reference: " + fr);
                 if (!fs.empty()) out.details.push_back("student:   " + fs);
             }
-            out.details.push_back("triangles only in the reference: " + listText(onlyRef));
-            out.details.push_back("triangles only in the student's: " + listText(onlyStu));
+            out.details.push_back("triangles only in the reference: " + triplesText(onlyRef));
+            out.details.push_back("triangles only in the student's: " + triplesText(onlyStu));
             std::size_t flippedOrientation = 0;
             for (const Triple& t : onlyStu)
                 flippedOrientation +=
@@ -677,7 +665,7 @@ std::string summarize(const TraceFile& f, std::size_t k) {
     if (op.hasTriangles && !op.triangles.empty()) {
         std::vector<Triple> ts;
         for (const auto& t : op.triangles) ts.push_back(canonical(t[1], t[2], t[3]));
-        s += " -> " + listText(ts, 4);
+        s += " -> " + triplesText(ts, 4);
     }
     return s;
 }
