@@ -424,9 +424,138 @@ void checkCountFits(std::size_t count, std::uint64_t minBytesPerLine, std::strin
              "asks for on each line: a count in the header is wrong");
 }
 
+// The first line with content (the header, the count, the first row); `what` names it in the
+// message for a file that has none: "no header line".
+Line firstLine(LineReader& reader, const std::string& name, const char* what) {
+    Line line;
+    if (!reader.next(line))
+        fail(name, 0, std::string(what) + ": the file holds only blank lines and comments");
+    return line;
+}
+
+// A count that a file's first line declares (.node, .pts), with the words its messages use:
+// by: "header" or "count"; one/many: "vertex"/"vertices", "point"/"points".
+struct Declared {
+    std::size_t count = 0;
+    LineNo line = 0;
+    const char* by = "header";
+    const char* one = "vertex";
+    const char* many = "vertices";
+
+    // Refuses a count the rest of the text cannot hold (records of at least minBytesPerLine).
+    void checkFits(std::uint64_t minBytesPerLine, const LineReader& reader,
+                   const std::string& name) const {
+        checkCountFits(count, minBytesPerLine, reader.remainingText(), name, line, one, many);
+    }
+    // Before reading record line `at`: refuses it when the declared records are all read.
+    void checkNotExtra(std::size_t read, const std::string& name, LineNo at) const {
+        if (read != count) return;
+        fail(name, at,
+             std::string("extra ") + one + " line: the " + by + " on line " + std::to_string(line) +
+                 " declares " + plural(count, one, many));
+    }
+    // At the end of the text: every declared record read; a warning when none was declared.
+    void checkAllRead(PointSet& ps, const LineReader& reader, const std::string& name) const {
+        if (ps.points.size() < count) {
+            fail(name, reader.linesRead(),
+                 "end of file: expected " + plural(count, one, many) + " (" + by + " on line " +
+                     std::to_string(line) + "), found " + std::to_string(ps.points.size()));
+        }
+        if (count == 0) {
+            ps.warnings.push_back(std::string(by) + " on line " + std::to_string(line) +
+                                  " declares 0 " + many);
+        }
+    }
+};
+
 //-----------------------------------------------------------------------------------------------
 // [SECTION] Triangle .node
 //-----------------------------------------------------------------------------------------------
+
+}  // namespace
+
+namespace {
+
+// A .node header: '<#vertices> <dimension> <#attributes> <#boundary markers>' (the last three
+// may be left out: 2, 0, 0).
+struct NodeHeader {
+    Declared vertices;
+    std::int64_t attributes = 0, markers = 0;
+    std::size_t fieldsPerLine = 3;  // index, x, y, the attributes, the marker
+
+    // "index, x, y, 2 attributes, boundary marker": what a vertex line holds, for messages.
+    std::string layout() const {
+        return "index, x, y" +
+               (attributes > 0
+                    ? ", " + plural(static_cast<std::size_t>(attributes), "attribute", "attributes")
+                    : std::string()) +
+               (markers > 0 ? ", boundary marker" : "");
+    }
+};
+
+NodeHeader parseNodeHeader(const Line& header, const std::string& name) {
+    const LineNo at = header.number;
+    std::vector<std::string_view> f;
+    const std::size_t headerFields = splitFields(header.text, Sep::Blanks, f, 4);
+    if (headerFields > 4) {
+        fail(name, at,
+             "header has " + std::to_string(headerFields) +
+                 " fields; expected '<#vertices> <dimension> <#attributes> <#boundary markers>'");
+    }
+    NodeHeader h;
+    h.vertices = {parseCount(f[0], name, at, "vertex count"), at, "header", "vertex", "vertices"};
+    const std::int64_t dim = f.size() > 1 ? parseInteger(f[1], name, at, "dimension") : 2;
+    if (dim != 2) fail(name, at, "dimension must be 2, found " + std::to_string(dim));
+    h.attributes = f.size() > 2 ? parseInteger(f[2], name, at, "attribute count") : 0;
+    // No line within kMaxFileBytes can hold more fields than this; the bound also keeps the
+    // field arithmetic below far from overflow.
+    constexpr std::int64_t kMaxAttributes = static_cast<std::int64_t>(kMaxFileBytes / 2);
+    if (h.attributes < 0 || h.attributes > kMaxAttributes) {
+        fail(name, at,
+             "attribute count must be between 0 and " + std::to_string(kMaxAttributes) +
+                 ", found " + quoted(f[2]));
+    }
+    h.markers = f.size() > 3 ? parseInteger(f[3], name, at, "boundary marker count") : 0;
+    if (h.markers != 0 && h.markers != 1) {
+        fail(name, at, "boundary marker count must be 0 or 1, found " + std::to_string(h.markers));
+    }
+    h.fieldsPerLine = static_cast<std::size_t>(3 + h.attributes + h.markers);
+    return h;
+}
+
+// One vertex line, the `read`-th (0-based): its fields, its index in sequence (the first sets
+// the index base), its coordinates, attributes and marker as numbers.
+Vec2 parseNodeVertex(const Line& line, const NodeHeader& h, std::size_t read, std::int64_t& base,
+                     std::vector<std::string_view>& f, const std::string& name) {
+    const std::size_t n = splitFields(line.text, Sep::Blanks, f, h.fieldsPerLine);
+    if (n != h.fieldsPerLine) {
+        fail(name, line.number,
+             std::string(n < h.fieldsPerLine ? "too few" : "too many") + " fields: expected " +
+                 std::to_string(h.fieldsPerLine) + " (" + h.layout() + "), found " +
+                 std::to_string(n));
+    }
+    const std::int64_t index = parseInteger(f[0], name, line.number, "vertex index");
+    if (read == 0) {
+        if (index != 0 && index != 1) {
+            fail(name, line.number,
+                 "first vertex index must be 0 or 1, found " + std::to_string(index));
+        }
+        base = index;
+    } else if (index != base + static_cast<std::int64_t>(read)) {
+        fail(name, line.number,
+             "vertex index " + std::to_string(index) + " out of sequence: expected " +
+                 std::to_string(base + static_cast<std::int64_t>(read)));
+    }
+    Vec2 p;
+    p.x = parseReal(f[1], name, line.number, "x coordinate", ValueKind::Coordinate, Sep::Blanks);
+    p.y = parseReal(f[2], name, line.number, "y coordinate", ValueKind::Coordinate, Sep::Blanks);
+    for (std::int64_t a = 0; a < h.attributes; ++a) {
+        parseReal(f[3 + static_cast<std::size_t>(a)], name, line.number,
+                  "attribute " + std::to_string(a + 1), ValueKind::Attribute, Sep::Blanks);
+    }
+    if (h.markers > 0) parseInteger(f[h.fieldsPerLine - 1], name, line.number, "boundary marker");
+    return p;
+}
 
 }  // namespace
 
@@ -435,94 +564,17 @@ PointSet parseNode(std::string_view text, const std::string& name) {
     PointSet ps;
     ps.path = name;
     LineReader reader(text);
-    Line line;
-    std::vector<std::string_view> f;
-
-    if (!reader.next(line))
-        fail(name, 0, "no header line: the file holds only blank lines and comments");
-    const LineNo headerLine = line.number;
-    const std::size_t headerFields = splitFields(line.text, Sep::Blanks, f, 4);
-    if (headerFields > 4) {
-        fail(name, headerLine,
-             "header has " + std::to_string(headerFields) +
-                 " fields; expected '<#vertices> <dimension> <#attributes> <#boundary markers>'");
-    }
-    const std::size_t count = parseCount(f[0], name, headerLine, "vertex count");
-    const std::int64_t dim = f.size() > 1 ? parseInteger(f[1], name, headerLine, "dimension") : 2;
-    if (dim != 2) fail(name, headerLine, "dimension must be 2, found " + std::to_string(dim));
-    const std::int64_t attributes =
-        f.size() > 2 ? parseInteger(f[2], name, headerLine, "attribute count") : 0;
-    // No line within kMaxFileBytes can hold more fields than this; the bound also keeps the
-    // field arithmetic below far from overflow.
-    constexpr std::int64_t kMaxAttributes = static_cast<std::int64_t>(kMaxFileBytes / 2);
-    if (attributes < 0 || attributes > kMaxAttributes) {
-        fail(name, headerLine,
-             "attribute count must be between 0 and " + std::to_string(kMaxAttributes) +
-                 ", found " + quoted(f[2]));
-    }
-    const std::int64_t markers =
-        f.size() > 3 ? parseInteger(f[3], name, headerLine, "boundary marker count") : 0;
-    if (markers != 0 && markers != 1) {
-        fail(name, headerLine,
-             "boundary marker count must be 0 or 1, found " + std::to_string(markers));
-    }
-    const auto fieldsPerLine = static_cast<std::size_t>(3 + attributes + markers);
-    checkCountFits(count, 2 * static_cast<std::uint64_t>(fieldsPerLine), reader.remainingText(),
-                   name, headerLine, "vertex", "vertices");
-    ps.points.reserve(count);
-
-    const std::string layout = "index, x, y" +
-                               (attributes > 0 ? ", " + plural(static_cast<std::size_t>(attributes),
-                                                               "attribute", "attributes")
-                                               : std::string()) +
-                               (markers > 0 ? ", boundary marker" : "");
+    const NodeHeader h = parseNodeHeader(firstLine(reader, name, "no header line"), name);
+    h.vertices.checkFits(2 * static_cast<std::uint64_t>(h.fieldsPerLine), reader, name);
+    ps.points.reserve(h.vertices.count);
     std::int64_t base = 0;
-    while (reader.next(line)) {
-        if (ps.points.size() == count) {
-            fail(name, line.number,
-                 "extra vertex line: the header on line " + std::to_string(headerLine) +
-                     " declares " + plural(count, "vertex", "vertices"));
-        }
-        const std::size_t n = splitFields(line.text, Sep::Blanks, f, fieldsPerLine);
-        if (n != fieldsPerLine) {
-            fail(name, line.number,
-                 std::string(n < fieldsPerLine ? "too few" : "too many") + " fields: expected " +
-                     std::to_string(fieldsPerLine) + " (" + layout + "), found " +
-                     std::to_string(n));
-        }
-        const std::int64_t index = parseInteger(f[0], name, line.number, "vertex index");
-        if (ps.points.empty()) {
-            if (index != 0 && index != 1) {
-                fail(name, line.number,
-                     "first vertex index must be 0 or 1, found " + std::to_string(index));
-            }
-            base = index;
-        } else if (index != base + static_cast<std::int64_t>(ps.points.size())) {
-            fail(name, line.number,
-                 "vertex index " + std::to_string(index) + " out of sequence: expected " +
-                     std::to_string(base + static_cast<std::int64_t>(ps.points.size())));
-        }
-        Vec2 p;
-        p.x =
-            parseReal(f[1], name, line.number, "x coordinate", ValueKind::Coordinate, Sep::Blanks);
-        p.y =
-            parseReal(f[2], name, line.number, "y coordinate", ValueKind::Coordinate, Sep::Blanks);
-        for (std::int64_t a = 0; a < attributes; ++a) {
-            parseReal(f[3 + static_cast<std::size_t>(a)], name, line.number,
-                      "attribute " + std::to_string(a + 1), ValueKind::Attribute, Sep::Blanks);
-        }
-        if (markers > 0) parseInteger(f[fieldsPerLine - 1], name, line.number, "boundary marker");
-        ps.points.push_back(p);
+    std::vector<std::string_view> f;
+    for (Line line; reader.next(line);) {
+        h.vertices.checkNotExtra(ps.points.size(), name, line.number);
+        ps.points.push_back(parseNodeVertex(line, h, ps.points.size(), base, f, name));
     }
-    if (ps.points.size() < count) {
-        fail(name, reader.linesRead(),
-             "end of file: expected " + plural(count, "vertex", "vertices") + " (header on line " +
-                 std::to_string(headerLine) + "), found " + std::to_string(ps.points.size()));
-    }
+    h.vertices.checkAllRead(ps, reader, name);
     ps.indexBase = static_cast<int>(base);
-    if (count == 0)
-        ps.warnings.push_back("header on line " + std::to_string(headerLine) +
-                              " declares 0 vertices");
     return ps;
 }
 
@@ -557,10 +609,9 @@ PointSet parseXY(std::string_view text, const std::string& name) {
     PointSet ps;
     ps.path = name;
     LineReader reader(text);
-    Line line;
     std::vector<std::string_view> f;
 
-    if (!reader.next(line)) fail(name, 0, "no data: the file holds only blank lines and comments");
+    Line line = firstLine(reader, name, "no data");
     const Sep sep = detectSeparator(line.text);
     std::size_t columns = 2, xCol = 0, yCol = 1;
     bool haveHeader = false;
@@ -638,29 +689,22 @@ PointSet parsePts(std::string_view text, const std::string& name) {
     PointSet ps;
     ps.path = name;
     LineReader reader(text);
-    Line line;
     std::vector<std::string_view> f;
 
-    if (!reader.next(line))
-        fail(name, 0, "no point count: the file holds only blank lines and comments");
-    const LineNo countLine = line.number;
+    Line line = firstLine(reader, name, "no point count");
     if (splitFields(line.text, Sep::Blanks, f, 1) != 1 ||
         line.text.find(',') != std::string_view::npos) {
-        fail(name, countLine,
+        fail(name, line.number,
              "the first line must be the point count alone, found " + quoted(line.text));
     }
-    const std::size_t count = parseCount(f[0], name, countLine, "point count");
-    checkCountFits(count, 4, reader.remainingText(), name, countLine, "point",
-                   "points");  // "0,0\n" is the shortest line
-    ps.points.reserve(count);
+    const Declared points{parseCount(f[0], name, line.number, "point count"), line.number, "count",
+                          "point", "points"};
+    points.checkFits(4, reader, name);  // "0,0\n" is the shortest line
+    ps.points.reserve(points.count);
 
     bool warnedZ = false;
     while (reader.next(line)) {
-        if (ps.points.size() == count) {
-            fail(name, line.number,
-                 "extra point line: the count on line " + std::to_string(countLine) + " declares " +
-                     plural(count, "point", "points"));
-        }
+        points.checkNotExtra(ps.points.size(), name, line.number);
         // savePts writes "x,y" (or "x,y,z"); hand-made files often use blanks instead.
         const Sep sep = line.text.find(',') != std::string_view::npos ? Sep::Comma : Sep::Blanks;
         const std::size_t n = splitFields(line.text, sep, f, 3);
@@ -683,13 +727,7 @@ PointSet parsePts(std::string_view text, const std::string& name) {
         }
         ps.points.push_back(p);
     }
-    if (ps.points.size() < count) {
-        fail(name, reader.linesRead(),
-             "end of file: expected " + plural(count, "point", "points") + " (count on line " +
-                 std::to_string(countLine) + "), found " + std::to_string(ps.points.size()));
-    }
-    if (count == 0)
-        ps.warnings.push_back("count on line " + std::to_string(countLine) + " declares 0 points");
+    points.checkAllRead(ps, reader, name);
     return ps;
 }
 

@@ -534,6 +534,95 @@ TraceDiff diffInsertions(const TraceFile& ref, const TraceFile& student) {
 
 // ---- Op by op ----------------------------------------------------------------------------
 
+// A difference found op by op: the line that names it and its evidence.
+struct Mismatch {
+    std::string what;
+    std::vector<std::string> details;
+};
+
+// One trace has ended (i or j past its end) while the other goes on.
+std::string endMismatch(const TraceFile& ref, const TraceFile& student, std::size_t i,
+                        std::size_t j) {
+    if (j == student.ops.size()) {
+        return "the student's trace ends early: the reference goes on with " +
+               std::string(toString(ref.ops[i].type)) + " (" + ref.name + ":" +
+               std::to_string(ref.ops[i].line) + ")";
+    }
+    return "the student's trace goes on after the reference has ended, with " +
+           std::string(toString(student.ops[j].type)) + " (" + student.name + ":" +
+           std::to_string(student.ops[j].line) + ")";
+}
+
+// The two ops themselves differ: type, vertex, or (all ops compared) the in-circle answer.
+std::optional<std::string> opMismatch(const TraceOp& a, const TraceOp& b,
+                                      const DiffOptions& options) {
+    if (a.type != b.type) {
+        return std::string("the reference does ") + toString(a.type) + ", the student " +
+               toString(b.type);
+    }
+    if (a.vertex && b.vertex && *a.vertex != *b.vertex) {
+        return std::string(toString(a.type)) + " of vertex " + std::to_string(*a.vertex) +
+               " in the reference, of vertex " + std::to_string(*b.vertex) +
+               " in the student's run";
+    }
+    if (options.allOps && a.sign && b.sign && *a.sign != *b.sign) {
+        return "the in-circle test answers " + std::to_string(*a.sign) + " in the reference, " +
+               std::to_string(*b.sign) + " in the student's run";
+    }
+    return std::nullopt;
+}
+
+// After op a the two sets of triangles differ: which triangles, and the flips that made them.
+Mismatch triangleMismatch(const TraceOp& a, const Tracked& r, const Tracked& s) {
+    const auto rt = r.replay().triangles(), st = s.replay().triangles();
+    const auto onlyRef = minus(rt, st), onlyStu = minus(st, rt);
+    Mismatch m{
+        std::string("the triangles differ after ") + toString(a.type) +
+            (a.vertex && *a.vertex != kNone ? " (vertex " + std::to_string(*a.vertex) + ")" : ""),
+        {}};
+    if (a.type == OpType::Flip) {
+        const std::string fr = flipText(r.replay().touched()), fs = flipText(s.replay().touched());
+        if (!fr.empty()) m.details.push_back("reference: " + fr);
+        if (!fs.empty()) m.details.push_back("student:   " + fs);
+    }
+    m.details.push_back("triangles only in the reference: " + triplesText(onlyRef));
+    m.details.push_back("triangles only in the student's: " + triplesText(onlyStu));
+    std::size_t flippedOrientation = 0;
+    for (const Triple& t : onlyStu)
+        flippedOrientation += std::binary_search(onlyRef.begin(), onlyRef.end(), reversed(t));
+    if (flippedOrientation) {
+        m.details.push_back(
+            std::to_string(flippedOrientation) +
+            " of the student's triangles are reference triangles in the other orientation "
+            "(clockwise): list corners counter-clockwise, y up");
+    }
+    return m;
+}
+
+// Same triangles after op a, compared corner by corner: the first V, then O, that differs.
+std::optional<Mismatch> cornerMismatch(const TraceOp& a, const Tracked& r, const Tracked& s) {
+    const std::int32_t cv = firstCornerDiff(r.replay().V(), s.replay().V());
+    if (cv != kNone) {
+        return Mismatch{
+            std::string("same triangles, but the corners differ after ") + toString(a.type) +
+                ": V[" + std::to_string(cv) + "] is " + cell(r.replay().V(), cv) +
+                " in the reference, " + cell(s.replay().V(), cv) + " in the student's run",
+            {"the paper's convention: a split keeps the old triangle's corners (it becomes "
+             "(a, b, v)) "
+             "and appends (b, c, v) and (c, a, v); a flip rewrites its two triangles in "
+             "place"}};
+    }
+    if (!s.replay().hasO()) return std::nullopt;
+    const std::int32_t co = firstCornerDiff(r.replay().O(), s.replay().O());
+    if (co == kNone) return std::nullopt;
+    return Mismatch{std::string("same triangles and V, but O differs after ") + toString(a.type) +
+                        ": O[" + std::to_string(co) + "] is " + cell(r.replay().O(), co) +
+                        " in the reference, " + cell(s.replay().O(), co) + " in the student's run",
+                    {}};
+}
+
+// Replays both traces op by op (only the compared ops, unless options.allOps) and stops at the
+// first op where the ops or the meshes they leave differ.
 TraceDiff diffByOp(const TraceFile& ref, const TraceFile& student, const DiffOptions& options) {
     TraceDiff d;
     TriangleBalance balance;
@@ -541,9 +630,10 @@ TraceDiff diffByOp(const TraceFile& ref, const TraceFile& student, const DiffOpt
     auto compared = [&](const TraceOp& op) { return options.allOps || op.changesMesh(); };
     const std::vector<bool> realVertices = finalVertices(ref);
     std::size_t i = 0, j = 0;
-    auto fail = [&](std::string what) {
+    auto fail = [&](Mismatch m) {
         d.equal = false;
-        d.what = std::move(what);
+        d.what = std::move(m.what);
+        d.details = std::move(m.details);
         d.refOp = i;
         d.studentOp = j;
         return d;
@@ -554,85 +644,17 @@ TraceDiff diffByOp(const TraceFile& ref, const TraceFile& student, const DiffOpt
         while (j < student.ops.size() && !compared(student.ops[j])) s.apply(student.ops[j++]);
         const bool refDone = i == ref.ops.size(), stuDone = j == student.ops.size();
         if (refDone && stuDone) break;
-        if (stuDone) {
-            return fail("the student's trace ends early: the reference goes on with " +
-                        std::string(toString(ref.ops[i].type)) + " (" + ref.name + ":" +
-                        std::to_string(ref.ops[i].line) + ")");
-        }
-        if (refDone) {
-            return fail("the student's trace goes on after the reference has ended, with " +
-                        std::string(toString(student.ops[j].type)) + " (" + student.name + ":" +
-                        std::to_string(student.ops[j].line) + ")");
-        }
+        if (refDone || stuDone) return fail({endMismatch(ref, student, i, j), {}});
         const TraceOp& a = ref.ops[i];
         const TraceOp& b = student.ops[j];
-        if (a.type != b.type) {
-            return fail(std::string("the reference does ") + toString(a.type) + ", the student " +
-                        toString(b.type));
-        }
-        if (a.vertex && b.vertex && *a.vertex != *b.vertex) {
-            return fail(std::string(toString(a.type)) + " of vertex " + std::to_string(*a.vertex) +
-                        " in the reference, of vertex " + std::to_string(*b.vertex) +
-                        " in the student's run");
-        }
-        if (options.allOps && a.sign && b.sign && *a.sign != *b.sign) {
-            return fail("the in-circle test answers " + std::to_string(*a.sign) +
-                        " in the reference, " + std::to_string(*b.sign) + " in the student's run");
-        }
+        if (auto what = opMismatch(a, b, options)) return fail({std::move(*what), {}});
         r.apply(a);
         s.apply(b);
         if (bareFinalize(b)) s.dropOutside(realVertices);
         ++d.compared;
-        if (!balance.equal()) {
-            const auto rt = r.replay().triangles(), st = s.replay().triangles();
-            const auto onlyRef = minus(rt, st), onlyStu = minus(st, rt);
-            TraceDiff out =
-                fail(std::string("the triangles differ after ") + toString(a.type) +
-                     (a.vertex && *a.vertex != kNone ? " (vertex " + std::to_string(*a.vertex) + ")"
-                                                     : ""));
-            if (a.type == OpType::Flip) {
-                const std::string fr = flipText(r.replay().touched()),
-                                  fs = flipText(s.replay().touched());
-                if (!fr.empty()) out.details.push_back("reference: " + fr);
-                if (!fs.empty()) out.details.push_back("student:   " + fs);
-            }
-            out.details.push_back("triangles only in the reference: " + triplesText(onlyRef));
-            out.details.push_back("triangles only in the student's: " + triplesText(onlyStu));
-            std::size_t flippedOrientation = 0;
-            for (const Triple& t : onlyStu)
-                flippedOrientation +=
-                    std::binary_search(onlyRef.begin(), onlyRef.end(), reversed(t));
-            if (flippedOrientation) {
-                out.details.push_back(
-                    std::to_string(flippedOrientation) +
-                    " of the student's triangles are reference triangles in the other orientation "
-                    "(clockwise): list corners counter-clockwise, y up");
-            }
-            return out;
-        }
+        if (!balance.equal()) return fail(triangleMismatch(a, r, s));
         if (options.corners && !bareFinalize(b)) {
-            const std::int32_t cv = firstCornerDiff(r.replay().V(), s.replay().V());
-            if (cv != kNone) {
-                TraceDiff out = fail(std::string("same triangles, but the corners differ after ") +
-                                     toString(a.type) + ": V[" + std::to_string(cv) + "] is " +
-                                     cell(r.replay().V(), cv) + " in the reference, " +
-                                     cell(s.replay().V(), cv) + " in the student's run");
-                out.details.push_back(
-                    "the paper's convention: a split keeps the old triangle's corners (it becomes "
-                    "(a, b, v)) "
-                    "and appends (b, c, v) and (c, a, v); a flip rewrites its two triangles in "
-                    "place");
-                return out;
-            }
-            if (s.replay().hasO()) {
-                const std::int32_t co = firstCornerDiff(r.replay().O(), s.replay().O());
-                if (co != kNone) {
-                    return fail(std::string("same triangles and V, but O differs after ") +
-                                toString(a.type) + ": O[" + std::to_string(co) + "] is " +
-                                cell(r.replay().O(), co) + " in the reference, " +
-                                cell(s.replay().O(), co) + " in the student's run");
-                }
-            }
+            if (auto m = cornerMismatch(a, r, s)) return fail(std::move(*m));
         }
         ++i;
         ++j;
