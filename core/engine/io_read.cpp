@@ -424,6 +424,14 @@ void checkCountFits(std::size_t count, std::uint64_t minBytesPerLine, std::strin
              "asks for on each line: a count in the header is wrong");
 }
 
+// The point set of the file `name`, empty, once its content is known to be text.
+PointSet emptyPointSet(std::string_view text, const std::string& name) {
+    checkText(text, name);
+    PointSet ps;
+    ps.path = name;
+    return ps;
+}
+
 // The first line with content (the header, the count, the first row); `what` names it in the
 // message for a file that has none: "no header line".
 Line firstLine(LineReader& reader, const std::string& name, const char* what) {
@@ -560,9 +568,7 @@ Vec2 parseNodeVertex(const Line& line, const NodeHeader& h, std::size_t read, st
 }  // namespace
 
 PointSet parseNode(std::string_view text, const std::string& name) {
-    checkText(text, name);
-    PointSet ps;
-    ps.path = name;
+    PointSet ps = emptyPointSet(text, name);
     LineReader reader(text);
     const NodeHeader h = parseNodeHeader(firstLine(reader, name, "no header line"), name);
     h.vertices.checkFits(2 * static_cast<std::uint64_t>(h.fieldsPerLine), reader, name);
@@ -605,9 +611,7 @@ bool namesColumn(std::string_view field, char letter) {
 }  // namespace
 
 PointSet parseXY(std::string_view text, const std::string& name) {
-    checkText(text, name);
-    PointSet ps;
-    ps.path = name;
+    PointSet ps = emptyPointSet(text, name);
     LineReader reader(text);
     std::vector<std::string_view> f;
 
@@ -685,9 +689,7 @@ PointSet parseXY(std::string_view text, const std::string& name) {
 //-----------------------------------------------------------------------------------------------
 
 PointSet parsePts(std::string_view text, const std::string& name) {
-    checkText(text, name);
-    PointSet ps;
-    ps.path = name;
+    PointSet ps = emptyPointSet(text, name);
     LineReader reader(text);
     std::vector<std::string_view> f;
 

@@ -364,44 +364,48 @@ void writeVoronoiEdge(std::ostream& os, const VoronoiDiagram& diagram, int index
 // [SECTION] OFF / OBJ
 //-----------------------------------------------------------------------------------------------
 
-void writeOff(std::ostream& os, const Mesh& mesh) {
-    checkTriangles(mesh, "writeOff");
-    Buffer out(os);
-    std::string& head = out.text();
-    head += "OFF\n";
-    appendInt(head, mesh.numVertices());
-    head += ' ';
-    appendInt(head, mesh.numTriangles());
-    head += " 0\n";
+namespace {
+
+// OFF's and OBJ's header: "<before><#vertices><between><#triangles><after>".
+void appendCounts(std::string& s, const Mesh& mesh, const char* before, const char* between,
+                  const char* after) {
+    s += before;
+    appendInt(s, mesh.numVertices());
+    s += between;
+    appendInt(s, mesh.numTriangles());
+    s += after;
+}
+
+// OFF's and OBJ's body: a line per point, "<pointLead>x y 0", then a line per triangle,
+// "<faceLead> a b c" with the vertices numbered from base.
+void appendPointsAndFaces(Buffer& out, const Mesh& mesh, const char* pointLead, char faceLead,
+                          int base) {
     appendLines(out, mesh.G.size(), [&](std::string& s, std::size_t i) {
+        s += pointLead;
         appendXY(s, mesh.G[i]);
         s += " 0";
     });
     appendLines(out, triangleCount(mesh), [&](std::string& s, std::size_t t) {
-        s += '3';
-        appendVertices(s, mesh, static_cast<std::int32_t>(t), 0);
+        s += faceLead;
+        appendVertices(s, mesh, static_cast<std::int32_t>(t), base);
     });
+}
+
+}  // namespace
+
+void writeOff(std::ostream& os, const Mesh& mesh) {
+    checkTriangles(mesh, "writeOff");
+    Buffer out(os);
+    appendCounts(out.text(), mesh, "OFF\n", " ", " 0\n");
+    appendPointsAndFaces(out, mesh, "", '3', 0);
     out.flush();
 }
 
 void writeObj(std::ostream& os, const Mesh& mesh) {
     checkTriangles(mesh, "writeObj");
     Buffer out(os);
-    std::string& head = out.text();
-    head += "# Delaunay Lab: ";
-    appendInt(head, mesh.numVertices());
-    head += " vertices, ";
-    appendInt(head, mesh.numTriangles());
-    head += " triangles\n";
-    appendLines(out, mesh.G.size(), [&](std::string& s, std::size_t i) {
-        s += "v ";
-        appendXY(s, mesh.G[i]);
-        s += " 0";
-    });
-    appendLines(out, triangleCount(mesh), [&](std::string& s, std::size_t t) {
-        s += 'f';
-        appendVertices(s, mesh, static_cast<std::int32_t>(t), 1);
-    });
+    appendCounts(out.text(), mesh, "# Delaunay Lab: ", " vertices, ", " triangles\n");
+    appendPointsAndFaces(out, mesh, "v ", 'f', 1);
     out.flush();
 }
 
