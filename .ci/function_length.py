@@ -313,6 +313,10 @@ def main():
         else:
             print(f"function length: {p}: no such file or folder", file=sys.stderr)
             return 2
+    unique = {}  # a file named twice is checked once
+    for path, shown in files:
+        unique.setdefault(os.path.realpath(path), (path, shown))
+    files = list(unique.values())
     long = []
     for path, shown in files:
         for name, first, last in functions_in(path):
