@@ -608,77 +608,86 @@ bool namesColumn(std::string_view field, char letter) {
     return s.size() == 1 && (s[0] == letter || s[0] == letter - 'a' + 'A');
 }
 
+// The columns of an XY/CSV file: the separator, how many fields a row has and which are x and y;
+// the header's line (0: none).
+struct XYColumns {
+    Sep sep = Sep::Blanks;
+    std::size_t count = 2, x = 0, y = 1;
+    LineNo headerLine = 0;
+};
+
+// The columns, from the first line: a header when it holds no number (a warning says it was
+// skipped), else the first row of data with x and y alone.
+XYColumns xyColumns(const Line& first, const std::string& name, PointSet& ps) {
+    XYColumns c;
+    c.sep = detectSeparator(first.text);
+    // A first line without a single number in it is a header ("x,y", "id;x;y", "lon lat").
+    // A line mixing words and numbers is bad data and is reported as such below. A field
+    // that merely starts like a number ("1,5" with ';' separators, "1.2.3", "\"3\"") is a
+    // number gone wrong, not a column name: taking such a line for a header would silently
+    // drop a row of data (and blame a later line for the decimal commas of the first).
+    constexpr std::size_t kMaxHeaderColumns = 4096;
+    std::vector<std::string_view> f;
+    const std::size_t n = splitFields(first.text, c.sep, f, kMaxHeaderColumns);
+    const auto numberLike = [](std::string_view field) {
+        return isNumeric(field) || startsLikeNumber(field);
+    };
+    if (std::any_of(f.begin(), f.end(), numberLike) || n > kMaxHeaderColumns) return c;
+    c.headerLine = first.number;
+    c.count = n;
+    const auto x =
+        std::find_if(f.begin(), f.end(), [](std::string_view s) { return namesColumn(s, 'x'); });
+    const auto y =
+        std::find_if(f.begin(), f.end(), [](std::string_view s) { return namesColumn(s, 'y'); });
+    if (x != f.end() && y != f.end()) {
+        c.x = static_cast<std::size_t>(x - f.begin());
+        c.y = static_cast<std::size_t>(y - f.begin());
+    } else if (n != 2) {
+        fail(name, first.number,
+             "header " + quoted(first.text) + " has " + plural(n, "column", "columns") +
+                 "; expected two, or columns named 'x' and 'y'");
+    }
+    ps.warnings.push_back("skipped header line " + std::to_string(first.number) + ": " +
+                          printable(first.text, 80, false));
+    return c;
+}
+
+// A row with n fields where c.count are expected, the first row when firstRow: what is wrong,
+// with a hint at what the file may be.
+std::string fieldCountError(const XYColumns& c, std::size_t n, std::string_view firstField,
+                            bool firstRow) {
+    std::string msg = plural(n, "field", "fields") + " separated by " + sepName(c.sep) +
+                      "; expected " + std::to_string(c.count);
+    if (c.headerLine) return msg + " as in the header on line " + std::to_string(c.headerLine);
+    msg += " (x, y)";
+    if (n == 3)
+        msg += "; for id,x,y or x,y,z columns add a header line naming the 'x' and 'y' columns";
+    if (n == 1 && firstRow && isUnsignedDigits(firstField))
+        msg += "; a point count on the first line suggests Rossignac's .pts format";
+    return msg;
+}
+
 }  // namespace
 
 PointSet parseXY(std::string_view text, const std::string& name) {
     PointSet ps = emptyPointSet(text, name);
     LineReader reader(text);
-    std::vector<std::string_view> f;
-
     Line line = firstLine(reader, name, "no data");
-    const Sep sep = detectSeparator(line.text);
-    std::size_t columns = 2, xCol = 0, yCol = 1;
-    bool haveHeader = false;
-    LineNo headerLine = 0;
-    {
-        // A first line without a single number in it is a header ("x,y", "id;x;y", "lon lat").
-        // A line mixing words and numbers is bad data and is reported as such below. A field
-        // that merely starts like a number ("1,5" with ';' separators, "1.2.3", "\"3\"") is a
-        // number gone wrong, not a column name: taking such a line for a header would silently
-        // drop a row of data (and blame a later line for the decimal commas of the first).
-        constexpr std::size_t kMaxHeaderColumns = 4096;
-        const std::size_t n = splitFields(line.text, sep, f, kMaxHeaderColumns);
-        const auto numberLike = [](std::string_view field) {
-            return isNumeric(field) || startsLikeNumber(field);
-        };
-        if (std::none_of(f.begin(), f.end(), numberLike) && n <= kMaxHeaderColumns) {
-            haveHeader = true;
-            headerLine = line.number;
-            columns = n;
-            const auto x = std::find_if(f.begin(), f.end(),
-                                        [](std::string_view s) { return namesColumn(s, 'x'); });
-            const auto y = std::find_if(f.begin(), f.end(),
-                                        [](std::string_view s) { return namesColumn(s, 'y'); });
-            if (x != f.end() && y != f.end()) {
-                xCol = static_cast<std::size_t>(x - f.begin());
-                yCol = static_cast<std::size_t>(y - f.begin());
-            } else if (n != 2) {
-                fail(name, line.number,
-                     "header " + quoted(line.text) + " has " + plural(n, "column", "columns") +
-                         "; expected two, or columns named 'x' and 'y'");
-            }
-            ps.warnings.push_back("skipped header line " + std::to_string(line.number) + ": " +
-                                  printable(line.text, 80, false));
-        }
-    }
-    if (haveHeader && !reader.next(line)) fail(name, headerLine, "no points after the header");
-
+    const XYColumns c = xyColumns(line, name, ps);
+    if (c.headerLine && !reader.next(line)) fail(name, c.headerLine, "no points after the header");
+    std::vector<std::string_view> f;
     do {
-        const std::size_t n = splitFields(line.text, sep, f, columns);
-        if (n != columns) {
-            std::string msg = plural(n, "field", "fields") + " separated by " + sepName(sep) +
-                              "; expected " + std::to_string(columns);
-            if (haveHeader) {
-                msg += " as in the header on line " + std::to_string(headerLine);
-            } else {
-                msg += " (x, y)";
-                if (n == 3)
-                    msg +=
-                        "; for id,x,y or x,y,z columns add a header line naming the 'x' and 'y' "
-                        "columns";
-                if (n == 1 && ps.points.empty() && isUnsignedDigits(f[0])) {
-                    msg += "; a point count on the first line suggests Rossignac's .pts format";
-                }
-            }
-            fail(name, line.number, msg);
-        }
+        const std::size_t n = splitFields(line.text, c.sep, f, c.count);
+        if (n != c.count)
+            fail(name, line.number,
+                 fieldCountError(c, n, f.empty() ? "" : f[0], ps.points.empty()));
         if (ps.points.size() == kMaxPoints) {
             fail(name, line.number,
                  "more than " + std::to_string(kMaxPoints) + " points (kMaxPoints)");
         }
         Vec2 p;
-        p.x = parseReal(f[xCol], name, line.number, "x coordinate", ValueKind::Coordinate, sep);
-        p.y = parseReal(f[yCol], name, line.number, "y coordinate", ValueKind::Coordinate, sep);
+        p.x = parseReal(f[c.x], name, line.number, "x coordinate", ValueKind::Coordinate, c.sep);
+        p.y = parseReal(f[c.y], name, line.number, "y coordinate", ValueKind::Coordinate, c.sep);
         ps.points.push_back(p);
     } while (reader.next(line));
     return ps;
