@@ -584,26 +584,30 @@ void appendPoint(std::string& s, Vec2 p) {
     appendPx(s, p.y);
 }
 
+// ` name="value"`: an attribute in pixels.
+void appendAttribute(std::string& s, const char* name, double value) {
+    s += ' ';
+    s += name;
+    s += "=\"";
+    appendPx(s, value);
+    s += '"';
+}
+
 void appendLine(std::string& s, Vec2 a, Vec2 b) {
-    s += "<line x1=\"";
-    appendPx(s, a.x);
-    s += "\" y1=\"";
-    appendPx(s, a.y);
-    s += "\" x2=\"";
-    appendPx(s, b.x);
-    s += "\" y2=\"";
-    appendPx(s, b.y);
-    s += "\"/>\n";
+    s += "<line";
+    appendAttribute(s, "x1", a.x);
+    appendAttribute(s, "y1", a.y);
+    appendAttribute(s, "x2", b.x);
+    appendAttribute(s, "y2", b.y);
+    s += "/>\n";
 }
 
 void appendCircle(std::string& s, Vec2 c, double r) {
-    s += "<circle cx=\"";
-    appendPx(s, c.x);
-    s += "\" cy=\"";
-    appendPx(s, c.y);
-    s += "\" r=\"";
-    appendPx(s, r);
-    s += "\"/>\n";
+    s += "<circle";
+    appendAttribute(s, "cx", c.x);
+    appendAttribute(s, "cy", c.y);
+    appendAttribute(s, "r", r);
+    s += "/>\n";
 }
 
 // Triangle t exists and its three vertices are points of the mesh.
@@ -618,11 +622,10 @@ bool validTriangle(const Mesh& mesh, std::int32_t t) {
 
 void appendSvgHeader(std::string& s, const PixelMap& pm, const std::string& title) {
     s += "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n";
-    s += "<svg xmlns=\"http://www.w3.org/2000/svg\" version=\"1.1\" width=\"";
-    appendPx(s, pm.width());
-    s += "\" height=\"";
-    appendPx(s, pm.height());
-    s += "\" viewBox=\"0 0 ";
+    s += "<svg xmlns=\"http://www.w3.org/2000/svg\" version=\"1.1\"";
+    appendAttribute(s, "width", pm.width());
+    appendAttribute(s, "height", pm.height());
+    s += " viewBox=\"0 0 ";
     appendPx(s, pm.width());
     s += ' ';
     appendPx(s, pm.height());
@@ -721,13 +724,12 @@ void appendPoints(Buffer& out, const Mesh& mesh, const PixelMap& pm) {
 
 // The title as text in the top margin (already escaped).
 void appendTitle(std::string& s, const PixelMap& pm, const std::string& title) {
-    s += "<text x=\"";
-    appendPx(s, pm.margin() / 2);
-    s += "\" y=\"";
-    appendPx(s, pm.margin() * 0.6);
-    s += "\" font-family=\"sans-serif\" font-size=\"";
-    appendPx(s, std::clamp(pm.margin() * 0.45, 8.0, 18.0));
-    s += "\" fill=\"#424242\">" + title + "</text>\n";
+    s += "<text";
+    appendAttribute(s, "x", pm.margin() / 2);
+    appendAttribute(s, "y", pm.margin() * 0.6);
+    s += " font-family=\"sans-serif\"";
+    appendAttribute(s, "font-size", std::clamp(pm.margin() * 0.45, 8.0, 18.0));
+    s += " fill=\"#424242\">" + title + "</text>\n";
 }
 
 }  // namespace

@@ -280,21 +280,28 @@ void TraceReplay::dropTrianglesOutside(const std::vector<bool>& keep) {
 
 namespace {
 
-// The flip's removed and new edges from the two triangles it left: they share the new edge;
-// their other vertices are the ends of the removed one.
-std::string flipText(const std::vector<Triple>& two) {
-    if (two.size() != 2) return "";
+// The flip a Flip op made, from the two triangles it left: they share the new edge; their
+// other vertices are the ends of the removed one.
+std::optional<FlipMade> flipOf(const std::vector<Triple>& two) {
+    if (two.size() != 2) return std::nullopt;
     std::vector<std::int32_t> shared, other;
     for (std::int32_t v : two[0])
         (std::count(two[1].begin(), two[1].end(), v) ? shared : other).push_back(v);
     for (std::int32_t v : two[1]) {
         if (!std::count(two[0].begin(), two[0].end(), v)) other.push_back(v);
     }
-    if (shared.size() != 2 || other.size() != 2) return "";
-    auto edge = [](std::int32_t x, std::int32_t y) {
-        return std::to_string(std::min(x, y)) + "-" + std::to_string(std::max(x, y));
+    if (shared.size() != 2 || other.size() != 2) return std::nullopt;
+    return FlipMade{{other[0], other[1]}, {shared[0], shared[1]}};
+}
+
+// The flip's removed and new edges, from the two triangles it left ("" when they are no flip's).
+std::string flipText(const std::vector<Triple>& two) {
+    const std::optional<FlipMade> f = flipOf(two);
+    if (!f) return "";
+    auto edge = [](std::array<std::int32_t, 2> e) {
+        return std::to_string(std::min(e[0], e[1])) + "-" + std::to_string(std::max(e[0], e[1]));
     };
-    return "flipped edge " + edge(other[0], other[1]) + " to " + edge(shared[0], shared[1]);
+    return "flipped edge " + edge(f->removed) + " to " + edge(f->added);
 }
 
 // Sorted multiset difference: in a but not b.
@@ -433,20 +440,6 @@ std::size_t lastChange(const TraceFile& f, const Step& step) {
         if (f.ops[i].changesMesh()) return i;
     }
     return step.lead;
-}
-
-// The flip a Flip op made, from the two triangles it left: they share the new edge; their
-// other vertices are the ends of the removed one.
-std::optional<FlipMade> flipOf(const std::vector<Triple>& two) {
-    if (two.size() != 2) return std::nullopt;
-    std::vector<std::int32_t> shared, other;
-    for (std::int32_t v : two[0])
-        (std::count(two[1].begin(), two[1].end(), v) ? shared : other).push_back(v);
-    for (std::int32_t v : two[1]) {
-        if (!std::count(two[0].begin(), two[0].end(), v)) other.push_back(v);
-    }
-    if (shared.size() != 2 || other.size() != 2) return std::nullopt;
-    return FlipMade{{other[0], other[1]}, {shared[0], shared[1]}};
 }
 
 std::string stepName(const TraceOp& lead, int insertion, int insertions) {
