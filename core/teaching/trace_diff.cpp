@@ -456,33 +456,57 @@ std::string stepName(const TraceOp& lead, int insertion, int insertions) {
     }
 }
 
+// The insertions of a run: its steps but the start and Finalize.
+int countInsertions(const TraceFile& ref, const std::vector<Step>& steps) {
+    int insertions = 0;
+    for (const Step& st : steps)
+        insertions +=
+            !(ref.ops[st.lead].type == OpType::Start || ref.ops[st.lead].type == OpType::Finalize);
+    return insertions;
+}
+
+// Step k exists in one trace only: which one ended, and what the other does next.
+std::string stepEndMismatch(const TraceFile& ref, const TraceFile& student,
+                            const std::vector<Step>& rs, const std::vector<Step>& ss,
+                            std::size_t k) {
+    if (k >= ss.size()) {
+        const TraceOp& next = ref.ops[rs[k].lead];
+        return "your trace ends early: ours goes on with " + std::string(toString(next.type)) +
+               (next.vertex ? " of point " + std::to_string(*next.vertex) : "") + " (" + ref.name +
+               ":" + std::to_string(next.line) + ")";
+    }
+    return "your trace goes on after ours has ended, with " +
+           std::string(toString(student.ops[ss[k].lead].type)) + " (" + student.name + ":" +
+           std::to_string(student.ops[ss[k].lead].line) + ")";
+}
+
+// Replays the student's step; the flips it made, in order.
+std::vector<FlipMade> replayStep(Tracked& s, const TraceFile& student, const Step& step) {
+    std::vector<FlipMade> flips;
+    for (std::size_t j = step.begin; j < step.end; ++j) {
+        s.apply(student.ops[j]);
+        if (student.ops[j].type != OpType::Flip) continue;
+        if (auto f = flipOf(s.replay().touched())) flips.push_back(*f);
+    }
+    return flips;
+}
+
+// Replays both traces step by step (the start, each insertion, Finalize) and stops at the first
+// step after which the student's triangles differ from ours, with the mesh check's reason.
 TraceDiff diffInsertions(const TraceFile& ref, const TraceFile& student) {
     TraceDiff d;
     TriangleBalance balance;
     Tracked r(balance, +1), s(balance, -1);
     const std::vector<bool> realVertices = finalVertices(ref);
     const std::vector<Step> rs = stepsOf(ref), ss = stepsOf(student);
-    int insertions = 0;
-    for (const Step& st : rs)
-        insertions +=
-            !(ref.ops[st.lead].type == OpType::Start || ref.ops[st.lead].type == OpType::Finalize);
+    const int insertions = countInsertions(ref, rs);
     int insertion = 0;
     for (std::size_t k = 0; k < std::max(rs.size(), ss.size()); ++k) {
-        d.refOp = k < rs.size() ? rs[k].lead : ref.ops.size();
-        d.studentOp = k < ss.size() ? ss[k].lead : student.ops.size();
-        d.equal = false;
-        if (k >= ss.size()) {
-            const TraceOp& next = ref.ops[rs[k].lead];
-            d.what = "your trace ends early: ours goes on with " +
-                     std::string(toString(next.type)) +
-                     (next.vertex ? " of point " + std::to_string(*next.vertex) : "") + " (" +
-                     ref.name + ":" + std::to_string(next.line) + ")";
-            return d;
-        }
-        if (k >= rs.size()) {
-            d.what = "your trace goes on after ours has ended, with " +
-                     std::string(toString(student.ops[ss[k].lead].type)) + " (" + student.name +
-                     ":" + std::to_string(student.ops[ss[k].lead].line) + ")";
+        if (k >= rs.size() || k >= ss.size()) {
+            d.refOp = k < rs.size() ? rs[k].lead : ref.ops.size();
+            d.studentOp = k < ss.size() ? ss[k].lead : student.ops.size();
+            d.equal = false;
+            d.what = stepEndMismatch(ref, student, rs, ss, k);
             return d;
         }
         const TraceOp& lead = ref.ops[rs[k].lead];
@@ -490,14 +514,8 @@ TraceDiff diffInsertions(const TraceFile& ref, const TraceFile& student) {
                     : lead.type == OpType::Finalize ? insertions + 1
                                                     : insertion + 1;
         for (std::size_t i = rs[k].begin; i < rs[k].end; ++i) r.apply(ref.ops[i]);
-        std::vector<FlipMade> flips;
-        for (std::size_t j = ss[k].begin; j < ss[k].end; ++j) {
-            s.apply(student.ops[j]);
-            if (student.ops[j].type != OpType::Flip) continue;
-            if (auto f = flipOf(s.replay().touched())) flips.push_back(*f);
-        }
+        const std::vector<FlipMade> flips = replayStep(s, student, ss[k]);
         if (bareFinalize(student.ops[ss[k].lead])) s.dropOutside(realVertices);
-        d.equal = true;
         ++d.compared;
         if (balance.equal()) continue;
         const bool inserts = lead.type == OpType::Split || lead.type == OpType::SplitEdge;
