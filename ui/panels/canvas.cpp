@@ -177,6 +177,7 @@ struct Scene {
     // top-left; NaN: none): later labels avoid earlier ones (labels.cpp).
     mutable LabelBoxes labels{};
     mutable std::vector<ImVec2> vertexLabelAt{};
+    mutable std::optional<ImVec2> selectedLabelAt{};  // where the selected corner's label went
 
     ImVec2 screen(std::int32_t v) const { return toIm(view.toScreen(m.G[v])); }
     bool virtualTri(std::int32_t t) const { return running && ins.isVirtualTriangle(t); }
@@ -567,9 +568,9 @@ void DrawLabels(const Scene& s, std::int32_t& hoveredCorner, ImVec2 mouse, bool 
             const ImVec2 centre((p[0].x + p[1].x + p[2].x) / 3, (p[0].y + p[1].y + p[2].y) / 3);
             if (maxX - minX > 40 && maxY - minY > 30 && s.room(48 + s.pointReserve())) {
                 std::snprintf(buf, sizeof buf, "t%d", t);
-                LabelBox(s.dl, mono, fs, centre, s.pal.triangleId, IM_COL32(255, 255, 255, 200),
-                         buf);
-                s.labels.add(centre, mono->CalcTextSizeA(fs, 1e9f, 0, buf));
+                const ImVec2 at =
+                    placeInside(s.labels, p, centre, mono->CalcTextSizeA(fs, 1e9f, 0, buf));
+                LabelBox(s.dl, mono, fs, at, s.pal.triangleId, IM_COL32(255, 255, 255, 200), buf);
             }
         }
         for (int k = 0; k < 3; ++k) {
@@ -596,6 +597,7 @@ void DrawLabels(const Scene& s, std::int32_t& hoveredCorner, ImVec2 mouse, bool 
                                : ghost   ? s.pal.ghostId
                                          : s.pal.cornerId;
             LabelBox(s.dl, mono, fs, a, text, isChanged ? s.pal.cornerChanged : 0, buf);
+            if (c == s.st.selection.corner) s.selectedLabelAt = a;
         }
     }
 }
@@ -665,6 +667,7 @@ void DrawSelection(const Scene& s) {
         int k;
         if (s.hullEdge(tri(sel.corner), u, v, k)) s.edge(u, v, s.pal.selected, w, true);
         if (s.anchor(sel.corner, a)) {
+            if (s.selectedLabelAt) a = *s.selectedLabelAt;  // on its label, wherever that went
             s.dl->AddCircleFilled(a, 11, s.pal.selected);
             char buf[16];
             std::snprintf(buf, sizeof buf, "%d", sel.corner);

@@ -26,6 +26,11 @@ struct LabelBoxes {
 ImVec2 placeAlong(LabelBoxes& labels, ImVec2 vertex, ImVec2 anchor, const ImVec2 (&tri)[3],
                   ImVec2 size);
 
+// Where a triangle's label goes: its centroid `centre`, else the first free spot nearer one of
+// its corners or edges (the label's box inside the triangle); the centroid when none is free.
+// Returns the label's centre and registers it.
+ImVec2 placeInside(LabelBoxes& labels, const ImVec2 (&tri)[3], ImVec2 centre, ImVec2 size);
+
 // The top-left corner of each point's label (top-right of the point, else top-left,
 // bottom-right, bottom-left, right, left of it), registered with the points' markers; NaN for
 // points off the canvas.
