@@ -286,8 +286,9 @@ void IdBufferBody(AppState& st) {
     ImGui::BeginGroup();
     if (!hovered) {
         ImGui::PushTextWrapPos(ImGui::GetCursorPosX() + sideW);
-        ImGui::TextDisabled(
-            "Hover the image: the pixel under the mouse is decoded and checked exactly.");
+        if (!slideMode(st))  // a slide has no room to spare: its image is small
+            ImGui::TextDisabled(
+                "Hover the image: the pixel under the mouse is decoded and checked exactly.");
         ImGui::PopTextWrapPos();
         ImGui::EndGroup();
         return;

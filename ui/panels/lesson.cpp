@@ -22,7 +22,7 @@ namespace {
 
 // Draws one span word by word, wrapping at the panel's right edge. `glued`: the span goes on the
 // last one's word without a space ("`code`," or "**bold**.").
-void WrappedSpan(const TextSpan& span, float right, bool glued) {
+void WrappedSpan(const TextSpan& span, float right, bool glued, float& widest) {
     ImFont* font = span.style == TextSpan::Style::Bold   ? fonts().bold
                    : span.style == TextSpan::Style::Code ? fonts().mono
                                                          : fonts().ui;
@@ -51,18 +51,21 @@ void WrappedSpan(const TextSpan& span, float right, bool glued) {
                                                       IM_COL32(232, 234, 240, 255), 3);
         }
         ImGui::TextUnformatted(word.c_str());
+        widest = std::max(widest, ImGui::GetItemRectMax().x);
         ImGui::SameLine(0, space);
         i = j + 1;
     }
     ImGui::PopFont();
 }
 
-void RichText(const std::string& text) {
+// Returns the right edge of its widest line (screen x).
+float RichText(const std::string& text) {
+    float widest = ImGui::GetCursorScreenPos().x;
     std::string error;
     const auto blocks = parseLessonText(text, &error);
     if (!blocks) {
         ImGui::TextWrapped("%s", text.c_str());  // the loader checked it; never expected
-        return;
+        return ImGui::GetItemRectMax().x;
     }
     const float right = ImGui::GetWindowPos().x + ImGui::GetWindowContentRegionMax().x;
     for (const TextBlock& b : *blocks) {
@@ -77,11 +80,12 @@ void RichText(const std::string& text) {
             const std::string& t = b.spans[i].text;
             const bool glued = i > 0 && !t.empty() && t.front() != ' ' &&
                                !b.spans[i - 1].text.empty() && b.spans[i - 1].text.back() != ' ';
-            WrappedSpan(b.spans[i], right, glued);
+            WrappedSpan(b.spans[i], right, glued, widest);
         }
         ImGui::NewLine();
         if (b.kind == TextBlock::Kind::Paragraph) ImGui::Spacing();
     }
+    return widest;
 }
 
 // The stop's question, the answer field, Check, Hint and the feedback (wrapped: nothing runs
@@ -273,11 +277,11 @@ void ShowSlide(AppState& st) {
     const float textH = tab ? std::clamp(L.slideTextHeight, rest * 0.3f, rest * 0.7f) : rest;
     ImGui::BeginChild("##slidetext", ImVec2(0, std::max(1.0f, textH)), false);
     const ImVec2 textAt = ImGui::GetWindowPos();
-    ImGui::BeginGroup();
-    RichText(L.plan.stops[k].text);  // with its {{values}} filled in
-    if (stop.figure == "lifting-map") LiftingFigure(st);
-    ImGui::EndGroup();
-    const float textRight = ImGui::GetItemRectMax().x;
+    float textRight = RichText(L.plan.stops[k].text);  // with its {{values}} filled in
+    if (stop.figure == "lifting-map") {
+        LiftingFigure(st);
+        textRight = std::max(textRight, ImGui::GetItemRectMax().x);
+    }
     L.slideTextHeight = ImGui::GetCursorPosY() + ImGui::GetStyle().ItemSpacing.y;
     ImGui::EndChild();
     RecordItem(st, "slide-text");

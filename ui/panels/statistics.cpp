@@ -3,6 +3,7 @@
 // hull check of the current mesh, with every violation drawn on the canvas.
 #include "core/engine/predicates.h"
 #include "ui/gui.h"
+#include "ui/lesson_player.h"
 #include "ui/panels/panels.h"
 
 #include <imgui.h>
@@ -444,7 +445,7 @@ void ShowStatistics(AppState& st) {
     ImGui::Separator();
     CountsTable(st);
     FlipsPlot(st);
-    FrameTimes(st);
+    if (!slideMode(st)) FrameTimes(st);  // the app's own timings: not for a class
     ImGui::EndGroup();
     // Not clipped (unlike RecordItem): tests check that nothing is wider than the panel.
     const ImVec2 lo = ImGui::GetItemRectMin(), hi = ImGui::GetItemRectMax();
