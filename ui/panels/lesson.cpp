@@ -275,7 +275,10 @@ void ShowSlide(AppState& st) {
     // the bottom, the text takes what it needs (at most 70 % with a tab), the tab the rest.
     const float rest = std::max(0.0f, avail.y - L.slideQuestionHeight);
     const float textH = tab ? std::clamp(L.slideTextHeight, rest * 0.3f, rest * 0.7f) : rest;
-    ImGui::BeginChild("##slidetext", ImVec2(0, std::max(1.0f, textH)), false);
+    // A scrollbar only when the text needs more than it gets (never one that stays from the
+    // previous stop's layout: the bar narrows the text, which then needs it).
+    ImGui::BeginChild("##slidetext", ImVec2(0, std::max(1.0f, textH)), false,
+                      L.slideTextHeight <= textH + 0.5f ? still : 0);
     const ImVec2 textAt = ImGui::GetWindowPos();
     float textRight = RichText(L.plan.stops[k].text);  // with its {{values}} filled in
     if (stop.figure == "lifting-map") {
@@ -283,11 +286,12 @@ void ShowSlide(AppState& st) {
         textRight = std::max(textRight, ImGui::GetItemRectMax().x);
     }
     L.slideTextHeight = ImGui::GetCursorPosY() + ImGui::GetStyle().ItemSpacing.y;
+    const float scrolls = ImGui::GetScrollMaxY();
     ImGui::EndChild();
     RecordItem(st, "slide-text");
     // What the text needs, not clipped: tests check that it fits in its box.
     st.itemRects["slide-text-content"] = {textAt.x, textAt.y, textRight,
-                                          textAt.y + L.slideTextHeight};
+                                          textAt.y + L.slideTextHeight + scrolls};
     if (tab) {
         ImGui::BeginChild("##slidetab", ImVec2(0, std::max(1.0f, rest - textH)), true);
         tab(st);
