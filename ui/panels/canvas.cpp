@@ -590,7 +590,9 @@ void DrawLabels(const Scene& s, std::int32_t& hoveredCorner, ImVec2 mouse, bool 
             // corner itself says so.
             const bool ghostCorner = ghost && s.ins.isVirtual(m.V[c]);
             std::snprintf(buf, sizeof buf, ghostCorner ? "%d g" : "%d", c);
-            const ImVec2 size = mono->CalcTextSizeA(fs, 1e9f, 0, buf);
+            ImVec2 size = mono->CalcTextSizeA(fs, 1e9f, 0, buf);
+            if (c == s.st.selection.corner)  // room for the selection's disc (DrawSelection)
+                size = ImVec2(std::max(size.x, 24.0f), std::max(size.y, 22.0f));
             if (!ghost) {
                 a = placeAlong(s.labels, s.screen(m.V[c]), a, p, size);
             } else {  // beside the hull edge: further along it while another label is there
