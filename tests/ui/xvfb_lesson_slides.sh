@@ -107,8 +107,10 @@ for y in range(h):
     rows.append(line)
     prev = line
 x0, y0, x1, y1 = (int(float(v)) for v in sys.argv[2].split(","))
+def green(p):
+    return p[1] > p[0] + 60 and p[1] > p[2] + 40
 print(w, h, sum(1 for y in range(max(y0, 0), min(y1, h)) for x in range(max(x0, 0), min(x1, w))
-                if rows[y][x * ch + 1] > rows[y][x * ch] + 60 and rows[y][x * ch + 1] > rows[y][x * ch + 2] + 40))
+                if green(rows[y][x * ch:x * ch + 3])))
 EOF
 }
 
