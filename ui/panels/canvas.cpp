@@ -525,6 +525,23 @@ void DrawVoronoi(const Scene& s) {
     }
 }
 
+// Where corner c's label goes, from its anchor `a` in triangle p (a ghost's: its hull edge and
+// the edge's midpoint), clear of the labels placed before it; registered.
+ImVec2 placeCornerLabel(const Scene& s, std::int32_t c, bool ghost, ImVec2 a, const ImVec2 (&p)[3],
+                        ImVec2 size) {
+    if (c == s.st.selection.corner)  // room for the selection's disc (DrawSelection)
+        size = ImVec2(std::max(size.x, 24.0f), std::max(size.y, 22.0f));
+    if (!ghost) return placeAlong(s.labels, s.screen(s.m.V[c]), a, p, size);
+    // Beside the hull edge: further along it while another label is there.
+    const ImVec2 d((p[1].x - p[0].x) * 0.15f, (p[1].y - p[0].y) * 0.15f);
+    const ImVec2 in((p[2].x - a.x) * 0.35f, (p[2].y - a.y) * 0.35f);
+    return placeFirstFree(
+        s.labels,
+        {a, ImVec2(a.x + in.x, a.y + in.y), ImVec2(a.x + 2 * in.x, a.y + 2 * in.y),
+         ImVec2(a.x + d.x, a.y + d.y), ImVec2(a.x - d.x, a.y - d.y)},
+        size);
+}
+
 void DrawLabels(const Scene& s, std::int32_t& hoveredCorner, ImVec2 mouse, bool mouseInCanvas) {
     const Mesh& m = s.m;
     const Overlays& ov = s.st.overlays;
@@ -590,20 +607,7 @@ void DrawLabels(const Scene& s, std::int32_t& hoveredCorner, ImVec2 mouse, bool 
             // corner itself says so.
             const bool ghostCorner = ghost && s.ins.isVirtual(m.V[c]);
             std::snprintf(buf, sizeof buf, ghostCorner ? "%d g" : "%d", c);
-            ImVec2 size = mono->CalcTextSizeA(fs, 1e9f, 0, buf);
-            if (c == s.st.selection.corner)  // room for the selection's disc (DrawSelection)
-                size = ImVec2(std::max(size.x, 24.0f), std::max(size.y, 22.0f));
-            if (!ghost) {
-                a = placeAlong(s.labels, s.screen(m.V[c]), a, p, size);
-            } else {  // beside the hull edge: further along it while another label is there
-                const ImVec2 d((p[1].x - p[0].x) * 0.15f, (p[1].y - p[0].y) * 0.15f);
-                const ImVec2 in((p[2].x - a.x) * 0.35f, (p[2].y - a.y) * 0.35f);
-                a = placeFirstFree(
-                    s.labels,
-                    {a, ImVec2(a.x + in.x, a.y + in.y), ImVec2(a.x + 2 * in.x, a.y + 2 * in.y),
-                     ImVec2(a.x + d.x, a.y + d.y), ImVec2(a.x - d.x, a.y - d.y)},
-                    size);
-            }
+            a = placeCornerLabel(s, c, ghost, a, p, mono->CalcTextSizeA(fs, 1e9f, 0, buf));
             const ImU32 text = isChanged ? IM_COL32(255, 255, 255, 255)
                                : ghost   ? s.pal.ghostId
                                          : s.pal.cornerId;
