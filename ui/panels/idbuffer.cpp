@@ -6,6 +6,7 @@
 // in beside the CPU one.
 #include "core/engine/predicates.h"
 #include "ui/gui.h"
+#include "ui/lesson_player.h"
 #include "ui/panels/panels.h"
 #include "ui/render/renderer.h"
 #include "ui/render/triangle_ids.h"
@@ -247,11 +248,12 @@ void IdBufferBody(AppState& st) {
                                   std::floor(avail.x * 0.3f / (2 * kR + 1)));
     const float sideW =
         std::max((2 * kR + 1) * cell + 16, ImGui::CalcTextSize("RGBA 00 00 00 00").x + 8);
-    // As tall as the panel allows, but never so small it cannot be read (the panel scrolls then).
+    // As tall as the panel allows, but never so small it cannot be read (the panel scrolls then;
+    // a slide does not scroll: there it fits).
     const float widthLeft = avail.x - sideW - ImGui::GetStyle().ItemSpacing.x;
     const float side =
         std::max({80.0f, std::min(widthLeft, avail.y - ImGui::GetFrameHeightWithSpacing()),
-                  0.6f * widthLeft});
+                  slideMode(st) ? 0.0f : 0.6f * widthLeft});
     const float fit = side / static_cast<float>(std::max(v.texW, v.texH));
     const ImVec2 size(std::floor(v.texW * fit), std::floor(v.texH * fit));
     const float sx = size.x / static_cast<float>(v.texW),
@@ -259,6 +261,7 @@ void IdBufferBody(AppState& st) {
     const ImVec2 p0 = ImGui::GetCursorScreenPos();
     ImGui::Image(v.image.id(), size);
     RecordItem(st, "idbuffer-image");
+    st.itemRects["idbuffer-image-whole"] = {p0.x, p0.y, p0.x + size.x, p0.y + size.y};
     const bool hovered = ImGui::IsItemHovered();
     ImDrawList* dl = ImGui::GetWindowDrawList();
     dl->AddRect(ImVec2(p0.x - 1, p0.y - 1), ImVec2(p0.x + size.x + 1, p0.y + size.y + 1),
@@ -283,8 +286,9 @@ void IdBufferBody(AppState& st) {
     ImGui::BeginGroup();
     if (!hovered) {
         ImGui::PushTextWrapPos(ImGui::GetCursorPosX() + sideW);
-        ImGui::TextDisabled(
-            "Hover the image: the pixel under the mouse is decoded and checked exactly.");
+        if (!slideMode(st))  // a slide has no room to spare: its image is small
+            ImGui::TextDisabled(
+                "Hover the image: the pixel under the mouse is decoded and checked exactly.");
         ImGui::PopTextWrapPos();
         ImGui::EndGroup();
         return;
