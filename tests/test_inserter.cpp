@@ -14,6 +14,7 @@
 #include <cctype>
 #include <cmath>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <set>
 #include <sstream>
@@ -304,6 +305,42 @@ TEST(Journal, ForwardToEndAndBackRestoresTheEmptyStateBitForBit) {
         journal.seek(total);
         EXPECT_TRUE(states.back() == snap(ins.mesh()));
         EXPECT_TRUE(ins.done());
+    }
+}
+
+// After any seek, the CPU ID buffer holds what painting the current mesh afresh holds: kNone
+// outside the hull (where ghost triangles are), a live real triangle inside. A pixel centre on
+// an edge may name either triangle, so two live real ids count as the same answer.
+TEST(Journal, IdBufferAfterASeekMatchesAFreshPaintOfTheMesh) {
+    for (Generator g : {Generator::Uniform, Generator::Gaussian, Generator::NearDuplicates}) {
+        InsertOptions opt;
+        opt.boundary = Boundary::Exact;
+        opt.locator = LocatorKind::IdBufferCpu;
+        Inserter ins(generatePoints(g, 300, 4), opt);
+        Journal journal(ins);
+        journal.seek(std::numeric_limits<std::size_t>::max());
+        const std::size_t total = journal.position();
+        auto* buffer = dynamic_cast<IdBufferCpu*>(ins.locator());
+        ASSERT_NE(buffer, nullptr);
+        SplitMix64 rng(9);
+        for (int k = 0; k < 60; ++k) {
+            journal.seek(rng.below(static_cast<std::uint32_t>(total + 1)));
+            const std::vector<std::int32_t> seeked = buffer->pixels();
+            buffer->resync();
+            const std::vector<std::int32_t>& fresh = buffer->pixels();
+            auto live = [&](std::int32_t t) {
+                return t != kNone && t < ins.mesh().numTriangles() && !ins.isVirtualTriangle(t);
+            };
+            for (std::size_t i = 0; i < fresh.size(); ++i) {
+                if (fresh[i] == kNone) {
+                    ASSERT_EQ(seeked[i], kNone) << "pixel " << i << " at op " << journal.position()
+                                                << " holds t" << seeked[i] << " outside the hull";
+                } else {
+                    ASSERT_TRUE(live(seeked[i])) << "pixel " << i << " at op " << journal.position()
+                                                 << " holds " << seeked[i];
+                }
+            }
+        }
     }
 }
 

@@ -815,6 +815,11 @@ void Inserter::doFinalize(Rec& rec, Op& op) {
     O.resize(3 * static_cast<std::size_t>(kept));
     m_mesh.G.resize(m_numInput);
     m_ctl.phase = Phase::Done;
+    // The kept triangles moved into the ghosts' slots: a recorded run's locator (the GUI shows
+    // it) names them by their new ids.
+    if constexpr (Rec::kOn) {
+        if (m_locatorWantsChanges && !m_bulk) m_locator->resync();
+    }
 }
 
 // Locate: one step of the walk, or the verdict once the walk stands on the point's triangle.
@@ -1074,16 +1079,23 @@ void Inserter::undo(const Op& op, const std::vector<CellChange>& changes, const 
         default: break;
     }
     m_ctl = before;
-    if (m_locatorWantsChanges && !m_bulk && op.type != OpType::Finalize) {
-        std::vector<std::int32_t> tris;
-        for (std::uint32_t i = 0; i < op.numChanges; ++i) {
-            const std::int32_t t = tri(changes[op.firstChange + i].corner());
-            if (t < m_mesh.numTriangles()) tris.push_back(t);
-        }
-        std::sort(tris.begin(), tris.end());
-        tris.erase(std::unique(tris.begin(), tris.end()), tris.end());
-        notifyChanged(tris.data(), static_cast<int>(tris.size()));
+    notifyReplayed(op, changes);
+}
+
+// After an undo or redo: the triangles the op touched repaint (the ones it removed too: they
+// take their ids off the locator's cells). Finalize renumbers the triangles: resync instead.
+void Inserter::notifyReplayed(const Op& op, const std::vector<CellChange>& changes) {
+    if (!m_locatorWantsChanges || m_bulk) return;
+    if (op.type == OpType::Finalize) {
+        m_locator->resync();
+        return;
     }
+    std::vector<std::int32_t> tris;
+    for (std::uint32_t i = 0; i < op.numChanges; ++i)
+        tris.push_back(tri(changes[op.firstChange + i].corner()));
+    std::sort(tris.begin(), tris.end());
+    tris.erase(std::unique(tris.begin(), tris.end()), tris.end());
+    notifyChanged(tris.data(), static_cast<int>(tris.size()));
 }
 
 void Inserter::redo(const Op& op, const std::vector<CellChange>& changes, const Control& after) {
@@ -1139,14 +1151,7 @@ void Inserter::redo(const Op& op, const std::vector<CellChange>& changes, const 
         default: break;
     }
     m_ctl = after;
-    if (m_locatorWantsChanges && !m_bulk && op.type != OpType::Finalize) {
-        std::vector<std::int32_t> tris;
-        for (std::uint32_t i = 0; i < op.numChanges; ++i)
-            tris.push_back(tri(changes[op.firstChange + i].corner()));
-        std::sort(tris.begin(), tris.end());
-        tris.erase(std::unique(tris.begin(), tris.end()), tris.end());
-        notifyChanged(tris.data(), static_cast<int>(tris.size()));
-    }
+    notifyReplayed(op, changes);
 }
 
 // ============================================================================================

@@ -187,6 +187,7 @@ private:
     void doPlace(Rec& rec, Op& op);
     template <class Rec>
     void doFinalize(Rec& rec, Op& op);
+    void notifyReplayed(const Op& op, const std::vector<CellChange>& changes);
     void doLocate(Op& op);
     void doTest(Op& op);
     void doFinish(Op& op);

@@ -150,6 +150,7 @@ void IdBufferCpu::reset(const LocatorContext& ctx, const Bounds& bounds) {
     // One pixel column per 1/width of the box; half-differences avoid overflow at 1e308.
     m_map.init(bounds, m_width, m_height);
     m_pixels.assign(static_cast<std::size_t>(m_width) * m_height, kNone);
+    m_rects.clear();
     m_painted = 0;
     for (std::int32_t t = 0; t < ctx.mesh->numTriangles(); ++t) paintTriangle(t);
 }
@@ -169,6 +170,7 @@ std::int32_t IdBufferCpu::hint(Vec2 p, std::int32_t last) {
 
 void IdBufferCpu::resync() {
     std::fill(m_pixels.begin(), m_pixels.end(), kNone);
+    m_rects.clear();
     for (std::int32_t t = 0; t < m_ctx.mesh->numTriangles(); ++t) paintTriangle(t);
 }
 
@@ -176,7 +178,22 @@ void IdBufferCpu::trianglesChanged(const std::int32_t* tris, int count) {
     for (int k = 0; k < count; ++k) paintTriangle(tris[k]);
 }
 
+void IdBufferCpu::unpaintTriangle(std::int32_t t) {
+    if (static_cast<std::size_t>(t) >= m_rects.size()) return;
+    PixelRect& r = m_rects[t];
+    for (int j = r.j0; j <= r.j1; ++j) {
+        std::int32_t* row = &m_pixels[static_cast<std::size_t>(j) * m_width];
+        for (int i = r.i0; i <= r.i1; ++i) {
+            if (row[i] == t) row[i] = kNone;
+        }
+    }
+    r = {};
+}
+
 void IdBufferCpu::paintTriangle(std::int32_t t) {
+    // Pixels of t's old shape that its new one leaves go to the triangles that changed with it
+    // (they repaint too), or to the outside when the hull shrank: clear them first.
+    unpaintTriangle(t);
     if (t >= m_ctx.mesh->numTriangles() || (m_ctx.ghost && m_ctx.isVirtualTriangle(t))) {
         return;  // ghost triangles (exact mode) stand for the outside of the hull: not painted
     }
@@ -195,6 +212,8 @@ void IdBufferCpu::paintTriangle(std::int32_t t) {
     const int j0 = std::max(0, static_cast<int>(std::ceil(std::max(miny - 0.5, -1.0))));
     const int j1 = std::min(m_height - 1, static_cast<int>(std::floor(std::min(maxy - 0.5, 1e9))));
     if (i0 > i1 || j0 > j1) return;
+    if (static_cast<std::size_t>(t) >= m_rects.size()) m_rects.resize(t + std::size_t{1});
+    m_rects[t] = {i0, i1, j0, j1};
     // Edge functions, positive inside a counter-clockwise triangle; a pixel centre on an edge
     // goes to whichever triangle paints last (the walk fixes any such pick).
     // Each row only scans the span where all three edge functions can be non-negative (solved

@@ -136,6 +136,14 @@ private:
     PixelMap m_map;
     std::vector<std::int32_t> m_pixels;
     std::uint64_t m_painted = 0;
+    // The pixel rectangle each triangle was last painted in (empty when it holds none): a
+    // triangle that changes shape, or turns into a ghost (an undo of a point outside the hull),
+    // first takes its id off the pixels it no longer covers.
+    struct PixelRect {
+        int i0 = 0, i1 = -1, j0 = 0, j1 = -1;
+    };
+    std::vector<PixelRect> m_rects;
+    void unpaintTriangle(std::int32_t t);
 };
 
 }  // namespace dlab
