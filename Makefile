@@ -40,14 +40,15 @@ FUZZ_SECONDS ?= 120
 TEST_FUZZ_SECONDS ?= 20
 
 # Debian 12 (bookworm) package names. libcgal-dev only serves the benchmark baseline; time and jq
-# serve `make bench`; xvfb and xauth (xvfb-run needs it) serve the real-window smoke test;
+# serve `make bench`; xvfb and xauth (xvfb-run needs it) serve the real-window tests, xdotool
+# (keys and clicks) and python3 (reads the screenshots) the lesson-slides one;
 # fonts-dejavu-core gives the GUI a readable font (it falls back to ImGui's own without it).
 DEB_PACKAGES := \
 	build-essential cmake pkg-config \
 	libimgui-dev libglfw3-dev libgl-dev libglm-dev libosmesa6-dev libstb-dev libgif-dev \
 	libcli11-dev libtomlplusplus-dev nlohmann-json3-dev libgmp-dev libfast-float-dev libfmt-dev \
 	libgtest-dev libbenchmark-dev clang-format \
-	xvfb xauth fonts-dejavu-core \
+	xvfb xauth xdotool python3 fonts-dejavu-core \
 	libcgal-dev time jq
 
 # Fuzzing (libFuzzer needs clang; its runtime is in libclang-rt-14-dev, which clang-14 only

@@ -4,6 +4,7 @@
 #include "ui/files/files.h"
 #include "ui/files/settings.h"
 #include "ui/gui.h"
+#include "ui/lesson_player.h"
 #include "ui/panels/panels.h"
 
 #include <CLI/CLI.hpp>
@@ -12,7 +13,9 @@
 
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <iostream>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -37,11 +40,38 @@ int renderHeadless(const std::string& input, const std::string& png, const std::
     return 1;
 }
 
+// For tests that drive the real window from outside (tests/ui/xvfb_lesson_slides.sh): the
+// lesson's state and where the widgets are, as JSON, rewritten (whole, by rename) when it changes.
+void writeTestInfo(const std::string& path, const dlab::ui::AppState& st, std::string& last) {
+    std::ostringstream j;
+    const auto& L = st.lessonPlayer;
+    static const char* const kFeedback[] = {"none", "right", "wrong", "shown"};
+    j << "{\"presentation\": " << (st.presentation ? "true" : "false")
+      << ", \"slide\": " << (dlab::ui::slideMode(st) ? "true" : "false")
+      << ", \"stop\": " << (L.lesson ? L.progress.stop + 1 : 0)
+      << ", \"position\": " << st.engine.position() << ", \"feedback\": \""
+      << kFeedback[static_cast<int>(L.feedback)] << "\", \"rects\": {";
+    const char* sep = "";
+    for (const auto& [name, r] : st.itemRects) {
+        if (name.find_first_of("\"\\") != std::string::npos) continue;
+        j << sep << "\"" << name << "\": [" << r[0] << ", " << r[1] << ", " << r[2] << ", " << r[3]
+          << "]";
+        sep = ", ";
+    }
+    j << "}}\n";
+    if (j.str() == last) return;
+    last = j.str();
+    const std::string tmp = path + ".tmp";
+    std::ofstream(tmp) << last;
+    std::error_code ec;
+    std::filesystem::rename(tmp, path, ec);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
     CLI::App cli{"Delaunay Lab: step through incremental Delaunay triangulation on a corner table"};
-    std::string input, screenshot, fallbackPng = "delaunay-lab.png";
+    std::string input, screenshot, testInfo, fallbackPng = "delaunay-lab.png";
     int frames = 0;
     bool noSettings = false, noAutosave = false;
     cli.add_option(
@@ -53,6 +83,9 @@ int main(int argc, char** argv) {
         ->check(CLI::NonNegativeNumber);
     cli.add_option("--headless-png", fallbackPng, "Where to render when there is no display")
         ->capture_default_str();
+    cli.add_option("--test-info", testInfo,
+                   "Keep FILE up to date with the lesson's state and the widgets' places (JSON), "
+                   "for tests that drive the window");
     cli.add_flag("--no-settings", noSettings, "Neither read nor write the remembered settings");
     cli.add_flag("--no-autosave", noAutosave,
                  "Neither autosave the points nor offer to recover a crashed session's");
@@ -79,12 +112,14 @@ int main(int argc, char** argv) {
     dlab::ui::offerRecovery(state, autosaveFolder);
     dlab::ui::enableAutosave(state, autosaveFolder);
     gui.captureFrames(!screenshot.empty());
+    std::string lastInfo;
     for (int frame = 1;; ++frame) {
         for (const std::string& dropped : platform->takeDroppedFiles())
             dlab::ui::openFile(state, dropped);
         platform->setTitle("Delaunay Lab - " + state.source);
         if (!gui.frame()) break;
         dlab::ui::serviceCaptures(gui);  // F12 screenshots, GIF exports
+        if (!testInfo.empty()) writeTestInfo(testInfo, state, lastInfo);
         if (frames > 0 && frame >= frames) break;
         if (!state.run.running) platform->waitForEvents(0.25);
     }

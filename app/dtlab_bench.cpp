@@ -21,94 +21,121 @@ struct BenchArgs {
     EngineFlags engine;
 };
 
-void runBench(const BenchArgs& args) {
-    const LoadedPoints loaded = loadPoints(args.input);
-    const std::size_t n = loaded.points.size();
-    if (n == 0) fail(args.input + ": no points: there is nothing to time", 2);
+// What the timed runs measured: their times (sorted) and the last run's counts.
+struct BenchResult {
     std::vector<double> ms;
+    double median = 0;
     InsertStats stats;
     std::int32_t triangles = 0;
     LocatorStats locStats;
+    // Calls past the floating-point filter, by the stage that decided them (one run).
+    std::int64_t orientStage[kNumPredicateTiers] = {}, incircleStage[kNumPredicateTiers] = {};
+    double hitRate() const {
+        return locStats.queries ? static_cast<double>(locStats.hits) / locStats.queries : 0.0;
+    }
+};
+
+// Which stage decided the predicates the filter could not: every run is the same, so a run's
+// share of the counters is their growth divided by the runs.
+void countStages(BenchResult& res, const PredicateCounters& before, int runs) {
+    const PredicateCounters& counters = predicateCounters();
+    auto perRun = [&](std::uint64_t now, std::uint64_t was) {
+        return static_cast<std::int64_t>((now - was) / static_cast<std::uint64_t>(runs));
+    };
+    for (int t = 0; t < kNumPredicateTiers; ++t) {
+        res.orientStage[t] = perRun(counters.orientByTier[t], before.orientByTier[t]);
+        res.incircleStage[t] = perRun(counters.incircleByTier[t], before.incircleByTier[t]);
+    }
+}
+
+BenchResult timeRuns(const BenchArgs& args, const std::vector<Vec2>& points) {
+    BenchResult res;
     const PredicateCounters countersBefore = predicateCounters();
     for (int r = 0; r < args.warmup + args.repeat; ++r) {  // the first `warmup` runs are not timed
-        std::vector<Vec2> pts = loaded.points;             // copied outside the timed region
+        std::vector<Vec2> pts = points;                    // copied outside the timed region
         const auto t0 = std::chrono::steady_clock::now();
         const auto made = args.engine.makeInserter(std::move(pts));  // GL locators need a context
         Inserter& ins = *made;
         ins.run();
         const auto t1 = std::chrono::steady_clock::now();
         if (r >= args.warmup)
-            ms.push_back(std::chrono::duration<double, std::milli>(t1 - t0).count());
-        stats = ins.stats();
-        triangles = ins.mesh().numTriangles();
-        locStats = ins.locator()->stats();
+            res.ms.push_back(std::chrono::duration<double, std::milli>(t1 - t0).count());
+        res.stats = ins.stats();
+        res.triangles = ins.mesh().numTriangles();
+        res.locStats = ins.locator()->stats();
     }
-    // Which stage decided the predicates the filter could not: every run is the same, so a
-    // run's share of the counters is their growth divided by the runs.
-    const PredicateCounters& counters = predicateCounters();
-    const int runs = args.warmup + args.repeat;
-    auto perRun = [&](std::uint64_t now, std::uint64_t before) {
-        return static_cast<std::int64_t>((now - before) / static_cast<std::uint64_t>(runs));
-    };
-    std::int64_t orientStage[kNumPredicateTiers], incircleStage[kNumPredicateTiers];
-    for (int t = 0; t < kNumPredicateTiers; ++t) {
-        orientStage[t] = perRun(counters.orientByTier[t], countersBefore.orientByTier[t]);
-        incircleStage[t] = perRun(counters.incircleByTier[t], countersBefore.incircleByTier[t]);
-    }
+    countStages(res, countersBefore, args.warmup + args.repeat);
+    std::vector<double>& ms = res.ms;
     std::sort(ms.begin(), ms.end());
-    const double median =
+    res.median =
         ms.size() % 2 ? ms[ms.size() / 2] : (ms[ms.size() / 2 - 1] + ms[ms.size() / 2]) / 2;
+    return res;
+}
+
+void printBenchJson(const BenchArgs& args, std::size_t n, const BenchResult& res) {
     const auto pn = static_cast<double>(n);
-    const double hitRate =
-        locStats.queries ? static_cast<double>(locStats.hits) / locStats.queries : 0.0;
+    const InsertStats& stats = res.stats;
+    nlohmann::ordered_json j;
+    j["tool"] = "dtlab";
+    j["input"] = args.input;
+    j["n"] = n;
+    j["locate"] = args.engine.locate;
+    j["order"] = args.engine.order;
+    j["boundary"] = args.engine.boundary;
+    j["repeat"] = args.repeat;
+    j["warmup"] = args.warmup;
+    j["median_ms"] = res.median;
+    j["min_ms"] = res.ms.front();
+    j["max_ms"] = res.ms.back();
+    j["ns_per_point"] = res.median * 1e6 / pn;
+    j["flips_per_point"] = stats.flips / pn;
+    j["incircle_tests_per_point"] = stats.inCircleTests / pn;
+    j["walk_steps_per_point"] = stats.walkSteps / pn;
+    j["locator_hit_rate"] = res.hitRate();
+    j["duplicates"] = stats.duplicates;
+    j["triangles"] = res.triangles;
+    nlohmann::ordered_json stages;
+    for (int t = 1; t < kNumPredicateTiers; ++t) {
+        const char* name = toString(static_cast<PredicateTier>(t));
+        stages["orient2d"][name] = res.orientStage[t];
+        stages["incircle"][name] = res.incircleStage[t];
+    }
+    j["predicates_past_filter"] = stages;
+    std::cout << j.dump() << "\n";
+}
+
+void printBenchText(const BenchArgs& args, std::size_t n, const BenchResult& res) {
+    const auto pn = static_cast<double>(n);
+    const InsertStats& stats = res.stats;
+    std::printf("%s: n=%zu locate=%s order=%s boundary=%s\n", args.input.c_str(), n,
+                args.engine.locate.c_str(), args.engine.order.c_str(),
+                args.engine.boundary.c_str());
+    std::printf("  median %.2f ms (min %.2f, max %.2f, %d runs after %d warm-up run(s))\n",
+                res.median, res.ms.front(), res.ms.back(), args.repeat, args.warmup);
+    std::printf(
+        "  %.1f ns/point, %.3f flips/point, %.3f in-circle tests/point, %.3f walk "
+        "steps/point\n",
+        res.median * 1e6 / pn, stats.flips / pn, stats.inCircleTests / pn, stats.walkSteps / pn);
+    std::printf("  locator hint hit rate %.3f, %lld duplicates skipped, %d triangles\n",
+                res.hitRate(), static_cast<long long>(stats.duplicates), res.triangles);
+    std::printf("  past the filter (one run):");
+    for (int t = 1; t < kNumPredicateTiers; ++t) {
+        std::printf(" %s %lld+%lld", toString(static_cast<PredicateTier>(t)),
+                    static_cast<long long>(res.orientStage[t]),
+                    static_cast<long long>(res.incircleStage[t]));
+    }
+    std::printf(" (orient2d+incircle)\n");
+}
+
+void runBench(const BenchArgs& args) {
+    const LoadedPoints loaded = loadPoints(args.input);
+    const std::size_t n = loaded.points.size();
+    if (n == 0) fail(args.input + ": no points: there is nothing to time", 2);
+    const BenchResult res = timeRuns(args, loaded.points);
     if (args.json) {
-        nlohmann::ordered_json j;
-        j["tool"] = "dtlab";
-        j["input"] = args.input;
-        j["n"] = n;
-        j["locate"] = args.engine.locate;
-        j["order"] = args.engine.order;
-        j["boundary"] = args.engine.boundary;
-        j["repeat"] = args.repeat;
-        j["warmup"] = args.warmup;
-        j["median_ms"] = median;
-        j["min_ms"] = ms.front();
-        j["max_ms"] = ms.back();
-        j["ns_per_point"] = median * 1e6 / pn;
-        j["flips_per_point"] = stats.flips / pn;
-        j["incircle_tests_per_point"] = stats.inCircleTests / pn;
-        j["walk_steps_per_point"] = stats.walkSteps / pn;
-        j["locator_hit_rate"] = hitRate;
-        j["duplicates"] = stats.duplicates;
-        j["triangles"] = triangles;
-        // Calls past the floating-point filter, by the stage that decided them (one run).
-        nlohmann::ordered_json stages;
-        for (int t = 1; t < kNumPredicateTiers; ++t) {
-            const char* name = toString(static_cast<PredicateTier>(t));
-            stages["orient2d"][name] = orientStage[t];
-            stages["incircle"][name] = incircleStage[t];
-        }
-        j["predicates_past_filter"] = stages;
-        std::cout << j.dump() << "\n";
+        printBenchJson(args, n, res);
     } else {
-        std::printf("%s: n=%zu locate=%s order=%s boundary=%s\n", args.input.c_str(), n,
-                    args.engine.locate.c_str(), args.engine.order.c_str(),
-                    args.engine.boundary.c_str());
-        std::printf("  median %.2f ms (min %.2f, max %.2f, %d runs after %d warm-up run(s))\n",
-                    median, ms.front(), ms.back(), args.repeat, args.warmup);
-        std::printf(
-            "  %.1f ns/point, %.3f flips/point, %.3f in-circle tests/point, %.3f walk "
-            "steps/point\n",
-            median * 1e6 / pn, stats.flips / pn, stats.inCircleTests / pn, stats.walkSteps / pn);
-        std::printf("  locator hint hit rate %.3f, %lld duplicates skipped, %d triangles\n",
-                    hitRate, static_cast<long long>(stats.duplicates), triangles);
-        std::printf("  past the filter (one run):");
-        for (int t = 1; t < kNumPredicateTiers; ++t) {
-            std::printf(" %s %lld+%lld", toString(static_cast<PredicateTier>(t)),
-                        static_cast<long long>(orientStage[t]),
-                        static_cast<long long>(incircleStage[t]));
-        }
-        std::printf(" (orient2d+incircle)\n");
+        printBenchText(args, n, res);
     }
 }
 

@@ -5,9 +5,18 @@
 #include "core/engine/text_util.h"
 #include "core/teaching/lesson.h"
 
+#include <fcntl.h>
+#include <spawn.h>
+#include <sys/wait.h>
+
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <sstream>
+
+extern char** environ;
 
 namespace dlab::cli {
 
@@ -123,33 +132,145 @@ void runShow(const LessonArgs& args) {
     }
 }
 
-// A handout for students: the lesson's text and questions in Markdown, no answers.
+std::string htmlEscaped(std::string_view t) {
+    std::string out;
+    for (char c : t) {
+        switch (c) {
+            case '&': out += "&amp;"; break;
+            case '<': out += "&lt;"; break;
+            case '>': out += "&gt;"; break;
+            case '"': out += "&quot;"; break;
+            default: out += c;
+        }
+    }
+    return out;
+}
+
+// Lesson text (Markdown-light: paragraphs, lists, **bold**, `code`) as HTML.
+std::string htmlText(const std::string& text) {
+    const auto blocks = parseLessonText(text);
+    if (!blocks) return "<p>" + htmlEscaped(text) + "</p>\n";  // the loader checked it
+    std::string out;
+    const char* list = nullptr;  // the list open: "ul", "ol" or none
+    for (const TextBlock& b : *blocks) {
+        const char* want = b.kind == TextBlock::Kind::Bullet     ? "ul"
+                           : b.kind == TextBlock::Kind::Numbered ? "ol"
+                                                                 : nullptr;
+        if (list && want != list) out += std::string("</") + list + ">\n";
+        if (want && want != list) out += std::string("<") + want + ">\n";
+        list = want;
+        out += list ? "<li>" : "<p>";
+        for (const TextSpan& sp : b.spans) {
+            const std::string t = htmlEscaped(sp.text);
+            out += sp.style == TextSpan::Style::Bold   ? "<strong>" + t + "</strong>"
+                   : sp.style == TextSpan::Style::Code ? "<code>" + t + "</code>"
+                                                       : t;
+        }
+        out += list ? "</li>\n" : "</p>\n";
+    }
+    if (list) out += std::string("</") + list + ">\n";
+    return out;
+}
+
+// One slide per stop (DIR/01.png, ...) by `dtlab-gl render --slides`: GL runs in dtlab-gl, so
+// that dtlab itself never loads it.
+void renderSlides(const std::string& lesson, const std::string& dir) {
+    std::error_code ec;
+    const std::filesystem::path self = std::filesystem::read_symlink("/proc/self/exe", ec);
+    const std::string gl = ((ec ? std::filesystem::path(".") : self.parent_path()) / "dtlab-gl");
+    std::vector<std::string> args = {gl,  "render",         "--lesson", lesson,    "--slides",
+                                     dir, "--presentation", "--size",   "1280x720"};
+    std::vector<char*> argv;
+    for (std::string& a : args) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    std::cout.flush();
+    pid_t pid = 0;
+    posix_spawn_file_actions_t quiet;  // its "wrote N slides" is not ours to print
+    posix_spawn_file_actions_init(&quiet);
+    posix_spawn_file_actions_addopen(&quiet, 1, "/dev/null", O_WRONLY, 0);
+    const int err = posix_spawn(&pid, gl.c_str(), &quiet, nullptr, argv.data(), environ);
+    posix_spawn_file_actions_destroy(&quiet);
+    if (err != 0)
+        fail("the handout's pictures need " + gl +
+             ", which cannot be started: " + std::strerror(err));
+    int status = 0;
+    waitpid(pid, &status, 0);
+    if (!WIFEXITED(status))
+        fail("the handout's pictures could not be rendered (" + gl + " render crashed)");
+    if (WEXITSTATUS(status) != 0) throw Exit{WEXITSTATUS(status)};  // it said why, in one line
+}
+
+// The handout as HTML: each stop's slide (PNGs in FILE_files/ beside it), text and question.
+std::string handoutHtml(const Lesson& lesson, const LessonPlan& plan, const std::string& pictures) {
+    std::ostringstream h;
+    h << "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>" << htmlEscaped(lesson.title)
+      << "</title>\n<style>body{font-family:sans-serif;max-width:60em;margin:auto}"
+         "img{max-width:100%;border:1px solid #ccc}.answer{border-bottom:1px solid #000;"
+         "display:inline-block;width:20em}</style></head><body>\n<h1>"
+      << htmlEscaped(lesson.title) << "</h1>\n<p>" << htmlEscaped(lesson.summary) << "</p>\n";
+    int asked = 0;
+    for (std::size_t k = 0; k < lesson.stops.size(); ++k) {
+        const StopState& st = plan.stops[k];
+        char png[32];
+        std::snprintf(png, sizeof png, "/%02zu.png", k + 1);
+        h << "<h2>Stop " << k + 1 << "</h2>\n<img src=\"" << htmlEscaped(pictures + png)
+          << "\" alt=\"stop " << k + 1 << "\">\n"
+          << htmlText(st.text);
+        if (lesson.stops[k].question.empty()) continue;
+        h << "<p><strong>Question " << ++asked << ".</strong> " << htmlEscaped(st.question)
+          << "</p>\n";
+        if (!st.hint.empty()) h << "<p><em>Hint:</em> " << htmlEscaped(st.hint) << "</p>\n";
+        h << "<p>Your answer: <span class=\"answer\"></span></p>\n";
+    }
+    h << "</body></html>\n";
+    return h.str();
+}
+
+std::string handoutMarkdown(const Lesson& lesson, const LessonPlan& plan) {
+    std::ostringstream md;
+    md << "# " << lesson.title << "\n\n" << lesson.summary << "\n";
+    int asked = 0;
+    for (std::size_t k = 0; k < lesson.stops.size(); ++k) {
+        const StopState& st = plan.stops[k];
+        md << "\n## Stop " << k + 1 << "\n\n";
+        if (!st.text.empty()) md << trimmed(st.text) << "\n";
+        if (lesson.stops[k].question.empty()) continue;
+        md << "\n**Question " << ++asked << ".** " << st.question << "\n";
+        if (!st.hint.empty()) md << "\n*Hint:* " << st.hint << "\n";
+        md << "\nYour answer: ____________________\n";
+    }
+    return md.str();
+}
+
+// A handout for students: the lesson's text and questions, no answers; Markdown, or HTML with
+// each stop's picture when FILE ends in .html.
 void runHandout(const LessonArgs& args) {
+    namespace fs = std::filesystem;
+    const fs::path out(args.output);
+    const bool html = out.extension() == ".html" || out.extension() == ".htm";
     std::string text;
     try {
         const Lesson lesson = loadLesson(args.file);
         const LessonPlan plan = planLesson(lesson);
-        std::ostringstream md;
-        md << "# " << lesson.title << "\n\n" << lesson.summary << "\n";
-        int asked = 0;
-        for (std::size_t k = 0; k < lesson.stops.size(); ++k) {
-            const StopState& st = plan.stops[k];
-            md << "\n## Stop " << k + 1 << "\n\n";
-            if (!st.text.empty()) md << trimmed(st.text) << "\n";
-            if (lesson.stops[k].question.empty()) continue;
-            md << "\n**Question " << ++asked << ".** " << st.question << "\n";
-            if (!st.hint.empty()) md << "\n*Hint:* " << st.hint << "\n";
-            md << "\nYour answer: ____________________\n";
+        const std::string pictures = out.stem().string() + "_files";
+        if (html) {
+            renderSlides(args.file, (out.parent_path() / pictures).string());
+            text = handoutHtml(lesson, plan, pictures);
+        } else {
+            text = handoutMarkdown(lesson, plan);
         }
-        text = md.str();
     } catch (const LessonError& e) {
         fail(e.what());
     }
-    std::ofstream out(args.output, std::ios::binary);
-    out << text;
-    out.close();
-    if (!out) fail("cannot write " + args.output);
-    std::cout << "wrote " << args.output << "\n";
+    std::ofstream file(args.output, std::ios::binary);
+    file << text;
+    file.close();
+    if (!file) fail("cannot write " + args.output);
+    std::cout << "wrote " << args.output
+              << (html ? " (pictures in " +
+                             (out.parent_path() / (out.stem().string() + "_files")).string() + ")"
+                       : std::string())
+              << "\n";
 }
 
 }  // namespace
@@ -173,10 +294,11 @@ void addLesson(CLI::App& app) {
     show->callback([args] { guarded([&] { runShow(*args); }); });
     CLI::App* handout = cmd->add_subcommand(
         "handout",
-        "Write a lesson as a Markdown handout for students: text and questions, no "
-        "answers");
+        "Write a lesson as a handout for students: text and questions, no answers; Markdown, or "
+        "HTML with each stop's slide when FILE ends in .html (PNGs in FILE_files/, drawn by "
+        "dtlab-gl)");
     handout->add_option("lesson", args->file, "Lesson file (.toml)")->required();
-    handout->add_option("-o,--output", args->output, "Markdown file to write")->required();
+    handout->add_option("-o,--output", args->output, "Markdown or .html file to write")->required();
     handout->callback([args] { guarded([&] { runHandout(*args); }); });
 }
 

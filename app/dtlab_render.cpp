@@ -134,7 +134,8 @@ void benchChangingFrames(ui::Gui& gui, ui::AppState& state, int frames, std::siz
     state.engine.seek(was);
 }
 
-void runRender(const RenderArgs& args) {
+// The window size from --size, after checking that the options make a command.
+std::pair<int, int> checkRenderArgs(const RenderArgs& args) {
     if (args.output.empty() && (args.slides.empty() || args.lesson.empty()))
         fail("render needs -o FILE.png (or --lesson L --slides DIR)", 2);
     if (!args.slides.empty() && args.lesson.empty()) fail("--slides needs --lesson", 2);
@@ -144,49 +145,50 @@ void runRender(const RenderArgs& args) {
         fail("--size must be WIDTHxHEIGHT between 320x240 and 8192x8192, not \"" + args.size + "\"",
              2);
     }
-    ui::AppState state;
+    return {width, height};
+}
+
+// One slide per stop of the open lesson: DIR/01.png, DIR/02.png, ...
+void writeSlides(ui::Gui& gui, ui::AppState& state, const RenderArgs& args, int height) {
+    const std::size_t stops = state.lessonPlayer.lesson->stops.size();
+    std::error_code ec;
+    std::filesystem::create_directories(args.slides, ec);
     std::string error;
-    auto platform = ui::makeOsmesaPlatform(width, height, error);
-    if (!platform) fail(error);
-    ui::Gui gui(*platform, state);
-    state.presentation = args.presentation;
-    state.setOptions(args.engine.options());  // the defaults its help states (order brio)
-    if (!args.lesson.empty()) {
-        if (!ui::openLesson(state, args.lesson)) fail(state.messages.back().text, 2);
-        const std::size_t stops = state.lessonPlayer.lesson->stops.size();
-        if (!args.slides.empty()) {
-            // One slide per stop: DIR/01.png, DIR/02.png, ...
-            std::error_code ec;
-            std::filesystem::create_directories(args.slides, ec);
-            for (std::size_t k = 0; k < stops; ++k) {
-                ui::goToStop(state, k);
-                for (int i = 0; i < 3; ++i) gui.frame();
-                if (const auto q = state.itemRects.find("slide-question");
-                    q != state.itemRects.end() &&
-                    (q->second[3] > static_cast<float>(height) || q->second[1] < 0))
-                    std::cout << "stop " << k + 1 << ": the question does not fit the slide\n";
-                char name[32];
-                std::snprintf(name, sizeof name, "/%02zu.png", k + 1);
-                if (!gui.saveScreenshot(args.slides + name, error)) fail(error);
-            }
-            std::cout << "wrote " << stops << " slides to " << args.slides << "\n";
-            return;
-        }
-        if (args.stop < 1 ||
-            static_cast<std::size_t>(args.stop) > std::max<std::size_t>(stops, 1)) {
-            fail("--stop must be between 1 and " + std::to_string(stops) + " for " + args.lesson,
-                 2);
-        }
-        ui::goToStop(state, static_cast<std::size_t>(args.stop - 1));
-    } else if (args.input.empty()) {
-        state.loadPoints(demoPoints(), "built-in demo");
-    } else {
-        LoadedPoints loaded = loadPoints(args.input);
-        if (!state.loadPoints(std::move(loaded.points), args.input))
-            fail(state.messages.back().text);
+    for (std::size_t k = 0; k < stops; ++k) {
+        ui::goToStop(state, k);
+        for (int i = 0; i < 3; ++i) gui.frame();
+        if (const auto q = state.itemRects.find("slide-question");
+            q != state.itemRects.end() &&
+            (q->second[3] > static_cast<float>(height) || q->second[1] < 0))
+            std::cout << "stop " << k + 1 << ": the question does not fit the slide\n";
+        char name[32];
+        std::snprintf(name, sizeof name, "/%02zu.png", k + 1);
+        if (!gui.saveScreenshot(args.slides + name, error)) fail(error);
     }
-    for (const std::string& o : args.overlays) {
-        ui::Overlays& ov = state.overlays;
+    std::cout << "wrote " << stops << " slides to " << args.slides << "\n";
+}
+
+// The open lesson at the stop --stop names.
+void goToLessonStop(ui::AppState& state, const RenderArgs& args) {
+    const std::size_t stops = state.lessonPlayer.lesson->stops.size();
+    if (args.stop < 1 || static_cast<std::size_t>(args.stop) > std::max<std::size_t>(stops, 1)) {
+        fail("--stop must be between 1 and " + std::to_string(stops) + " for " + args.lesson, 2);
+    }
+    ui::goToStop(state, static_cast<std::size_t>(args.stop - 1));
+}
+
+// The points: the input file, or the built-in demo.
+void loadRenderInput(ui::AppState& state, const RenderArgs& args) {
+    if (args.input.empty()) {
+        state.loadPoints(demoPoints(), "built-in demo");
+        return;
+    }
+    LoadedPoints loaded = loadPoints(args.input);
+    if (!state.loadPoints(std::move(loaded.points), args.input)) fail(state.messages.back().text);
+}
+
+void applyOverlays(ui::Overlays& ov, const std::vector<std::string>& overlays) {
+    for (const std::string& o : overlays) {
         if (o == "voronoi")
             ov.voronoi = true;
         else if (o == "circumcircles")
@@ -202,23 +204,49 @@ void runRender(const RenderArgs& args) {
                      "\" (voronoi, circumcircles, triangle-ids, no-corner-ids, no-fill)",
                  2);
     }
-    if (!args.lesson.empty()) {
-        // The lesson decided the position and the selection.
-    } else if (args.toEnd) {
+}
+
+// Without a lesson (which decides the position and the selection itself): --to-end or --steps,
+// then --select.
+void moveAndSelect(ui::AppState& state, const RenderArgs& args) {
+    if (!args.lesson.empty()) return;
+    if (args.toEnd) {
         while (!state.engine.toEnd(1 << 20)) {}
     } else if (args.steps >= 0) {
         state.engine.seek(static_cast<std::size_t>(args.steps));
     }
-    if (args.select >= 0 && args.lesson.empty()) {
-        const std::int32_t corners = state.engine.mesh().numCorners();
-        if (args.select >= corners) {
-            fail("--select " + std::to_string(args.select) + ": the mesh at operation " +
-                     std::to_string(state.engine.position()) + " has corners 0 to " +
-                     std::to_string(corners - 1),
-                 2);
-        }
-        state.select(static_cast<std::int32_t>(args.select));
+    if (args.select < 0) return;
+    const std::int32_t corners = state.engine.mesh().numCorners();
+    if (args.select >= corners) {
+        fail("--select " + std::to_string(args.select) + ": the mesh at operation " +
+                 std::to_string(state.engine.position()) + " has corners 0 to " +
+                 std::to_string(corners - 1),
+             2);
     }
+    state.select(static_cast<std::int32_t>(args.select));
+}
+
+void runRender(const RenderArgs& args) {
+    const auto [width, height] = checkRenderArgs(args);
+    ui::AppState state;
+    std::string error;
+    auto platform = ui::makeOsmesaPlatform(width, height, error);
+    if (!platform) fail(error);
+    ui::Gui gui(*platform, state);
+    state.presentation = args.presentation;
+    state.setOptions(args.engine.options());  // the defaults its help states (order brio)
+    if (!args.lesson.empty()) {
+        if (!ui::openLesson(state, args.lesson)) fail(state.messages.back().text, 2);
+        if (!args.slides.empty()) {
+            writeSlides(gui, state, args, height);
+            return;
+        }
+        goToLessonStop(state, args);
+    } else {
+        loadRenderInput(state, args);
+    }
+    applyOverlays(state.overlays, args.overlays);
+    moveAndSelect(state, args);
     state.pendingTab = args.tab;
     // ImGui lays out in the first frames (tables measure their columns): render a few.
     for (int i = 0; i < 3; ++i) gui.frame();

@@ -183,11 +183,22 @@ void dashedLine(ImDrawList* dl, ImVec2 a, ImVec2 b, ImU32 c, float width) {
     }
 }
 
-void drawPlot(ImDrawList* dl, ImFont* font, ImFont* small, float W, float H,
-              const std::vector<Series>& series, const std::string& title,
-              const std::string& subtitle) {
-    dl->AddRectFilled(ImVec2(0, 0), ImVec2(W, H), IM_COL32(255, 255, 255, 255));
-    const float left = 110, right = W - 40, top = 90, bottom = H - 90;
+// The plot's frame: the axes' extent in pixels and the data's, on log scales (log2 n on x,
+// log10 ms on y), with the map from data to pixels.
+struct PlotFrame {
+    float left = 0, right = 0, top = 0, bottom = 0;
+    double lx0 = 0, lx1 = 0, ly0 = 0, ly1 = 0;
+
+    float x(double n) const {
+        return static_cast<float>(left + (std::log2(n) - lx0) / (lx1 - lx0) * (right - left));
+    }
+    float y(double ms) const {
+        return static_cast<float>(bottom - (std::log10(ms) - ly0) / (ly1 - ly0) * (bottom - top));
+    }
+    ImVec2 at(double n, double ms) const { return ImVec2(x(n), y(ms)); }
+};
+
+PlotFrame plotFrame(float W, float H, const std::vector<Series>& series) {
     double xmin = 1e300, xmax = 0, ymin = 1e300, ymax = 0;
     for (const Series& s : series) {
         for (auto [x, y] : s.points) {
@@ -197,90 +208,105 @@ void drawPlot(ImDrawList* dl, ImFont* font, ImFont* small, float W, float H,
             ymax = std::max(ymax, y);
         }
     }
-    const double lx0 = std::floor(std::log2(xmin)) - 0.25, lx1 = std::ceil(std::log2(xmax)) + 0.25;
-    const double ly0 = std::floor(std::log10(ymin)), ly1 = std::ceil(std::log10(ymax));
-    auto X = [&](double n) {
-        return static_cast<float>(left + (std::log2(n) - lx0) / (lx1 - lx0) * (right - left));
-    };
-    auto Y = [&](double ms) {
-        return static_cast<float>(bottom - (std::log10(ms) - ly0) / (ly1 - ly0) * (bottom - top));
-    };
-    const ImU32 ink = IM_COL32(30, 30, 30, 255), grid = IM_COL32(225, 225, 225, 255),
-                fine = IM_COL32(242, 242, 242, 255);
-    // Title.
-    dl->AddText(font, 26, ImVec2(left, 18), ink, title.c_str());
-    dl->AddText(small, 17, ImVec2(left, 52), IM_COL32(90, 90, 90, 255), subtitle.c_str());
-    // Grid and ticks: decades (and 2..9 in between) on y, powers of two on x.
+    PlotFrame f;
+    f.left = 110;
+    f.right = W - 40;
+    f.top = 90;
+    f.bottom = H - 90;
+    f.lx0 = std::floor(std::log2(xmin)) - 0.25;
+    f.lx1 = std::ceil(std::log2(xmax)) + 0.25;
+    f.ly0 = std::floor(std::log10(ymin));
+    f.ly1 = std::ceil(std::log10(ymax));
+    return f;
+}
+
+constexpr ImU32 kInk = IM_COL32(30, 30, 30, 255);
+constexpr float kLabelSize = 17;
+
+// Grid and ticks: decades (and 2..9 in between) on y, powers of two on x.
+void drawGrid(ImDrawList* dl, ImFont* small, const PlotFrame& f) {
+    const ImU32 grid = IM_COL32(225, 225, 225, 255), fine = IM_COL32(242, 242, 242, 255);
     char label[32];
-    for (int d = static_cast<int>(ly0); d <= static_cast<int>(ly1); ++d) {
-        for (int k = 2; k <= 9 && d < ly1; ++k) {
-            const float y = Y(k * std::pow(10.0, d));
-            dl->AddLine(ImVec2(left, y), ImVec2(right, y), fine);
+    for (int d = static_cast<int>(f.ly0); d <= static_cast<int>(f.ly1); ++d) {
+        for (int k = 2; k <= 9 && d < f.ly1; ++k) {
+            const float y = f.y(k * std::pow(10.0, d));
+            dl->AddLine(ImVec2(f.left, y), ImVec2(f.right, y), fine);
         }
-        const float y = Y(std::pow(10.0, d));
-        dl->AddLine(ImVec2(left, y), ImVec2(right, y), grid);
-        dl->AddLine(ImVec2(left - 6, y), ImVec2(left, y), ink);
+        const float y = f.y(std::pow(10.0, d));
+        dl->AddLine(ImVec2(f.left, y), ImVec2(f.right, y), grid);
+        dl->AddLine(ImVec2(f.left - 6, y), ImVec2(f.left, y), kInk);
         if (d >= 0)
             std::snprintf(label, sizeof label, "%.0f", std::pow(10.0, d));
         else
             std::snprintf(label, sizeof label, "%g", std::pow(10.0, d));
-        const ImVec2 ts = small->CalcTextSizeA(17, 1e9f, 0, label);
-        dl->AddText(small, 17, ImVec2(left - 10 - ts.x, y - ts.y / 2), ink, label);
+        const ImVec2 ts = small->CalcTextSizeA(kLabelSize, 1e9f, 0, label);
+        dl->AddText(small, kLabelSize, ImVec2(f.left - 10 - ts.x, y - ts.y / 2), kInk, label);
     }
-    for (int e = static_cast<int>(std::ceil(lx0)); e <= static_cast<int>(std::floor(lx1)); ++e) {
+    for (int e = static_cast<int>(std::ceil(f.lx0)); e <= static_cast<int>(std::floor(f.lx1));
+         ++e) {
         const double n = std::ldexp(1.0, e);
-        const float x = X(n);
-        dl->AddLine(ImVec2(x, top), ImVec2(x, bottom), grid);
-        dl->AddLine(ImVec2(x, bottom), ImVec2(x, bottom + 6), ink);
+        const float x = f.x(n);
+        dl->AddLine(ImVec2(x, f.top), ImVec2(x, f.bottom), grid);
+        dl->AddLine(ImVec2(x, f.bottom), ImVec2(x, f.bottom + 6), kInk);
         std::snprintf(label, sizeof label, "%.0f", n);
-        const ImVec2 ts = small->CalcTextSizeA(17, 1e9f, 0, label);
-        dl->AddText(small, 17, ImVec2(x - ts.x / 2, bottom + 10), ink, label);
+        const ImVec2 ts = small->CalcTextSizeA(kLabelSize, 1e9f, 0, label);
+        dl->AddText(small, kLabelSize, ImVec2(x - ts.x / 2, f.bottom + 10), kInk, label);
     }
-    dl->AddRect(ImVec2(left, top), ImVec2(right, bottom), ink, 0, 0, 1.5f);
-    // Axis labels.
+    dl->AddRect(ImVec2(f.left, f.top), ImVec2(f.right, f.bottom), kInk, 0, 0, 1.5f);
+}
+
+void drawAxisLabels(ImDrawList* dl, ImFont* font, const PlotFrame& f) {
     const char* xlabel = "number of points n (log scale)";
     const ImVec2 xs = font->CalcTextSizeA(20, 1e9f, 0, xlabel);
-    dl->AddText(font, 20, ImVec2((left + right) / 2 - xs.x / 2, bottom + 40), ink, xlabel);
+    dl->AddText(font, 20, ImVec2((f.left + f.right) / 2 - xs.x / 2, f.bottom + 40), kInk, xlabel);
     // The y label, one glyph under the other would be hard to read: write it rotated by hand.
     const char* ylabel = "time (ms, log scale)";
-    {
-        const int vtxStart = dl->VtxBuffer.Size;
-        const ImVec2 ys = font->CalcTextSizeA(20, 1e9f, 0, ylabel);
-        const ImVec2 at(28, (top + bottom) / 2 + ys.x / 2);
-        dl->AddText(font, 20, at, ink, ylabel);
-        // Rotate the glyphs just added by -90 degrees around `at`.
-        for (int i = vtxStart; i < dl->VtxBuffer.Size; ++i) {
-            ImDrawVert& v = dl->VtxBuffer[i];
-            const float dx = v.pos.x - at.x, dy = v.pos.y - at.y;
-            v.pos = ImVec2(at.x + dy, at.y - dx);
-        }
+    const int vtxStart = dl->VtxBuffer.Size;
+    const ImVec2 ys = font->CalcTextSizeA(20, 1e9f, 0, ylabel);
+    const ImVec2 at(28, (f.top + f.bottom) / 2 + ys.x / 2);
+    dl->AddText(font, 20, at, kInk, ylabel);
+    // Rotate the glyphs just added by -90 degrees around `at`.
+    for (int i = vtxStart; i < dl->VtxBuffer.Size; ++i) {
+        ImDrawVert& v = dl->VtxBuffer[i];
+        const float dx = v.pos.x - at.x, dy = v.pos.y - at.y;
+        v.pos = ImVec2(at.x + dy, at.y - dx);
     }
-    // Series.
-    dl->PushClipRect(ImVec2(left, top), ImVec2(right, bottom), true);
+}
+
+// A series' line from a to b and its marker at c: ours solid with dots, the paper's dashed with
+// hollow squares.
+void drawSeriesLine(ImDrawList* dl, const Series& s, ImVec2 a, ImVec2 b) {
+    if (s.paper)
+        dashedLine(dl, a, b, s.colour, 2.5f);
+    else
+        dl->AddLine(a, b, s.colour, 2.5f);
+}
+void drawMarker(ImDrawList* dl, const Series& s, ImVec2 c) {
+    if (s.paper)
+        dl->AddRect(ImVec2(c.x - 5, c.y - 5), ImVec2(c.x + 5, c.y + 5), s.colour, 0, 0, 2.0f);
+    else
+        dl->AddCircleFilled(c, 5, s.colour);
+}
+
+void drawSeries(ImDrawList* dl, const PlotFrame& f, const std::vector<Series>& series) {
+    dl->PushClipRect(ImVec2(f.left, f.top), ImVec2(f.right, f.bottom), true);
     for (const Series& s : series) {
         for (std::size_t i = 0; i + 1 < s.points.size(); ++i) {
-            const ImVec2 a(X(s.points[i].first), Y(s.points[i].second));
-            const ImVec2 b(X(s.points[i + 1].first), Y(s.points[i + 1].second));
-            if (s.paper)
-                dashedLine(dl, a, b, s.colour, 2.5f);
-            else
-                dl->AddLine(a, b, s.colour, 2.5f);
+            drawSeriesLine(dl, s, f.at(s.points[i].first, s.points[i].second),
+                           f.at(s.points[i + 1].first, s.points[i + 1].second));
         }
-        for (auto [n, ms] : s.points) {
-            const ImVec2 c(X(n), Y(ms));
-            if (s.paper)
-                dl->AddRect(ImVec2(c.x - 5, c.y - 5), ImVec2(c.x + 5, c.y + 5), s.colour, 0, 0,
-                            2.0f);
-            else
-                dl->AddCircleFilled(c, 5, s.colour);
-        }
+        for (auto [n, ms] : s.points) drawMarker(dl, s, f.at(n, ms));
     }
     dl->PopClipRect();
-    // Legend, top left inside the plot (the curves start low on the left).
+}
+
+// Legend, top left inside the plot (the curves start low on the left).
+void drawLegend(ImDrawList* dl, ImFont* small, const PlotFrame& f,
+                const std::vector<Series>& series) {
     float w = 0;
     for (const Series& s : series)
-        w = std::max(w, small->CalcTextSizeA(17, 1e9f, 0, s.name.c_str()).x);
-    const float lx = left + 16, ly = top + 14, row = 25;
+        w = std::max(w, small->CalcTextSizeA(kLabelSize, 1e9f, 0, s.name.c_str()).x);
+    const float lx = f.left + 16, ly = f.top + 14, row = 25;
     dl->AddRectFilled(ImVec2(lx, ly), ImVec2(lx + w + 74, ly + row * series.size() + 12),
                       IM_COL32(255, 255, 255, 235));
     dl->AddRect(ImVec2(lx, ly), ImVec2(lx + w + 74, ly + row * series.size() + 12),
@@ -288,15 +314,23 @@ void drawPlot(ImDrawList* dl, ImFont* font, ImFont* small, float W, float H,
     for (std::size_t i = 0; i < series.size(); ++i) {
         const Series& s = series[i];
         const float y = ly + 8 + row * i + row / 2;
-        if (s.paper) {
-            dashedLine(dl, ImVec2(lx + 10, y), ImVec2(lx + 50, y), s.colour, 2.5f);
-            dl->AddRect(ImVec2(lx + 25, y - 5), ImVec2(lx + 35, y + 5), s.colour, 0, 0, 2.0f);
-        } else {
-            dl->AddLine(ImVec2(lx + 10, y), ImVec2(lx + 50, y), s.colour, 2.5f);
-            dl->AddCircleFilled(ImVec2(lx + 30, y), 5, s.colour);
-        }
-        dl->AddText(small, 17, ImVec2(lx + 60, y - 10), ink, s.name.c_str());
+        drawSeriesLine(dl, s, ImVec2(lx + 10, y), ImVec2(lx + 50, y));
+        drawMarker(dl, s, ImVec2(lx + 30, y));
+        dl->AddText(small, kLabelSize, ImVec2(lx + 60, y - 10), kInk, s.name.c_str());
     }
+}
+
+void drawPlot(ImDrawList* dl, ImFont* font, ImFont* small, float W, float H,
+              const std::vector<Series>& series, const std::string& title,
+              const std::string& subtitle) {
+    dl->AddRectFilled(ImVec2(0, 0), ImVec2(W, H), IM_COL32(255, 255, 255, 255));
+    const PlotFrame f = plotFrame(W, H, series);
+    dl->AddText(font, 26, ImVec2(f.left, 18), kInk, title.c_str());
+    dl->AddText(small, kLabelSize, ImVec2(f.left, 52), IM_COL32(90, 90, 90, 255), subtitle.c_str());
+    drawGrid(dl, small, f);
+    drawAxisLabels(dl, font, f);
+    drawSeries(dl, f, series);
+    drawLegend(dl, small, f, series);
 }
 
 // Renders the plot headlessly into a framebuffer object on the process' OSMesa context (ImGui's
@@ -345,34 +379,42 @@ void writePlot(const std::string& path, const std::vector<Series>& series, const
 // [SECTION] The command
 // ============================================================================================
 
-void runTable1(const Table1Args& args) {
-    const std::vector<std::size_t> sizes = parseCounts(args.sizes, "--sizes", 3, 1u << 20);
-    std::vector<int> sweep;
-    if (!args.sweep.empty()) {
-        for (std::size_t k :
-             parseCounts(args.sweep, "--sweep", 1, ui::IdBufferGlOptions::kMaxBatch))
-            sweep.push_back(static_cast<int>(k));
-    }
-    std::array<bool, kNumMethods> on{};
-    {
-        std::stringstream ss(args.methods);
-        for (std::string name; std::getline(ss, name, ',');) {
-            int found = -1;
-            for (int m = 0; m < kNumMethods; ++m) found = name == kMethods[m].name ? m : found;
-            if (found < 0)
-                fail("--methods: no method \"" + name +
-                         "\" (naive, idbuffer-gl, idbuffer-gl-batched, idbuffer-cpu, walk, best)",
-                     2);
-            on[found] = true;
-        }
-    }
-    headlessGl();  // fail early, before minutes of timing, if there is no GL
-    // Warm-up: each method once on a small set (llvmpipe compiles its shaders on first use).
-    const std::vector<Vec2> warm = generatePoints(Generator::Uniform, 2000, args.seed + 1000);
-    for (int m = 0; m < kNumMethods; ++m) {
-        if (on[m] || (m == 2 && !sweep.empty())) runOnce(warm, kMethods[m], args, args.batch);
-    }
+using MethodSet = std::array<bool, kNumMethods>;
 
+// --methods: the methods to time, by their CSV names.
+MethodSet parseMethods(const std::string& text) {
+    MethodSet on{};
+    std::stringstream ss(text);
+    for (std::string name; std::getline(ss, name, ',');) {
+        int found = -1;
+        for (int m = 0; m < kNumMethods; ++m) found = name == kMethods[m].name ? m : found;
+        if (found < 0)
+            fail("--methods: no method \"" + name +
+                     "\" (naive, idbuffer-gl, idbuffer-gl-batched, idbuffer-cpu, walk, best)",
+                 2);
+        on[found] = true;
+    }
+    return on;
+}
+
+// --sweep: batch sizes K to time at the largest n (none when the option is absent).
+std::vector<int> parseSweep(const std::string& text) {
+    std::vector<int> sweep;
+    if (text.empty()) return sweep;
+    for (std::size_t k : parseCounts(text, "--sweep", 1, ui::IdBufferGlOptions::kMaxBatch))
+        sweep.push_back(static_cast<int>(k));
+    return sweep;
+}
+
+double percent(double part, double whole) { return whole > 0 ? 100.0 * part / whole : 0.0; }
+
+// The medians of every size (ms, NaN for a method left out) and the runs they come from.
+struct Timings {
+    std::vector<std::array<double, kNumMethods>> table;
+    std::vector<std::array<Run, kNumMethods>> detail;
+};
+
+void printTableHeader(const Table1Args& args) {
     std::printf(
         "Table 1: uniform random points in the 1600 x 1600 box (seed %llu), exact boundary, %dx%d "
         "ID buffer,\n"
@@ -383,36 +425,41 @@ void runTable1(const Table1Args& args) {
         args.readback.c_str(), args.batch, args.repeat);
     std::printf("%8s | %11s %11s | %9s %12s %20s %13s %9s %9s\n", "n", "paper naive", "paper IDbuf",
                 "naive", "idbuffer-gl", "idbuffer-gl-batched", "idbuffer-cpu", "walk", "best");
-    std::vector<std::array<double, kNumMethods>> table;
-    std::vector<std::array<Run, kNumMethods>> detail;
-    for (const std::size_t n : sizes) {
-        const std::vector<Vec2> points = generatePoints(Generator::Uniform, n, args.seed);
-        std::array<std::vector<Run>, kNumMethods> runs;
-        for (int r = 0; r < args.repeat; ++r) {  // interleaved: load changes hit every method alike
-            for (int m = 0; m < kNumMethods; ++m) {
-                if (on[m]) runs[m].push_back(runOnce(points, kMethods[m], args, args.batch));
-            }
-        }
-        std::array<double, kNumMethods> row{};
-        std::array<Run, kNumMethods> med{};
-        for (int m = 0; m < kNumMethods; ++m) {
-            std::vector<double> ms;
-            for (const Run& run : runs[m]) ms.push_back(run.ms);
-            row[m] = on[m] ? median(ms) : std::nan("");
-            if (on[m]) med[m] = medianRun(runs[m]);
-        }
-        table.push_back(row);
-        detail.push_back(med);
-        const auto paper = kPaper.find(n);
-        const std::string pn = paper != kPaper.end() ? fmtMs(paper->second.first) : "-";
-        const std::string pi = paper != kPaper.end() ? fmtMs(paper->second.second) : "-";
-        std::printf("%8zu | %11s %11s | %9s %12s %20s %13s %9s %9s\n", n, pn.c_str(), pi.c_str(),
-                    fmtMs(row[0]).c_str(), fmtMs(row[1]).c_str(), fmtMs(row[2]).c_str(),
-                    fmtMs(row[3]).c_str(), fmtMs(row[4]).c_str(), fmtMs(row[5]).c_str());
-        std::fflush(stdout);
-    }
+}
 
-    // Where the time goes, and how good the pixels are.
+void printTableRow(std::size_t n, const std::array<double, kNumMethods>& row) {
+    const auto paper = kPaper.find(n);
+    const std::string pn = paper != kPaper.end() ? fmtMs(paper->second.first) : "-";
+    const std::string pi = paper != kPaper.end() ? fmtMs(paper->second.second) : "-";
+    std::printf("%8zu | %11s %11s | %9s %12s %20s %13s %9s %9s\n", n, pn.c_str(), pi.c_str(),
+                fmtMs(row[0]).c_str(), fmtMs(row[1]).c_str(), fmtMs(row[2]).c_str(),
+                fmtMs(row[3]).c_str(), fmtMs(row[4]).c_str(), fmtMs(row[5]).c_str());
+    std::fflush(stdout);
+}
+
+// Every method on n points, `repeat` times, interleaved (load changes hit every method alike);
+// appends the medians and the median runs to t.
+void timeSize(const Table1Args& args, std::size_t n, const MethodSet& on, Timings& t) {
+    const std::vector<Vec2> points = generatePoints(Generator::Uniform, n, args.seed);
+    std::array<std::vector<Run>, kNumMethods> runs;
+    for (int r = 0; r < args.repeat; ++r) {
+        for (int m = 0; m < kNumMethods; ++m) {
+            if (on[m]) runs[m].push_back(runOnce(points, kMethods[m], args, args.batch));
+        }
+    }
+    std::array<double, kNumMethods> row{};
+    std::array<Run, kNumMethods> med{};
+    for (int m = 0; m < kNumMethods; ++m) {
+        std::vector<double> ms;
+        for (const Run& run : runs[m]) ms.push_back(run.ms);
+        row[m] = on[m] ? median(ms) : std::nan("");
+        if (on[m]) med[m] = medianRun(runs[m]);
+    }
+    t.table.push_back(row);
+    t.detail.push_back(med);
+}
+
+void printLocatorLegend() {
     std::printf(
         "\nLocator statistics (the median run of each size):\n"
         "  hits    the pixel's triangle contained the point (no walk step)\n"
@@ -430,128 +477,170 @@ void runTable1(const Table1Args& args) {
     std::printf("%8s  %-20s %7s %7s %6s %7s %7s %6s %6s %6s %6s %9s %7s\n", "n", "method", "hits",
                 "walk", "none", "stale", "s.hits", "steps", "read", "draw", "other", "painted",
                 "Mpx");
-    auto pct = [](double part, double whole) { return whole > 0 ? 100.0 * part / whole : 0.0; };
+}
+
+// Where the time of an ID-buffer method (m = 1..3) goes, and how good its pixels are.
+void printLocatorRow(std::size_t n, int m, const Run& r) {
+    const ui::IdBufferGlStats& g = r.gl;
+    const LocatorStats& l = r.loc;
+    const double hits = l.queries ? 100.0 * l.hits / l.queries : 0.0;
+    const double walk =
+        l.queries > l.hits ? static_cast<double>(l.missSteps) / (l.queries - l.hits) : 0.0;
+    std::printf("%8zu  %-20s %6.1f%% %7.2f", n, kMethods[m].name, hits, walk);
+    if (m == 3) {  // idbuffer-cpu: no GL
+        std::printf("\n");
+        return;
+    }
+    std::printf(" %5.1f%% %6.1f%% %6.1f%% %6.2f %5.1f%% %5.1f%% %5.1f%% %9llu %7.1f\n",
+                percent(g.noPixel, l.queries), percent(g.staleQueries, l.queries),
+                g.staleQueries ? 100.0 * g.staleHits / g.staleQueries : 0.0,
+                g.staleQueries ? static_cast<double>(g.staleSteps) / g.staleQueries : 0.0,
+                percent(g.readbackMs, r.ms), percent(g.paintMs, r.ms),
+                percent(r.ms - g.readbackMs - g.paintMs, r.ms),
+                static_cast<unsigned long long>(g.trianglesPainted), g.pixelsPainted / 1e6);
+}
+
+void printLocatorStats(const std::vector<std::size_t>& sizes, const MethodSet& on,
+                       const Timings& t) {
+    printLocatorLegend();
     for (std::size_t k = 0; k < sizes.size(); ++k) {
         for (int m = 1; m <= 3; ++m) {
-            if (!on[m]) continue;
-            const Run& r = detail[k][m];
-            const ui::IdBufferGlStats& g = r.gl;
-            const LocatorStats& l = r.loc;
-            const bool gl = m != 3;
-            const double hits = l.queries ? 100.0 * l.hits / l.queries : 0.0;
-            const double walk =
-                l.queries > l.hits ? static_cast<double>(l.missSteps) / (l.queries - l.hits) : 0.0;
-            std::printf("%8zu  %-20s %6.1f%% %7.2f", sizes[k], kMethods[m].name, hits, walk);
-            if (gl) {
-                std::printf(
-                    " %5.1f%% %6.1f%% %6.1f%% %6.2f %5.1f%% %5.1f%% %5.1f%% %9llu %7.1f\n",
-                    pct(g.noPixel, l.queries), pct(g.staleQueries, l.queries),
-                    g.staleQueries ? 100.0 * g.staleHits / g.staleQueries : 0.0,
-                    g.staleQueries ? static_cast<double>(g.staleSteps) / g.staleQueries : 0.0,
-                    pct(g.readbackMs, r.ms), pct(g.paintMs, r.ms),
-                    pct(r.ms - g.readbackMs - g.paintMs, r.ms),
-                    static_cast<unsigned long long>(g.trianglesPainted), g.pixelsPainted / 1e6);
-            } else {
-                std::printf("\n");
-            }
+            if (on[m]) printLocatorRow(sizes[k], m, t.detail[k][m]);
         }
     }
+}
 
+// At the largest size: batched readback against naive and against one pixel per insertion.
+void printSpeedup(const std::vector<std::size_t>& sizes, const MethodSet& on, const Timings& t) {
+    if (!(on[0] && on[1] && on[2])) return;
     const std::size_t last = sizes.size() - 1;
-    const std::array<double, kNumMethods>& big = table[last];
-    if (on[0] && on[1] && on[2])
-        std::printf(
-            "\nAt n = %zu: idbuffer-gl-batched is %.1fx faster than naive and %.1fx faster than "
-            "idbuffer-gl "
-            "(one pixel per insertion);\nidbuffer-gl spends %.0f%% of its time in readback (the "
-            "paper: > 90%%).\n",
-            sizes[last], big[0] / big[2], big[1] / big[2],
-            pct(detail[last][1].gl.readbackMs, detail[last][1].ms));
+    const std::array<double, kNumMethods>& big = t.table[last];
+    std::printf(
+        "\nAt n = %zu: idbuffer-gl-batched is %.1fx faster than naive and %.1fx faster than "
+        "idbuffer-gl "
+        "(one pixel per insertion);\nidbuffer-gl spends %.0f%% of its time in readback (the "
+        "paper: > 90%%).\n",
+        sizes[last], big[0] / big[2], big[1] / big[2],
+        percent(t.detail[last][1].gl.readbackMs, t.detail[last][1].ms));
+}
 
-    if (!sweep.empty()) {
-        const std::size_t n = sizes[last];
-        const std::vector<Vec2> points = generatePoints(Generator::Uniform, n, args.seed);
-        std::printf(
-            "\nBatch size K for idbuffer-gl-batched (\"%s\") at n = %zu, median of %d runs:\n",
-            args.readback.c_str(), n, args.repeat);
-        std::printf("%8s %10s %8s %9s %10s %8s\n", "K", "ms", "reads", "readback", "stale hit",
-                    "steps");
-        double bestMs = 1e300;
-        int bestK = 0;
-        for (const int K : sweep) {
-            std::vector<Run> runs;
-            for (int r = 0; r < args.repeat; ++r)
-                runs.push_back(runOnce(points, kMethods[2], args, K));
-            const Run& med = medianRun(runs);
-            const ui::IdBufferGlStats& b = med.gl;
-            std::printf("%8d %10.1f %8llu %8.1f%% %9.1f%% %8.2f\n", K, med.ms,
-                        static_cast<unsigned long long>(b.reads), pct(b.readbackMs, med.ms),
-                        b.staleQueries ? 100.0 * b.staleHits / b.staleQueries : 0.0,
-                        b.staleQueries ? static_cast<double>(b.staleSteps) / b.staleQueries : 0.0);
-            if (med.ms < bestMs) {
-                bestMs = med.ms;
-                bestK = K;
-            }
+// idbuffer-gl-batched at n points for each batch size K of the sweep, and the fastest K.
+void runSweep(const Table1Args& args, std::size_t n, const std::vector<int>& sweep) {
+    const std::vector<Vec2> points = generatePoints(Generator::Uniform, n, args.seed);
+    std::printf("\nBatch size K for idbuffer-gl-batched (\"%s\") at n = %zu, median of %d runs:\n",
+                args.readback.c_str(), n, args.repeat);
+    std::printf("%8s %10s %8s %9s %10s %8s\n", "K", "ms", "reads", "readback", "stale hit",
+                "steps");
+    double bestMs = 1e300;
+    int bestK = 0;
+    for (const int K : sweep) {
+        std::vector<Run> runs;
+        for (int r = 0; r < args.repeat; ++r) runs.push_back(runOnce(points, kMethods[2], args, K));
+        const Run& med = medianRun(runs);
+        const ui::IdBufferGlStats& b = med.gl;
+        std::printf("%8d %10.1f %8llu %8.1f%% %9.1f%% %8.2f\n", K, med.ms,
+                    static_cast<unsigned long long>(b.reads), percent(b.readbackMs, med.ms),
+                    b.staleQueries ? 100.0 * b.staleHits / b.staleQueries : 0.0,
+                    b.staleQueries ? static_cast<double>(b.staleSteps) / b.staleQueries : 0.0);
+        if (med.ms < bestMs) {
+            bestMs = med.ms;
+            bestK = K;
         }
-        std::printf("best K = %d (%.1f ms)\n", bestK, bestMs);
     }
+    std::printf("best K = %d (%.1f ms)\n", bestK, bestMs);
+}
 
-    if (!args.csv.empty()) {
-        std::ofstream out(args.csv);
-        if (!out) fail("cannot write " + args.csv);
-        out << "n";
+void writeCsv(const std::string& path, const std::vector<std::size_t>& sizes, const MethodSet& on,
+              const Timings& t) {
+    std::ofstream out(path);
+    if (!out) fail("cannot write " + path);
+    out << "n";
+    for (int m = 0; m < kNumMethods; ++m) {
+        if (on[m]) out << "," << kMethods[m].name;
+    }
+    out << "\n";
+    char v[32];
+    for (std::size_t k = 0; k < sizes.size(); ++k) {
+        out << sizes[k];
         for (int m = 0; m < kNumMethods; ++m) {
-            if (on[m]) out << "," << kMethods[m].name;
+            if (!on[m]) continue;
+            std::snprintf(v, sizeof v, "%.3f", t.table[k][m]);
+            out << "," << v;
         }
         out << "\n";
-        char v[32];
-        for (std::size_t k = 0; k < sizes.size(); ++k) {
-            out << sizes[k];
-            for (int m = 0; m < kNumMethods; ++m) {
-                if (!on[m]) continue;
-                std::snprintf(v, sizeof v, "%.3f", table[k][m]);
-                out << "," << v;
-            }
-            out << "\n";
-        }
-        out.flush();
-        if (!out) fail("cannot write " + args.csv + " (disk full?)");
-        std::printf("\nwrote %s\n", args.csv.c_str());
     }
-    if (!args.png.empty()) {
-        const ImU32 colours[kNumMethods] = {
-            IM_COL32(200, 40, 40, 255),  IM_COL32(230, 140, 20, 255), IM_COL32(30, 110, 200, 255),
-            IM_COL32(120, 70, 170, 255), IM_COL32(40, 150, 70, 255),  IM_COL32(20, 20, 20, 255)};
-        std::vector<Series> series;
-        for (int m = 0; m < kNumMethods; ++m) {
-            if (!on[m]) continue;
-            Series s{kMethods[m].name, colours[m], false, {}};
-            if (std::string(kMethods[m].name) == "best") s.name = "best (brio + walk)";
-            if (std::string(kMethods[m].name) == "naive") s.name = "naive (walk from triangle 0)";
-            if (std::string(kMethods[m].name) == "idbuffer-gl")
-                s.name = "idbuffer-gl (one pixel per insertion)";
-            if (std::string(kMethods[m].name) == "idbuffer-gl-batched") {
-                s.name = "idbuffer-gl-batched (K = " + std::to_string(args.batch) + ")";
-            }
-            for (std::size_t k = 0; k < sizes.size(); ++k)
-                s.points.push_back({static_cast<double>(sizes[k]), table[k][m]});
-            series.push_back(std::move(s));
-        }
-        Series pn{"paper: naive walk (2008)", IM_COL32(200, 40, 40, 255), true, {}};
-        Series pi{"paper: colour-ID buffer (2008)", IM_COL32(230, 140, 20, 255), true, {}};
-        for (const auto& [n, v] : kPaper) {
-            pn.points.push_back({static_cast<double>(n), v.first});
-            pi.points.push_back({static_cast<double>(n), v.second});
-        }
-        series.push_back(std::move(pn));
-        series.push_back(std::move(pi));
-        writePlot(args.png, series,
-                  "Incremental Delaunay: point location (the paper's Table 1 / Figure 8)",
-                  "uniform random points in the 1600 x 1600 box; ours: median of " +
-                      std::to_string(args.repeat) + (args.repeat == 1 ? " run" : " runs") +
-                      " on llvmpipe (OSMesa, 2 cores); dashed: the paper's numbers (2008)");
-        std::printf("wrote %s\n", args.png.c_str());
+    out.flush();
+    if (!out) fail("cannot write " + path + " (disk full?)");
+    std::printf("\nwrote %s\n", path.c_str());
+}
+
+// A method's name in the plot's legend.
+std::string legendName(const Method& method, const Table1Args& args) {
+    const std::string name = method.name;
+    if (name == "best") return "best (brio + walk)";
+    if (name == "naive") return "naive (walk from triangle 0)";
+    if (name == "idbuffer-gl") return "idbuffer-gl (one pixel per insertion)";
+    if (name == "idbuffer-gl-batched")
+        return "idbuffer-gl-batched (K = " + std::to_string(args.batch) + ")";
+    return name;
+}
+
+// The plot's curves: each method timed, then the paper's two (dashed).
+std::vector<Series> plotSeries(const Table1Args& args, const std::vector<std::size_t>& sizes,
+                               const MethodSet& on, const Timings& t) {
+    const ImU32 colours[kNumMethods] = {IM_COL32(200, 40, 40, 255),  IM_COL32(230, 140, 20, 255),
+                                        IM_COL32(30, 110, 200, 255), IM_COL32(120, 70, 170, 255),
+                                        IM_COL32(40, 150, 70, 255),  IM_COL32(20, 20, 20, 255)};
+    std::vector<Series> series;
+    for (int m = 0; m < kNumMethods; ++m) {
+        if (!on[m]) continue;
+        Series s{legendName(kMethods[m], args), colours[m], false, {}};
+        for (std::size_t k = 0; k < sizes.size(); ++k)
+            s.points.push_back({static_cast<double>(sizes[k]), t.table[k][m]});
+        series.push_back(std::move(s));
     }
+    Series pn{"paper: naive walk (2008)", IM_COL32(200, 40, 40, 255), true, {}};
+    Series pi{"paper: colour-ID buffer (2008)", IM_COL32(230, 140, 20, 255), true, {}};
+    for (const auto& [n, v] : kPaper) {
+        pn.points.push_back({static_cast<double>(n), v.first});
+        pi.points.push_back({static_cast<double>(n), v.second});
+    }
+    series.push_back(std::move(pn));
+    series.push_back(std::move(pi));
+    return series;
+}
+
+void writeFigure(const Table1Args& args, const std::vector<std::size_t>& sizes, const MethodSet& on,
+                 const Timings& t) {
+    writePlot(args.png, plotSeries(args, sizes, on, t),
+              "Incremental Delaunay: point location (the paper's Table 1 / Figure 8)",
+              "uniform random points in the 1600 x 1600 box; ours: median of " +
+                  std::to_string(args.repeat) + (args.repeat == 1 ? " run" : " runs") +
+                  " on llvmpipe (OSMesa, 2 cores); dashed: the paper's numbers (2008)");
+    std::printf("wrote %s\n", args.png.c_str());
+}
+
+void runTable1(const Table1Args& args) {
+    const std::vector<std::size_t> sizes = parseCounts(args.sizes, "--sizes", 3, 1u << 20);
+    const std::vector<int> sweep = parseSweep(args.sweep);
+    const MethodSet on = parseMethods(args.methods);
+    headlessGl();  // fail early, before minutes of timing, if there is no GL
+    // Warm-up: each method once on a small set (llvmpipe compiles its shaders on first use).
+    const std::vector<Vec2> warm = generatePoints(Generator::Uniform, 2000, args.seed + 1000);
+    for (int m = 0; m < kNumMethods; ++m) {
+        if (on[m] || (m == 2 && !sweep.empty())) runOnce(warm, kMethods[m], args, args.batch);
+    }
+    printTableHeader(args);
+    Timings t;
+    for (const std::size_t n : sizes) {
+        timeSize(args, n, on, t);
+        printTableRow(n, t.table.back());
+    }
+    printLocatorStats(sizes, on, t);
+    printSpeedup(sizes, on, t);
+    if (!sweep.empty()) runSweep(args, sizes.back(), sweep);
+    if (!args.csv.empty()) writeCsv(args.csv, sizes, on, t);
+    if (!args.png.empty()) writeFigure(args, sizes, on, t);
 }
 
 }  // namespace

@@ -4,6 +4,7 @@
 #include "core/teaching/lesson.h"
 
 #include "core/engine/generators.h"
+#include "core/engine/predicates.h"
 
 #include "tests/run_dtlab.h"
 
@@ -843,6 +844,55 @@ TEST(LessonHandout, WritesTextAndQuestionsWithoutAnswers) {
     EXPECT_NE(dtlab("lesson handout " + lesson).status, 0) << "-o is required";
 }
 
+TEST(LessonHandout, HtmlShowsEachStopsSlideAndNoAnswers) {
+    const std::string lesson = std::string(DLAB_SOURCE_DIR) + "/lessons/07_super_triangle.toml";
+    const fs::path dir = scratchDir() / "html";
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    const fs::path out = dir / "super.html";
+    const Result r = dtlab("lesson handout " + lesson + " -o " + out.string());
+    ASSERT_EQ(r.status, 0) << r.out;
+    std::ifstream in(out);
+    const std::string html((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const Lesson l = loadLesson(lesson);
+    const LessonPlan plan = planLesson(l);
+    EXPECT_NE(html.find("<h1>" + l.title + "</h1>"), std::string::npos);
+    std::size_t questions = 0;
+    for (std::size_t k = 0; k < l.stops.size(); ++k) {
+        char name[48];
+        std::snprintf(name, sizeof name, "super_files/%02zu.png", k + 1);
+        EXPECT_NE(html.find(std::string("<img src=\"") + name + "\""), std::string::npos)
+            << "stop " << k + 1;
+        // A PNG of the 1280x720 slide: the signature, then IHDR's width and height.
+        std::ifstream png(dir / name, std::ios::binary);
+        char head[24] = {};
+        png.read(head, sizeof head);
+        ASSERT_TRUE(png) << name << " is missing or short";
+        EXPECT_EQ(std::string(head + 1, 3), "PNG") << name;
+        const auto be32 = [&](int at) {
+            return (unsigned(static_cast<unsigned char>(head[at])) << 24) |
+                   (unsigned(static_cast<unsigned char>(head[at + 1])) << 16) |
+                   (unsigned(static_cast<unsigned char>(head[at + 2])) << 8) |
+                   unsigned(static_cast<unsigned char>(head[at + 3]));
+        };
+        EXPECT_EQ(be32(16), 1280u) << name;
+        EXPECT_EQ(be32(20), 720u) << name;
+        if (l.stops[k].question.empty()) continue;
+        ++questions;
+        EXPECT_NE(html.find(plan.stops[k].question), std::string::npos) << "stop " << k + 1;
+    }
+    // Bold and code of the text are HTML, its quotes escaped.
+    EXPECT_NE(html.find("<strong>super-triangle</strong>"), std::string::npos);
+    EXPECT_NE(html.find("<code>boundary = &quot;exact&quot;</code>"), std::string::npos);
+    std::size_t blanks = 0;
+    for (auto at = html.find("Your answer:"); at != std::string::npos;
+         at = html.find("Your answer:", at + 1))
+        ++blanks;
+    EXPECT_EQ(blanks, questions);
+    EXPECT_EQ(html.find("A: "), std::string::npos);
+    EXPECT_EQ(html.find("{{"), std::string::npos) << "values are rendered";
+}
+
 // ---- Markdown-light -----------------------------------------------------------------------------
 
 TEST(LessonText, ParagraphsListsBoldAndCode) {
@@ -894,6 +944,27 @@ TEST(LessonFacts, SuperTriangleLessonExactModeGivesThreeTrianglesAndAConvexHull)
     e.journal->seek(1u << 30);
     EXPECT_EQ(answer(e, "triangles").a, 3);
     EXPECT_TRUE(answer(e, "convex").truth);
+}
+
+// Lesson 7's sliver (0, 1, 2) along the top: Delaunay among the input points, yet its circle
+// holds the top super vertex, and only that one.
+TEST(LessonFacts, SuperTriangleLessonSliverCircleHoldsOnlyTheTopSuperVertex) {
+    const Lesson lesson =
+        loadLesson(std::string(DLAB_SOURCE_DIR) + "/lessons/07_super_triangle.toml");
+    ASSERT_EQ(lesson.points.size(), 4u);
+    const Inserter ins(lesson.points, lesson.options);
+    const auto& G = ins.mesh().G;
+    ASSERT_EQ(G.size(), 7u);  // the input and s0, s1, s2
+    const Vec2 a = G[0], b = G[1], c = G[2];
+    ASSERT_GT(orient2d(a, b, c), 0);
+    EXPECT_LT(incircle(a, b, c, G[3]), 0) << "the sliver is Delaunay among the input points";
+    std::int32_t top = 4;
+    for (std::int32_t s = 4; s < 7; ++s) {
+        if (G[s].y > G[top].y) top = s;
+    }
+    for (std::int32_t s = 4; s < 7; ++s)
+        EXPECT_EQ(incircle(a, b, c, G[s]) > 0, s == top) << "super vertex s" << s - 4;
+    EXPECT_GT(G[top].y, G[0].y) << "s" << top - 4 << " is above the points";
 }
 
 TEST(LessonFacts, SplitLessonOldTriangleChangesOnlyV2O0AndO1) {

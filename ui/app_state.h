@@ -218,7 +218,9 @@ struct StatisticsState {
     std::uint64_t validatedVersion = ~std::uint64_t{0};
     std::vector<Violation> violations;  // drawn on the canvas
     std::vector<std::int32_t>
-        hullDents;           // boundary vertices where the hull turns right (not convex)
+        hullDents;  // boundary vertices where the hull turns right (not convex)
+    // Each dent b with its boundary neighbours (a, b, c): the triangle the mesh misses there.
+    std::vector<std::array<std::int32_t, 3>> hullGaps;
     std::string hullReport;  // the hull / Euler check in one line
     bool showViolations = true;
     RunCounts counts;

@@ -817,6 +817,64 @@ void Inserter::doFinalize(Rec& rec, Op& op) {
     m_ctl.phase = Phase::Done;
 }
 
+// Locate: one step of the walk, or the verdict once the walk stands on the point's triangle.
+void Inserter::doLocate(Op& op) {
+    if (m_ctl.walk.tri == kNone) beginLocate();
+    const std::int32_t from = m_ctl.walk.tri;
+    op.a = from;
+    if (!walk(true)) {
+        op.type = OpType::LocateStep;
+        op.b = m_ctl.walk.tri;
+        ++m_stats.walkSteps;
+        return;
+    }
+    classify();
+    if (m_ctl.where == Where::None) {  // cannot happen with exact predicates; stay safe
+        m_ctl.walk.straight = false;
+        op.type = OpType::LocateStep;
+        op.b = from;
+        return;
+    }
+    op.type = OpType::Located;
+    op.where = m_ctl.where;
+    op.b = m_ctl.whereCorner;
+    m_locator->located(currentPoint(), m_ctl.walk.tri, m_ctl.walk.steps);
+    m_ctl.phase = Phase::Place;
+}
+
+// Test: the in-circle test of the edge on top of the flip stack; a positive sign flips it next.
+void Inserter::doTest(Op& op) {
+    const std::int32_t c = m_stack.back();
+    m_stack.pop_back();
+    op.type = OpType::InCircleTest;
+    op.a = c;
+    op.b = m_mesh.O[c];
+    op.sign = static_cast<std::int8_t>(inCircleSign(c));
+    ++m_stats.inCircleTests;
+    if (op.sign > 0) {
+        m_ctl.flipCorner = c;
+        m_ctl.phase = Phase::Flip;
+    } else {
+        m_ctl.phase = m_stack.empty() ? Phase::Finish : Phase::Test;
+    }
+}
+
+// Finish: the point is in and every edge around it is Delaunay; on to the next point.
+void Inserter::doFinish(Op& op) {
+    op.type = OpType::Inserted;
+    // Flips keep the new vertex in both triangles they touch, so the last appended triangle
+    // still has it: it is the next walk's start.
+    const std::int32_t t = m_mesh.numTriangles() - 1;
+    for (std::int32_t c = 3 * t; c < 3 * t + 3; ++c) {
+        if (m_mesh.V[c] == op.vertex) op.a = c;
+    }
+    m_ctl.lastTri = t;
+    ++m_stats.inserted;
+    ++m_ctl.cursor;
+    m_ctl.walk.tri = kNone;
+    m_ctl.phase = m_ctl.cursor < m_numInput ? Phase::Locate : Phase::Finalize;
+}
+
 template <class Rec>
 Op Inserter::stepImpl(Rec& rec) {
     Op op;
@@ -828,47 +886,9 @@ Op Inserter::stepImpl(Rec& rec) {
             op.type = OpType::Start;
             doStart(rec, op);
             break;
-        case Phase::Locate: {
-            if (m_ctl.walk.tri == kNone) beginLocate();
-            const std::int32_t from = m_ctl.walk.tri;
-            op.a = from;
-            if (!walk(true)) {
-                op.type = OpType::LocateStep;
-                op.b = m_ctl.walk.tri;
-                ++m_stats.walkSteps;
-                break;
-            }
-            classify();
-            if (m_ctl.where == Where::None) {  // cannot happen with exact predicates; stay safe
-                m_ctl.walk.straight = false;
-                op.type = OpType::LocateStep;
-                op.b = from;
-                break;
-            }
-            op.type = OpType::Located;
-            op.where = m_ctl.where;
-            op.b = m_ctl.whereCorner;
-            m_locator->located(currentPoint(), m_ctl.walk.tri, m_ctl.walk.steps);
-            m_ctl.phase = Phase::Place;
-            break;
-        }
+        case Phase::Locate: doLocate(op); break;
         case Phase::Place: doPlace(rec, op); break;
-        case Phase::Test: {
-            const std::int32_t c = m_stack.back();
-            m_stack.pop_back();
-            op.type = OpType::InCircleTest;
-            op.a = c;
-            op.b = m_mesh.O[c];
-            op.sign = static_cast<std::int8_t>(inCircleSign(c));
-            ++m_stats.inCircleTests;
-            if (op.sign > 0) {
-                m_ctl.flipCorner = c;
-                m_ctl.phase = Phase::Flip;
-            } else {
-                m_ctl.phase = m_stack.empty() ? Phase::Finish : Phase::Test;
-            }
-            break;
-        }
+        case Phase::Test: doTest(op); break;
         case Phase::Flip:
             op.type = OpType::Flip;
             op.a = m_ctl.flipCorner;
@@ -878,22 +898,7 @@ Op Inserter::stepImpl(Rec& rec) {
             m_ctl.flipCorner = kNone;
             m_ctl.phase = Phase::Test;
             break;
-        case Phase::Finish: {
-            op.type = OpType::Inserted;
-            // The last corner tested is at the new vertex; its triangle is the next walk's start.
-            // Flips keep the new vertex in both triangles they touch, so the last appended
-            // triangle still has it: it is the next walk's start.
-            const std::int32_t t = m_mesh.numTriangles() - 1;
-            for (std::int32_t c = 3 * t; c < 3 * t + 3; ++c) {
-                if (m_mesh.V[c] == op.vertex) op.a = c;
-            }
-            m_ctl.lastTri = t;
-            ++m_stats.inserted;
-            ++m_ctl.cursor;
-            m_ctl.walk.tri = kNone;
-            m_ctl.phase = m_ctl.cursor < m_numInput ? Phase::Locate : Phase::Finalize;
-            break;
-        }
+        case Phase::Finish: doFinish(op); break;
         case Phase::Finalize:
             op.type = OpType::Finalize;
             doFinalize(rec, op);

@@ -187,6 +187,9 @@ private:
     void doPlace(Rec& rec, Op& op);
     template <class Rec>
     void doFinalize(Rec& rec, Op& op);
+    void doLocate(Op& op);
+    void doTest(Op& op);
+    void doFinish(Op& op);
 
     template <class Rec>
     void setV(Rec& rec, std::int32_t c, std::int32_t v);

@@ -424,105 +424,163 @@ void checkCountFits(std::size_t count, std::uint64_t minBytesPerLine, std::strin
              "asks for on each line: a count in the header is wrong");
 }
 
+// The point set of the file `name`, empty, once its content is known to be text.
+PointSet emptyPointSet(std::string_view text, const std::string& name) {
+    checkText(text, name);
+    PointSet ps;
+    ps.path = name;
+    return ps;
+}
+
+// The first line with content (the header, the count, the first row); `what` names it in the
+// message for a file that has none: "no header line".
+Line firstLine(LineReader& reader, const std::string& name, const char* what) {
+    Line line;
+    if (!reader.next(line))
+        fail(name, 0, std::string(what) + ": the file holds only blank lines and comments");
+    return line;
+}
+
+// A count that a file's first line declares (.node, .pts), with the words its messages use:
+// by: "header" or "count"; one/many: "vertex"/"vertices", "point"/"points".
+struct Declared {
+    std::size_t count = 0;
+    LineNo line = 0;
+    const char* by = "header";
+    const char* one = "vertex";
+    const char* many = "vertices";
+
+    // Refuses a count the rest of the text cannot hold (records of at least minBytesPerLine).
+    void checkFits(std::uint64_t minBytesPerLine, const LineReader& reader,
+                   const std::string& name) const {
+        checkCountFits(count, minBytesPerLine, reader.remainingText(), name, line, one, many);
+    }
+    // Before reading record line `at`: refuses it when the declared records are all read.
+    void checkNotExtra(std::size_t read, const std::string& name, LineNo at) const {
+        if (read != count) return;
+        fail(name, at,
+             std::string("extra ") + one + " line: the " + by + " on line " + std::to_string(line) +
+                 " declares " + plural(count, one, many));
+    }
+    // At the end of the text: every declared record read; a warning when none was declared.
+    void checkAllRead(PointSet& ps, const LineReader& reader, const std::string& name) const {
+        if (ps.points.size() < count) {
+            fail(name, reader.linesRead(),
+                 "end of file: expected " + plural(count, one, many) + " (" + by + " on line " +
+                     std::to_string(line) + "), found " + std::to_string(ps.points.size()));
+        }
+        if (count == 0) {
+            ps.warnings.push_back(std::string(by) + " on line " + std::to_string(line) +
+                                  " declares 0 " + many);
+        }
+    }
+};
+
 //-----------------------------------------------------------------------------------------------
 // [SECTION] Triangle .node
 //-----------------------------------------------------------------------------------------------
 
 }  // namespace
 
-PointSet parseNode(std::string_view text, const std::string& name) {
-    checkText(text, name);
-    PointSet ps;
-    ps.path = name;
-    LineReader reader(text);
-    Line line;
-    std::vector<std::string_view> f;
+namespace {
 
-    if (!reader.next(line))
-        fail(name, 0, "no header line: the file holds only blank lines and comments");
-    const LineNo headerLine = line.number;
-    const std::size_t headerFields = splitFields(line.text, Sep::Blanks, f, 4);
+// A .node header: '<#vertices> <dimension> <#attributes> <#boundary markers>' (the last three
+// may be left out: 2, 0, 0).
+struct NodeHeader {
+    Declared vertices;
+    std::int64_t attributes = 0, markers = 0;
+    std::size_t fieldsPerLine = 3;  // index, x, y, the attributes, the marker
+
+    // "index, x, y, 2 attributes, boundary marker": what a vertex line holds, for messages.
+    std::string layout() const {
+        return "index, x, y" +
+               (attributes > 0
+                    ? ", " + plural(static_cast<std::size_t>(attributes), "attribute", "attributes")
+                    : std::string()) +
+               (markers > 0 ? ", boundary marker" : "");
+    }
+};
+
+NodeHeader parseNodeHeader(const Line& header, const std::string& name) {
+    const LineNo at = header.number;
+    std::vector<std::string_view> f;
+    const std::size_t headerFields = splitFields(header.text, Sep::Blanks, f, 4);
     if (headerFields > 4) {
-        fail(name, headerLine,
+        fail(name, at,
              "header has " + std::to_string(headerFields) +
                  " fields; expected '<#vertices> <dimension> <#attributes> <#boundary markers>'");
     }
-    const std::size_t count = parseCount(f[0], name, headerLine, "vertex count");
-    const std::int64_t dim = f.size() > 1 ? parseInteger(f[1], name, headerLine, "dimension") : 2;
-    if (dim != 2) fail(name, headerLine, "dimension must be 2, found " + std::to_string(dim));
-    const std::int64_t attributes =
-        f.size() > 2 ? parseInteger(f[2], name, headerLine, "attribute count") : 0;
+    NodeHeader h;
+    h.vertices = {parseCount(f[0], name, at, "vertex count"), at, "header", "vertex", "vertices"};
+    const std::int64_t dim = f.size() > 1 ? parseInteger(f[1], name, at, "dimension") : 2;
+    if (dim != 2) fail(name, at, "dimension must be 2, found " + std::to_string(dim));
+    h.attributes = f.size() > 2 ? parseInteger(f[2], name, at, "attribute count") : 0;
     // No line within kMaxFileBytes can hold more fields than this; the bound also keeps the
     // field arithmetic below far from overflow.
     constexpr std::int64_t kMaxAttributes = static_cast<std::int64_t>(kMaxFileBytes / 2);
-    if (attributes < 0 || attributes > kMaxAttributes) {
-        fail(name, headerLine,
+    if (h.attributes < 0 || h.attributes > kMaxAttributes) {
+        fail(name, at,
              "attribute count must be between 0 and " + std::to_string(kMaxAttributes) +
                  ", found " + quoted(f[2]));
     }
-    const std::int64_t markers =
-        f.size() > 3 ? parseInteger(f[3], name, headerLine, "boundary marker count") : 0;
-    if (markers != 0 && markers != 1) {
-        fail(name, headerLine,
-             "boundary marker count must be 0 or 1, found " + std::to_string(markers));
+    h.markers = f.size() > 3 ? parseInteger(f[3], name, at, "boundary marker count") : 0;
+    if (h.markers != 0 && h.markers != 1) {
+        fail(name, at, "boundary marker count must be 0 or 1, found " + std::to_string(h.markers));
     }
-    const auto fieldsPerLine = static_cast<std::size_t>(3 + attributes + markers);
-    checkCountFits(count, 2 * static_cast<std::uint64_t>(fieldsPerLine), reader.remainingText(),
-                   name, headerLine, "vertex", "vertices");
-    ps.points.reserve(count);
+    h.fieldsPerLine = static_cast<std::size_t>(3 + h.attributes + h.markers);
+    return h;
+}
 
-    const std::string layout = "index, x, y" +
-                               (attributes > 0 ? ", " + plural(static_cast<std::size_t>(attributes),
-                                                               "attribute", "attributes")
-                                               : std::string()) +
-                               (markers > 0 ? ", boundary marker" : "");
+// One vertex line, the `read`-th (0-based): its fields, its index in sequence (the first sets
+// the index base), its coordinates, attributes and marker as numbers.
+Vec2 parseNodeVertex(const Line& line, const NodeHeader& h, std::size_t read, std::int64_t& base,
+                     std::vector<std::string_view>& f, const std::string& name) {
+    const std::size_t n = splitFields(line.text, Sep::Blanks, f, h.fieldsPerLine);
+    if (n != h.fieldsPerLine) {
+        fail(name, line.number,
+             std::string(n < h.fieldsPerLine ? "too few" : "too many") + " fields: expected " +
+                 std::to_string(h.fieldsPerLine) + " (" + h.layout() + "), found " +
+                 std::to_string(n));
+    }
+    const std::int64_t index = parseInteger(f[0], name, line.number, "vertex index");
+    if (read == 0) {
+        if (index != 0 && index != 1) {
+            fail(name, line.number,
+                 "first vertex index must be 0 or 1, found " + std::to_string(index));
+        }
+        base = index;
+    } else if (index != base + static_cast<std::int64_t>(read)) {
+        fail(name, line.number,
+             "vertex index " + std::to_string(index) + " out of sequence: expected " +
+                 std::to_string(base + static_cast<std::int64_t>(read)));
+    }
+    Vec2 p;
+    p.x = parseReal(f[1], name, line.number, "x coordinate", ValueKind::Coordinate, Sep::Blanks);
+    p.y = parseReal(f[2], name, line.number, "y coordinate", ValueKind::Coordinate, Sep::Blanks);
+    for (std::int64_t a = 0; a < h.attributes; ++a) {
+        parseReal(f[3 + static_cast<std::size_t>(a)], name, line.number,
+                  "attribute " + std::to_string(a + 1), ValueKind::Attribute, Sep::Blanks);
+    }
+    if (h.markers > 0) parseInteger(f[h.fieldsPerLine - 1], name, line.number, "boundary marker");
+    return p;
+}
+
+}  // namespace
+
+PointSet parseNode(std::string_view text, const std::string& name) {
+    PointSet ps = emptyPointSet(text, name);
+    LineReader reader(text);
+    const NodeHeader h = parseNodeHeader(firstLine(reader, name, "no header line"), name);
+    h.vertices.checkFits(2 * static_cast<std::uint64_t>(h.fieldsPerLine), reader, name);
+    ps.points.reserve(h.vertices.count);
     std::int64_t base = 0;
-    while (reader.next(line)) {
-        if (ps.points.size() == count) {
-            fail(name, line.number,
-                 "extra vertex line: the header on line " + std::to_string(headerLine) +
-                     " declares " + plural(count, "vertex", "vertices"));
-        }
-        const std::size_t n = splitFields(line.text, Sep::Blanks, f, fieldsPerLine);
-        if (n != fieldsPerLine) {
-            fail(name, line.number,
-                 std::string(n < fieldsPerLine ? "too few" : "too many") + " fields: expected " +
-                     std::to_string(fieldsPerLine) + " (" + layout + "), found " +
-                     std::to_string(n));
-        }
-        const std::int64_t index = parseInteger(f[0], name, line.number, "vertex index");
-        if (ps.points.empty()) {
-            if (index != 0 && index != 1) {
-                fail(name, line.number,
-                     "first vertex index must be 0 or 1, found " + std::to_string(index));
-            }
-            base = index;
-        } else if (index != base + static_cast<std::int64_t>(ps.points.size())) {
-            fail(name, line.number,
-                 "vertex index " + std::to_string(index) + " out of sequence: expected " +
-                     std::to_string(base + static_cast<std::int64_t>(ps.points.size())));
-        }
-        Vec2 p;
-        p.x =
-            parseReal(f[1], name, line.number, "x coordinate", ValueKind::Coordinate, Sep::Blanks);
-        p.y =
-            parseReal(f[2], name, line.number, "y coordinate", ValueKind::Coordinate, Sep::Blanks);
-        for (std::int64_t a = 0; a < attributes; ++a) {
-            parseReal(f[3 + static_cast<std::size_t>(a)], name, line.number,
-                      "attribute " + std::to_string(a + 1), ValueKind::Attribute, Sep::Blanks);
-        }
-        if (markers > 0) parseInteger(f[fieldsPerLine - 1], name, line.number, "boundary marker");
-        ps.points.push_back(p);
+    std::vector<std::string_view> f;
+    for (Line line; reader.next(line);) {
+        h.vertices.checkNotExtra(ps.points.size(), name, line.number);
+        ps.points.push_back(parseNodeVertex(line, h, ps.points.size(), base, f, name));
     }
-    if (ps.points.size() < count) {
-        fail(name, reader.linesRead(),
-             "end of file: expected " + plural(count, "vertex", "vertices") + " (header on line " +
-                 std::to_string(headerLine) + "), found " + std::to_string(ps.points.size()));
-    }
+    h.vertices.checkAllRead(ps, reader, name);
     ps.indexBase = static_cast<int>(base);
-    if (count == 0)
-        ps.warnings.push_back("header on line " + std::to_string(headerLine) +
-                              " declares 0 vertices");
     return ps;
 }
 
@@ -550,80 +608,86 @@ bool namesColumn(std::string_view field, char letter) {
     return s.size() == 1 && (s[0] == letter || s[0] == letter - 'a' + 'A');
 }
 
+// The columns of an XY/CSV file: the separator, how many fields a row has and which are x and y;
+// the header's line (0: none).
+struct XYColumns {
+    Sep sep = Sep::Blanks;
+    std::size_t count = 2, x = 0, y = 1;
+    LineNo headerLine = 0;
+};
+
+// The columns, from the first line: a header when it holds no number (a warning says it was
+// skipped), else the first row of data with x and y alone.
+XYColumns xyColumns(const Line& first, const std::string& name, PointSet& ps) {
+    XYColumns c;
+    c.sep = detectSeparator(first.text);
+    // A first line without a single number in it is a header ("x,y", "id;x;y", "lon lat").
+    // A line mixing words and numbers is bad data and is reported as such below. A field
+    // that merely starts like a number ("1,5" with ';' separators, "1.2.3", "\"3\"") is a
+    // number gone wrong, not a column name: taking such a line for a header would silently
+    // drop a row of data (and blame a later line for the decimal commas of the first).
+    constexpr std::size_t kMaxHeaderColumns = 4096;
+    std::vector<std::string_view> f;
+    const std::size_t n = splitFields(first.text, c.sep, f, kMaxHeaderColumns);
+    const auto numberLike = [](std::string_view field) {
+        return isNumeric(field) || startsLikeNumber(field);
+    };
+    if (std::any_of(f.begin(), f.end(), numberLike) || n > kMaxHeaderColumns) return c;
+    c.headerLine = first.number;
+    c.count = n;
+    const auto x =
+        std::find_if(f.begin(), f.end(), [](std::string_view s) { return namesColumn(s, 'x'); });
+    const auto y =
+        std::find_if(f.begin(), f.end(), [](std::string_view s) { return namesColumn(s, 'y'); });
+    if (x != f.end() && y != f.end()) {
+        c.x = static_cast<std::size_t>(x - f.begin());
+        c.y = static_cast<std::size_t>(y - f.begin());
+    } else if (n != 2) {
+        fail(name, first.number,
+             "header " + quoted(first.text) + " has " + plural(n, "column", "columns") +
+                 "; expected two, or columns named 'x' and 'y'");
+    }
+    ps.warnings.push_back("skipped header line " + std::to_string(first.number) + ": " +
+                          printable(first.text, 80, false));
+    return c;
+}
+
+// A row with n fields where c.count are expected, the first row when firstRow: what is wrong,
+// with a hint at what the file may be.
+std::string fieldCountError(const XYColumns& c, std::size_t n, std::string_view firstField,
+                            bool firstRow) {
+    std::string msg = plural(n, "field", "fields") + " separated by " + sepName(c.sep) +
+                      "; expected " + std::to_string(c.count);
+    if (c.headerLine) return msg + " as in the header on line " + std::to_string(c.headerLine);
+    msg += " (x, y)";
+    if (n == 3)
+        msg += "; for id,x,y or x,y,z columns add a header line naming the 'x' and 'y' columns";
+    if (n == 1 && firstRow && isUnsignedDigits(firstField))
+        msg += "; a point count on the first line suggests Rossignac's .pts format";
+    return msg;
+}
+
 }  // namespace
 
 PointSet parseXY(std::string_view text, const std::string& name) {
-    checkText(text, name);
-    PointSet ps;
-    ps.path = name;
+    PointSet ps = emptyPointSet(text, name);
     LineReader reader(text);
-    Line line;
+    Line line = firstLine(reader, name, "no data");
+    const XYColumns c = xyColumns(line, name, ps);
+    if (c.headerLine && !reader.next(line)) fail(name, c.headerLine, "no points after the header");
     std::vector<std::string_view> f;
-
-    if (!reader.next(line)) fail(name, 0, "no data: the file holds only blank lines and comments");
-    const Sep sep = detectSeparator(line.text);
-    std::size_t columns = 2, xCol = 0, yCol = 1;
-    bool haveHeader = false;
-    LineNo headerLine = 0;
-    {
-        // A first line without a single number in it is a header ("x,y", "id;x;y", "lon lat").
-        // A line mixing words and numbers is bad data and is reported as such below. A field
-        // that merely starts like a number ("1,5" with ';' separators, "1.2.3", "\"3\"") is a
-        // number gone wrong, not a column name: taking such a line for a header would silently
-        // drop a row of data (and blame a later line for the decimal commas of the first).
-        constexpr std::size_t kMaxHeaderColumns = 4096;
-        const std::size_t n = splitFields(line.text, sep, f, kMaxHeaderColumns);
-        const auto numberLike = [](std::string_view field) {
-            return isNumeric(field) || startsLikeNumber(field);
-        };
-        if (std::none_of(f.begin(), f.end(), numberLike) && n <= kMaxHeaderColumns) {
-            haveHeader = true;
-            headerLine = line.number;
-            columns = n;
-            const auto x = std::find_if(f.begin(), f.end(),
-                                        [](std::string_view s) { return namesColumn(s, 'x'); });
-            const auto y = std::find_if(f.begin(), f.end(),
-                                        [](std::string_view s) { return namesColumn(s, 'y'); });
-            if (x != f.end() && y != f.end()) {
-                xCol = static_cast<std::size_t>(x - f.begin());
-                yCol = static_cast<std::size_t>(y - f.begin());
-            } else if (n != 2) {
-                fail(name, line.number,
-                     "header " + quoted(line.text) + " has " + plural(n, "column", "columns") +
-                         "; expected two, or columns named 'x' and 'y'");
-            }
-            ps.warnings.push_back("skipped header line " + std::to_string(line.number) + ": " +
-                                  printable(line.text, 80, false));
-        }
-    }
-    if (haveHeader && !reader.next(line)) fail(name, headerLine, "no points after the header");
-
     do {
-        const std::size_t n = splitFields(line.text, sep, f, columns);
-        if (n != columns) {
-            std::string msg = plural(n, "field", "fields") + " separated by " + sepName(sep) +
-                              "; expected " + std::to_string(columns);
-            if (haveHeader) {
-                msg += " as in the header on line " + std::to_string(headerLine);
-            } else {
-                msg += " (x, y)";
-                if (n == 3)
-                    msg +=
-                        "; for id,x,y or x,y,z columns add a header line naming the 'x' and 'y' "
-                        "columns";
-                if (n == 1 && ps.points.empty() && isUnsignedDigits(f[0])) {
-                    msg += "; a point count on the first line suggests Rossignac's .pts format";
-                }
-            }
-            fail(name, line.number, msg);
-        }
+        const std::size_t n = splitFields(line.text, c.sep, f, c.count);
+        if (n != c.count)
+            fail(name, line.number,
+                 fieldCountError(c, n, f.empty() ? "" : f[0], ps.points.empty()));
         if (ps.points.size() == kMaxPoints) {
             fail(name, line.number,
                  "more than " + std::to_string(kMaxPoints) + " points (kMaxPoints)");
         }
         Vec2 p;
-        p.x = parseReal(f[xCol], name, line.number, "x coordinate", ValueKind::Coordinate, sep);
-        p.y = parseReal(f[yCol], name, line.number, "y coordinate", ValueKind::Coordinate, sep);
+        p.x = parseReal(f[c.x], name, line.number, "x coordinate", ValueKind::Coordinate, c.sep);
+        p.y = parseReal(f[c.y], name, line.number, "y coordinate", ValueKind::Coordinate, c.sep);
         ps.points.push_back(p);
     } while (reader.next(line));
     return ps;
@@ -634,33 +698,24 @@ PointSet parseXY(std::string_view text, const std::string& name) {
 //-----------------------------------------------------------------------------------------------
 
 PointSet parsePts(std::string_view text, const std::string& name) {
-    checkText(text, name);
-    PointSet ps;
-    ps.path = name;
+    PointSet ps = emptyPointSet(text, name);
     LineReader reader(text);
-    Line line;
     std::vector<std::string_view> f;
 
-    if (!reader.next(line))
-        fail(name, 0, "no point count: the file holds only blank lines and comments");
-    const LineNo countLine = line.number;
+    Line line = firstLine(reader, name, "no point count");
     if (splitFields(line.text, Sep::Blanks, f, 1) != 1 ||
         line.text.find(',') != std::string_view::npos) {
-        fail(name, countLine,
+        fail(name, line.number,
              "the first line must be the point count alone, found " + quoted(line.text));
     }
-    const std::size_t count = parseCount(f[0], name, countLine, "point count");
-    checkCountFits(count, 4, reader.remainingText(), name, countLine, "point",
-                   "points");  // "0,0\n" is the shortest line
-    ps.points.reserve(count);
+    const Declared points{parseCount(f[0], name, line.number, "point count"), line.number, "count",
+                          "point", "points"};
+    points.checkFits(4, reader, name);  // "0,0\n" is the shortest line
+    ps.points.reserve(points.count);
 
     bool warnedZ = false;
     while (reader.next(line)) {
-        if (ps.points.size() == count) {
-            fail(name, line.number,
-                 "extra point line: the count on line " + std::to_string(countLine) + " declares " +
-                     plural(count, "point", "points"));
-        }
+        points.checkNotExtra(ps.points.size(), name, line.number);
         // savePts writes "x,y" (or "x,y,z"); hand-made files often use blanks instead.
         const Sep sep = line.text.find(',') != std::string_view::npos ? Sep::Comma : Sep::Blanks;
         const std::size_t n = splitFields(line.text, sep, f, 3);
@@ -683,13 +738,7 @@ PointSet parsePts(std::string_view text, const std::string& name) {
         }
         ps.points.push_back(p);
     }
-    if (ps.points.size() < count) {
-        fail(name, reader.linesRead(),
-             "end of file: expected " + plural(count, "point", "points") + " (count on line " +
-                 std::to_string(countLine) + "), found " + std::to_string(ps.points.size()));
-    }
-    if (count == 0)
-        ps.warnings.push_back("count on line " + std::to_string(countLine) + " declares 0 points");
+    points.checkAllRead(ps, reader, name);
     return ps;
 }
 

@@ -241,41 +241,98 @@ void writeTextFile(const std::string& path, const std::function<void(std::ostrea
 // [SECTION] Triangle formats
 //-----------------------------------------------------------------------------------------------
 
-void writeNode(std::ostream& os, const std::vector<Vec2>& points, int indexBase) {
-    checkBase(indexBase, "writeNode");
-    Buffer out(os);
+namespace {
+
+// Appends `count` lines, each written by line(s, i) and ended here.
+template <class LineFn>
+void appendLines(Buffer& out, std::size_t count, LineFn&& line) {
     std::string& s = out.text();
-    appendInt(s, static_cast<std::int64_t>(points.size()));
-    s += " 2 0 0\n";
-    for (std::size_t i = 0; i < points.size(); ++i) {
-        appendInt(s, static_cast<std::int64_t>(i) + indexBase);
-        s += ' ';
-        appendShortest(s, points[i].x);
-        s += ' ';
-        appendShortest(s, points[i].y);
+    for (std::size_t i = 0; i < count; ++i) {
+        line(s, i);
         s += '\n';
         out.maybeFlush();
     }
+}
+
+// Triangle's file shape (.node, .ele, .neigh, .v.edge): the header "<count><rest>", then one line
+// per record: its number (from indexBase), then what fields(s, i) appends.
+template <class FieldsFn>
+void writeTriangleFormat(std::ostream& os, std::size_t count, const char* rest, int indexBase,
+                         FieldsFn&& fields) {
+    Buffer out(os);
+    appendInt(out.text(), static_cast<std::int64_t>(count));
+    out.text() += rest;
+    appendLines(out, count, [&](std::string& s, std::size_t i) {
+        appendInt(s, static_cast<std::int64_t>(i) + indexBase);
+        fields(s, i);
+    });
     out.flush();
+}
+
+// "x y", each the shortest text that reads back as the same double.
+void appendXY(std::string& s, Vec2 p) {
+    appendShortest(s, p.x);
+    s += ' ';
+    appendShortest(s, p.y);
+}
+
+// " a b c": triangle t's three vertices, numbered from base.
+void appendVertices(std::string& s, const Mesh& mesh, std::int32_t t, std::int64_t base) {
+    for (int i = 0; i < 3; ++i) {
+        s += ' ';
+        appendInt(s, static_cast<std::int64_t>(mesh.V[corner(t, i)]) + base);
+    }
+}
+
+// " a b c": the triangles across triangle t's three sides, numbered from base (-1: none).
+void appendNeighbours(std::string& s, const Mesh& mesh, std::int32_t t, std::int64_t base) {
+    for (int i = 0; i < 3; ++i) {
+        const std::int32_t o = mesh.O[corner(t, i)];
+        s += ' ';
+        appendInt(s, o == kNone ? -1 : static_cast<std::int64_t>(tri(o)) + base);
+    }
+}
+
+// " a b" for a Voronoi edge, " a -1 dx dy" for a ray (numbered from base).
+void appendVoronoiEdge(std::string& s, const VoronoiDiagram::Edge& e, std::int64_t base) {
+    s += ' ';
+    appendInt(s, static_cast<std::int64_t>(e.a) + base);
+    if (e.isRay()) {
+        s += " -1 ";
+        appendXY(s, e.direction);
+    } else {
+        s += ' ';
+        appendInt(s, static_cast<std::int64_t>(e.b) + base);
+    }
+}
+
+// A .node file of points: "<#points> 2 0 0", then "<i> x y".
+void writePointNode(std::ostream& os, const std::vector<Vec2>& points, int indexBase) {
+    writeTriangleFormat(os, points.size(), " 2 0 0\n", indexBase,
+                        [&](std::string& s, std::size_t i) {
+                            s += ' ';
+                            appendXY(s, points[i]);
+                        });
+}
+
+std::size_t triangleCount(const Mesh& mesh) {
+    return static_cast<std::size_t>(mesh.numTriangles());
+}
+
+}  // namespace
+
+void writeNode(std::ostream& os, const std::vector<Vec2>& points, int indexBase) {
+    checkBase(indexBase, "writeNode");
+    writePointNode(os, points, indexBase);
 }
 
 void writeEle(std::ostream& os, const Mesh& mesh, int indexBase) {
     checkBase(indexBase, "writeEle");
     checkTriangles(mesh, "writeEle");
-    Buffer out(os);
-    std::string& s = out.text();
-    appendInt(s, mesh.numTriangles());
-    s += " 3 0\n";
-    for (std::int32_t t = 0; t < mesh.numTriangles(); ++t) {
-        appendInt(s, static_cast<std::int64_t>(t) + indexBase);
-        for (int i = 0; i < 3; ++i) {
-            s += ' ';
-            appendInt(s, static_cast<std::int64_t>(mesh.V[corner(t, i)]) + indexBase);
-        }
-        s += '\n';
-        out.maybeFlush();
-    }
-    out.flush();
+    writeTriangleFormat(os, triangleCount(mesh), " 3 0\n", indexBase,
+                        [&](std::string& s, std::size_t t) {
+                            appendVertices(s, mesh, static_cast<std::int32_t>(t), indexBase);
+                        });
 }
 
 void writeNeigh(std::ostream& os, const Mesh& mesh, int indexBase) {
@@ -285,125 +342,70 @@ void writeNeigh(std::ostream& os, const Mesh& mesh, int indexBase) {
         throw std::invalid_argument("writeNeigh: |O| = " + std::to_string(mesh.O.size()) +
                                     " differs from |V| = " + std::to_string(mesh.V.size()));
     }
-    Buffer out(os);
-    std::string& s = out.text();
-    appendInt(s, mesh.numTriangles());
-    s += " 3\n";
-    for (std::int32_t t = 0; t < mesh.numTriangles(); ++t) {
-        appendInt(s, static_cast<std::int64_t>(t) + indexBase);
-        for (int i = 0; i < 3; ++i) {
-            const std::int32_t o = mesh.O[corner(t, i)];
-            s += ' ';
-            appendInt(s, o == kNone ? -1 : static_cast<std::int64_t>(tri(o)) + indexBase);
-        }
-        s += '\n';
-        out.maybeFlush();
-    }
-    out.flush();
+    writeTriangleFormat(os, triangleCount(mesh), " 3\n", indexBase,
+                        [&](std::string& s, std::size_t t) {
+                            appendNeighbours(s, mesh, static_cast<std::int32_t>(t), indexBase);
+                        });
 }
 
 void writeVoronoiNode(std::ostream& os, const VoronoiDiagram& diagram, int indexBase) {
     checkBase(indexBase, "writeVoronoiNode");
-    Buffer out(os);
-    std::string& s = out.text();
-    appendInt(s, static_cast<std::int64_t>(diagram.vertices.size()));
-    s += " 2 0 0\n";
-    for (std::size_t i = 0; i < diagram.vertices.size(); ++i) {
-        appendInt(s, static_cast<std::int64_t>(i) + indexBase);
-        s += ' ';
-        appendShortest(s, diagram.vertices[i].x);
-        s += ' ';
-        appendShortest(s, diagram.vertices[i].y);
-        s += '\n';
-        out.maybeFlush();
-    }
-    out.flush();
+    writePointNode(os, diagram.vertices, indexBase);
 }
 
 void writeVoronoiEdge(std::ostream& os, const VoronoiDiagram& diagram, int indexBase) {
     checkBase(indexBase, "writeVoronoiEdge");
-    Buffer out(os);
-    std::string& s = out.text();
-    appendInt(s, static_cast<std::int64_t>(diagram.edges.size()));
-    s += " 0\n";
-    for (std::size_t i = 0; i < diagram.edges.size(); ++i) {
-        const VoronoiDiagram::Edge& e = diagram.edges[i];
-        appendInt(s, static_cast<std::int64_t>(i) + indexBase);
-        s += ' ';
-        appendInt(s, static_cast<std::int64_t>(e.a) + indexBase);
-        if (e.isRay()) {
-            s += " -1 ";
-            appendShortest(s, e.direction.x);
-            s += ' ';
-            appendShortest(s, e.direction.y);
-        } else {
-            s += ' ';
-            appendInt(s, static_cast<std::int64_t>(e.b) + indexBase);
-        }
-        s += '\n';
-        out.maybeFlush();
-    }
-    out.flush();
+    writeTriangleFormat(
+        os, diagram.edges.size(), " 0\n", indexBase,
+        [&](std::string& s, std::size_t i) { appendVoronoiEdge(s, diagram.edges[i], indexBase); });
 }
 
 //-----------------------------------------------------------------------------------------------
 // [SECTION] OFF / OBJ
 //-----------------------------------------------------------------------------------------------
 
+namespace {
+
+// OFF's and OBJ's header: "<before><#vertices><between><#triangles><after>".
+void appendCounts(std::string& s, const Mesh& mesh, const char* before, const char* between,
+                  const char* after) {
+    s += before;
+    appendInt(s, mesh.numVertices());
+    s += between;
+    appendInt(s, mesh.numTriangles());
+    s += after;
+}
+
+// OFF's and OBJ's body: a line per point, "<pointLead>x y 0", then a line per triangle,
+// "<faceLead> a b c" with the vertices numbered from base.
+void appendPointsAndFaces(Buffer& out, const Mesh& mesh, const char* pointLead, char faceLead,
+                          int base) {
+    appendLines(out, mesh.G.size(), [&](std::string& s, std::size_t i) {
+        s += pointLead;
+        appendXY(s, mesh.G[i]);
+        s += " 0";
+    });
+    appendLines(out, triangleCount(mesh), [&](std::string& s, std::size_t t) {
+        s += faceLead;
+        appendVertices(s, mesh, static_cast<std::int32_t>(t), base);
+    });
+}
+
+}  // namespace
+
 void writeOff(std::ostream& os, const Mesh& mesh) {
     checkTriangles(mesh, "writeOff");
     Buffer out(os);
-    std::string& s = out.text();
-    s += "OFF\n";
-    appendInt(s, mesh.numVertices());
-    s += ' ';
-    appendInt(s, mesh.numTriangles());
-    s += " 0\n";
-    for (const Vec2& p : mesh.G) {
-        appendShortest(s, p.x);
-        s += ' ';
-        appendShortest(s, p.y);
-        s += " 0\n";
-        out.maybeFlush();
-    }
-    for (std::int32_t t = 0; t < mesh.numTriangles(); ++t) {
-        s += '3';
-        for (int i = 0; i < 3; ++i) {
-            s += ' ';
-            appendInt(s, mesh.V[corner(t, i)]);
-        }
-        s += '\n';
-        out.maybeFlush();
-    }
+    appendCounts(out.text(), mesh, "OFF\n", " ", " 0\n");
+    appendPointsAndFaces(out, mesh, "", '3', 0);
     out.flush();
 }
 
 void writeObj(std::ostream& os, const Mesh& mesh) {
     checkTriangles(mesh, "writeObj");
     Buffer out(os);
-    std::string& s = out.text();
-    s += "# Delaunay Lab: ";
-    appendInt(s, mesh.numVertices());
-    s += " vertices, ";
-    appendInt(s, mesh.numTriangles());
-    s += " triangles\n";
-    for (const Vec2& p : mesh.G) {
-        s += "v ";
-        appendShortest(s, p.x);
-        s += ' ';
-        appendShortest(s, p.y);
-        s += " 0\n";
-        out.maybeFlush();
-    }
-    for (std::int32_t t = 0; t < mesh.numTriangles(); ++t) {
-        s += 'f';
-        for (int i = 0; i < 3; ++i) {
-            s += ' ';
-            appendInt(s, static_cast<std::int64_t>(mesh.V[corner(t, i)]) + 1);
-        }
-        s += '\n';
-        out.maybeFlush();
-    }
+    appendCounts(out.text(), mesh, "# Delaunay Lab: ", " vertices, ", " triangles\n");
+    appendPointsAndFaces(out, mesh, "v ", 'f', 1);
     out.flush();
 }
 
@@ -582,150 +584,172 @@ void appendPoint(std::string& s, Vec2 p) {
     appendPx(s, p.y);
 }
 
+// ` name="value"`: an attribute in pixels.
+void appendAttribute(std::string& s, const char* name, double value) {
+    s += ' ';
+    s += name;
+    s += "=\"";
+    appendPx(s, value);
+    s += '"';
+}
+
 void appendLine(std::string& s, Vec2 a, Vec2 b) {
-    s += "<line x1=\"";
-    appendPx(s, a.x);
-    s += "\" y1=\"";
-    appendPx(s, a.y);
-    s += "\" x2=\"";
-    appendPx(s, b.x);
-    s += "\" y2=\"";
-    appendPx(s, b.y);
-    s += "\"/>\n";
+    s += "<line";
+    appendAttribute(s, "x1", a.x);
+    appendAttribute(s, "y1", a.y);
+    appendAttribute(s, "x2", b.x);
+    appendAttribute(s, "y2", b.y);
+    s += "/>\n";
 }
 
 void appendCircle(std::string& s, Vec2 c, double r) {
-    s += "<circle cx=\"";
-    appendPx(s, c.x);
-    s += "\" cy=\"";
-    appendPx(s, c.y);
-    s += "\" r=\"";
-    appendPx(s, r);
-    s += "\"/>\n";
+    s += "<circle";
+    appendAttribute(s, "cx", c.x);
+    appendAttribute(s, "cy", c.y);
+    appendAttribute(s, "r", r);
+    s += "/>\n";
 }
 
-}  // namespace
+// Triangle t exists and its three vertices are points of the mesh.
+bool validTriangle(const Mesh& mesh, std::int32_t t) {
+    if (t < 0 || t >= mesh.numTriangles()) return false;
+    for (int i = 0; i < 3; ++i) {
+        const std::int32_t v = mesh.V[corner(t, i)];
+        if (v < 0 || v >= mesh.numVertices()) return false;
+    }
+    return true;
+}
 
-void writeSvg(std::ostream& os, const Mesh& mesh, const SvgOptions& options) {
-    checkTriangles(mesh, "writeSvg");
-    const PixelMap pm(mesh.G, options.width);
-    const std::int32_t nt = mesh.numTriangles();
-    const bool haveO = mesh.O.size() == mesh.V.size();
-    auto validTriangle = [&](std::int32_t t) {
-        if (t < 0 || t >= nt) return false;
-        for (int i = 0; i < 3; ++i) {
-            const std::int32_t v = mesh.V[corner(t, i)];
-            if (v < 0 || v >= mesh.numVertices()) return false;
-        }
-        return true;
-    };
-
-    Buffer out(os);
-    std::string& s = out.text();
+void appendSvgHeader(std::string& s, const PixelMap& pm, const std::string& title) {
     s += "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n";
-    s += "<svg xmlns=\"http://www.w3.org/2000/svg\" version=\"1.1\" width=\"";
-    appendPx(s, pm.width());
-    s += "\" height=\"";
-    appendPx(s, pm.height());
-    s += "\" viewBox=\"0 0 ";
+    s += "<svg xmlns=\"http://www.w3.org/2000/svg\" version=\"1.1\"";
+    appendAttribute(s, "width", pm.width());
+    appendAttribute(s, "height", pm.height());
+    s += " viewBox=\"0 0 ";
     appendPx(s, pm.width());
     s += ' ';
     appendPx(s, pm.height());
     s += "\">\n";
-    const std::string title = xmlEscape(options.title);
     if (!title.empty()) s += "<title>" + title + "</title>\n";
     s += "<rect x=\"0\" y=\"0\" width=\"100%\" height=\"100%\" fill=\"#ffffff\"/>\n";
+}
 
-    if (!options.highlight.empty()) {
-        s += "<g class=\"highlight\" fill=\"#ffd54f\" fill-opacity=\"0.7\" stroke=\"none\">\n";
-        for (const std::int32_t t : options.highlight) {
-            if (!validTriangle(t)) continue;
-            const Vec2 a = pm.map(mesh.point(corner(t, 0))), b = pm.map(mesh.point(corner(t, 1))),
-                       c = pm.map(mesh.point(corner(t, 2)));
-            if (!isFinite(a) || !isFinite(b) || !isFinite(c)) continue;
-            s += "<polygon points=\"";
-            appendPoint(s, a);
-            s += ' ';
-            appendPoint(s, b);
-            s += ' ';
-            appendPoint(s, c);
-            s += "\"/>\n";
-            out.maybeFlush();
-        }
-        s += "</g>\n";
+void appendHighlight(Buffer& out, const Mesh& mesh, const PixelMap& pm,
+                     const std::vector<std::int32_t>& highlight) {
+    std::string& s = out.text();
+    s += "<g class=\"highlight\" fill=\"#ffd54f\" fill-opacity=\"0.7\" stroke=\"none\">\n";
+    for (const std::int32_t t : highlight) {
+        if (!validTriangle(mesh, t)) continue;
+        const Vec2 a = pm.map(mesh.point(corner(t, 0))), b = pm.map(mesh.point(corner(t, 1))),
+                   c = pm.map(mesh.point(corner(t, 2)));
+        if (!isFinite(a) || !isFinite(b) || !isFinite(c)) continue;
+        s += "<polygon points=\"";
+        appendPoint(s, a);
+        s += ' ';
+        appendPoint(s, b);
+        s += ' ';
+        appendPoint(s, c);
+        s += "\"/>\n";
+        out.maybeFlush();
     }
+    s += "</g>\n";
+}
 
-    if (options.circumcircles && nt > 0) {
-        s += "<g class=\"circumcircles\" fill=\"none\" stroke=\"#9e9e9e\" stroke-width=\"0.75\" "
-             "stroke-dasharray=\"4 3\">\n";
-        for (std::int32_t t = 0; t < nt; ++t) {
-            if (!validTriangle(t)) continue;
-            const Vec2 a = mesh.point(corner(t, 0));
-            const Vec2 cc = circumcenter(a, mesh.point(corner(t, 1)), mesh.point(corner(t, 2)));
-            const Vec2 pc = pm.map(cc), pa = pm.map(a);
-            const double r = std::hypot(pc.x - pa.x, pc.y - pa.y);
-            if (!isFinite(pc) || !std::isfinite(r)) continue;
-            appendCircle(s, pc, r);
-            out.maybeFlush();
-        }
-        s += "</g>\n";
+void appendCircumcircles(Buffer& out, const Mesh& mesh, const PixelMap& pm) {
+    std::string& s = out.text();
+    s += "<g class=\"circumcircles\" fill=\"none\" stroke=\"#9e9e9e\" stroke-width=\"0.75\" "
+         "stroke-dasharray=\"4 3\">\n";
+    for (std::int32_t t = 0; t < mesh.numTriangles(); ++t) {
+        if (!validTriangle(mesh, t)) continue;
+        const Vec2 a = mesh.point(corner(t, 0));
+        const Vec2 cc = circumcenter(a, mesh.point(corner(t, 1)), mesh.point(corner(t, 2)));
+        const Vec2 pc = pm.map(cc), pa = pm.map(a);
+        const double r = std::hypot(pc.x - pa.x, pc.y - pa.y);
+        if (!isFinite(pc) || !std::isfinite(r)) continue;
+        appendCircle(s, pc, r);
+        out.maybeFlush();
     }
+    s += "</g>\n";
+}
 
-    if (options.voronoi && nt > 0 && haveO) {
-        const VoronoiDiagram vd = buildVoronoi(mesh);
-        const auto [lo, hi] = pm.visibleBox();
-        s += "<g class=\"voronoi\" stroke=\"#d32f2f\" stroke-width=\"1.25\" "
-             "stroke-linecap=\"round\">\n";
-        for (const auto& [a, b] : clippedSegments(vd, lo, hi)) {
-            const Vec2 pa = pm.map(a), pb = pm.map(b);
-            if (!isFinite(pa) || !isFinite(pb)) continue;
-            appendLine(s, pa, pb);
-            out.maybeFlush();
-        }
-        s += "</g>\n";
+// The Voronoi edges clipped to the picture (the mesh has its O table).
+void appendVoronoi(Buffer& out, const Mesh& mesh, const PixelMap& pm) {
+    std::string& s = out.text();
+    const VoronoiDiagram vd = buildVoronoi(mesh);
+    const auto [lo, hi] = pm.visibleBox();
+    s += "<g class=\"voronoi\" stroke=\"#d32f2f\" stroke-width=\"1.25\" "
+         "stroke-linecap=\"round\">\n";
+    for (const auto& [a, b] : clippedSegments(vd, lo, hi)) {
+        const Vec2 pa = pm.map(a), pb = pm.map(b);
+        if (!isFinite(pa) || !isFinite(pb)) continue;
+        appendLine(s, pa, pb);
+        out.maybeFlush();
     }
+    s += "</g>\n";
+}
 
-    if (options.mesh && nt > 0) {
-        s += "<g class=\"mesh\" stroke=\"#1565c0\" stroke-width=\"1\" stroke-linecap=\"round\">\n";
-        // One line per edge: from the corner table when O is there, else per triangle side.
-        auto edge = [&](std::int32_t c) {
-            if (!validTriangle(tri(c))) return;
-            const Vec2 a = pm.map(mesh.point(next(c))), b = pm.map(mesh.point(prev(c)));
-            if (!isFinite(a) || !isFinite(b)) return;
-            appendLine(s, a, b);
-            out.maybeFlush();
-        };
-        if (haveO) {
-            forEachEdge(mesh, edge);
-        } else {
-            for (std::int32_t c = 0; c < mesh.numCorners(); ++c) edge(c);
-        }
-        s += "</g>\n";
+// One line per edge: from the corner table when O is there, else per triangle side.
+void appendMeshEdges(Buffer& out, const Mesh& mesh, const PixelMap& pm) {
+    std::string& s = out.text();
+    s += "<g class=\"mesh\" stroke=\"#1565c0\" stroke-width=\"1\" stroke-linecap=\"round\">\n";
+    auto edge = [&](std::int32_t c) {
+        if (!validTriangle(mesh, tri(c))) return;
+        const Vec2 a = pm.map(mesh.point(next(c))), b = pm.map(mesh.point(prev(c)));
+        if (!isFinite(a) || !isFinite(b)) return;
+        appendLine(s, a, b);
+        out.maybeFlush();
+    };
+    if (mesh.O.size() == mesh.V.size()) {
+        forEachEdge(mesh, edge);
+    } else {
+        for (std::int32_t c = 0; c < mesh.numCorners(); ++c) edge(c);
     }
+    s += "</g>\n";
+}
 
-    if (options.points && pm.any()) {
-        const std::size_t n = mesh.G.size();
-        const double r = n <= 200 ? 3.0 : n <= 5000 ? 1.75 : 0.9;
-        s += "<g class=\"points\" fill=\"#212121\" stroke=\"none\">\n";
-        for (const Vec2& p : mesh.G) {
-            const Vec2 q = pm.map(p);
-            if (!isFinite(q)) continue;
-            appendCircle(s, q, r);
-            out.maybeFlush();
-        }
-        s += "</g>\n";
+// The points as dots, smaller the more there are.
+void appendPoints(Buffer& out, const Mesh& mesh, const PixelMap& pm) {
+    std::string& s = out.text();
+    const std::size_t n = mesh.G.size();
+    const double r = n <= 200 ? 3.0 : n <= 5000 ? 1.75 : 0.9;
+    s += "<g class=\"points\" fill=\"#212121\" stroke=\"none\">\n";
+    for (const Vec2& p : mesh.G) {
+        const Vec2 q = pm.map(p);
+        if (!isFinite(q)) continue;
+        appendCircle(s, q, r);
+        out.maybeFlush();
     }
+    s += "</g>\n";
+}
 
-    if (!title.empty()) {
-        s += "<text x=\"";
-        appendPx(s, pm.margin() / 2);
-        s += "\" y=\"";
-        appendPx(s, pm.margin() * 0.6);
-        s += "\" font-family=\"sans-serif\" font-size=\"";
-        appendPx(s, std::clamp(pm.margin() * 0.45, 8.0, 18.0));
-        s += "\" fill=\"#424242\">" + title + "</text>\n";
-    }
-    s += "</svg>\n";
+// The title as text in the top margin (already escaped).
+void appendTitle(std::string& s, const PixelMap& pm, const std::string& title) {
+    s += "<text";
+    appendAttribute(s, "x", pm.margin() / 2);
+    appendAttribute(s, "y", pm.margin() * 0.6);
+    s += " font-family=\"sans-serif\"";
+    appendAttribute(s, "font-size", std::clamp(pm.margin() * 0.45, 8.0, 18.0));
+    s += " fill=\"#424242\">" + title + "</text>\n";
+}
+
+}  // namespace
+
+// The layers bottom to top: highlighted triangles, circumcircles, Voronoi edges, mesh edges,
+// points, then the title.
+void writeSvg(std::ostream& os, const Mesh& mesh, const SvgOptions& options) {
+    checkTriangles(mesh, "writeSvg");
+    const PixelMap pm(mesh.G, options.width);
+    const bool any = mesh.numTriangles() > 0;
+    Buffer out(os);
+    const std::string title = xmlEscape(options.title);
+    appendSvgHeader(out.text(), pm, title);
+    if (!options.highlight.empty()) appendHighlight(out, mesh, pm, options.highlight);
+    if (options.circumcircles && any) appendCircumcircles(out, mesh, pm);
+    if (options.voronoi && any && mesh.O.size() == mesh.V.size()) appendVoronoi(out, mesh, pm);
+    if (options.mesh && any) appendMeshEdges(out, mesh, pm);
+    if (options.points && pm.any()) appendPoints(out, mesh, pm);
+    if (!title.empty()) appendTitle(out.text(), pm, title);
+    out.text() += "</svg>\n";
     out.flush();
 }
 

@@ -1436,6 +1436,103 @@ static std::string historyFull(const Journal& journal, std::size_t target) {
            " operations; stop earlier, or use fewer points or the brio order (it walks far less)";
 }
 
+namespace {
+
+// A stop that cannot be planned: the lesson's file, the line, the stop's number (1-based).
+[[noreturn]] void stopError(const Lesson& lesson, std::size_t k, int line, const std::string& why) {
+    throw LessonError(lesson.file, line, static_cast<int>(k) + 1, why);
+}
+
+// run_to op:N: seeks the journal to operation N, after the previous stop and before the end.
+void runToOp(const Lesson& lesson, std::size_t k, Journal& journal, std::size_t target) {
+    const int line = lesson.stops[k].line;
+    if (target < journal.position()) {
+        stopError(lesson, k, line,
+                  "run_to op:" + std::to_string(target) + " is before the previous stop (op " +
+                      std::to_string(journal.position()) + ")");
+    }
+    journal.seek(target);
+    if (journal.budgetReached()) stopError(lesson, k, line, historyFull(journal, target));
+    if (journal.position() != target) {
+        stopError(lesson, k, line,
+                  "run_to op:" + std::to_string(target) + " is past the end of the run (" +
+                      std::to_string(journal.position()) + " operations)");
+    }
+}
+
+// run_to a breakpoint: runs until it is hit `count` times.
+void runToBreakpoint(const Lesson& lesson, std::size_t k, Journal& journal, Inserter& ins) {
+    const LessonStop& s = lesson.stops[k];
+    const Breakpoint& bp = *s.runTo;
+    for (int i = 0; i < s.count; ++i) {
+        const RunResult r =
+            runUntil(journal, ins, std::span(&bp, 1), std::numeric_limits<std::size_t>::max());
+        if (journal.budgetReached()) stopError(lesson, k, s.line, historyFull(journal, 0));
+        if (r.reason != StopReason::Hit) {
+            stopError(
+                lesson, k, s.line,
+                "run_to \"" + toString(bp) + "\" (" + explain(bp) + ") is not reached" +
+                    (s.count > 1
+                         ? " " + std::to_string(s.count) + " times (only " + std::to_string(i) + ")"
+                         : "") +
+                    ": the run ends after " + std::to_string(journal.position()) + " operations");
+        }
+    }
+}
+
+// The corner selected at stop k: the stop's `select` evaluated (with the previous selection
+// bound), else the previous selection while the mesh still has it.
+std::int32_t selectAtStop(const Lesson& lesson, std::size_t k, Inserter& ins,
+                          std::int32_t selected) {
+    if (selected >= ins.mesh().numCorners()) selected = kNone;  // the table shrank (Finalize)
+    const LessonStop& s = lesson.stops[k];
+    if (s.select.empty()) return selected;
+    const auto expr = CornerExpr::parse(s.select);
+    const auto bindings = selectionBinding(selected);
+    const ExprResult r = expr->evaluate(ins.mesh(), bindings, exprContext(ins));
+    if (!r.ok()) stopError(lesson, k, s.line, "select \"" + s.select + "\": " + r.error.message);
+    const ExprValue& v = *r.value;
+    if ((v.kind != ValueKind::Corner && v.kind != ValueKind::Number) || v.i < 0 ||
+        v.i >= ins.mesh().numCorners()) {
+        stopError(lesson, k, s.line,
+                  "select \"" + s.select + "\" is " + formatValue(v) +
+                      ", not a corner of the mesh (0.." +
+                      std::to_string(ins.mesh().numCorners() - 1) + ")");
+    }
+    return static_cast<std::int32_t>(v.i);
+}
+
+// What the player shows at stop k: position, caption, answer and the rendered text, after
+// checking the stop's figure and expectations.
+StopState stopStateAt(const Lesson& lesson, std::size_t k, Inserter& ins, Journal& journal,
+                      std::int32_t selected) {
+    const LessonStop& s = lesson.stops[k];
+    StopState state;
+    state.position = journal.position();
+    state.selected = selected;
+    if (const Op* op = journal.current()) {
+        state.caption = describe(*op, ins);
+        state.banner = "[" + std::to_string(journal.position() - 1) + "] " + toString(op->type) +
+                       ": " + state.caption;
+    }
+    if (!s.question.empty()) {
+        std::string why;
+        state.answer = computeAnswer(s.answer, ins, journal, selected, &why);
+        if (!state.answer)
+            stopError(lesson, k, s.answerLine, "the answer cannot be computed: " + why);
+    }
+    if (s.figure == "lifting-map" && !liftingMapAt(ins, journal.current())) {
+        stopError(lesson, k, s.line,
+                  "the lifting-map figure needs an in-circle test of a real triangle at "
+                  "the stop (just done, or next on the flip stack)");
+    }
+    renderStopText(lesson, k, ins, journal, selected, state);
+    checkExpectations(lesson, k, ins, journal, selected);
+    return state;
+}
+
+}  // namespace
+
 LessonPlan planLesson(const Lesson& lesson) {
     auto ins = makeInserter(lesson);
     Journal journal(*ins);
@@ -1443,80 +1540,13 @@ LessonPlan planLesson(const Lesson& lesson) {
     std::int32_t selected = kNone;
     for (std::size_t k = 0; k < lesson.stops.size(); ++k) {
         const LessonStop& s = lesson.stops[k];
-        const int stopNo = static_cast<int>(k) + 1;
-        auto fail = [&](int line, const std::string& why) {
-            throw LessonError(lesson.file, line, stopNo, why);
-        };
-        if (s.runTo) {
-            const Breakpoint& bp = *s.runTo;
-            if (bp.kind == BreakKind::Op) {
-                const auto target = static_cast<std::size_t>(*bp.param);
-                if (target < journal.position()) {
-                    fail(s.line, "run_to op:" + std::to_string(target) +
-                                     " is before the previous stop (op " +
-                                     std::to_string(journal.position()) + ")");
-                }
-                journal.seek(target);
-                if (journal.budgetReached()) fail(s.line, historyFull(journal, target));
-                if (journal.position() != target) {
-                    fail(s.line, "run_to op:" + std::to_string(target) +
-                                     " is past the end of the run (" +
-                                     std::to_string(journal.position()) + " operations)");
-                }
-            } else {
-                for (int i = 0; i < s.count; ++i) {
-                    const RunResult r = runUntil(journal, *ins, std::span(&bp, 1),
-                                                 std::numeric_limits<std::size_t>::max());
-                    if (journal.budgetReached()) fail(s.line, historyFull(journal, 0));
-                    if (r.reason != StopReason::Hit) {
-                        fail(s.line,
-                             "run_to \"" + toString(bp) + "\" (" + explain(bp) +
-                                 ") is not reached" +
-                                 (s.count > 1 ? " " + std::to_string(s.count) + " times (only " +
-                                                    std::to_string(i) + ")"
-                                              : "") +
-                                 ": the run ends after " + std::to_string(journal.position()) +
-                                 " operations");
-                    }
-                }
-            }
+        if (s.runTo && s.runTo->kind == BreakKind::Op) {
+            runToOp(lesson, k, journal, static_cast<std::size_t>(*s.runTo->param));
+        } else if (s.runTo) {
+            runToBreakpoint(lesson, k, journal, *ins);
         }
-        if (selected >= ins->mesh().numCorners()) selected = kNone;  // the table shrank (Finalize)
-        if (!s.select.empty()) {
-            const auto expr = CornerExpr::parse(s.select);
-            const auto bindings = selectionBinding(selected);
-            const ExprResult r = expr->evaluate(ins->mesh(), bindings, exprContext(*ins));
-            if (!r.ok()) fail(s.line, "select \"" + s.select + "\": " + r.error.message);
-            const ExprValue& v = *r.value;
-            if ((v.kind != ValueKind::Corner && v.kind != ValueKind::Number) || v.i < 0 ||
-                v.i >= ins->mesh().numCorners()) {
-                fail(s.line, "select \"" + s.select + "\" is " + formatValue(v) +
-                                 ", not a corner of the mesh (0.." +
-                                 std::to_string(ins->mesh().numCorners() - 1) + ")");
-            }
-            selected = static_cast<std::int32_t>(v.i);
-        }
-        StopState state;
-        state.position = journal.position();
-        state.selected = selected;
-        if (const Op* op = journal.current()) {
-            state.caption = describe(*op, *ins);
-            state.banner = "[" + std::to_string(journal.position() - 1) + "] " +
-                           toString(op->type) + ": " + state.caption;
-        }
-        if (!s.question.empty()) {
-            std::string why;
-            state.answer = computeAnswer(s.answer, *ins, journal, selected, &why);
-            if (!state.answer) fail(s.answerLine, "the answer cannot be computed: " + why);
-        }
-        if (s.figure == "lifting-map" && !liftingMapAt(*ins, journal.current())) {
-            fail(s.line,
-                 "the lifting-map figure needs an in-circle test of a real triangle at "
-                 "the stop (just done, or next on the flip stack)");
-        }
-        renderStopText(lesson, k, *ins, journal, selected, state);
-        checkExpectations(lesson, k, *ins, journal, selected);
-        plan.stops.push_back(std::move(state));
+        selected = selectAtStop(lesson, k, *ins, selected);
+        plan.stops.push_back(stopStateAt(lesson, k, *ins, journal, selected));
     }
     runUntil(journal, *ins, {}, std::numeric_limits<std::size_t>::max());
     plan.totalOps = journal.position();

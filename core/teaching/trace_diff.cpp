@@ -280,21 +280,28 @@ void TraceReplay::dropTrianglesOutside(const std::vector<bool>& keep) {
 
 namespace {
 
-// The flip's removed and new edges from the two triangles it left: they share the new edge;
-// their other vertices are the ends of the removed one.
-std::string flipText(const std::vector<Triple>& two) {
-    if (two.size() != 2) return "";
+// The flip a Flip op made, from the two triangles it left: they share the new edge; their
+// other vertices are the ends of the removed one.
+std::optional<FlipMade> flipOf(const std::vector<Triple>& two) {
+    if (two.size() != 2) return std::nullopt;
     std::vector<std::int32_t> shared, other;
     for (std::int32_t v : two[0])
         (std::count(two[1].begin(), two[1].end(), v) ? shared : other).push_back(v);
     for (std::int32_t v : two[1]) {
         if (!std::count(two[0].begin(), two[0].end(), v)) other.push_back(v);
     }
-    if (shared.size() != 2 || other.size() != 2) return "";
-    auto edge = [](std::int32_t x, std::int32_t y) {
-        return std::to_string(std::min(x, y)) + "-" + std::to_string(std::max(x, y));
+    if (shared.size() != 2 || other.size() != 2) return std::nullopt;
+    return FlipMade{{other[0], other[1]}, {shared[0], shared[1]}};
+}
+
+// The flip's removed and new edges, from the two triangles it left ("" when they are no flip's).
+std::string flipText(const std::vector<Triple>& two) {
+    const std::optional<FlipMade> f = flipOf(two);
+    if (!f) return "";
+    auto edge = [](std::array<std::int32_t, 2> e) {
+        return std::to_string(std::min(e[0], e[1])) + "-" + std::to_string(std::max(e[0], e[1]));
     };
-    return "flipped edge " + edge(other[0], other[1]) + " to " + edge(shared[0], shared[1]);
+    return "flipped edge " + edge(f->removed) + " to " + edge(f->added);
 }
 
 // Sorted multiset difference: in a but not b.
@@ -435,20 +442,6 @@ std::size_t lastChange(const TraceFile& f, const Step& step) {
     return step.lead;
 }
 
-// The flip a Flip op made, from the two triangles it left: they share the new edge; their
-// other vertices are the ends of the removed one.
-std::optional<FlipMade> flipOf(const std::vector<Triple>& two) {
-    if (two.size() != 2) return std::nullopt;
-    std::vector<std::int32_t> shared, other;
-    for (std::int32_t v : two[0])
-        (std::count(two[1].begin(), two[1].end(), v) ? shared : other).push_back(v);
-    for (std::int32_t v : two[1]) {
-        if (!std::count(two[0].begin(), two[0].end(), v)) other.push_back(v);
-    }
-    if (shared.size() != 2 || other.size() != 2) return std::nullopt;
-    return FlipMade{{other[0], other[1]}, {shared[0], shared[1]}};
-}
-
 std::string stepName(const TraceOp& lead, int insertion, int insertions) {
     const std::string v = lead.vertex ? std::to_string(*lead.vertex) : "?";
     switch (lead.type) {
@@ -463,33 +456,57 @@ std::string stepName(const TraceOp& lead, int insertion, int insertions) {
     }
 }
 
+// The insertions of a run: its steps but the start and Finalize.
+int countInsertions(const TraceFile& ref, const std::vector<Step>& steps) {
+    int insertions = 0;
+    for (const Step& st : steps)
+        insertions +=
+            !(ref.ops[st.lead].type == OpType::Start || ref.ops[st.lead].type == OpType::Finalize);
+    return insertions;
+}
+
+// Step k exists in one trace only: which one ended, and what the other does next.
+std::string stepEndMismatch(const TraceFile& ref, const TraceFile& student,
+                            const std::vector<Step>& rs, const std::vector<Step>& ss,
+                            std::size_t k) {
+    if (k >= ss.size()) {
+        const TraceOp& next = ref.ops[rs[k].lead];
+        return "your trace ends early: ours goes on with " + std::string(toString(next.type)) +
+               (next.vertex ? " of point " + std::to_string(*next.vertex) : "") + " (" + ref.name +
+               ":" + std::to_string(next.line) + ")";
+    }
+    return "your trace goes on after ours has ended, with " +
+           std::string(toString(student.ops[ss[k].lead].type)) + " (" + student.name + ":" +
+           std::to_string(student.ops[ss[k].lead].line) + ")";
+}
+
+// Replays the student's step; the flips it made, in order.
+std::vector<FlipMade> replayStep(Tracked& s, const TraceFile& student, const Step& step) {
+    std::vector<FlipMade> flips;
+    for (std::size_t j = step.begin; j < step.end; ++j) {
+        s.apply(student.ops[j]);
+        if (student.ops[j].type != OpType::Flip) continue;
+        if (auto f = flipOf(s.replay().touched())) flips.push_back(*f);
+    }
+    return flips;
+}
+
+// Replays both traces step by step (the start, each insertion, Finalize) and stops at the first
+// step after which the student's triangles differ from ours, with the mesh check's reason.
 TraceDiff diffInsertions(const TraceFile& ref, const TraceFile& student) {
     TraceDiff d;
     TriangleBalance balance;
     Tracked r(balance, +1), s(balance, -1);
     const std::vector<bool> realVertices = finalVertices(ref);
     const std::vector<Step> rs = stepsOf(ref), ss = stepsOf(student);
-    int insertions = 0;
-    for (const Step& st : rs)
-        insertions +=
-            !(ref.ops[st.lead].type == OpType::Start || ref.ops[st.lead].type == OpType::Finalize);
+    const int insertions = countInsertions(ref, rs);
     int insertion = 0;
     for (std::size_t k = 0; k < std::max(rs.size(), ss.size()); ++k) {
-        d.refOp = k < rs.size() ? rs[k].lead : ref.ops.size();
-        d.studentOp = k < ss.size() ? ss[k].lead : student.ops.size();
-        d.equal = false;
-        if (k >= ss.size()) {
-            const TraceOp& next = ref.ops[rs[k].lead];
-            d.what = "your trace ends early: ours goes on with " +
-                     std::string(toString(next.type)) +
-                     (next.vertex ? " of point " + std::to_string(*next.vertex) : "") + " (" +
-                     ref.name + ":" + std::to_string(next.line) + ")";
-            return d;
-        }
-        if (k >= rs.size()) {
-            d.what = "your trace goes on after ours has ended, with " +
-                     std::string(toString(student.ops[ss[k].lead].type)) + " (" + student.name +
-                     ":" + std::to_string(student.ops[ss[k].lead].line) + ")";
+        if (k >= rs.size() || k >= ss.size()) {
+            d.refOp = k < rs.size() ? rs[k].lead : ref.ops.size();
+            d.studentOp = k < ss.size() ? ss[k].lead : student.ops.size();
+            d.equal = false;
+            d.what = stepEndMismatch(ref, student, rs, ss, k);
             return d;
         }
         const TraceOp& lead = ref.ops[rs[k].lead];
@@ -497,14 +514,8 @@ TraceDiff diffInsertions(const TraceFile& ref, const TraceFile& student) {
                     : lead.type == OpType::Finalize ? insertions + 1
                                                     : insertion + 1;
         for (std::size_t i = rs[k].begin; i < rs[k].end; ++i) r.apply(ref.ops[i]);
-        std::vector<FlipMade> flips;
-        for (std::size_t j = ss[k].begin; j < ss[k].end; ++j) {
-            s.apply(student.ops[j]);
-            if (student.ops[j].type != OpType::Flip) continue;
-            if (auto f = flipOf(s.replay().touched())) flips.push_back(*f);
-        }
+        const std::vector<FlipMade> flips = replayStep(s, student, ss[k]);
         if (bareFinalize(student.ops[ss[k].lead])) s.dropOutside(realVertices);
-        d.equal = true;
         ++d.compared;
         if (balance.equal()) continue;
         const bool inserts = lead.type == OpType::Split || lead.type == OpType::SplitEdge;
@@ -534,6 +545,95 @@ TraceDiff diffInsertions(const TraceFile& ref, const TraceFile& student) {
 
 // ---- Op by op ----------------------------------------------------------------------------
 
+// A difference found op by op: the line that names it and its evidence.
+struct Mismatch {
+    std::string what;
+    std::vector<std::string> details;
+};
+
+// One trace has ended (i or j past its end) while the other goes on.
+std::string endMismatch(const TraceFile& ref, const TraceFile& student, std::size_t i,
+                        std::size_t j) {
+    if (j == student.ops.size()) {
+        return "the student's trace ends early: the reference goes on with " +
+               std::string(toString(ref.ops[i].type)) + " (" + ref.name + ":" +
+               std::to_string(ref.ops[i].line) + ")";
+    }
+    return "the student's trace goes on after the reference has ended, with " +
+           std::string(toString(student.ops[j].type)) + " (" + student.name + ":" +
+           std::to_string(student.ops[j].line) + ")";
+}
+
+// The two ops themselves differ: type, vertex, or (all ops compared) the in-circle answer.
+std::optional<std::string> opMismatch(const TraceOp& a, const TraceOp& b,
+                                      const DiffOptions& options) {
+    if (a.type != b.type) {
+        return std::string("the reference does ") + toString(a.type) + ", the student " +
+               toString(b.type);
+    }
+    if (a.vertex && b.vertex && *a.vertex != *b.vertex) {
+        return std::string(toString(a.type)) + " of vertex " + std::to_string(*a.vertex) +
+               " in the reference, of vertex " + std::to_string(*b.vertex) +
+               " in the student's run";
+    }
+    if (options.allOps && a.sign && b.sign && *a.sign != *b.sign) {
+        return "the in-circle test answers " + std::to_string(*a.sign) + " in the reference, " +
+               std::to_string(*b.sign) + " in the student's run";
+    }
+    return std::nullopt;
+}
+
+// After op a the two sets of triangles differ: which triangles, and the flips that made them.
+Mismatch triangleMismatch(const TraceOp& a, const Tracked& r, const Tracked& s) {
+    const auto rt = r.replay().triangles(), st = s.replay().triangles();
+    const auto onlyRef = minus(rt, st), onlyStu = minus(st, rt);
+    Mismatch m{
+        std::string("the triangles differ after ") + toString(a.type) +
+            (a.vertex && *a.vertex != kNone ? " (vertex " + std::to_string(*a.vertex) + ")" : ""),
+        {}};
+    if (a.type == OpType::Flip) {
+        const std::string fr = flipText(r.replay().touched()), fs = flipText(s.replay().touched());
+        if (!fr.empty()) m.details.push_back("reference: " + fr);
+        if (!fs.empty()) m.details.push_back("student:   " + fs);
+    }
+    m.details.push_back("triangles only in the reference: " + triplesText(onlyRef));
+    m.details.push_back("triangles only in the student's: " + triplesText(onlyStu));
+    std::size_t flippedOrientation = 0;
+    for (const Triple& t : onlyStu)
+        flippedOrientation += std::binary_search(onlyRef.begin(), onlyRef.end(), reversed(t));
+    if (flippedOrientation) {
+        m.details.push_back(
+            std::to_string(flippedOrientation) +
+            " of the student's triangles are reference triangles in the other orientation "
+            "(clockwise): list corners counter-clockwise, y up");
+    }
+    return m;
+}
+
+// Same triangles after op a, compared corner by corner: the first V, then O, that differs.
+std::optional<Mismatch> cornerMismatch(const TraceOp& a, const Tracked& r, const Tracked& s) {
+    const std::int32_t cv = firstCornerDiff(r.replay().V(), s.replay().V());
+    if (cv != kNone) {
+        return Mismatch{
+            std::string("same triangles, but the corners differ after ") + toString(a.type) +
+                ": V[" + std::to_string(cv) + "] is " + cell(r.replay().V(), cv) +
+                " in the reference, " + cell(s.replay().V(), cv) + " in the student's run",
+            {"the paper's convention: a split keeps the old triangle's corners (it becomes "
+             "(a, b, v)) "
+             "and appends (b, c, v) and (c, a, v); a flip rewrites its two triangles in "
+             "place"}};
+    }
+    if (!s.replay().hasO()) return std::nullopt;
+    const std::int32_t co = firstCornerDiff(r.replay().O(), s.replay().O());
+    if (co == kNone) return std::nullopt;
+    return Mismatch{std::string("same triangles and V, but O differs after ") + toString(a.type) +
+                        ": O[" + std::to_string(co) + "] is " + cell(r.replay().O(), co) +
+                        " in the reference, " + cell(s.replay().O(), co) + " in the student's run",
+                    {}};
+}
+
+// Replays both traces op by op (only the compared ops, unless options.allOps) and stops at the
+// first op where the ops or the meshes they leave differ.
 TraceDiff diffByOp(const TraceFile& ref, const TraceFile& student, const DiffOptions& options) {
     TraceDiff d;
     TriangleBalance balance;
@@ -541,9 +641,10 @@ TraceDiff diffByOp(const TraceFile& ref, const TraceFile& student, const DiffOpt
     auto compared = [&](const TraceOp& op) { return options.allOps || op.changesMesh(); };
     const std::vector<bool> realVertices = finalVertices(ref);
     std::size_t i = 0, j = 0;
-    auto fail = [&](std::string what) {
+    auto fail = [&](Mismatch m) {
         d.equal = false;
-        d.what = std::move(what);
+        d.what = std::move(m.what);
+        d.details = std::move(m.details);
         d.refOp = i;
         d.studentOp = j;
         return d;
@@ -554,85 +655,17 @@ TraceDiff diffByOp(const TraceFile& ref, const TraceFile& student, const DiffOpt
         while (j < student.ops.size() && !compared(student.ops[j])) s.apply(student.ops[j++]);
         const bool refDone = i == ref.ops.size(), stuDone = j == student.ops.size();
         if (refDone && stuDone) break;
-        if (stuDone) {
-            return fail("the student's trace ends early: the reference goes on with " +
-                        std::string(toString(ref.ops[i].type)) + " (" + ref.name + ":" +
-                        std::to_string(ref.ops[i].line) + ")");
-        }
-        if (refDone) {
-            return fail("the student's trace goes on after the reference has ended, with " +
-                        std::string(toString(student.ops[j].type)) + " (" + student.name + ":" +
-                        std::to_string(student.ops[j].line) + ")");
-        }
+        if (refDone || stuDone) return fail({endMismatch(ref, student, i, j), {}});
         const TraceOp& a = ref.ops[i];
         const TraceOp& b = student.ops[j];
-        if (a.type != b.type) {
-            return fail(std::string("the reference does ") + toString(a.type) + ", the student " +
-                        toString(b.type));
-        }
-        if (a.vertex && b.vertex && *a.vertex != *b.vertex) {
-            return fail(std::string(toString(a.type)) + " of vertex " + std::to_string(*a.vertex) +
-                        " in the reference, of vertex " + std::to_string(*b.vertex) +
-                        " in the student's run");
-        }
-        if (options.allOps && a.sign && b.sign && *a.sign != *b.sign) {
-            return fail("the in-circle test answers " + std::to_string(*a.sign) +
-                        " in the reference, " + std::to_string(*b.sign) + " in the student's run");
-        }
+        if (auto what = opMismatch(a, b, options)) return fail({std::move(*what), {}});
         r.apply(a);
         s.apply(b);
         if (bareFinalize(b)) s.dropOutside(realVertices);
         ++d.compared;
-        if (!balance.equal()) {
-            const auto rt = r.replay().triangles(), st = s.replay().triangles();
-            const auto onlyRef = minus(rt, st), onlyStu = minus(st, rt);
-            TraceDiff out =
-                fail(std::string("the triangles differ after ") + toString(a.type) +
-                     (a.vertex && *a.vertex != kNone ? " (vertex " + std::to_string(*a.vertex) + ")"
-                                                     : ""));
-            if (a.type == OpType::Flip) {
-                const std::string fr = flipText(r.replay().touched()),
-                                  fs = flipText(s.replay().touched());
-                if (!fr.empty()) out.details.push_back("reference: " + fr);
-                if (!fs.empty()) out.details.push_back("student:   " + fs);
-            }
-            out.details.push_back("triangles only in the reference: " + triplesText(onlyRef));
-            out.details.push_back("triangles only in the student's: " + triplesText(onlyStu));
-            std::size_t flippedOrientation = 0;
-            for (const Triple& t : onlyStu)
-                flippedOrientation +=
-                    std::binary_search(onlyRef.begin(), onlyRef.end(), reversed(t));
-            if (flippedOrientation) {
-                out.details.push_back(
-                    std::to_string(flippedOrientation) +
-                    " of the student's triangles are reference triangles in the other orientation "
-                    "(clockwise): list corners counter-clockwise, y up");
-            }
-            return out;
-        }
+        if (!balance.equal()) return fail(triangleMismatch(a, r, s));
         if (options.corners && !bareFinalize(b)) {
-            const std::int32_t cv = firstCornerDiff(r.replay().V(), s.replay().V());
-            if (cv != kNone) {
-                TraceDiff out = fail(std::string("same triangles, but the corners differ after ") +
-                                     toString(a.type) + ": V[" + std::to_string(cv) + "] is " +
-                                     cell(r.replay().V(), cv) + " in the reference, " +
-                                     cell(s.replay().V(), cv) + " in the student's run");
-                out.details.push_back(
-                    "the paper's convention: a split keeps the old triangle's corners (it becomes "
-                    "(a, b, v)) "
-                    "and appends (b, c, v) and (c, a, v); a flip rewrites its two triangles in "
-                    "place");
-                return out;
-            }
-            if (s.replay().hasO()) {
-                const std::int32_t co = firstCornerDiff(r.replay().O(), s.replay().O());
-                if (co != kNone) {
-                    return fail(std::string("same triangles and V, but O differs after ") +
-                                toString(a.type) + ": O[" + std::to_string(co) + "] is " +
-                                cell(r.replay().O(), co) + " in the reference, " +
-                                cell(s.replay().O(), co) + " in the student's run");
-                }
-            }
+            if (auto m = cornerMismatch(a, r, s)) return fail(std::move(*m));
         }
         ++i;
         ++j;

@@ -177,6 +177,7 @@ struct Scene {
     // top-left; NaN: none): later labels avoid earlier ones (labels.cpp).
     mutable LabelBoxes labels{};
     mutable std::vector<ImVec2> vertexLabelAt{};
+    mutable std::optional<ImVec2> selectedLabelAt{};  // where the selected corner's label went
 
     ImVec2 screen(std::int32_t v) const { return toIm(view.toScreen(m.G[v])); }
     bool virtualTri(std::int32_t t) const { return running && ins.isVirtualTriangle(t); }
@@ -524,6 +525,23 @@ void DrawVoronoi(const Scene& s) {
     }
 }
 
+// Where corner c's label goes, from its anchor `a` in triangle p (a ghost's: its hull edge and
+// the edge's midpoint), clear of the labels placed before it; registered.
+ImVec2 placeCornerLabel(const Scene& s, std::int32_t c, bool ghost, ImVec2 a, const ImVec2 (&p)[3],
+                        ImVec2 size) {
+    if (c == s.st.selection.corner)  // room for the selection's disc (DrawSelection)
+        size = ImVec2(std::max(size.x, 24.0f), std::max(size.y, 22.0f));
+    if (!ghost) return placeAlong(s.labels, s.screen(s.m.V[c]), a, p, size);
+    // Beside the hull edge: further along it while another label is there.
+    const ImVec2 d((p[1].x - p[0].x) * 0.15f, (p[1].y - p[0].y) * 0.15f);
+    const ImVec2 in((p[2].x - a.x) * 0.35f, (p[2].y - a.y) * 0.35f);
+    return placeFirstFree(
+        s.labels,
+        {a, ImVec2(a.x + in.x, a.y + in.y), ImVec2(a.x + 2 * in.x, a.y + 2 * in.y),
+         ImVec2(a.x + d.x, a.y + d.y), ImVec2(a.x - d.x, a.y - d.y)},
+        size);
+}
+
 void DrawLabels(const Scene& s, std::int32_t& hoveredCorner, ImVec2 mouse, bool mouseInCanvas) {
     const Mesh& m = s.m;
     const Overlays& ov = s.st.overlays;
@@ -567,9 +585,9 @@ void DrawLabels(const Scene& s, std::int32_t& hoveredCorner, ImVec2 mouse, bool 
             const ImVec2 centre((p[0].x + p[1].x + p[2].x) / 3, (p[0].y + p[1].y + p[2].y) / 3);
             if (maxX - minX > 40 && maxY - minY > 30 && s.room(48 + s.pointReserve())) {
                 std::snprintf(buf, sizeof buf, "t%d", t);
-                LabelBox(s.dl, mono, fs, centre, s.pal.triangleId, IM_COL32(255, 255, 255, 200),
-                         buf);
-                s.labels.add(centre, mono->CalcTextSizeA(fs, 1e9f, 0, buf));
+                const ImVec2 at =
+                    placeInside(s.labels, p, centre, mono->CalcTextSizeA(fs, 1e9f, 0, buf));
+                LabelBox(s.dl, mono, fs, at, s.pal.triangleId, IM_COL32(255, 255, 255, 200), buf);
             }
         }
         for (int k = 0; k < 3; ++k) {
@@ -589,13 +607,12 @@ void DrawLabels(const Scene& s, std::int32_t& hoveredCorner, ImVec2 mouse, bool 
             // corner itself says so.
             const bool ghostCorner = ghost && s.ins.isVirtual(m.V[c]);
             std::snprintf(buf, sizeof buf, ghostCorner ? "%d g" : "%d", c);
-            if (!ghost)
-                a = placeAlong(s.labels, s.screen(m.V[c]), a, p,
-                               mono->CalcTextSizeA(fs, 1e9f, 0, buf));
+            a = placeCornerLabel(s, c, ghost, a, p, mono->CalcTextSizeA(fs, 1e9f, 0, buf));
             const ImU32 text = isChanged ? IM_COL32(255, 255, 255, 255)
                                : ghost   ? s.pal.ghostId
                                          : s.pal.cornerId;
             LabelBox(s.dl, mono, fs, a, text, isChanged ? s.pal.cornerChanged : 0, buf);
+            if (c == s.st.selection.corner) s.selectedLabelAt = a;
         }
     }
 }
@@ -665,6 +682,7 @@ void DrawSelection(const Scene& s) {
         int k;
         if (s.hullEdge(tri(sel.corner), u, v, k)) s.edge(u, v, s.pal.selected, w, true);
         if (s.anchor(sel.corner, a)) {
+            if (s.selectedLabelAt) a = *s.selectedLabelAt;  // on its label, wherever that went
             s.dl->AddCircleFilled(a, 11, s.pal.selected);
             char buf[16];
             std::snprintf(buf, sizeof buf, "%d", sel.corner);

@@ -41,7 +41,7 @@ struct OpChanges {
 void ShowGoToCorner(AppState& st) {
     const Mesh& m = st.engine.mesh();
     int jump = st.selection.corner == kNone ? 0 : st.selection.corner;
-    ImGui::SetNextItemWidth(110);
+    ImGui::SetNextItemWidth(ImGui::GetFontSize() * 5.5f);  // the number and its - + buttons
     if (ImGui::InputInt("Go to corner", &jump, 1, 100, ImGuiInputTextFlags_EnterReturnsTrue)) {
         st.select(std::clamp(jump, 0, std::max(0, m.numCorners() - 1)));
         st.selection.jumpToCorner = st.selection.corner;

@@ -71,8 +71,9 @@ void DrawGhostTriangles(AppState& st, ImDrawList* dl) {
         if (st.overlays.triangleIds) {
             const std::string label = "ghost t" + std::to_string(t);
             const ImVec2 size = ImGui::CalcTextSize(label.c_str());
-            const ImVec2 c((p[0].x + p[1].x + p[2].x + p[3].x) / 4 - size.x / 2,
-                           (p[0].y + p[1].y + p[2].y + p[3].y) / 4 - size.y / 2);
+            // A third of the way along the band: its middle is the ghost corner's label's.
+            const ImVec2 c(p[0].x + (p[1].x - p[0].x) * 0.3f + float(n.x) / 2 - size.x / 2,
+                           p[0].y + (p[1].y - p[0].y) * 0.3f + float(n.y) / 2 - size.y / 2);
             dl->AddText(c, IM_COL32(90, 95, 110, 255), label.c_str());
         }
         ++drawn;

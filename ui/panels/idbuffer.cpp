@@ -6,6 +6,7 @@
 // in beside the CPU one.
 #include "core/engine/predicates.h"
 #include "ui/gui.h"
+#include "ui/lesson_player.h"
 #include "ui/panels/panels.h"
 #include "ui/render/renderer.h"
 #include "ui/render/triangle_ids.h"
@@ -245,18 +246,19 @@ struct ImageLayout {
     float sx = 0, sy = 0;       // screen px per texel
 };
 
-ImageLayout LayOutImage(const IdBufferView& v) {
+ImageLayout LayOutImage(const AppState& st, const IdBufferView& v) {
     constexpr int kR = kMagnifierRadius;
     ImageLayout L;
     const ImVec2 avail = ImGui::GetContentRegionAvail();
     L.cell = std::clamp(std::floor(ImGui::GetFontSize() * 0.6f), 6.0f,
                         std::floor(avail.x * 0.3f / (2 * kR + 1)));
     L.sideW = std::max((2 * kR + 1) * L.cell + 16, ImGui::CalcTextSize("RGBA 00 00 00 00").x + 8);
-    // As tall as the panel allows, but never so small it cannot be read (the panel scrolls then).
+    // As tall as the panel allows, but never so small it cannot be read (the panel scrolls then;
+    // a slide does not scroll: there it fits).
     const float widthLeft = avail.x - L.sideW - ImGui::GetStyle().ItemSpacing.x;
     const float side =
         std::max({80.0f, std::min(widthLeft, avail.y - ImGui::GetFrameHeightWithSpacing()),
-                  0.6f * widthLeft});
+                  slideMode(st) ? 0.0f : 0.6f * widthLeft});
     const float fit = side / static_cast<float>(std::max(v.texW, v.texH));
     L.size = ImVec2(std::floor(v.texW * fit), std::floor(v.texH * fit));
     L.sx = L.size.x / static_cast<float>(v.texW);
@@ -289,6 +291,7 @@ bool DrawBufferImage(AppState& st, const IdBufferView& v, const IdBufferFrame& f
                      const ImageLayout& L) {
     ImGui::Image(v.image.id(), L.size);
     RecordItem(st, "idbuffer-image");
+    st.itemRects["idbuffer-image-whole"] = {L.p0.x, L.p0.y, L.p0.x + L.size.x, L.p0.y + L.size.y};
     const bool hovered = ImGui::IsItemHovered();
     ImDrawList* dl = ImGui::GetWindowDrawList();
     dl->AddRect(ImVec2(L.p0.x - 1, L.p0.y - 1),
@@ -411,14 +414,15 @@ void IdBufferBody(AppState& st) {
     ShowLastLocate(st);
 
     // ---- The image, and beside it the pixel under the mouse -----------------------------------
-    const ImageLayout L = LayOutImage(v);
+    const ImageLayout L = LayOutImage(st, v);
     const bool hovered = DrawBufferImage(st, v, f, L);
     ImGui::SameLine();
     ImGui::BeginGroup();
     if (!hovered) {
         ImGui::PushTextWrapPos(ImGui::GetCursorPosX() + L.sideW);
-        ImGui::TextDisabled(
-            "Hover the image: the pixel under the mouse is decoded and checked exactly.");
+        if (!slideMode(st))  // a slide has no room to spare: its image is small
+            ImGui::TextDisabled(
+                "Hover the image: the pixel under the mouse is decoded and checked exactly.");
         ImGui::PopTextWrapPos();
         ImGui::EndGroup();
         return;

@@ -47,6 +47,54 @@ ImVec2 placeAlong(LabelBoxes& labels, ImVec2 vertex, ImVec2 anchor, const ImVec2
     return best;
 }
 
+ImVec2 placeFirstFree(LabelBoxes& labels, std::initializer_list<ImVec2> candidates, ImVec2 size) {
+    ImVec2 best = *candidates.begin();
+    for (const ImVec2& c : candidates) {
+        if (labels.isFree(c.x - size.x / 2 - 2, c.y - size.y / 2, c.x + size.x / 2 + 2,
+                          c.y + size.y / 2)) {
+            best = c;
+            break;
+        }
+    }
+    labels.add(best, size);
+    return best;
+}
+
+ImVec2 placeInside(LabelBoxes& labels, const ImVec2 (&tri)[3], ImVec2 centre, ImVec2 size) {
+    const float hw = size.x / 2 + 2, hh = size.y / 2;
+    // First with the whole box inside the triangle, then with its centre inside.
+    auto fits = [&](ImVec2 c, bool whole) {
+        const ImVec2 box[4] = {
+            {c.x - hw, c.y - hh}, {c.x + hw, c.y - hh}, {c.x - hw, c.y + hh}, {c.x + hw, c.y + hh}};
+        for (const ImVec2& q : box) {
+            if (whole && !insideTriangle(tri, q)) return false;
+        }
+        return insideTriangle(tri, c) && labels.isFree(c.x - hw, c.y - hh, c.x + hw, c.y + hh);
+    };
+    // The centroid, then towards each corner and each edge's midpoint, a little, then further.
+    ImVec2 targets[6];
+    for (int k = 0; k < 3; ++k) {
+        targets[k] = tri[k];
+        targets[k + 3] =
+            ImVec2((tri[k].x + tri[(k + 1) % 3].x) / 2, (tri[k].y + tri[(k + 1) % 3].y) / 2);
+    }
+    ImVec2 best = centre;
+    bool found = labels.isFree(centre.x - hw, centre.y - hh, centre.x + hw, centre.y + hh);
+    for (int pass = 0; pass < 2 && !found; ++pass) {
+        for (float f : {0.25f, 0.45f, 0.65f}) {
+            for (const ImVec2& t : targets) {
+                const ImVec2 c(centre.x + (t.x - centre.x) * f, centre.y + (t.y - centre.y) * f);
+                if (!found && fits(c, pass == 0)) {
+                    best = c;
+                    found = true;
+                }
+            }
+        }
+    }
+    labels.add(best, size);
+    return best;
+}
+
 std::vector<ImVec2> placeVertexLabels(LabelBoxes& labels, const View& view,
                                       const std::vector<Vec2>& points, ImFont* font, float fontSize,
                                       float r) {

@@ -9,6 +9,7 @@
 #include <imgui.h>
 
 #include <array>
+#include <initializer_list>
 #include <vector>
 
 namespace dlab::ui {
@@ -25,6 +26,15 @@ struct LabelBoxes {
 // label's centre and registers it.
 ImVec2 placeAlong(LabelBoxes& labels, ImVec2 vertex, ImVec2 anchor, const ImVec2 (&tri)[3],
                   ImVec2 size);
+
+// The first of the candidate centres where the label meets no other, else the first one.
+// Returns the label's centre and registers it.
+ImVec2 placeFirstFree(LabelBoxes& labels, std::initializer_list<ImVec2> candidates, ImVec2 size);
+
+// Where a triangle's label goes: its centroid `centre`, else the first free spot nearer one of
+// its corners or edges (the label's box inside the triangle); the centroid when none is free.
+// Returns the label's centre and registers it.
+ImVec2 placeInside(LabelBoxes& labels, const ImVec2 (&tri)[3], ImVec2 centre, ImVec2 size);
 
 // The top-left corner of each point's label (top-right of the point, else top-left,
 // bottom-right, bottom-left, right, left of it), registered with the points' markers; NaN for

@@ -20,8 +20,9 @@ namespace dlab::ui {
 
 namespace {
 
-// Draws one span word by word, wrapping at the panel's right edge.
-void WrappedSpan(const TextSpan& span, float right) {
+// Draws one span word by word, wrapping at the panel's right edge. `glued`: the span goes on the
+// last one's word without a space ("`code`," or "**bold**.").
+void WrappedSpan(const TextSpan& span, float right, bool glued, float& widest) {
     ImFont* font = span.style == TextSpan::Style::Bold   ? fonts().bold
                    : span.style == TextSpan::Style::Code ? fonts().mono
                                                          : fonts().ui;
@@ -37,6 +38,7 @@ void WrappedSpan(const TextSpan& span, float right) {
             i = j + 1;
             continue;
         }
+        if (glued && i == 0) ImGui::SameLine(0, 0);
         const ImVec2 size = ImGui::CalcTextSize(word.c_str());
         const float x = ImGui::GetCursorScreenPos().x;
         if (x + size.x > right &&
@@ -49,18 +51,21 @@ void WrappedSpan(const TextSpan& span, float right) {
                                                       IM_COL32(232, 234, 240, 255), 3);
         }
         ImGui::TextUnformatted(word.c_str());
+        widest = std::max(widest, ImGui::GetItemRectMax().x);
         ImGui::SameLine(0, space);
         i = j + 1;
     }
     ImGui::PopFont();
 }
 
-void RichText(const std::string& text) {
+// Returns the right edge of its widest line (screen x).
+float RichText(const std::string& text) {
+    float widest = ImGui::GetCursorScreenPos().x;
     std::string error;
     const auto blocks = parseLessonText(text, &error);
     if (!blocks) {
         ImGui::TextWrapped("%s", text.c_str());  // the loader checked it; never expected
-        return;
+        return ImGui::GetItemRectMax().x;
     }
     const float right = ImGui::GetWindowPos().x + ImGui::GetWindowContentRegionMax().x;
     for (const TextBlock& b : *blocks) {
@@ -71,10 +76,16 @@ void RichText(const std::string& text) {
             ImGui::Text("%d.", b.number);
             ImGui::SameLine();
         }
-        for (const TextSpan& s : b.spans) WrappedSpan(s, right);
+        for (std::size_t i = 0; i < b.spans.size(); ++i) {
+            const std::string& t = b.spans[i].text;
+            const bool glued = i > 0 && !t.empty() && t.front() != ' ' &&
+                               !b.spans[i - 1].text.empty() && b.spans[i - 1].text.back() != ' ';
+            WrappedSpan(b.spans[i], right, glued, widest);
+        }
         ImGui::NewLine();
         if (b.kind == TextBlock::Kind::Paragraph) ImGui::Spacing();
     }
+    return widest;
 }
 
 // The stop's question, the answer field, Check, Hint and the feedback (wrapped: nothing runs
@@ -264,12 +275,23 @@ void ShowSlide(AppState& st) {
     // the bottom, the text takes what it needs (at most 70 % with a tab), the tab the rest.
     const float rest = std::max(0.0f, avail.y - L.slideQuestionHeight);
     const float textH = tab ? std::clamp(L.slideTextHeight, rest * 0.3f, rest * 0.7f) : rest;
-    ImGui::BeginChild("##slidetext", ImVec2(0, std::max(1.0f, textH)), false);
-    RichText(L.plan.stops[k].text);  // with its {{values}} filled in
-    if (stop.figure == "lifting-map") LiftingFigure(st);
+    // A scrollbar only when the text needs more than it gets (never one that stays from the
+    // previous stop's layout: the bar narrows the text, which then needs it).
+    ImGui::BeginChild("##slidetext", ImVec2(0, std::max(1.0f, textH)), false,
+                      L.slideTextHeight <= textH + 0.5f ? still : 0);
+    const ImVec2 textAt = ImGui::GetWindowPos();
+    float textRight = RichText(L.plan.stops[k].text);  // with its {{values}} filled in
+    if (stop.figure == "lifting-map") {
+        LiftingFigure(st);
+        textRight = std::max(textRight, ImGui::GetItemRectMax().x);
+    }
     L.slideTextHeight = ImGui::GetCursorPosY() + ImGui::GetStyle().ItemSpacing.y;
+    const float scrolls = ImGui::GetScrollMaxY();
     ImGui::EndChild();
     RecordItem(st, "slide-text");
+    // What the text needs, not clipped: tests check that it fits in its box.
+    st.itemRects["slide-text-content"] = {textAt.x, textAt.y, textRight,
+                                          textAt.y + L.slideTextHeight + scrolls};
     if (tab) {
         ImGui::BeginChild("##slidetab", ImVec2(0, std::max(1.0f, rest - textH)), true);
         tab(st);
@@ -288,37 +310,34 @@ void ShowSlide(AppState& st) {
     ImGui::EndChild();
 }
 
-void ShowLesson(AppState& st) {
-    LessonState& L = st.lessonPlayer;
-    if (!L.lesson) return;
-    const Lesson& lesson = *L.lesson;
-    ImGui::PushFont(fonts().caption);
-    ImGui::TextWrapped("%s", lesson.title.c_str());
-    ImGui::PopFont();
-    const std::size_t n = lesson.stops.size();
-    if (n == 0) {
-        ImGui::TextWrapped("%s", lesson.summary.c_str());
-        ImGui::TextDisabled(
-            lesson.assignment
-                ? "An assignment: the points are loaded. Step through them, or compare your own "
-                  "run with `dtlab diff-trace` (or the Trace compare panel)."
-                : "This lesson has no stops.");
-        const bool close = ImGui::Button("Close lesson");
-        RecordItem(st, "lesson-close");
-        if (close) {
-            closeLesson(st);  // frees the lesson: nothing of it is read after this
-            return;
-        }
-        if (!lesson.text.empty()) {
-            ImGui::Separator();
-            ImGui::BeginChild("##assignmenttext", ImVec2(0, 0), false);
-            RichText(lesson.text);
-            ImGui::EndChild();
-            RecordItem(st, "assignment-text");
-        }
+namespace {
+
+// A lesson without stops (an assignment): its summary, its text and the way to close it.
+void AssignmentPanel(AppState& st) {
+    const Lesson& lesson = *st.lessonPlayer.lesson;
+    ImGui::TextWrapped("%s", lesson.summary.c_str());
+    ImGui::TextDisabled(lesson.assignment
+                            ? "An assignment: the points are loaded. Step through them, or compare "
+                              "your own run with `dtlab diff-trace` (or the Trace compare panel)."
+                            : "This lesson has no stops.");
+    const bool close = ImGui::Button("Close lesson");
+    RecordItem(st, "lesson-close");
+    if (close) {
+        closeLesson(st);  // frees the lesson: nothing of it is read after this
         return;
     }
-    const std::size_t k = std::min(L.progress.stop, n - 1);
+    if (!lesson.text.empty()) {
+        ImGui::Separator();
+        ImGui::BeginChild("##assignmenttext", ImVec2(0, 0), false);
+        RichText(lesson.text);
+        ImGui::EndChild();
+        RecordItem(st, "assignment-text");
+    }
+}
+
+// Previous, Next, the way back to the stop, Close. False when the lesson was closed.
+bool StopButtons(AppState& st, std::size_t k, std::size_t n) {
+    const LessonState& L = st.lessonPlayer;
     if (ImGui::Button("< Previous") && k > 0) goToStop(st, k - 1);
     RecordItem(st, "lesson-previous");
     ImGui::SameLine();
@@ -342,26 +361,47 @@ void ShowLesson(AppState& st) {
     }
     if (ImGui::SmallButton("Close")) {
         closeLesson(st);
-        return;
+        return false;
     }
     RecordItem(st, "lesson-close");
-    // Progress: one box per stop (green answered right, orange tried, grey seen).
-    {
-        ImDrawList* dl = ImGui::GetWindowDrawList();
-        const ImVec2 p = ImGui::GetCursorScreenPos();
-        const float w = ImGui::GetContentRegionAvail().x / static_cast<float>(n);
-        for (std::size_t i = 0; i < n; ++i) {
-            const std::uint8_t a = i < L.progress.answers.size() ? L.progress.answers[i] : 0;
-            const ImU32 col = i == k                     ? IM_COL32(240, 120, 0, 255)
-                              : a == 2                   ? IM_COL32(60, 170, 80, 255)
-                              : a == 1                   ? IM_COL32(235, 170, 60, 255)
-                              : i <= L.progress.furthest ? IM_COL32(170, 175, 190, 255)
-                                                         : IM_COL32(220, 222, 228, 255);
-            dl->AddRectFilled(ImVec2(p.x + i * w + 1, p.y), ImVec2(p.x + (i + 1) * w - 1, p.y + 6),
-                              col, 2);
-        }
-        ImGui::Dummy(ImVec2(0, 10));
+    return true;
+}
+
+// One box per stop: orange the current one, green answered right, amber tried, grey seen.
+void ProgressBoxes(const LessonState& L, std::size_t k, std::size_t n) {
+    ImDrawList* dl = ImGui::GetWindowDrawList();
+    const ImVec2 p = ImGui::GetCursorScreenPos();
+    const float w = ImGui::GetContentRegionAvail().x / static_cast<float>(n);
+    for (std::size_t i = 0; i < n; ++i) {
+        const std::uint8_t a = i < L.progress.answers.size() ? L.progress.answers[i] : 0;
+        const ImU32 col = i == k                     ? IM_COL32(240, 120, 0, 255)
+                          : a == 2                   ? IM_COL32(60, 170, 80, 255)
+                          : a == 1                   ? IM_COL32(235, 170, 60, 255)
+                          : i <= L.progress.furthest ? IM_COL32(170, 175, 190, 255)
+                                                     : IM_COL32(220, 222, 228, 255);
+        dl->AddRectFilled(ImVec2(p.x + i * w + 1, p.y), ImVec2(p.x + (i + 1) * w - 1, p.y + 6), col,
+                          2);
     }
+    ImGui::Dummy(ImVec2(0, 10));
+}
+
+}  // namespace
+
+void ShowLesson(AppState& st) {
+    LessonState& L = st.lessonPlayer;
+    if (!L.lesson) return;
+    const Lesson& lesson = *L.lesson;
+    ImGui::PushFont(fonts().caption);
+    ImGui::TextWrapped("%s", lesson.title.c_str());
+    ImGui::PopFont();
+    const std::size_t n = lesson.stops.size();
+    if (n == 0) {
+        AssignmentPanel(st);
+        return;
+    }
+    const std::size_t k = std::min(L.progress.stop, n - 1);
+    if (!StopButtons(st, k, n)) return;  // closed: nothing of the lesson is read after this
+    ProgressBoxes(L, k, n);
     ImGui::Separator();
     ImGui::BeginChild("##lessontext", ImVec2(0, 0), false);
     const LessonStop& stop = lesson.stops[k];

@@ -3,6 +3,7 @@
 // hull check of the current mesh, with every violation drawn on the canvas.
 #include "core/engine/predicates.h"
 #include "ui/gui.h"
+#include "ui/lesson_player.h"
 #include "ui/panels/panels.h"
 
 #include <imgui.h>
@@ -75,6 +76,7 @@ void countOps(RunCounts& s, const Engine& e) {
 // With local Delaunay on every interior edge this makes the mesh the Delaunay triangulation.
 void checkHull(const Engine& e, StatisticsState& s) {
     s.hullDents.clear();
+    s.hullGaps.clear();
     s.hullReport.clear();
     const Mesh& m = e.mesh();
     const Inserter& ins = e.inserter();
@@ -105,9 +107,14 @@ void checkHull(const Engine& e, StatisticsState& s) {
     for (const auto& [a, b] : nextOnHull) {
         const auto it = nextOnHull.find(b);
         if (it == nextOnHull.end()) continue;
-        if (orient2d(m.G[a], m.G[b], m.G[it->second]) < 0) s.hullDents.push_back(b);
+        if (orient2d(m.G[a], m.G[b], m.G[it->second]) < 0) {
+            s.hullDents.push_back(b);
+            s.hullGaps.push_back({a, b, it->second});
+        }
     }
     std::sort(s.hullDents.begin(), s.hullDents.end());
+    std::sort(s.hullGaps.begin(), s.hullGaps.end(),
+              [](const auto& x, const auto& y) { return x[1] < y[1]; });
     const bool euler = triangles == 2 * n - boundary - 2;
     char buf[256];
     if (pinched) {
@@ -198,195 +205,254 @@ void DrawViolationOverlay(AppState& st) {
         float x = 0, y = 0;
         if (cornerAnchor(st, c, x, y)) dl->AddCircle(ImVec2(x, y), 14, col, 0, 3);
     }
-    for (std::int32_t v : s.hullDents) {
+    // Each dent: the triangle the mesh misses there, shaded, and the hull edge that closes it.
+    for (const auto& [a, b, c] : s.hullGaps) {
         if (!canvasHasRoom(st, dl, 100)) break;
-        if (drawable(v)) dl->AddCircle(toIm(view.toScreen(m.G[v])), 12, kViolationColour, 0, 3);
+        if (!drawable(a) || !drawable(b) || !drawable(c)) continue;
+        const ImVec2 pa = toIm(view.toScreen(m.G[a])), pb = toIm(view.toScreen(m.G[b])),
+                     pc = toIm(view.toScreen(m.G[c]));
+        dl->AddTriangleFilled(pa, pb, pc, IM_COL32(230, 0, 0, 90));
+        dl->AddLine(pa, pc, kViolationColour, st.presentation ? 3.0f : 2.0f);
+        dl->AddCircle(pb, 12, kViolationColour, 0, 3);
     }
     dl->PopClipRect();
 }
 
 namespace {
 
-// validate() and the hull check, with the violations listed (click: select the corner).
-void ShowChecks(AppState& st) {
-    const Engine& e = st.engine;
+// The next widget of this width on the same row when it fits in the column, else on a new row.
+void SameLineIfFits(float nextWidth) {
+    const float right = ImGui::GetItemRectMax().x + ImGui::GetStyle().ItemSpacing.x + nextWidth;
+    if (right <= ImGui::GetWindowPos().x + ImGui::GetWindowContentRegionMax().x) ImGui::SameLine();
+}
+
+float CheckboxWidth(const char* label) {
+    return ImGui::GetFrameHeight() + ImGui::GetStyle().ItemInnerSpacing.x +
+           ImGui::CalcTextSize(label).x;
+}
+
+void ColouredWrapped(ImVec4 colour, const char* text) {
+    ImGui::PushStyleColor(ImGuiCol_Text, colour);
+    ImGui::TextWrapped("%s", text);
+    ImGui::PopStyleColor();
+}
+
+const ImVec4 kGood(0.05f, 0.45f, 0.15f, 1), kBad(0.8f, 0.1f, 0.1f, 1),
+    kExpected(0.7f, 0.4f, 0.0f, 1);
+
+// The check's controls: automatic or by hand, and whether the canvas shows what it found.
+void CheckControls(AppState& st) {
     StatisticsState& s = st.statistics;
-    const Mesh& m = e.mesh();
-    // ---- validate() and the hull ------------------------------------------------------------
     ImGui::TextUnformatted("Checks of the current mesh (exact)");
     ImGui::Checkbox("after every change", &s.autoValidate);
     if (ImGui::IsItemHovered())
         ImGui::SetTooltip("validate() after each step, for meshes up to %d corners",
                           StatisticsState::kAutoValidateCorners);
-    ImGui::SameLine();
+    SameLineIfFits(ImGui::CalcTextSize("Validate now").x + 2 * ImGui::GetStyle().FramePadding.x);
     if (ImGui::Button("Validate now")) validateNow(st);
     RecordItem(st, "validate-now");
-    ImGui::SameLine();
+    SameLineIfFits(CheckboxWidth("show on canvas"));
     ImGui::Checkbox("show on canvas", &s.showViolations);
+}
+
+// The violations, one line each (click: select the corner; hover: the message).
+void ViolationList(AppState& st) {
+    const StatisticsState& s = st.statistics;
+    const float listH = ImGui::GetTextLineHeightWithSpacing() *
+                        static_cast<float>(std::min<std::size_t>(s.violations.size(), 8) + 1);
+    ImGui::BeginChild("##violations", ImVec2(0, listH), true);
+    for (std::size_t i = 0; i < s.violations.size(); ++i) {
+        const Violation& v = s.violations[i];
+        ImGui::PushID(static_cast<int>(i));
+        const std::string line =
+            std::string(toString(v.kind)) + " at corner " + std::to_string(v.corner);
+        if (ImGui::Selectable(line.c_str(), st.selection.corner == v.corner)) {
+            st.select(v.corner);
+            st.selection.jumpToCorner = v.corner;
+        }
+        if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", v.message.c_str());
+        ImGui::PopID();
+    }
+    ImGui::EndChild();
+}
+
+// validate() and the hull check, with the violations listed.
+void ShowChecks(AppState& st) {
+    const Engine& e = st.engine;
+    const StatisticsState& s = st.statistics;
+    CheckControls(st);
     if (s.validatedVersion != e.version()) {
+        ImGui::PushTextWrapPos(0);
         ImGui::TextDisabled("not checked at this step%s",
-                            m.numCorners() > StatisticsState::kAutoValidateCorners
+                            e.mesh().numCorners() > StatisticsState::kAutoValidateCorners
                                 ? " (large mesh: press Validate now)"
                                 : "");
+        ImGui::PopTextWrapPos();
         return;
     }
     const bool expected = midInsertion(e);
     if (s.violations.empty()) {
-        ImGui::TextColored(ImVec4(0.05f, 0.45f, 0.15f, 1),
-                           "validate(): every invariant holds (O symmetric, CCW, local Delaunay)");
+        ColouredWrapped(kGood,
+                        "validate(): every invariant holds (O symmetric, CCW, locally "
+                        "Delaunay)");
     } else {
         const bool onlyDelaunay =
             std::all_of(s.violations.begin(), s.violations.end(),
                         [](const Violation& v) { return v.kind == Violation::Kind::NotDelaunay; });
-        const ImVec4 col =
-            expected && onlyDelaunay ? ImVec4(0.7f, 0.4f, 0.0f, 1) : ImVec4(0.8f, 0.1f, 0.1f, 1);
-        ImGui::TextColored(col, "validate(): %zu violation%s%s", s.violations.size(),
-                           s.violations.size() == 1 ? "" : "s",
-                           s.violations.size() >= 200 ? " (first 200)" : "");
-        if (expected && onlyDelaunay) {
-            ImGui::PushStyleColor(ImGuiCol_Text, col);
-            ImGui::TextWrapped(
-                "expected mid-insertion: these edges are still to be tested and flipped");
-            ImGui::PopStyleColor();
-        }
+        const ImVec4 col = expected && onlyDelaunay ? kExpected : kBad;
+        char buf[96];
+        std::snprintf(buf, sizeof buf, "validate(): %zu violation%s%s", s.violations.size(),
+                      s.violations.size() == 1 ? "" : "s",
+                      s.violations.size() >= 200 ? " (first 200)" : "");
+        ColouredWrapped(col, buf);
+        if (expected && onlyDelaunay)
+            ColouredWrapped(col,
+                            "expected mid-insertion: these edges are still to be tested and "
+                            "flipped");
     }
     const bool hullBad = !s.hullDents.empty() || s.hullReport.find("FAILS") != std::string::npos ||
                          s.hullReport.find("touches") != std::string::npos;
-    ImGui::PushStyleColor(ImGuiCol_Text,
-                          hullBad ? ImVec4(0.8f, 0.1f, 0.1f, 1) : ImVec4(0.05f, 0.45f, 0.15f, 1));
-    ImGui::TextWrapped("%s", s.hullReport.c_str());
-    ImGui::PopStyleColor();
-    if (!s.violations.empty()) {
-        const float listH = ImGui::GetTextLineHeightWithSpacing() *
-                            static_cast<float>(std::min<std::size_t>(s.violations.size(), 8) + 1);
-        ImGui::BeginChild("##violations", ImVec2(0, listH), true);
-        for (std::size_t i = 0; i < s.violations.size(); ++i) {
-            const Violation& v = s.violations[i];
-            ImGui::PushID(static_cast<int>(i));
-            if (ImGui::Selectable(
-                    (std::string(toString(v.kind)) + " at corner " + std::to_string(v.corner))
-                        .c_str(),
-                    st.selection.corner == v.corner)) {
-                st.select(v.corner);
-                st.selection.jumpToCorner = v.corner;
-            }
-            if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", v.message.c_str());
-            ImGui::PopID();
-        }
-        ImGui::EndChild();
+    ColouredWrapped(hullBad ? kBad : kGood, s.hullReport.c_str());
+    if (!s.violations.empty()) ViolationList(st);
+}
+
+// The run's counts, the same in a batch run (the inserter's) and a stepped one (the journal's).
+struct Totals {
+    std::int64_t flips, steps, tests, inserted, duplicates, virtualTriangles;
+};
+
+Totals runTotals(AppState& st) {
+    const Engine& e = st.engine;
+    const Inserter& ins = e.inserter();
+    const bool batch = e.batch();
+    const RunCounts& c = UpdateRunCounts(st);
+    const InsertStats& bs = ins.stats();
+    Totals t{batch ? bs.flips : c.flips,
+             batch ? bs.walkSteps : c.walkSteps,
+             batch ? bs.inCircleTests : c.inCircleTests,
+             batch ? bs.inserted : c.inserted,
+             batch ? bs.duplicates : c.duplicates,
+             0};
+    if (!ins.done()) {
+        for (std::int32_t k = 0; k < e.mesh().numTriangles(); ++k)
+            t.virtualTriangles += ins.isVirtualTriangle(k);
     }
+    return t;
+}
+
+void CountRow(const char* name, const std::string& value) {
+    ImGui::TableNextRow();
+    ImGui::TableSetColumnIndex(0);
+    ImGui::TextUnformatted(name);
+    ImGui::TableSetColumnIndex(1);
+    ImGui::TextWrapped("%s", value.c_str());  // wraps at the column: never wider than the panel
+}
+
+std::string perInsertion(std::int64_t total, std::int64_t per) {
+    char buf[96];
+    std::snprintf(buf, sizeof buf, "%lld  (%.2f per insertion", static_cast<long long>(total),
+                  per > 0 ? static_cast<double>(total) / static_cast<double>(per) : 0.0);
+    return buf;
+}
+
+// Points, triangles, flips, walk steps, in-circle tests, splits and exact fallbacks.
+void CountsTable(AppState& st) {
+    const Engine& e = st.engine;
+    const RunCounts& c = st.statistics.counts;
+    const bool batch = e.batch();
+    const Totals t = runTotals(st);
+    if (!ImGui::BeginTable("##counts", 2, ImGuiTableFlags_RowBg | ImGuiTableFlags_BordersInnerV))
+        return;
+    ImGui::TableSetupColumn("", ImGuiTableColumnFlags_WidthFixed);
+    ImGui::TableSetupColumn("", ImGuiTableColumnFlags_WidthStretch);
+    auto num = [](std::int64_t v) { return std::to_string(v); };
+    CountRow("points", pointCountsText(e));
+    CountRow("triangles",
+             num(e.mesh().numTriangles() - t.virtualTriangles) +
+                 (t.virtualTriangles ? "  (+" + num(t.virtualTriangles) + " virtual)" : ""));
+    CountRow("flips", perInsertion(t.flips, t.inserted) +
+                          (!batch && c.flipsNow ? ", " + num(c.flipsNow) + " in this one)" : ")"));
+    CountRow("walk steps",
+             perInsertion(t.steps, t.inserted > 0 ? t.inserted + t.duplicates : 0) + ")");
+    if (!batch && c.locates > 0) {
+        char buf[96];
+        std::snprintf(buf, sizeof buf, "%lld of %lld (%.0f%%)", static_cast<long long>(c.hits),
+                      static_cast<long long>(c.locates),
+                      100.0 * static_cast<double>(c.hits) / static_cast<double>(c.locates));
+        CountRow("0-step locates", buf);
+    }
+    CountRow("in-circle tests", num(t.tests));
+    if (!batch)
+        CountRow("splits", num(c.splits) + " in triangles, " + num(c.edgeSplits) + " on edges");
+    const PredicateCounters& pc = predicateCounters();
+    CountRow("exact fallbacks", num(static_cast<std::int64_t>(pc.orientExact)) + " orient2d, " +
+                                    num(static_cast<std::int64_t>(pc.incircleExact)) + " incircle");
+    if (ImGui::IsItemHovered())
+        ImGui::SetTooltip(
+            "Predicate calls the floating-point filter could not decide, since the program "
+            "started");
+    ImGui::EndTable();
+}
+
+void FlipsPlot(AppState& st) {
+    const RunCounts& c = st.statistics.counts;
+    if (st.engine.batch() || c.flipsPerInsertion.empty()) return;
+    constexpr std::size_t kShown = 400;
+    const std::size_t n = c.flipsPerInsertion.size();
+    const std::size_t first = n > kShown ? n - kShown : 0;
+    const float maxFlips =
+        *std::max_element(c.flipsPerInsertion.begin() + static_cast<std::ptrdiff_t>(first),
+                          c.flipsPerInsertion.end());
+    char overlay[96];
+    std::snprintf(overlay, sizeof overlay, "flips per insertion (last %zu, max %.0f)", n - first,
+                  maxFlips);
+    ImGui::PlotHistogram("##flips", c.flipsPerInsertion.data() + first, static_cast<int>(n - first),
+                         0, overlay, 0.0f, std::max(4.0f, maxFlips * 1.15f),
+                         ImVec2(ImGui::GetContentRegionAvail().x, 90));
+    RecordItem(st, "flips-plot");
+    if (ImGui::IsItemHovered())
+        ImGui::SetTooltip(
+            "Expected about 3 per insertion on average for random insertion orders (the new "
+            "vertex gets about 6 edges, 3 from the split).");
+}
+
+void FrameTimes(AppState& st) {
+    const StatisticsState& s = st.statistics;
+    if (s.frameMs.empty()) return;
+    const float mean = std::accumulate(s.frameMs.begin(), s.frameMs.end(), 0.0f) /
+                       static_cast<float>(s.frameMs.size());
+    const float worst = *std::max_element(s.frameMs.begin(), s.frameMs.end());
+    char overlay[128];
+    std::snprintf(overlay, sizeof overlay, "frame ms: mean %.1f, worst %.1f", mean, worst);
+    ImGui::PlotLines("##frames", s.frameMs.data(), static_cast<int>(s.frameMs.size()), 0, overlay,
+                     0.0f, std::max(40.0f, worst * 1.1f),
+                     ImVec2(ImGui::GetContentRegionAvail().x, 60));
+    const FrameStats& fs = st.frameStats;
+    ImGui::PushTextWrapPos(0);
+    ImGui::TextDisabled("mesh rebuild %.1f ms, %zu edges drawn%s, %zu ops this frame",
+                        fs.meshBuildMs, fs.visibleEdges, fs.denseMesh ? " (dense raster)" : "",
+                        fs.opsStepped);
+    ImGui::PopTextWrapPos();
 }
 
 }  // namespace
 
 void ShowStatistics(AppState& st) {
-    const Engine& e = st.engine;
-    StatisticsState& s = st.statistics;
-    RunCounts& c = s.counts;
-    const Mesh& m = e.mesh();
-    const Inserter& ins = e.inserter();
-    std::int64_t virtualTriangles = 0;
-    if (!ins.done()) {
-        for (std::int32_t t = 0; t < m.numTriangles(); ++t)
-            virtualTriangles += ins.isVirtualTriangle(t);
-    }
-
     ImGui::BeginChild("##statsbody", ImVec2(0, 0), false);  // scrolls when the column is short
+    ImGui::BeginGroup();
     // What a debugging user looks for first: does the mesh hold its invariants at this step.
     ShowChecks(st);
     ImGui::Separator();
-    // ---- Counts -----------------------------------------------------------------------------
-    const bool batch = e.batch();
-    UpdateRunCounts(st);
-    const InsertStats& bs = ins.stats();
-    const std::int64_t flips = batch ? bs.flips : c.flips,
-                       steps = batch ? bs.walkSteps : c.walkSteps;
-    const std::int64_t tests = batch ? bs.inCircleTests : c.inCircleTests;
-    const std::int64_t inserted = batch ? bs.inserted : c.inserted,
-                       dups = batch ? bs.duplicates : c.duplicates;
-    if (ImGui::BeginTable("##counts", 2, ImGuiTableFlags_RowBg | ImGuiTableFlags_BordersInnerV)) {
-        ImGui::TableSetupColumn("", ImGuiTableColumnFlags_WidthFixed);
-        ImGui::TableSetupColumn("", ImGuiTableColumnFlags_WidthStretch);
-        auto row = [](const char* name, const std::string& value) {
-            ImGui::TableNextRow();
-            ImGui::TableSetColumnIndex(0);
-            ImGui::TextUnformatted(name);
-            ImGui::TableSetColumnIndex(1);
-            ImGui::TextUnformatted(value.c_str());
-        };
-        auto num = [](std::int64_t v) { return std::to_string(v); };
-        row("points", pointCountsText(e));
-        row("triangles",
-            num(m.numTriangles() - virtualTriangles) +
-                (virtualTriangles ? "  (+" + num(virtualTriangles) + " virtual)" : ""));
-        const double perIns =
-            inserted > 0 ? static_cast<double>(flips) / static_cast<double>(inserted) : 0.0;
-        char buf[128];
-        std::snprintf(
-            buf, sizeof buf, "%lld  (%.2f per insertion%s)", static_cast<long long>(flips), perIns,
-            !batch && c.flipsNow ? (", " + std::to_string(c.flipsNow) + " in this one").c_str()
-                                 : "");
-        row("flips", buf);
-        std::snprintf(
-            buf, sizeof buf, "%lld  (%.2f per insertion)", static_cast<long long>(steps),
-            inserted > 0 ? static_cast<double>(steps) / static_cast<double>(inserted + dups) : 0.0);
-        row("walk steps", buf);
-        if (!batch && c.locates > 0) {
-            std::snprintf(buf, sizeof buf, "%lld of %lld (%.0f%%)", static_cast<long long>(c.hits),
-                          static_cast<long long>(c.locates),
-                          100.0 * static_cast<double>(c.hits) / static_cast<double>(c.locates));
-            row("0-step locates", buf);
-        }
-        row("in-circle tests", num(tests));
-        if (!batch)
-            row("splits", num(c.splits) + " in triangles, " + num(c.edgeSplits) + " on edges");
-        const PredicateCounters& pc = predicateCounters();
-        row("exact fallbacks", num(static_cast<std::int64_t>(pc.orientExact)) + " orient2d, " +
-                                   num(static_cast<std::int64_t>(pc.incircleExact)) + " incircle");
-        if (ImGui::IsItemHovered())
-            ImGui::SetTooltip(
-                "Predicate calls the floating-point filter could not decide, since the program "
-                "started");
-        ImGui::EndTable();
-    }
-
-    // ---- Flips per insertion ----------------------------------------------------------------
-    if (!batch && !c.flipsPerInsertion.empty()) {
-        constexpr std::size_t kShown = 400;
-        const std::size_t n = c.flipsPerInsertion.size();
-        const std::size_t first = n > kShown ? n - kShown : 0;
-        const float maxFlips =
-            *std::max_element(c.flipsPerInsertion.begin() + static_cast<std::ptrdiff_t>(first),
-                              c.flipsPerInsertion.end());
-        char overlay[96];
-        std::snprintf(overlay, sizeof overlay, "flips per insertion (last %zu of %zu, max %.0f)",
-                      n - first, n, maxFlips);
-        ImGui::PlotHistogram(
-            "##flips", c.flipsPerInsertion.data() + first, static_cast<int>(n - first), 0, overlay,
-            0.0f, std::max(4.0f, maxFlips * 1.15f), ImVec2(ImGui::GetContentRegionAvail().x, 90));
-        RecordItem(st, "flips-plot");
-        if (ImGui::IsItemHovered())
-            ImGui::SetTooltip(
-                "Expected about 3 per insertion on average for random insertion orders (the new "
-                "vertex gets about 6 edges, 3 from the split).");
-    }
-
-    // ---- Frame times ------------------------------------------------------------------------
-    if (!s.frameMs.empty()) {
-        const float mean = std::accumulate(s.frameMs.begin(), s.frameMs.end(), 0.0f) /
-                           static_cast<float>(s.frameMs.size());
-        const float worst = *std::max_element(s.frameMs.begin(), s.frameMs.end());
-        char overlay[128];
-        std::snprintf(overlay, sizeof overlay, "frame ms: mean %.1f, worst %.1f", mean, worst);
-        ImGui::PlotLines("##frames", s.frameMs.data(), static_cast<int>(s.frameMs.size()), 0,
-                         overlay, 0.0f, std::max(40.0f, worst * 1.1f),
-                         ImVec2(ImGui::GetContentRegionAvail().x, 60));
-        const FrameStats& fs = st.frameStats;
-        ImGui::TextDisabled("mesh rebuild %.1f ms, %zu edges drawn%s, %zu ops this frame",
-                            fs.meshBuildMs, fs.visibleEdges, fs.denseMesh ? " (dense raster)" : "",
-                            fs.opsStepped);
-    }
-
+    CountsTable(st);
+    FlipsPlot(st);
+    if (!slideMode(st)) FrameTimes(st);  // the app's own timings: not for a class
+    ImGui::EndGroup();
+    // Not clipped (unlike RecordItem): tests check that nothing is wider than the panel.
+    const ImVec2 lo = ImGui::GetItemRectMin(), hi = ImGui::GetItemRectMax();
+    const ImVec2 wp = ImGui::GetWindowPos();
+    st.itemRects["statistics-content"] = {lo.x, lo.y, hi.x, hi.y};
+    st.itemRects["statistics-panel"] = {wp.x, wp.y, wp.x + ImGui::GetWindowWidth(),
+                                        wp.y + ImGui::GetWindowHeight()};
     ImGui::EndChild();
 }
 

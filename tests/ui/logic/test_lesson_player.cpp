@@ -3,6 +3,7 @@
 #include "tests/ui/ui_harness.h"
 #include "ui/files/settings.h"
 #include "ui/lesson_player.h"
+#include "ui/panels/labels.h"
 #include "ui/panels/panels.h"
 #include "ui/platform/keys.h"
 
@@ -163,6 +164,41 @@ bool inside(const std::array<float, 4>& r, float w, float h) {
     return r[0] >= 0 && r[1] >= 0 && r[2] <= w && r[3] <= h && r[0] < r[2] && r[1] < r[3];
 }
 
+// r inside box, to half a pixel.
+bool within(const std::array<float, 4>& r, const std::array<float, 4>& box) {
+    return r[0] >= box[0] - 0.5f && r[1] >= box[1] - 0.5f && r[2] <= box[2] + 0.5f &&
+           r[3] <= box[3] + 0.5f;
+}
+
+std::string text(const std::array<float, 4>& r) {
+    char buf[96];
+    std::snprintf(buf, sizeof buf, "(%.0f, %.0f)-(%.0f, %.0f)", r[0], r[1], r[2], r[3]);
+    return buf;
+}
+
+// Nothing on the slide's side column is cut off: the stop's text fits its box (no scrolling,
+// no word past the right edge), the statistics are no wider than their panel, and the ID-buffer
+// image is whole inside its tab.
+void sideColumnFits(dlab::ui::AppState& st, const std::string& where) {
+    auto& r = st.itemRects;
+    ASSERT_TRUE(r.count("slide-text-content")) << where;
+    EXPECT_TRUE(within(r["slide-text-content"], r["slide-text"]))
+        << where << ": the text needs " << text(r["slide-text-content"]) << ", its box is "
+        << text(r["slide-text"]);
+    if (r.count("statistics-content")) {
+        // As wide as the panel at most (it may scroll down, never sideways).
+        EXPECT_LE(r["statistics-content"][2], r["statistics-panel"][2] + 0.5f)
+            << where << ": the statistics need " << text(r["statistics-content"])
+            << ", their panel is " << text(r["statistics-panel"]);
+    }
+    if (r.count("idbuffer-image-whole")) {
+        ASSERT_TRUE(r.count("slide-tab")) << where;
+        EXPECT_TRUE(within(r["idbuffer-image-whole"], r["slide-tab"]))
+            << where << ": the ID-buffer image is " << text(r["idbuffer-image-whole"])
+            << ", its tab " << text(r["slide-tab"]);
+    }
+}
+
 // Every stop of every lesson on a slide of this size: the text and the whole question (answer
 // field, Check) are on the slide, and the message log is not.
 void everyStopFits(int width, int height) {
@@ -183,6 +219,7 @@ void everyStopFits(int width, int height) {
             EXPECT_TRUE(st.itemRects.count("slide-text")) << where;
             EXPECT_FALSE(st.itemRects.count("messages")) << where;
             EXPECT_TRUE(st.itemRects.count("lesson-next")) << where;
+            sideColumnFits(st, where);
             if (stops[k].question.empty()) continue;
             ASSERT_TRUE(st.itemRects.count("slide-question")) << where;
             EXPECT_TRUE(inside(st.itemRects["slide-question"], width, height))
@@ -318,4 +355,33 @@ TEST(LessonPlayer, AnAssignmentShowsItsText) {
     EXPECT_GT(r[3] - r[1], 5 * ImGui::GetFontSize()) << "several lines of the text are on show";
     h.clickItem("lesson-close");
     EXPECT_FALSE(st.lessonPlayer.lesson);
+}
+
+TEST(CanvasLabels, ATriangleLabelMovesOffALabelAtItsCentroidAndStaysInside) {
+    dlab::ui::LabelBoxes labels;
+    const ImVec2 tri[3] = {{0, 0}, {300, 0}, {0, 240}};
+    const ImVec2 centre(100, 80), size(30, 14);
+    labels.add(centre, ImVec2(40, 20));  // a vertex label already sits on the centroid
+    const ImVec2 at = dlab::ui::placeInside(labels, tri, centre, size);
+    EXPECT_FALSE(at.x == centre.x && at.y == centre.y);
+    // Inside the triangle (x, y >= 0, below the hypotenuse) and clear of the first label.
+    EXPECT_GE(at.x - size.x / 2, 0.0f);
+    EXPECT_GE(at.y - size.y / 2, 0.0f);
+    EXPECT_LE((at.x + size.x / 2) / 300 + (at.y + size.y / 2) / 240, 1.0f);
+    EXPECT_FALSE(at.x - size.x / 2 < 120 && 80 < at.x + size.x / 2 && at.y - size.y / 2 < 90 &&
+                 70 < at.y + size.y / 2);
+    // A free centroid stays where it is.
+    dlab::ui::LabelBoxes empty;
+    const ImVec2 free = dlab::ui::placeInside(empty, tri, centre, size);
+    EXPECT_EQ(free.x, centre.x);
+    EXPECT_EQ(free.y, centre.y);
+}
+
+TEST(CanvasLabels, AGhostCornerLabelTakesTheFirstFreeSpot) {
+    dlab::ui::LabelBoxes labels;
+    labels.add(ImVec2(50, 50), ImVec2(20, 14));
+    const ImVec2 at =
+        dlab::ui::placeFirstFree(labels, {ImVec2(52, 50), ImVec2(52, 90)}, ImVec2(20, 14));
+    EXPECT_EQ(at.y, 90.0f);
+    EXPECT_FALSE(labels.isFree(42, 83, 62, 97)) << "the label is registered";
 }
