@@ -41,18 +41,22 @@ float Splitter(const char* id, bool vertical, float thickness, float length) {
     return vertical ? ImGui::GetIO().MouseDelta.x : ImGui::GetIO().MouseDelta.y;
 }
 
-}  // namespace
+constexpr float kBar = 6.0f;  // the splitters' thickness
 
-void ShowApplication(AppState& state) {
-    ImGuiIO& io = ImGui::GetIO();
+// What happens before the frame is drawn: shortcuts, the run's animation, the debug panels'
+// checks, and a notice from the engine (which stops the run).
+void UpdateBeforeDrawing(AppState& state) {
     handleShortcuts(state);
-    advanceRun(state, io.DeltaTime);
+    advanceRun(state, ImGui::GetIO().DeltaTime);
     updateDebugPanels(state);  // watches (may pause the run), checks, autosave
     if (std::string notice = state.engine.takeNotice(); !notice.empty()) {
         state.run.running = false;
         state.log(Message::Level::Warning, notice);
     }
+}
 
+// The host window filling the display, with a menu bar; the caller ends it.
+void BeginHostWindow() {
     const ImGuiViewport* vp = ImGui::GetMainViewport();
     ImGui::SetNextWindowPos(vp->WorkPos);
     ImGui::SetNextWindowSize(vp->WorkSize);
@@ -63,95 +67,101 @@ void ShowApplication(AppState& state) {
     ImGui::PushStyleVar(ImGuiStyleVar_WindowPadding, ImVec2(6, 4));
     ImGui::Begin("Delaunay Lab", nullptr, hostFlags);
     ImGui::PopStyleVar();
-    ShowMenuBar(state);
-    if (slideMode(state)) {  // presentation with a lesson: the slide layout (lesson.cpp)
-        ShowSlide(state);
-        ImGui::End();
-        if (state.showHelp) ShowHelp(state);
-        ShowFileDialogs(state);
-        return;
-    }
-    ShowToolbar(state);
-    ShowCaption(state);
+}
 
-    const float kBar = 6.0f;
-    Layout& L = state.layout;
-    const ImVec2 avail = ImGui::GetContentRegionAvail();
-    const float bottomH = std::clamp(L.bottomHeight * avail.y, 40.0f, avail.y * 0.6f);
-    const float mainH = std::max(100.0f, avail.y - bottomH - kBar);
-    const float sideW = state.presentation
-                            ? std::clamp(L.rightWidth * avail.x, 0.0f, avail.x * 0.7f)
-                            : std::clamp(L.rightWidth * avail.x, 220.0f, avail.x * 0.7f);
-    const float canvasW = std::max(100.0f, avail.x - sideW - kBar);
+// The sizes of the three regions, from the space below the toolbar and the Layout fractions.
+struct Regions {
+    ImVec2 avail;
+    float mainH = 0, sideW = 0, canvasW = 0;
+};
 
-    // ---- Left: canvas and timeline -------------------------------------------------------------
-    ImGui::BeginChild("##left", ImVec2(canvasW, mainH), false,
+Regions MeasureRegions(const AppState& state) {
+    const Layout& L = state.layout;
+    Regions r;
+    r.avail = ImGui::GetContentRegionAvail();
+    const float bottomH = std::clamp(L.bottomHeight * r.avail.y, 40.0f, r.avail.y * 0.6f);
+    r.mainH = std::max(100.0f, r.avail.y - bottomH - kBar);
+    r.sideW = state.presentation ? std::clamp(L.rightWidth * r.avail.x, 0.0f, r.avail.x * 0.7f)
+                                 : std::clamp(L.rightWidth * r.avail.x, 220.0f, r.avail.x * 0.7f);
+    r.canvasW = std::max(100.0f, r.avail.x - r.sideW - kBar);
+    return r;
+}
+
+// Left: the canvas with its overlays, and the timeline.
+void ShowLeftColumn(AppState& state, const Regions& r) {
+    ImGui::BeginChild("##left", ImVec2(r.canvasW, r.mainH), false,
                       ImGuiWindowFlags_NoScrollbar | ImGuiWindowFlags_NoScrollWithMouse);
     ShowCanvas(state);
     DrawDebugOverlays(state);
     ShowCanvasNotice(state);
     ShowTimeline(state);
     ImGui::EndChild();
-    ImGui::SameLine(0, 0);
-    if (const float d = Splitter("##vsplit", true, kBar, mainH); d != 0) {
-        L.rightWidth = std::clamp(L.rightWidth - d / std::max(1.0f, avail.x), 0.15f, 0.7f);
-    }
-    ImGui::SameLine(0, 0);
+}
 
-    // ---- Right: the lesson (when one is open), tables (tabs), inspector ------------------------
-    // A lesson stop may name the panels it wants: only those show (lesson_player.h).
-    ImGui::BeginChild("##side", ImVec2(sideW, mainH), false, ImGuiWindowFlags_NoScrollbar);
-    float sideH = mainH;
-    if (state.lessonPlayer.lesson) {
-        const float lessonH = std::clamp(L.lessonHeight * mainH, 120.0f, mainH - 60.0f);
-        ImGui::BeginChild("##lesson", ImVec2(0, lessonH), true);
-        ShowLesson(state);
-        ImGui::EndChild();
-        if (const float d = Splitter("##lsplit", false, kBar, sideW); d != 0) {
-            L.lessonHeight = std::clamp(L.lessonHeight + d / std::max(1.0f, mainH), 0.2f, 0.9f);
-        }
-        sideH -= lessonH + kBar;
+// The lesson pane at the top of the side column, when a lesson is open, and the splitter below
+// it; returns the height left for the rest of the column.
+float ShowLessonPane(AppState& state, const Regions& r) {
+    if (!state.lessonPlayer.lesson) return r.mainH;
+    Layout& L = state.layout;
+    const float lessonH = std::clamp(L.lessonHeight * r.mainH, 120.0f, r.mainH - 60.0f);
+    ImGui::BeginChild("##lesson", ImVec2(0, lessonH), true);
+    ShowLesson(state);
+    ImGui::EndChild();
+    if (const float d = Splitter("##lsplit", false, kBar, r.sideW); d != 0) {
+        L.lessonHeight = std::clamp(L.lessonHeight + d / std::max(1.0f, r.mainH), 0.2f, 0.9f);
     }
+    return r.mainH - (lessonH + kBar);
+}
+
+// The tables as tabs: only those a lesson stop wants; a lesson stop, an opened trace or a
+// request (pendingTab) selects one.
+void ShowSideTabs(AppState& state, const SideTab* firstWanted, float height) {
+    ImGui::BeginChild("##tabs", ImVec2(0, height), false, ImGuiWindowFlags_NoScrollbar);
+    // Narrower than every tab: the tabs scroll (arrows, and a list of them) instead of
+    // cutting their labels.
+    if (ImGui::BeginTabBar("##sidetabs", ImGuiTabBarFlags_FittingPolicyScroll |
+                                             ImGuiTabBarFlags_TabListPopupButton)) {
+        const bool traceOpened = studentTraceSelectTab(state);
+        for (const SideTab& tab : kSideTabs) {
+            if (tab.id && !lessonWantsPanel(state, tab.id)) continue;
+            const bool select =
+                (state.lessonPlayer.pendingTabSelect && &tab == firstWanted) ||
+                (traceOpened && tab.id && std::string_view(tab.id) == "trace-compare") ||
+                (tab.id && state.pendingTab == tab.id);
+            const bool open =
+                ImGui::BeginTabItem(tab.name, nullptr, select ? ImGuiTabItemFlags_SetSelected : 0);
+            RecordItem(state, tab.title);
+            if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", tab.title);
+            if (open) {
+                tab.show(state);
+                ImGui::EndTabItem();
+            }
+        }
+        ImGui::EndTabBar();
+    }
+    ImGui::EndChild();
+}
+
+// Right: the lesson (when one is open), the tables (tabs), the inspector. A lesson stop may
+// name the panels it wants: only those show (lesson_player.h).
+void ShowSideColumn(AppState& state, const Regions& r) {
+    ImGui::BeginChild("##side", ImVec2(r.sideW, r.mainH), false, ImGuiWindowFlags_NoScrollbar);
+    const float sideH = ShowLessonPane(state, r);
     const SideTab* firstWanted = nullptr;
     for (const SideTab& tab : kSideTabs) {
         if (!firstWanted && tab.id && lessonWantsPanel(state, tab.id)) firstWanted = &tab;
     }
+    Layout& L = state.layout;
     const bool showInspector = lessonWantsPanel(state, "inspector");
     const float inspH =
         !showInspector ? 0.0f
         : firstWanted ? std::clamp(L.inspectorHeight * sideH, 80.0f, std::max(80.0f, sideH - 80.0f))
                       : sideH;
-    if (firstWanted) {
-        ImGui::BeginChild("##tabs", ImVec2(0, showInspector ? sideH - inspH - kBar : sideH), false,
-                          ImGuiWindowFlags_NoScrollbar);
-        // Narrower than every tab: the tabs scroll (arrows, and a list of them) instead of
-        // cutting their labels.
-        if (ImGui::BeginTabBar("##sidetabs", ImGuiTabBarFlags_FittingPolicyScroll |
-                                                 ImGuiTabBarFlags_TabListPopupButton)) {
-            const bool traceOpened = studentTraceSelectTab(state);
-            for (const SideTab& tab : kSideTabs) {
-                if (tab.id && !lessonWantsPanel(state, tab.id)) continue;
-                const bool select =
-                    (state.lessonPlayer.pendingTabSelect && &tab == firstWanted) ||
-                    (traceOpened && tab.id && std::string_view(tab.id) == "trace-compare") ||
-                    (tab.id && state.pendingTab == tab.id);
-                const bool open = ImGui::BeginTabItem(tab.name, nullptr,
-                                                      select ? ImGuiTabItemFlags_SetSelected : 0);
-                RecordItem(state, tab.title);
-                if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", tab.title);
-                if (open) {
-                    tab.show(state);
-                    ImGui::EndTabItem();
-                }
-            }
-            ImGui::EndTabBar();
-        }
-        ImGui::EndChild();
-    }
+    if (firstWanted) ShowSideTabs(state, firstWanted, showInspector ? sideH - inspH - kBar : sideH);
     state.lessonPlayer.pendingTabSelect = false;
     state.pendingTab.clear();
     if (showInspector && firstWanted) {
-        if (const float d = Splitter("##isplit", false, kBar, sideW); d != 0) {
+        if (const float d = Splitter("##isplit", false, kBar, r.sideW); d != 0) {
             L.inspectorHeight =
                 std::clamp(L.inspectorHeight - d / std::max(1.0f, sideH), 0.1f, 0.9f);
         }
@@ -162,14 +172,44 @@ void ShowApplication(AppState& state) {
         ImGui::EndChild();
     }
     ImGui::EndChild();
+}
 
-    // ---- Bottom: messages ---------------------------------------------------------------------
-    if (const float d = Splitter("##hsplit", false, kBar, avail.x); d != 0) {
-        L.bottomHeight = std::clamp(L.bottomHeight - d / std::max(1.0f, avail.y), 0.05f, 0.6f);
+// Bottom: the messages, under a splitter.
+void ShowBottomStrip(AppState& state, const Regions& r) {
+    Layout& L = state.layout;
+    if (const float d = Splitter("##hsplit", false, kBar, r.avail.x); d != 0) {
+        L.bottomHeight = std::clamp(L.bottomHeight - d / std::max(1.0f, r.avail.y), 0.05f, 0.6f);
     }
     ImGui::BeginChild("##bottom", ImVec2(0, 0), false);
     ShowMessages(state);
     ImGui::EndChild();
+}
+
+}  // namespace
+
+void ShowApplication(AppState& state) {
+    UpdateBeforeDrawing(state);
+    BeginHostWindow();
+    ShowMenuBar(state);
+    if (slideMode(state)) {  // presentation with a lesson: the slide layout (lesson.cpp)
+        ShowSlide(state);
+        ImGui::End();
+        if (state.showHelp) ShowHelp(state);
+        ShowFileDialogs(state);
+        return;
+    }
+    ShowToolbar(state);
+    ShowCaption(state);
+    const Regions r = MeasureRegions(state);
+    ShowLeftColumn(state, r);
+    ImGui::SameLine(0, 0);
+    if (const float d = Splitter("##vsplit", true, kBar, r.mainH); d != 0) {
+        Layout& L = state.layout;
+        L.rightWidth = std::clamp(L.rightWidth - d / std::max(1.0f, r.avail.x), 0.15f, 0.7f);
+    }
+    ImGui::SameLine(0, 0);
+    ShowSideColumn(state, r);
+    ShowBottomStrip(state, r);
     ImGui::End();
 
     if (state.showHelp) ShowHelp(state);

@@ -269,29 +269,12 @@ struct SvgScene {
     }
 };
 
-}  // namespace
-
-void writeViewSvg(std::ostream& os, const AppState& st) {
-    const Engine& e = st.engine;
+// The current operation's triangles, under the edges (as on the canvas).
+void writeHighlight(const SvgScene& s, const Op* op) {
+    const Engine& e = s.st.engine;
     const Mesh& m = e.mesh();
-    const View& view = st.view;
-    const SvgScene s{st, os, std::max(1.0, view.size.x), std::max(1.0, view.size.y)};
-    const Op* op = e.current();
-    const std::string caption =
-        op ? "[" + std::to_string(e.position() - 1) + "] " + toString(op->type) + ": " +
-                 describe(*op, e.inserter())
-           : std::to_string(e.points().size()) + " points, nothing inserted yet";
-    char head[256];
-    std::snprintf(head, sizeof head,
-                  "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"%.0f\" height=\"%.0f\" "
-                  "viewBox=\"0 0 %.0f %.0f\">\n",
-                  s.w, s.h, s.w, s.h);
-    os << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n" << head;
-    os << "<title>" << xmlEscape("Delaunay Lab - " + st.source + " - " + caption) << "</title>\n";
-    os << "<rect width=\"100%\" height=\"100%\" fill=\"#ffffff\"/>\n";
-    // The current operation's triangles, under the edges (as on the canvas).
-    os << "<g id=\"highlight\" stroke=\"none\">\n";
-    if (op && st.overlays.walk) {
+    s.os << "<g id=\"highlight\" stroke=\"none\">\n";
+    if (op && s.st.overlays.walk) {
         switch (op->type) {
             case OpType::LocateStep:
             case OpType::Located:
@@ -317,48 +300,61 @@ void writeViewSvg(std::ostream& os, const AppState& st) {
             default: break;
         }
     }
-    os << "</g>\n<g id=\"edges\" stroke=\"#464e60\" stroke-width=\"1\">\n";
+    s.os << "</g>\n";
+}
+
+// Every edge once, then the edges flipped so far.
+void writeEdges(const SvgScene& s) {
+    const Mesh& m = s.st.engine.mesh();
+    s.os << "<g id=\"edges\" stroke=\"#464e60\" stroke-width=\"1\">\n";
     for (std::int32_t c = 0; c < m.numCorners(); ++c) {
         const std::int32_t o = m.O[c];
         if (o != kNone && o < c) continue;  // each interior edge once
         s.line(m.V[next(c)], m.V[prev(c)]);
     }
-    os << "</g>\n<g id=\"flipped\" stroke=\"#d72828\" stroke-width=\"2.5\">\n";
-    if (st.overlays.flipped) {
-        for (const VertexEdge& fe : e.flippedEdges()) s.line(fe.a, fe.b);
+    s.os << "</g>\n<g id=\"flipped\" stroke=\"#d72828\" stroke-width=\"2.5\">\n";
+    if (s.st.overlays.flipped) {
+        for (const VertexEdge& fe : s.st.engine.flippedEdges()) s.line(fe.a, fe.b);
     }
-    os << "</g>\n";
-    if (op && op->type == OpType::InCircleTest && op->a >= 0 && op->a < m.numCorners()) {
-        os << "<g id=\"test\" stroke=\"#f07800\" stroke-width=\"3.5\" fill=\"none\">\n";
-        s.line(m.V[next(op->a)], m.V[prev(op->a)]);
-        const std::int32_t b = op->b;
-        if (b >= 0 && b < m.numCorners()) {
-            const std::int32_t t = tri(b);
-            bool real = true;  // a ghost triangle's "circle" is a half-plane: not drawn
-            for (int k = 0; k < 3; ++k) real &= s.drawable(m.V[3 * t + k]);
-            if (real) {
-                const Vec2 cc =
-                    circumcenter(m.G[m.V[3 * t]], m.G[m.V[3 * t + 1]], m.G[m.V[3 * t + 2]]);
-                const double r =
-                    std::hypot(cc.x - m.G[m.V[3 * t]].x, cc.y - m.G[m.V[3 * t]].y) * view.scale;
-                const glm::dvec2 q = s.at(cc);
-                if (std::isfinite(r) && std::isfinite(q.x) && std::isfinite(q.y) && r < 1e7) {
-                    char buf[200];
-                    std::snprintf(buf, sizeof buf,
-                                  "<circle cx=\"%.2f\" cy=\"%.2f\" r=\"%.2f\" stroke=\"%s\"/>\n",
-                                  q.x, q.y, r, op->sign > 0 ? "#d72828" : "#1e963c");
-                    os << buf;
-                }
+    s.os << "</g>\n";
+}
+
+// An in-circle test: the edge tested, and the circle of the triangle across it in the verdict's
+// colour.
+void writeInCircleTest(const SvgScene& s, const Op& op) {
+    const Mesh& m = s.st.engine.mesh();
+    s.os << "<g id=\"test\" stroke=\"#f07800\" stroke-width=\"3.5\" fill=\"none\">\n";
+    s.line(m.V[next(op.a)], m.V[prev(op.a)]);
+    const std::int32_t b = op.b;
+    if (b >= 0 && b < m.numCorners()) {
+        const std::int32_t t = tri(b);
+        bool real = true;  // a ghost triangle's "circle" is a half-plane: not drawn
+        for (int k = 0; k < 3; ++k) real &= s.drawable(m.V[3 * t + k]);
+        if (real) {
+            const Vec2 cc = circumcenter(m.G[m.V[3 * t]], m.G[m.V[3 * t + 1]], m.G[m.V[3 * t + 2]]);
+            const double r =
+                std::hypot(cc.x - m.G[m.V[3 * t]].x, cc.y - m.G[m.V[3 * t]].y) * s.st.view.scale;
+            const glm::dvec2 q = s.at(cc);
+            if (std::isfinite(r) && std::isfinite(q.x) && std::isfinite(q.y) && r < 1e7) {
+                char buf[200];
+                std::snprintf(buf, sizeof buf,
+                              "<circle cx=\"%.2f\" cy=\"%.2f\" r=\"%.2f\" stroke=\"%s\"/>\n", q.x,
+                              q.y, r, op.sign > 0 ? "#d72828" : "#1e963c");
+                s.os << buf;
             }
         }
-        os << "</g>\n";
     }
-    // Points: inserted (filled), queued (hollow), the one being inserted (orange), duplicates
-    // (red).
-    os << "<g id=\"points\">\n";
+    s.os << "</g>\n";
+}
+
+// Points: inserted (filled), queued (hollow), the one being inserted (orange), duplicates
+// (red); their ids when the overlay shows them and they are few.
+void writePoints(const SvgScene& s) {
+    const Engine& e = s.st.engine;
+    s.os << "<g id=\"points\">\n";
     const auto& states = e.pointStates();
     const auto& pts = e.points();
-    const bool ids = st.overlays.vertexIds && pts.size() <= 2000;
+    const bool ids = s.st.overlays.vertexIds && pts.size() <= 2000;
     for (std::size_t i = 0; i < pts.size(); ++i) {
         const glm::dvec2 q = s.at(pts[i]);
         if (q.x < -10 || q.y < -10 || q.x > s.w + 10 || q.y > s.h + 10) continue;
@@ -366,7 +362,7 @@ void writeViewSvg(std::ostream& os, const AppState& st) {
         switch (states[i]) {
             case Engine::PointState::Inserted: break;
             case Engine::PointState::Pending:
-                if (!st.overlays.pendingPoints) continue;
+                if (!s.st.overlays.pendingPoints) continue;
                 style = "fill=\"none\" stroke=\"#8c8c96\" stroke-width=\"1.5\"";
                 break;
             case Engine::PointState::Current: style = "fill=\"#f07800\""; break;
@@ -376,16 +372,42 @@ void writeViewSvg(std::ostream& os, const AppState& st) {
         std::snprintf(buf, sizeof buf,
                       "<circle data-id=\"%zu\" cx=\"%.2f\" cy=\"%.2f\" r=\"4\" %s/>\n", i, q.x, q.y,
                       style);
-        os << buf;
+        s.os << buf;
         if (ids) {
             std::snprintf(
                 buf, sizeof buf,
                 "<text x=\"%.2f\" y=\"%.2f\" font-size=\"13\" fill=\"#193ca0\">%zu</text>\n",
                 q.x + 6, q.y - 6, i);
-            os << buf;
+            s.os << buf;
         }
     }
-    os << "</g>\n";
+    s.os << "</g>\n";
+}
+
+}  // namespace
+
+void writeViewSvg(std::ostream& os, const AppState& st) {
+    const Engine& e = st.engine;
+    const Mesh& m = e.mesh();
+    const SvgScene s{st, os, std::max(1.0, st.view.size.x), std::max(1.0, st.view.size.y)};
+    const Op* op = e.current();
+    const std::string caption =
+        op ? "[" + std::to_string(e.position() - 1) + "] " + toString(op->type) + ": " +
+                 describe(*op, e.inserter())
+           : std::to_string(e.points().size()) + " points, nothing inserted yet";
+    char head[256];
+    std::snprintf(head, sizeof head,
+                  "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"%.0f\" height=\"%.0f\" "
+                  "viewBox=\"0 0 %.0f %.0f\">\n",
+                  s.w, s.h, s.w, s.h);
+    os << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n" << head;
+    os << "<title>" << xmlEscape("Delaunay Lab - " + st.source + " - " + caption) << "</title>\n";
+    os << "<rect width=\"100%\" height=\"100%\" fill=\"#ffffff\"/>\n";
+    writeHighlight(s, op);
+    writeEdges(s);
+    if (op && op->type == OpType::InCircleTest && op->a >= 0 && op->a < m.numCorners())
+        writeInCircleTest(s, *op);
+    writePoints(s);
     os << "<text x=\"8\" y=\"20\" font-family=\"sans-serif\" font-size=\"16\" fill=\"#000000\">"
        << xmlEscape(caption) << "</text>\n";
     os << "</svg>\n";

@@ -258,8 +258,8 @@ struct Session {
     std::string expectFingerprint;
 };
 
-Session parseSession(const Json& j) {
-    Session s;
+// "format" and "version": a Delaunay Lab session this build reads.
+void checkFormat(const Json& j) {
     if (!j.is_object()) fail("", "not a Delaunay Lab session (the file is not a JSON object)");
     const Json* format = member(j, "format");
     if (!format || !format->is_string() || format->get<std::string>() != kSessionFormat) {
@@ -275,128 +275,152 @@ Session parseSession(const Json& j) {
                              " is newer than this Delaunay Lab reads (" +
                              std::to_string(kSessionVersion) + "): update Delaunay Lab");
     }
-    if (const Json* src = member(j, "source")) s.source = text(*src, "/source");
+}
 
+std::vector<Vec2> parsePoints(const Json& j) {
     const Json* pts = member(j, "points");
     if (!pts) fail("", "no \"points\"");
     if (!pts->is_array()) fail("/points", "expected an array of [x, y] pairs");
     if (pts->size() > kMaxPoints)
         fail("/points", "more than " + std::to_string(kMaxPoints) + " points");
-    s.points.reserve(pts->size());
+    std::vector<Vec2> points;
+    points.reserve(pts->size());
     for (std::size_t k = 0; k < pts->size(); ++k) {
         const Json& p = (*pts)[k];
         const std::string where = "/points/" + std::to_string(k);
         if (!p.is_array() || p.size() != 2) fail(where, "expected [x, y]");
-        s.points.push_back({finiteNumber(p[0], where + "/0"), finiteNumber(p[1], where + "/1")});
+        points.push_back({finiteNumber(p[0], where + "/0"), finiteNumber(p[1], where + "/1")});
     }
+    return points;
+}
 
-    if (const Json* o = member(j, "options")) {
-        if (!o->is_object()) fail("/options", "expected an object");
-        if (const Json* b = member(*o, "boundary")) {
-            const auto parsed = parseBoundary(text(*b, "/options/boundary"));
-            if (!parsed)
-                fail("/options/boundary",
-                     "unknown boundary mode \"" + b->get<std::string>() + "\" (exact, super)");
-            s.options.boundary = *parsed;
-        }
-        if (const Json* l = member(*o, "locator")) {
-            const auto parsed = parseLocatorKind(text(*l, "/options/locator"));
-            if (!parsed)
-                fail("/options/locator", "unknown locator \"" + l->get<std::string>() + "\"");
-            s.options.locator = *parsed;
-        }
-        if (const Json* r = member(*o, "order")) {
-            const auto parsed = parseOrderKind(text(*r, "/options/order"));
-            if (!parsed)
-                fail("/options/order", "unknown insertion order \"" + r->get<std::string>() +
-                                           "\" (input, random, brio)");
-            s.options.order = *parsed;
-        }
-        if (const Json* seed = member(*o, "seed")) s.options.seed = count(*seed, "/options/seed");
-        if (const Json* id = member(*o, "id_buffer")) {
-            if (!id->is_array() || id->size() != 2)
-                fail("/options/id_buffer", "expected [width, height]");
-            const std::uint64_t w = count((*id)[0], "/options/id_buffer/0"),
-                                h = count((*id)[1], "/options/id_buffer/1");
-            if (w < 1 || h < 1 || w > 16384 || h > 16384)
-                fail("/options/id_buffer", "width and height must be 1 to 16384");
-            s.options.locatorOptions.idBufferWidth = static_cast<int>(w);
-            s.options.locatorOptions.idBufferHeight = static_cast<int>(h);
-        }
+// A mode named by its text (`parse` reads it); an unknown name is the error, with the known
+// `choices` when they are few.
+template <class Parse>
+auto parseMode(const Json& v, const std::string& where, Parse parse, const char* what,
+               const char* choices) {
+    const auto parsed = parse(text(v, where));
+    if (!parsed)
+        fail(where, std::string("unknown ") + what + " \"" + v.get<std::string>() + "\"" + choices);
+    return *parsed;
+}
+
+void parseOptions(const Json& o, InsertOptions& options) {
+    if (!o.is_object()) fail("/options", "expected an object");
+    if (const Json* b = member(o, "boundary"))
+        options.boundary =
+            parseMode(*b, "/options/boundary", parseBoundary, "boundary mode", " (exact, super)");
+    if (const Json* l = member(o, "locator"))
+        options.locator = parseMode(*l, "/options/locator", parseLocatorKind, "locator", "");
+    if (const Json* r = member(o, "order"))
+        options.order = parseMode(*r, "/options/order", parseOrderKind, "insertion order",
+                                  " (input, random, brio)");
+    if (const Json* seed = member(o, "seed")) options.seed = count(*seed, "/options/seed");
+    if (const Json* id = member(o, "id_buffer")) {
+        if (!id->is_array() || id->size() != 2)
+            fail("/options/id_buffer", "expected [width, height]");
+        const std::uint64_t w = count((*id)[0], "/options/id_buffer/0"),
+                            h = count((*id)[1], "/options/id_buffer/1");
+        if (w < 1 || h < 1 || w > 16384 || h > 16384)
+            fail("/options/id_buffer", "width and height must be 1 to 16384");
+        options.locatorOptions.idBufferWidth = static_cast<int>(w);
+        options.locatorOptions.idBufferHeight = static_cast<int>(h);
     }
+}
+
+void parseView(const Json& view, Session& s) {
+    if (!view.is_object()) fail("/view", "expected an object");
+    const Json* c = member(view, "center");
+    const Json* sc = member(view, "scale");
+    if (!c || !sc) fail("/view", "expected \"center\" and \"scale\"");
+    if (!c->is_array() || c->size() != 2) fail("/view/center", "expected [x, y]");
+    s.center = {finiteNumber((*c)[0], "/view/center/0"), finiteNumber((*c)[1], "/view/center/1")};
+    s.scale = finiteNumber(*sc, "/view/scale");
+    if (!(s.scale > 0)) fail("/view/scale", "the scale must be positive");
+    s.hasView = true;
+}
+
+void parseSelection(const Json& sel, Session& s) {
+    if (!sel.is_object()) fail("/selection", "expected an object");
+    if (const Json* c = member(sel, "corner")) {
+        if (!c->is_number_integer() || c->get<std::int64_t>() < -1 ||
+            c->get<std::int64_t>() > INT32_MAX) {
+            fail("/selection/corner", "expected a corner id (or -1 for none)");
+        }
+        s.corner = static_cast<std::int32_t>(c->get<std::int64_t>());
+    }
+}
+
+Overlays parseOverlays(const Json& ov) {
+    if (!ov.is_object()) fail("/overlays", "expected an object");
+    Overlays o;
+    for (const OverlayField& f : kOverlayFields) {
+        if (const Json* v = member(ov, f.name))
+            o.*f.flag = flag(*v, std::string("/overlays/") + f.name);
+    }
+    return o;
+}
+
+std::vector<BreakpointEntry> parseBreakpoints(const Json& bps) {
+    if (!bps.is_array()) fail("/breakpoints", "expected an array of breakpoint texts");
+    std::vector<BreakpointEntry> out;
+    for (std::size_t k = 0; k < bps.size(); ++k) {
+        const std::string where = "/breakpoints/" + std::to_string(k);
+        std::string why;
+        const auto bp = parseBreakpoint(text(bps[k], where), &why);
+        if (!bp) fail(where, why);
+        out.push_back({*bp, true});
+    }
+    return out;
+}
+
+// A watch: {"text": a comparison, "enabled": true or false (true when absent)}.
+std::pair<std::string, bool> parseWatch(const Json& w, const std::string& where) {
+    if (!w.is_object() || !member(w, "text"))
+        fail(where, "expected {\"text\": ..., \"enabled\": ...}");
+    const std::string t = text(w["text"], where + "/text");
+    ExprError err;
+    const auto parsed = CornerExpr::parse(t, &err);
+    if (!parsed || !parsed->isComparison())
+        fail(where + "/text", parsed ? "a watch must be a comparison" : err.message);
+    const bool enabled = member(w, "enabled") ? flag(w["enabled"], where + "/enabled") : true;
+    return {t, enabled};
+}
+
+void parseExpressions(const Json& ex, Session& s) {
+    if (!ex.is_object()) fail("/expressions", "expected an object");
+    if (const Json* live = member(ex, "live")) s.live = text(*live, "/expressions/live");
+    if (const Json* ws = member(ex, "watches")) {
+        if (!ws->is_array()) fail("/expressions/watches", "expected an array");
+        for (std::size_t k = 0; k < ws->size(); ++k)
+            s.watches.push_back(parseWatch((*ws)[k], "/expressions/watches/" + std::to_string(k)));
+    }
+}
+
+void parseExpect(const Json& ex, Session& s) {
+    if (!ex.is_object()) fail("/expect", "expected an object");
+    if (const Json* p = member(ex, "position")) {
+        s.expectPosition = count(*p, "/expect/position");
+        s.hasExpect = true;
+    }
+    if (const Json* f = member(ex, "fingerprint"))
+        s.expectFingerprint = text(*f, "/expect/fingerprint");
+}
+
+// The session's fields in the file's order of importance; the first bad one is the error.
+Session parseSession(const Json& j) {
+    Session s;
+    checkFormat(j);
+    if (const Json* src = member(j, "source")) s.source = text(*src, "/source");
+    s.points = parsePoints(j);
+    if (const Json* o = member(j, "options")) parseOptions(*o, s.options);
     if (const Json* p = member(j, "position")) s.position = count(*p, "/position");
-
-    if (const Json* view = member(j, "view")) {
-        if (!view->is_object()) fail("/view", "expected an object");
-        const Json* c = member(*view, "center");
-        const Json* sc = member(*view, "scale");
-        if (!c || !sc) fail("/view", "expected \"center\" and \"scale\"");
-        if (!c->is_array() || c->size() != 2) fail("/view/center", "expected [x, y]");
-        s.center = {finiteNumber((*c)[0], "/view/center/0"),
-                    finiteNumber((*c)[1], "/view/center/1")};
-        s.scale = finiteNumber(*sc, "/view/scale");
-        if (!(s.scale > 0)) fail("/view/scale", "the scale must be positive");
-        s.hasView = true;
-    }
-    if (const Json* sel = member(j, "selection")) {
-        if (!sel->is_object()) fail("/selection", "expected an object");
-        if (const Json* c = member(*sel, "corner")) {
-            if (!c->is_number_integer() || c->get<std::int64_t>() < -1 ||
-                c->get<std::int64_t>() > INT32_MAX) {
-                fail("/selection/corner", "expected a corner id (or -1 for none)");
-            }
-            s.corner = static_cast<std::int32_t>(c->get<std::int64_t>());
-        }
-    }
-    if (const Json* ov = member(j, "overlays")) {
-        if (!ov->is_object()) fail("/overlays", "expected an object");
-        Overlays o;
-        for (const OverlayField& f : kOverlayFields) {
-            if (const Json* v2 = member(*ov, f.name))
-                o.*f.flag = flag(*v2, std::string("/overlays/") + f.name);
-        }
-        s.overlays = o;
-    }
-    if (const Json* bps = member(j, "breakpoints")) {
-        if (!bps->is_array()) fail("/breakpoints", "expected an array of breakpoint texts");
-        for (std::size_t k = 0; k < bps->size(); ++k) {
-            const std::string where = "/breakpoints/" + std::to_string(k);
-            std::string why;
-            const auto bp = parseBreakpoint(text((*bps)[k], where), &why);
-            if (!bp) fail(where, why);
-            s.breakpoints.push_back({*bp, true});
-        }
-    }
-    if (const Json* ex = member(j, "expressions")) {
-        if (!ex->is_object()) fail("/expressions", "expected an object");
-        if (const Json* live = member(*ex, "live")) s.live = text(*live, "/expressions/live");
-        if (const Json* ws = member(*ex, "watches")) {
-            if (!ws->is_array()) fail("/expressions/watches", "expected an array");
-            for (std::size_t k = 0; k < ws->size(); ++k) {
-                const std::string where = "/expressions/watches/" + std::to_string(k);
-                const Json& w = (*ws)[k];
-                if (!w.is_object() || !member(w, "text"))
-                    fail(where, "expected {\"text\": ..., \"enabled\": ...}");
-                const std::string t = text(w["text"], where + "/text");
-                ExprError err;
-                const auto parsed = CornerExpr::parse(t, &err);
-                if (!parsed || !parsed->isComparison())
-                    fail(where + "/text", parsed ? "a watch must be a comparison" : err.message);
-                const bool enabled =
-                    member(w, "enabled") ? flag(w["enabled"], where + "/enabled") : true;
-                s.watches.emplace_back(t, enabled);
-            }
-        }
-    }
-    if (const Json* ex = member(j, "expect")) {
-        if (!ex->is_object()) fail("/expect", "expected an object");
-        if (const Json* p = member(*ex, "position")) {
-            s.expectPosition = count(*p, "/expect/position");
-            s.hasExpect = true;
-        }
-        if (const Json* f = member(*ex, "fingerprint"))
-            s.expectFingerprint = text(*f, "/expect/fingerprint");
-    }
+    if (const Json* view = member(j, "view")) parseView(*view, s);
+    if (const Json* sel = member(j, "selection")) parseSelection(*sel, s);
+    if (const Json* ov = member(j, "overlays")) s.overlays = parseOverlays(*ov);
+    if (const Json* bps = member(j, "breakpoints")) s.breakpoints = parseBreakpoints(*bps);
+    if (const Json* ex = member(j, "expressions")) parseExpressions(*ex, s);
+    if (const Json* ex = member(j, "expect")) parseExpect(*ex, s);
     return s;
 }
 
@@ -502,9 +526,12 @@ static std::string numberTooLarge(std::string_view text, const std::string& name
            escapeControls(number) + " is too large (a coordinate must be a finite double)";
 }
 
-bool loadSessionText(AppState& st, std::string_view textIn, const std::string& name,
+namespace {
+
+// The file's text parsed and checked; a problem is one line naming the file, its line and
+// the field.
+bool readSessionText(std::string_view textIn, const std::string& name, Session& s,
                      std::string& error) {
-    Session s;
     try {
         const Json j = Json::parse(textIn.begin(), textIn.end());
         s = parseSession(j);
@@ -534,6 +561,53 @@ bool loadSessionText(AppState& st, std::string_view textIn, const std::string& n
         error = name + ": " + escapeControls(e.what());
         return false;
     }
+    return true;
+}
+
+// The session's expressions: its watches (checked already) and the live expression.
+void restoreExpressions(ExpressionState& ex, const Session& s) {
+    ex.watches.clear();
+    for (const auto& [t, enabled] : s.watches) {
+        WatchEntry w;
+        w.text = t;
+        w.enabled = enabled;
+        w.expr = std::make_shared<const CornerExpr>(*CornerExpr::parse(t));
+        ex.watches.push_back(std::move(w));
+    }
+    ex.watchedVersion = ~std::uint64_t{0};
+    ex.live = s.live;
+    ex.liveVersion = ~std::uint64_t{0};
+    ex.path.clear();
+    ex.result.reset();
+}
+
+// What was restored, and where the run differs from the file: it ends early, or its mesh is
+// not the one the file saved.
+void logRestored(AppState& st, const Session& s, const std::string& name, std::size_t points) {
+    const Engine& eng = st.engine;
+    st.log(Message::Level::Info, name + ": session restored: " + std::to_string(points) +
+                                     " points, operation " + std::to_string(eng.position()) +
+                                     " of " + std::to_string(eng.recorded()));
+    if (eng.position() != s.position) {
+        st.log(Message::Level::Warning,
+               name + ": the run ends after " + std::to_string(eng.position()) +
+                   " operations, before the saved step " + std::to_string(s.position));
+    }
+    if (s.hasExpect && !s.expectFingerprint.empty() && s.expectPosition == eng.position() &&
+        s.expectFingerprint != hex64(MeshFingerprint(eng.mesh()))) {
+        st.log(Message::Level::Warning,
+               name + ": the mesh at operation " + std::to_string(eng.position()) +
+                   " differs from the one saved in the file: this build triangulates differently "
+                   "(keep the file: it reproduces the difference)");
+    }
+}
+
+}  // namespace
+
+bool loadSessionText(AppState& st, std::string_view textIn, const std::string& name,
+                     std::string& error) {
+    Session s;
+    if (!readSessionText(textIn, name, s, error)) return false;
 
     // Everything checked: restart the run at the saved step (the engine changes nothing when it
     // cannot), then the rest.
@@ -564,36 +638,8 @@ bool loadSessionText(AppState& st, std::string_view textIn, const std::string& n
         st.fitPending = true;
     }
     if (s.overlays) st.overlays = *s.overlays;
-    ExpressionState& ex = st.expressions;
-    ex.watches.clear();
-    for (const auto& [t, enabled] : s.watches) {
-        WatchEntry w;
-        w.text = t;
-        w.enabled = enabled;
-        w.expr = std::make_shared<const CornerExpr>(*CornerExpr::parse(t));
-        ex.watches.push_back(std::move(w));
-    }
-    ex.watchedVersion = ~std::uint64_t{0};
-    ex.live = s.live;
-    ex.liveVersion = ~std::uint64_t{0};
-    ex.path.clear();
-    ex.result.reset();
-
-    st.log(Message::Level::Info, name + ": session restored: " + std::to_string(n) +
-                                     " points, operation " + std::to_string(eng.position()) +
-                                     " of " + std::to_string(eng.recorded()));
-    if (eng.position() != s.position) {
-        st.log(Message::Level::Warning,
-               name + ": the run ends after " + std::to_string(eng.position()) +
-                   " operations, before the saved step " + std::to_string(s.position));
-    }
-    if (s.hasExpect && !s.expectFingerprint.empty() && s.expectPosition == eng.position() &&
-        s.expectFingerprint != hex64(MeshFingerprint(eng.mesh()))) {
-        st.log(Message::Level::Warning,
-               name + ": the mesh at operation " + std::to_string(eng.position()) +
-                   " differs from the one saved in the file: this build triangulates differently "
-                   "(keep the file: it reproduces the difference)");
-    }
+    restoreExpressions(st.expressions, s);
+    logRestored(st, s, name, n);
     return true;
 }
 

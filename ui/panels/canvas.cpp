@@ -726,6 +726,20 @@ void DrawGrid(const Scene& s, double step) {
     }
 }
 
+// The scene of the engine's current mesh in the app's view, drawn into dl.
+Scene makeScene(AppState& st, ImDrawList* dl) {
+    const Engine& e = st.engine;
+    return Scene{st,
+                 e,
+                 e.mesh(),
+                 e.inserter(),
+                 st.view,
+                 dl,
+                 palette(st.presentation),
+                 !e.inserter().done(),
+                 e.options().boundary == Boundary::Exact};
+}
+
 // ============================================================================================
 // [SECTION] Input
 // ============================================================================================
@@ -847,17 +861,8 @@ void ShowCanvasNotice(AppState& st) {
 }
 
 bool cornerAnchor(const AppState& st, std::int32_t c, float& x, float& y) {
-    const Engine& e = st.engine;
     // A read-only scene (no draw list: room() is never asked).
-    const Scene scene{const_cast<AppState&>(st),
-                      e,
-                      e.mesh(),
-                      e.inserter(),
-                      st.view,
-                      nullptr,
-                      palette(st.presentation),
-                      !e.inserter().done(),
-                      e.options().boundary == Boundary::Exact};
+    const Scene scene = makeScene(const_cast<AppState&>(st), nullptr);
     ImVec2 a;
     if (!scene.anchor(c, a)) return false;
     x = a.x;
@@ -869,14 +874,11 @@ bool cornerAnchor(const AppState& st, std::int32_t c, float& x, float& y) {
 // [SECTION] ShowCanvas
 // ============================================================================================
 
-void ShowCanvas(AppState& st) {
-    if (!st.canvas) st.canvas = std::make_shared<CanvasCache>();
-    CanvasCache& cache = *st.canvas;
-    const float timelineH = ImGui::GetFrameHeightWithSpacing();
-    const ImVec2 p0 = ImGui::GetCursorScreenPos();
-    ImVec2 size = ImGui::GetContentRegionAvail();
-    size.y = std::max(50.0f, size.y - timelineH);
-    size.x = std::max(50.0f, size.x);
+namespace {
+
+// The canvas takes the space above the timeline; a new size refits a view the user had not
+// moved, and a pending fit (new points, F, a lesson stop's box) is made here.
+void PlaceView(AppState& st, CanvasCache& cache, ImVec2 p0, ImVec2 size) {
     View& view = st.view;
     const bool resized = view.size.x != size.x || view.size.y != size.y;
     view.origin = {p0.x, p0.y};
@@ -899,46 +901,28 @@ void ShowCanvas(AppState& st) {
         view.fit({(*box)[0], (*box)[1]}, {(*box)[2], (*box)[3]});
         box.reset();
     }
-    ImGui::InvisibleButton("##canvas", size,
-                           ImGuiButtonFlags_MouseButtonLeft | ImGuiButtonFlags_MouseButtonRight |
-                               ImGuiButtonFlags_MouseButtonMiddle);
-    const bool hovered = ImGui::IsItemHovered();
-    RecordItem(st, "canvas");
-    ImDrawList* dl = ImGui::GetWindowDrawList();
-    const ImVec2 p1(p0.x + size.x, p0.y + size.y);
-    dl->PushClipRect(p0, p1, true);
+}
 
-    st.frameStats.canvasFull = false;
-    const Engine& e = st.engine;
-    Scene scene{st,
-                e,
-                e.mesh(),
-                e.inserter(),
-                view,
-                dl,
-                palette(st.presentation),
-                !e.inserter().done(),
-                e.options().boundary == Boundary::Exact};
-    dl->AddRectFilled(p0, p1, scene.pal.background);
-    if (st.snapToGrid) DrawGrid(scene, st.gridStep);
-
-    // The mesh: our GL renderer (any size), then ImDrawList overlays on top.
+MeshStyle canvasMeshStyle(const AppState& st, const Palette& pal) {
     MeshStyle ms;
-    ms.fill = st.overlays.fill ? scene.pal.fill : 0;
+    ms.fill = st.overlays.fill ? pal.fill : 0;
     ms.drawFill = st.overlays.fill;
-    ms.edge = scene.pal.edge;
-    ms.virtualEdge = scene.pal.virtualEdge;
-    ms.point = scene.pal.vertex;
-    ms.pending = scene.pal.pending;
+    ms.edge = pal.edge;
+    ms.virtualEdge = pal.virtualEdge;
+    ms.point = pal.vertex;
+    ms.pending = pal.pending;
     ms.edgeWidth = st.presentation ? 2.0f : 1.0f;
-    ms.pointSize = e.points().size() <= 5000 ? 4.0f : 2.0f;
-    ms.drawPoints = e.points().size() > kFewPoints;
+    ms.pointSize = st.engine.points().size() <= 5000 ? 4.0f : 2.0f;
+    ms.drawPoints = st.engine.points().size() > kFewPoints;
     ms.drawVirtual = st.overlays.virtualTriangles;
-    // Layers: the fill (GL), the current op's fills (ImDrawList), the edges and points (GL),
-    // then lines, labels and the selection (ImDrawList).
-    // At full speed on a mesh whose rebuild is costly, the mesh is rebuilt every other frame (it
-    // shows one frame late): the frame stays interactive on software GL. A moved view always
-    // rebuilds.
+    return ms;
+}
+
+// The renderer's mesh, brought up to date. At full speed on a mesh whose rebuild is costly, the
+// mesh is rebuilt every other frame (it shows one frame late): the frame stays interactive on
+// software GL. A moved view always rebuilds.
+CanvasMesh& updateCanvasMesh(AppState& st, CanvasCache& cache, const MeshStyle& ms) {
+    const View& view = st.view;
     const bool sameView =
         view.center == cache.builtView.center && view.scale == cache.builtView.scale &&
         view.origin == cache.builtView.origin && view.size == cache.builtView.size;
@@ -950,40 +934,86 @@ void ShowCanvas(AppState& st) {
     CanvasMesh& mesh = *cache.renderer;
     const bool defer = st.run.running && st.run.fullSpeed() && cache.rebuiltLastFrame && sameView &&
                        mesh.lastBuildMs() > 5.0;
-    const bool rebuilt = !defer && mesh.update(e, view, ms);
+    const bool rebuilt = !defer && mesh.update(st.engine, view, ms);
     cache.rebuiltLastFrame = rebuilt;
     if (rebuilt) cache.builtView = view;
     st.frameStats.meshBuildMs = rebuilt ? mesh.lastBuildMs() : 0.0;
     st.frameStats.visibleEdges = mesh.visibleEdges();
     st.frameStats.denseMesh = mesh.dense();
-    if (ms.drawFill) mesh.enqueue(dl, CanvasMesh::Pass::Fill, p0.x, p0.y, p1.x, p1.y);
-    DrawOpUnderlay(scene);
-    mesh.enqueue(dl, CanvasMesh::Pass::Lines, p0.x, p0.y, p1.x, p1.y);
-    if (st.overlays.circumcircles) {
-        for (std::int32_t t = 0; t < e.mesh().numTriangles(); ++t) {
-            Vec2 c;
-            double r;
-            if (scene.virtualTri(t) || !circumcircle(e.mesh(), t, c, r)) continue;
-            if (!scene.room(800)) break;
-            scene.circle(c, r, scene.pal.circum, 1.0f);
-        }
+    return mesh;
+}
+
+void DrawCircumcircles(const Scene& scene) {
+    for (std::int32_t t = 0; t < scene.m.numTriangles(); ++t) {
+        Vec2 c;
+        double r;
+        if (scene.virtualTri(t) || !circumcircle(scene.m, t, c, r)) continue;
+        if (!scene.room(800)) break;
+        scene.circle(c, r, scene.pal.circum, 1.0f);
     }
+}
+
+// The mesh: our renderer (any size), with ImDrawList layers between and on top: the fill, the
+// current op's fills, the edges and points, then circles, Voronoi, ghosts and the op's lines.
+void DrawMeshLayers(AppState& st, CanvasCache& cache, const Scene& scene, ImVec2 p0, ImVec2 p1) {
+    const MeshStyle ms = canvasMeshStyle(st, scene.pal);
+    CanvasMesh& mesh = updateCanvasMesh(st, cache, ms);
+    if (ms.drawFill) mesh.enqueue(scene.dl, CanvasMesh::Pass::Fill, p0.x, p0.y, p1.x, p1.y);
+    DrawOpUnderlay(scene);
+    mesh.enqueue(scene.dl, CanvasMesh::Pass::Lines, p0.x, p0.y, p1.x, p1.y);
+    if (st.overlays.circumcircles) DrawCircumcircles(scene);
     if (st.overlays.voronoi) DrawVoronoi(scene);
-    DrawGhostTriangles(st, dl);
+    DrawGhostTriangles(st, scene.dl);
     DrawOpOverlay(scene);
+}
+
+// Labels, points (a dragged queued point where the mouse is) and the selection; returns the
+// corner under the mouse.
+std::int32_t DrawLabelsAndPoints(AppState& st, const CanvasCache& cache, Scene& scene,
+                                 bool hovered) {
+    const Engine& e = st.engine;
     std::int32_t hoveredCorner = kNone;
     if (st.overlays.vertexIds && e.points().size() <= kFewPoints)
         scene.vertexLabelAt =
-            placeVertexLabels(scene.labels, view, e.points(), fonts().mono,
+            placeVertexLabels(scene.labels, st.view, e.points(), fonts().mono,
                               ImGui::GetFontSize() * 0.9f, st.presentation ? 5.5f : 4.0f);
     DrawLabels(scene, hoveredCorner, ImGui::GetIO().MousePos, hovered);
     st.selection.hoveredCorner = hoveredCorner;
     const Vec2 dragTo =
-        roundedClick(st, view.toWorld({ImGui::GetIO().MousePos.x, ImGui::GetIO().MousePos.y}));
+        roundedClick(st, st.view.toWorld({ImGui::GetIO().MousePos.x, ImGui::GetIO().MousePos.y}));
     DrawPoints(scene,
                cache.drag == CanvasCache::Drag::Pending && cache.moved ? cache.dragPoint : kNone,
                dragTo);
     DrawSelection(scene);
+    return hoveredCorner;
+}
+
+}  // namespace
+
+void ShowCanvas(AppState& st) {
+    if (!st.canvas) st.canvas = std::make_shared<CanvasCache>();
+    CanvasCache& cache = *st.canvas;
+    const float timelineH = ImGui::GetFrameHeightWithSpacing();
+    const ImVec2 p0 = ImGui::GetCursorScreenPos();
+    ImVec2 size = ImGui::GetContentRegionAvail();
+    size.y = std::max(50.0f, size.y - timelineH);
+    size.x = std::max(50.0f, size.x);
+    PlaceView(st, cache, p0, size);
+    ImGui::InvisibleButton("##canvas", size,
+                           ImGuiButtonFlags_MouseButtonLeft | ImGuiButtonFlags_MouseButtonRight |
+                               ImGuiButtonFlags_MouseButtonMiddle);
+    const bool hovered = ImGui::IsItemHovered();
+    RecordItem(st, "canvas");
+    ImDrawList* dl = ImGui::GetWindowDrawList();
+    const ImVec2 p1(p0.x + size.x, p0.y + size.y);
+    dl->PushClipRect(p0, p1, true);
+
+    st.frameStats.canvasFull = false;
+    Scene scene = makeScene(st, dl);
+    dl->AddRectFilled(p0, p1, scene.pal.background);
+    if (st.snapToGrid) DrawGrid(scene, st.gridStep);
+    DrawMeshLayers(st, cache, scene, p0, p1);
+    const std::int32_t hoveredCorner = DrawLabelsAndPoints(st, cache, scene, hovered);
     dl->PopClipRect();
     handleInput(st, cache, hovered);
     if (hovered && hoveredCorner != kNone && cache.drag == CanvasCache::Drag::None) {

@@ -29,14 +29,17 @@ void IdCell(std::int32_t v) {
         ImGui::Text("%d", v);
 }
 
-}  // namespace
+using BeforeValues = std::unordered_map<std::int32_t, std::int32_t>;  // corner -> value before
 
-void ShowCornerTable(AppState& st) {
-    const Engine& e = st.engine;
-    const Mesh& m = e.mesh();
-    const Inserter& ins = e.inserter();
+// What the current op changed: the cells' values before it, and the triangles it touched.
+struct OpChanges {
+    BeforeValues beforeV, beforeO;
+    std::vector<std::int32_t> touched;  // sorted
+};
 
-    // Jump to a corner.
+// The field that jumps to a corner, the Follow switch and the table's size.
+void ShowGoToCorner(AppState& st) {
+    const Mesh& m = st.engine.mesh();
     int jump = st.selection.corner == kNone ? 0 : st.selection.corner;
     ImGui::SetNextItemWidth(ImGui::GetFontSize() * 5.5f);  // the number and its - + buttons
     if (ImGui::InputInt("Go to corner", &jump, 1, 100, ImGuiInputTextFlags_EnterReturnsTrue)) {
@@ -49,119 +52,142 @@ void ShowCornerTable(AppState& st) {
     if (ImGui::IsItemHovered()) ImGui::SetTooltip("Scroll to the cells each operation changes");
     ImGui::SameLine();
     ImGui::TextDisabled("%d corners   l(c) = o(n(c)), r(c) = o(p(c))", m.numCorners());
+}
 
-    // What the current op changed: (corner, column) -> value before.
-    std::unordered_map<std::int32_t, std::int32_t> beforeV, beforeO;
-    std::vector<std::int32_t> touched;
+// The current op's changes; when following the run, a new step scrolls to its first change.
+OpChanges collectOpChanges(AppState& st) {
+    const Engine& e = st.engine;
+    OpChanges out;
     if (const Op* op = e.current(); op && e.journal()) {
         const auto& changes = e.journal()->changes();
         for (std::uint32_t i = 0; i < op->numChanges; ++i) {
             const CellChange& ch = changes[op->firstChange + i];
             // The first record of a cell holds its value before the op.
-            (ch.isO() ? beforeO : beforeV).emplace(ch.corner(), ch.before);
-            touched.push_back(tri(ch.corner()));
+            (ch.isO() ? out.beforeO : out.beforeV).emplace(ch.corner(), ch.before);
+            out.touched.push_back(tri(ch.corner()));
         }
-        std::sort(touched.begin(), touched.end());
-        touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
+        std::sort(out.touched.begin(), out.touched.end());
+        out.touched.erase(std::unique(out.touched.begin(), out.touched.end()), out.touched.end());
         // Follow the run: after each step, bring the first changed cell into view.
         if (st.selection.followOp && e.version() != st.tableVersion && op->numChanges > 0) {
             st.selection.jumpToCorner = changes[op->firstChange].corner();
         }
     }
     st.tableVersion = e.version();
+    return out;
+}
+
+void SetUpCornerColumns(const Engine& e) {
+    ImGui::TableSetupScrollFreeze(0, 1);
+    // V[c] is as wide as its widest text, "12 (ghost)" at any font size; the others share
+    // the rest.
+    const std::string widest = std::string(std::to_string(e.mesh().numVertices()).size(), '0') +
+                               (e.options().boundary == Boundary::Exact ? " (ghost)" : " (super)");
+    for (const char* h : {"c", "t", "V[c]", "O[c]", "n", "p", "l", "r"}) {
+        if (h[0] == 'V')
+            ImGui::TableSetupColumn(h, ImGuiTableColumnFlags_WidthFixed,
+                                    ImGui::CalcTextSize(widest.c_str()).x);
+        else
+            ImGui::TableSetupColumn(h, ImGuiTableColumnFlags_WidthStretch);
+    }
+    ImGui::TableHeadersRow();
+}
+
+// Scrolls a corner asked for (go to, follow, a click elsewhere) into view.
+void ScrollToJump(AppState& st, float rowH) {
+    if (st.selection.jumpToCorner == kNone) return;
+    const float y = rowH * static_cast<float>(st.selection.jumpToCorner);
+    const float visible = ImGui::GetWindowHeight() - 2 * rowH;
+    if (y < ImGui::GetScrollY() || y > ImGui::GetScrollY() + visible)
+        ImGui::SetScrollY(std::max(0.0f, y - visible / 2));
+    st.selection.jumpToCorner = kNone;
+}
+
+// The V[c] or O[c] cell of row c: highlighted when the op changed it, and the old value in a
+// tooltip anywhere over the cell.
+void ChangedCell(AppState& st, std::int32_t c, int column, const BeforeValues& before,
+                 std::int32_t value, bool virtualVertex, float rowH) {
+    ImGui::TableSetColumnIndex(column);
+    // The whole cell, padding included: the tooltip shows anywhere over it.
+    const ImVec2 pad = ImGui::GetStyle().CellPadding;
+    const ImVec2 at = ImGui::GetCursorScreenPos();
+    const float cellW = ImGui::GetContentRegionAvail().x;
+    const ImVec2 cellMin(at.x - pad.x, at.y - pad.y),
+        cellMax(at.x + cellW + pad.x, at.y - pad.y + rowH);
+    const auto it = before.find(c);
+    if (it != before.end()) ImGui::TableSetBgColor(ImGuiTableBgTarget_CellBg, kChangedCell);
+    if (column == 2 && virtualVertex) {
+        ImGui::Text(st.engine.options().boundary == Boundary::Exact ? "%d (ghost)" : "%d (super)",
+                    value);
+        // For tests: the text's width against its cell's.
+        st.itemRects["ghost-v-cell"] = {ImGui::GetItemRectSize().x, cellW, 0, 0};
+    } else {
+        IdCell(value);
+    }
+    if (it != before.end() && ImGui::IsWindowHovered() &&
+        ImGui::IsMouseHoveringRect(cellMin, cellMax)) {
+        ImGui::SetTooltip("%s[%d] was %d, now %d", column == 2 ? "V" : "O", c, it->second, value);
+        st.itemRects["cell-tooltip"] = {cellMin.x, cellMin.y, cellMax.x, cellMax.y};
+    }
+}
+
+// Row c of the table; returns whether the mouse is over it.
+bool ShowCornerRow(AppState& st, const OpChanges& changes, std::int32_t c, float rowH) {
+    const Mesh& m = st.engine.mesh();
+    const Inserter& ins = st.engine.inserter();
+    ImGui::TableNextRow(ImGuiTableRowFlags_None, rowH);
+    const std::int32_t t = tri(c);
+    if (c == st.selection.corner) {
+        ImGui::TableSetBgColor(ImGuiTableBgTarget_RowBg1, kSelectedRow);
+    } else if (c == st.selection.hoveredCorner) {
+        ImGui::TableSetBgColor(ImGuiTableBgTarget_RowBg1, kHoveredRow);
+    } else if (std::binary_search(changes.touched.begin(), changes.touched.end(), t)) {
+        ImGui::TableSetBgColor(ImGuiTableBgTarget_RowBg1, kTouchedRow);
+    }
+    ImGui::TableSetColumnIndex(0);
+    char label[24];
+    std::snprintf(label, sizeof label, "%d", c);
+    if (ImGui::Selectable(label, c == st.selection.corner, ImGuiSelectableFlags_SpanAllColumns)) {
+        st.select(c);
+    }
+    const bool hovered = ImGui::IsItemHovered();
+    ImGui::TableSetColumnIndex(1);
+    ImGui::Text("%d", t);
+    const bool virtualVertex = !ins.done() && ins.isVirtual(m.V[c]);
+    ChangedCell(st, c, 2, changes.beforeV, m.V[c], virtualVertex, rowH);
+    ChangedCell(st, c, 3, changes.beforeO, m.O[c], virtualVertex, rowH);
+    ImGui::TableSetColumnIndex(4);
+    ImGui::Text("%d", next(c));
+    ImGui::TableSetColumnIndex(5);
+    ImGui::Text("%d", prev(c));
+    ImGui::TableSetColumnIndex(6);
+    IdCell(m.l(c));
+    ImGui::TableSetColumnIndex(7);
+    IdCell(m.r(c));
+    return hovered;
+}
+
+}  // namespace
+
+void ShowCornerTable(AppState& st) {
+    const Engine& e = st.engine;
+    ShowGoToCorner(st);
+    const OpChanges changes = collectOpChanges(st);
 
     const ImGuiTableFlags flags = ImGuiTableFlags_ScrollY | ImGuiTableFlags_RowBg |
                                   ImGuiTableFlags_BordersInnerV |
                                   ImGuiTableFlags_SizingStretchSame | ImGuiTableFlags_Resizable;
     ImGui::PushFont(fonts().mono);
-    const bool tableOpen = ImGui::BeginTable("##corners", 8, flags);
-    if (tableOpen) {
-        ImGui::TableSetupScrollFreeze(0, 1);
-        // V[c] is as wide as its widest text, "12 (ghost)" at any font size; the others share
-        // the rest.
-        const std::string widest =
-            std::string(std::to_string(m.numVertices()).size(), '0') +
-            (e.options().boundary == Boundary::Exact ? " (ghost)" : " (super)");
-        for (const char* h : {"c", "t", "V[c]", "O[c]", "n", "p", "l", "r"}) {
-            if (h[0] == 'V')
-                ImGui::TableSetupColumn(h, ImGuiTableColumnFlags_WidthFixed,
-                                        ImGui::CalcTextSize(widest.c_str()).x);
-            else
-                ImGui::TableSetupColumn(h, ImGuiTableColumnFlags_WidthStretch);
-        }
-        ImGui::TableHeadersRow();
+    if (ImGui::BeginTable("##corners", 8, flags)) {
+        SetUpCornerColumns(e);
         const float rowH = ImGui::GetTextLineHeightWithSpacing();
-        if (st.selection.jumpToCorner != kNone) {
-            const float y = rowH * static_cast<float>(st.selection.jumpToCorner);
-            const float visible = ImGui::GetWindowHeight() - 2 * rowH;
-            if (y < ImGui::GetScrollY() || y > ImGui::GetScrollY() + visible)
-                ImGui::SetScrollY(std::max(0.0f, y - visible / 2));
-            st.selection.jumpToCorner = kNone;
-        }
+        ScrollToJump(st, rowH);
         std::int32_t hoveredRow = kNone;
         ImGuiListClipper clipper;
-        clipper.Begin(m.numCorners(), rowH);
+        clipper.Begin(e.mesh().numCorners(), rowH);
         while (clipper.Step()) {
             for (int c = clipper.DisplayStart; c < clipper.DisplayEnd; ++c) {
-                ImGui::TableNextRow(ImGuiTableRowFlags_None, rowH);
-                const std::int32_t t = tri(c);
-                if (c == st.selection.corner) {
-                    ImGui::TableSetBgColor(ImGuiTableBgTarget_RowBg1, kSelectedRow);
-                } else if (c == st.selection.hoveredCorner) {
-                    ImGui::TableSetBgColor(ImGuiTableBgTarget_RowBg1, kHoveredRow);
-                } else if (std::binary_search(touched.begin(), touched.end(), t)) {
-                    ImGui::TableSetBgColor(ImGuiTableBgTarget_RowBg1, kTouchedRow);
-                }
-                ImGui::TableSetColumnIndex(0);
-                char label[24];
-                std::snprintf(label, sizeof label, "%d", c);
-                if (ImGui::Selectable(label, c == st.selection.corner,
-                                      ImGuiSelectableFlags_SpanAllColumns)) {
-                    st.select(c);
-                }
-                if (ImGui::IsItemHovered()) hoveredRow = c;
-                ImGui::TableSetColumnIndex(1);
-                ImGui::Text("%d", t);
-                const bool virtualVertex = !ins.done() && ins.isVirtual(m.V[c]);
-                auto changedCell = [&](int column,
-                                       const std::unordered_map<std::int32_t, std::int32_t>& before,
-                                       std::int32_t value) {
-                    ImGui::TableSetColumnIndex(column);
-                    // The whole cell, padding included: the tooltip shows anywhere over it.
-                    const ImVec2 pad = ImGui::GetStyle().CellPadding;
-                    const ImVec2 at = ImGui::GetCursorScreenPos();
-                    const float cellW = ImGui::GetContentRegionAvail().x;
-                    const ImVec2 cellMin(at.x - pad.x, at.y - pad.y),
-                        cellMax(at.x + cellW + pad.x, at.y - pad.y + rowH);
-                    const auto it = before.find(c);
-                    if (it != before.end())
-                        ImGui::TableSetBgColor(ImGuiTableBgTarget_CellBg, kChangedCell);
-                    if (column == 2 && virtualVertex) {
-                        ImGui::Text(
-                            e.options().boundary == Boundary::Exact ? "%d (ghost)" : "%d (super)",
-                            value);
-                        // For tests: the text's width against its cell's.
-                        st.itemRects["ghost-v-cell"] = {ImGui::GetItemRectSize().x, cellW, 0, 0};
-                    } else {
-                        IdCell(value);
-                    }
-                    if (it != before.end() && ImGui::IsWindowHovered() &&
-                        ImGui::IsMouseHoveringRect(cellMin, cellMax)) {
-                        ImGui::SetTooltip("%s[%d] was %d, now %d", column == 2 ? "V" : "O", c,
-                                          it->second, value);
-                        st.itemRects["cell-tooltip"] = {cellMin.x, cellMin.y, cellMax.x, cellMax.y};
-                    }
-                };
-                changedCell(2, beforeV, m.V[c]);
-                changedCell(3, beforeO, m.O[c]);
-                ImGui::TableSetColumnIndex(4);
-                ImGui::Text("%d", next(c));
-                ImGui::TableSetColumnIndex(5);
-                ImGui::Text("%d", prev(c));
-                ImGui::TableSetColumnIndex(6);
-                IdCell(m.l(c));
-                ImGui::TableSetColumnIndex(7);
-                IdCell(m.r(c));
+                if (ShowCornerRow(st, changes, c, rowH)) hoveredRow = c;
             }
         }
         st.selection.hoveredRow = hoveredRow;

@@ -409,8 +409,10 @@ void DrawExpressionOverlay(AppState& st) {
     dl->PopClipRect();
 }
 
-void ShowExpressions(AppState& st) {
-    ExpressionState& ex = st.expressions;
+namespace {
+
+// What c stands for, and the syntax in a tooltip.
+void ShowCornerBinding(AppState& st) {
     const Mesh& m = st.engine.mesh();
     const std::int32_t c = st.selection.corner;
     if (c != kNone && c < m.numCorners()) {
@@ -429,18 +431,31 @@ void ShowExpressions(AppState& st) {
             "Comparisons: V[n(o(c))] == V[p(c)], t(o(c)) != t(c)\n"
             "The path is drawn on the canvas and follows every step.");
     }
+}
 
-    // ---- The console ------------------------------------------------------------------------
+// A text field that keeps the keyboard after Enter: what is typed next goes there, not to the
+// single-letter shortcuts. `refocus` counts the frames it takes the keyboard back.
+bool KeyboardKeepingInput(AppState& st, const char* id, const char* hint, std::string& text,
+                          int& refocus, const char* item) {
+    if (refocus > 0) ImGui::SetKeyboardFocusHere();
+    const bool enter =
+        ImGui::InputTextWithHint(id, hint, &text, ImGuiInputTextFlags_EnterReturnsTrue);
+    RecordItem(st, item);
+    if (ImGui::IsItemActive()) refocus = 0;
+    if (enter) {
+        ImGui::SetKeyboardFocusHere(-1);  // from the next frame on, as Enter deactivated it
+        refocus = ExpressionState::kRefocusFrames;
+    }
+    return enter;
+}
+
+// The console's input line: Enter or Eval evaluates it.
+void ShowConsoleInput(AppState& st) {
+    ExpressionState& ex = st.expressions;
     ImGui::PushFont(fonts().mono);
     ImGui::SetNextItemWidth(-70);
-    // After Enter (or Eval) the field takes the keyboard back for the next expression: what is
-    // typed next goes there, not to the single-letter shortcuts.
-    if (ex.refocusInput > 0) ImGui::SetKeyboardFocusHere();
-    const bool enter = ImGui::InputTextWithHint("##expr", "r(o(n(7)))  or  c.n.o.r", &ex.input,
-                                                ImGuiInputTextFlags_EnterReturnsTrue);
-    RecordItem(st, "expr-input");
-    if (ImGui::IsItemActive()) ex.refocusInput = 0;
-    if (enter) ImGui::SetKeyboardFocusHere(-1);  // from the next frame on, as Enter deactivated it
+    const bool enter = KeyboardKeepingInput(st, "##expr", "r(o(n(7)))  or  c.n.o.r", ex.input,
+                                            ex.refocusInput, "expr-input");
     ImGui::PopFont();
     ImGui::SameLine();
     const bool eval = ImGui::Button("Eval");
@@ -450,9 +465,10 @@ void ShowExpressions(AppState& st) {
         evaluateExpression(st, ex.input);
         ex.input.clear();
     }
-    // Below the input line everything scrolls (the side column may be short); the history has
-    // its own scrolling box that keeps the newest line in view.
-    ImGui::BeginChild("##exprbody", ImVec2(0, 0), false);
+}
+
+// The history in its own scrolling box that keeps the newest line in view.
+void ShowHistory(const ExpressionState& ex) {
     const float logH = std::max(ImGui::GetTextLineHeightWithSpacing() * 5,
                                 ImGui::GetContentRegionAvail().y * 0.45f);
     ImGui::BeginChild("##exprlog", ImVec2(0, logH), true);
@@ -476,32 +492,57 @@ void ShowExpressions(AppState& st) {
     ImGui::PopFont();
     if (ImGui::GetScrollY() >= ImGui::GetScrollMaxY() - 4) ImGui::SetScrollHereY(1.0f);
     ImGui::EndChild();
-    if (!ex.live.empty()) {
-        ImGui::TextDisabled("on the canvas:");
-        ImGui::SameLine();
-        ImGui::TextUnformatted(ex.live.c_str());
-        if (ex.result) {
-            ImGui::SameLine();
-            ImGui::TextColored(ImVec4(0.84f, 0.0f, 0.47f, 1), "= %s",
-                               formatValue(*ex.result).c_str());
-        }
-        if (!ex.path.empty()) ImGui::TextDisabled("path: %s", pathText(ex.path).c_str());
-        if (ex.result && ex.result->kind == ValueKind::Corner && ex.result->i >= 0) {
-            if (ImGui::SmallButton("Select the result")) {
-                st.select(static_cast<std::int32_t>(ex.result->i));
-                st.selection.jumpToCorner = st.selection.corner;
-            }
-            ImGui::SameLine();
-        }
-        if (ImGui::SmallButton("Clear")) {
-            ex.live.clear();
-            ex.path.clear();
-            ex.result.reset();
-            ex.history.clear();
-        }
-    }
+}
 
-    // ---- Watches ----------------------------------------------------------------------------
+// The expression drawn on the canvas: its value, its path, and buttons to select or clear it.
+void ShowLiveExpression(AppState& st) {
+    ExpressionState& ex = st.expressions;
+    if (ex.live.empty()) return;
+    ImGui::TextDisabled("on the canvas:");
+    ImGui::SameLine();
+    ImGui::TextUnformatted(ex.live.c_str());
+    if (ex.result) {
+        ImGui::SameLine();
+        ImGui::TextColored(ImVec4(0.84f, 0.0f, 0.47f, 1), "= %s", formatValue(*ex.result).c_str());
+    }
+    if (!ex.path.empty()) ImGui::TextDisabled("path: %s", pathText(ex.path).c_str());
+    if (ex.result && ex.result->kind == ValueKind::Corner && ex.result->i >= 0) {
+        if (ImGui::SmallButton("Select the result")) {
+            st.select(static_cast<std::int32_t>(ex.result->i));
+            st.selection.jumpToCorner = st.selection.corner;
+        }
+        ImGui::SameLine();
+    }
+    if (ImGui::SmallButton("Clear")) {
+        ex.live.clear();
+        ex.path.clear();
+        ex.result.reset();
+        ex.history.clear();
+    }
+}
+
+// One watch: on/off, its verdict and text, a remove button; returns whether that was clicked.
+bool ShowWatch(ExpressionState& ex, WatchEntry& w) {
+    if (ImGui::Checkbox("##on", &w.enabled)) ex.watchedVersion = ~std::uint64_t{0};
+    ImGui::SameLine();
+    const ImVec4 col = !w.enabled  ? ImVec4(0.5f, 0.5f, 0.5f, 1)
+                       : w.failing ? ImVec4(0.8f, 0.1f, 0.1f, 1)
+                                   : ImVec4(0.05f, 0.45f, 0.15f, 1);
+    ImGui::TextColored(col, "%s %s", w.enabled ? (w.failing ? "FAIL" : "ok  ") : "off ",
+                       w.text.c_str());
+    if (ImGui::IsItemHovered() && !w.status.empty()) ImGui::SetTooltip("%s", w.status.c_str());
+    ImGui::SameLine();
+    const bool remove = ImGui::SmallButton("x");
+    if (w.failing && w.enabled) {
+        ImGui::PushStyleColor(ImGuiCol_Text, col);
+        ImGui::TextWrapped("   %s", w.status.c_str());
+        ImGui::PopStyleColor();
+    }
+    return remove;
+}
+
+// The watches: identities checked after every step, one line each.
+void ShowWatches(ExpressionState& ex) {
     ImGui::Separator();
     ImGui::TextUnformatted("Watches");
     ImGui::SameLine();
@@ -510,37 +551,20 @@ void ShowExpressions(AppState& st) {
     int remove = -1;
     ImGui::PushFont(fonts().mono);
     for (std::size_t i = 0; i < ex.watches.size(); ++i) {
-        WatchEntry& w = ex.watches[i];
         ImGui::PushID(static_cast<int>(i));
-        if (ImGui::Checkbox("##on", &w.enabled)) ex.watchedVersion = ~std::uint64_t{0};
-        ImGui::SameLine();
-        const ImVec4 col = !w.enabled  ? ImVec4(0.5f, 0.5f, 0.5f, 1)
-                           : w.failing ? ImVec4(0.8f, 0.1f, 0.1f, 1)
-                                       : ImVec4(0.05f, 0.45f, 0.15f, 1);
-        ImGui::TextColored(col, "%s %s", w.enabled ? (w.failing ? "FAIL" : "ok  ") : "off ",
-                           w.text.c_str());
-        if (ImGui::IsItemHovered() && !w.status.empty()) ImGui::SetTooltip("%s", w.status.c_str());
-        ImGui::SameLine();
-        if (ImGui::SmallButton("x")) remove = static_cast<int>(i);
-        if (w.failing && w.enabled) {
-            ImGui::PushStyleColor(ImGuiCol_Text, col);
-            ImGui::TextWrapped("   %s", w.status.c_str());
-            ImGui::PopStyleColor();
-        }
+        if (ShowWatch(ex, ex.watches[i])) remove = static_cast<int>(i);
         ImGui::PopID();
     }
     ImGui::PopFont();
     if (remove >= 0) ex.watches.erase(ex.watches.begin() + remove);
+}
+
+// The field that adds a watch, and the standard identities in one click.
+void ShowAddWatch(AppState& st) {
+    ExpressionState& ex = st.expressions;
     ImGui::SetNextItemWidth(-150);
-    if (ex.refocusWatch > 0) ImGui::SetKeyboardFocusHere();
-    const bool addEnter = ImGui::InputTextWithHint(
-        "##watch", "V[n(o(c))] == V[p(c)]", &ex.watchInput, ImGuiInputTextFlags_EnterReturnsTrue);
-    RecordItem(st, "watch-input");
-    if (ImGui::IsItemActive()) ex.refocusWatch = 0;
-    if (addEnter) {
-        ImGui::SetKeyboardFocusHere(-1);
-        ex.refocusWatch = ExpressionState::kRefocusFrames;
-    }
+    const bool addEnter = KeyboardKeepingInput(st, "##watch", "V[n(o(c))] == V[p(c)]",
+                                               ex.watchInput, ex.refocusWatch, "watch-input");
     ImGui::SameLine();
     if ((ImGui::Button("Add") || addEnter) && !ex.watchInput.empty()) {
         if (addWatch(st, ex.watchInput)) ex.watchInput.clear();
@@ -551,6 +575,20 @@ void ShowExpressions(AppState& st) {
     }
     if (ImGui::IsItemHovered())
         ImGui::SetTooltip("Add the identities every corner table satisfies");
+}
+
+}  // namespace
+
+void ShowExpressions(AppState& st) {
+    ShowCornerBinding(st);
+    ShowConsoleInput(st);
+    // Below the input line everything scrolls (the side column may be short); the history has
+    // its own scrolling box.
+    ImGui::BeginChild("##exprbody", ImVec2(0, 0), false);
+    ShowHistory(st.expressions);
+    ShowLiveExpression(st);
+    ShowWatches(st.expressions);
+    ShowAddWatch(st);
     ImGui::EndChild();
 }
 

@@ -50,6 +50,13 @@ bool realTriangle(const Engine& e, std::int32_t t) {
     return t >= 0 && t < e.mesh().numTriangles() && (ins.done() || !ins.isVirtualTriangle(t));
 }
 
+// A buffer pixel's colour as the view shows it: false colour, or the encoded colour.
+ImU32 BufferColour(std::int32_t id, bool trueColours) {
+    if (!trueColours) return IdFalseColour(id);
+    const auto c = encodeTriangleId(id);
+    return IM_COL32(c[0], c[1], c[2], 255);
+}
+
 void rebuildTexture(Renderer* renderer, IdBufferView& v, const IdBufferFrame& f, bool trueColours) {
     const double scale =
         std::min(1.0, static_cast<double>(kMaxTexture) / std::max(f.width, f.height));
@@ -64,13 +71,8 @@ void rebuildTexture(Renderer* renderer, IdBufferView& v, const IdBufferFrame& f,
             const int i = static_cast<int>(static_cast<long long>(x) * f.width / v.texW);
             const std::int32_t id = f.ids[static_cast<std::size_t>(j) * f.width + i];
             std::uint8_t* px = &v.rgba[(static_cast<std::size_t>(y) * v.texW + x) * 4];
-            if (trueColours) {
-                const auto c = encodeTriangleId(id);
-                px[0] = c[0], px[1] = c[1], px[2] = c[2];
-            } else {
-                const ImU32 c = IdFalseColour(id);
-                px[0] = c & 255, px[1] = (c >> 8) & 255, px[2] = (c >> 16) & 255;
-            }
+            const ImU32 c = BufferColour(id, trueColours);
+            px[0] = c & 255, px[1] = (c >> 8) & 255, px[2] = (c >> 16) & 255;
             px[3] = 255;  // the encoded alpha is data, not transparency
         }
     }
@@ -162,53 +164,46 @@ bool readIdBuffer(const Engine& e, IdBufferFrame& out, IdBufferCopy& copy) {
 
 namespace {
 
-void IdBufferBody(AppState& st) {
-    const Engine& e = st.engine;
-    IdBufferViewState& vs = st.idBuffer;
-    vs.hover.valid = false;
-    if (!vs.cache) vs.cache = std::make_shared<IdBufferView>();
-    IdBufferView& v = *vs.cache;
-    IdBufferFrame f;
-    if (!readIdBuffer(e, f, v.copy)) {
-        ImGui::TextWrapped("The run's locator is \"%s\": it keeps no ID buffer.",
-                           toString(e.options().locator));
-        ImGui::TextWrapped(
-            "The ID-buffer locator paints every triangle in a colour that encodes its id, and "
-            "reads the "
-            "pixel under each new point to find where to start the walk (the paper's section 4).");
-        if (e.options().locator == LocatorKind::IdBufferCpu || needsGl(e.options().locator)) {
-            ImGui::TextDisabled("The buffer is made at the first triangle: take a step.");
-        } else {
-            auto offer = [&](const char* label, LocatorKind kind, const char* item,
-                             const char* tip) {
-                if (ImGui::Button(label)) {
-                    InsertOptions o = e.options();
-                    o.locator = kind;
-                    st.setOptions(o);
-                }
-                RecordItem(st, item);
-                if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", tip);
-            };
-            offer("Use idbuffer-cpu", LocatorKind::IdBufferCpu, "idbuffer-use",
-                  "A software rasterizer of triangle ids: the paper's idea without GL");
-            if (e.hasGl()) {
-                ImGui::SameLine();
-                offer("Use idbuffer-gl", LocatorKind::IdBufferGl, "idbuffer-use-gl",
-                      "The paper's GL colour-ID buffer: an offscreen framebuffer, one pixel read "
-                      "back per insertion");
-            }
-        }
-        ImGui::TextDisabled(
-            "or choose it under Locate in the toolbar (the run restarts with the same points)");
-        return;
-    }
-    if (v.version != e.version() || v.trueColours != vs.trueColours || v.bufW != f.width ||
-        v.bufH != f.height) {
-        rebuildTexture(st.renderer, v, f, vs.trueColours);
-        v.version = e.version();
-        v.trueColours = vs.trueColours;
-    }
+constexpr int kMagnifierRadius = 5;  // the magnifier shows (2 r + 1)^2 buffer pixels
 
+void OfferLocator(AppState& st, const char* label, LocatorKind kind, const char* item,
+                  const char* tip) {
+    if (ImGui::Button(label)) {
+        InsertOptions o = st.engine.options();
+        o.locator = kind;
+        st.setOptions(o);
+    }
+    RecordItem(st, item);
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", tip);
+}
+
+// The run keeps no buffer: what the buffer is, and the locators that keep one.
+void ShowNoIdBuffer(AppState& st) {
+    const Engine& e = st.engine;
+    ImGui::TextWrapped("The run's locator is \"%s\": it keeps no ID buffer.",
+                       toString(e.options().locator));
+    ImGui::TextWrapped(
+        "The ID-buffer locator paints every triangle in a colour that encodes its id, and "
+        "reads the "
+        "pixel under each new point to find where to start the walk (the paper's section 4).");
+    if (e.options().locator == LocatorKind::IdBufferCpu || needsGl(e.options().locator)) {
+        ImGui::TextDisabled("The buffer is made at the first triangle: take a step.");
+    } else {
+        OfferLocator(st, "Use idbuffer-cpu", LocatorKind::IdBufferCpu, "idbuffer-use",
+                     "A software rasterizer of triangle ids: the paper's idea without GL");
+        if (e.hasGl()) {
+            ImGui::SameLine();
+            OfferLocator(st, "Use idbuffer-gl", LocatorKind::IdBufferGl, "idbuffer-use-gl",
+                         "The paper's GL colour-ID buffer: an offscreen framebuffer, one pixel "
+                         "read back per insertion");
+        }
+    }
+    ImGui::TextDisabled(
+        "or choose it under Locate in the toolbar (the run restarts with the same points)");
+}
+
+// The buffer's kind and size, and the choice of false or encoded colours.
+void ShowBufferHeader(IdBufferViewState& vs, const IdBufferFrame& f) {
     ImGui::Text("%s, %d x %d pixels", f.kind, f.width, f.height);
     if (ImGui::RadioButton("false colour", !vs.trueColours)) vs.trueColours = false;
     ImGui::SameLine();
@@ -217,9 +212,11 @@ void IdBufferBody(AppState& st) {
         ImGui::SetTooltip(
             "What the buffer really holds: id = (r << 16) | (g << 8) | b (+ a << 24).\nSmall ids "
             "look black; white means no triangle.");
+}
 
-    // The last locate: did the buffer's hint already contain the point?
-    const LocateSummary loc = lastLocate(e);
+// The last locate: did the buffer's hint already contain the point? And the run's hits so far.
+void ShowLastLocate(AppState& st) {
+    const LocateSummary loc = lastLocate(st.engine);
     if (loc.found) {
         ImGui::PushStyleColor(ImGuiCol_Text, loc.steps == 0 ? ImVec4(0.05f, 0.45f, 0.15f, 1)
                                                             : ImVec4(0.7f, 0.4f, 0.0f, 1));
@@ -240,112 +237,126 @@ void IdBufferBody(AppState& st) {
                             static_cast<long long>(rc.hits), static_cast<long long>(rc.locates),
                             static_cast<long long>(rc.walkSteps));
     }
+}
 
-    // ---- The image, and beside it the pixel under the mouse -----------------------------------
-    constexpr int kR = 5;  // the magnifier shows (2 kR + 1)^2 buffer pixels
+// Where the image goes and how large it is, with the magnifier's column beside it.
+struct ImageLayout {
+    float cell = 0, sideW = 0;  // a magnifier cell; the column beside the image
+    ImVec2 size, p0;            // the image on screen
+    float sx = 0, sy = 0;       // screen px per texel
+};
+
+ImageLayout LayOutImage(const AppState& st, const IdBufferView& v) {
+    constexpr int kR = kMagnifierRadius;
+    ImageLayout L;
     const ImVec2 avail = ImGui::GetContentRegionAvail();
-    const float cell = std::clamp(std::floor(ImGui::GetFontSize() * 0.6f), 6.0f,
-                                  std::floor(avail.x * 0.3f / (2 * kR + 1)));
-    const float sideW =
-        std::max((2 * kR + 1) * cell + 16, ImGui::CalcTextSize("RGBA 00 00 00 00").x + 8);
+    L.cell = std::clamp(std::floor(ImGui::GetFontSize() * 0.6f), 6.0f,
+                        std::floor(avail.x * 0.3f / (2 * kR + 1)));
+    L.sideW = std::max((2 * kR + 1) * L.cell + 16, ImGui::CalcTextSize("RGBA 00 00 00 00").x + 8);
     // As tall as the panel allows, but never so small it cannot be read (the panel scrolls then;
     // a slide does not scroll: there it fits).
-    const float widthLeft = avail.x - sideW - ImGui::GetStyle().ItemSpacing.x;
+    const float widthLeft = avail.x - L.sideW - ImGui::GetStyle().ItemSpacing.x;
     const float side =
         std::max({80.0f, std::min(widthLeft, avail.y - ImGui::GetFrameHeightWithSpacing()),
                   slideMode(st) ? 0.0f : 0.6f * widthLeft});
     const float fit = side / static_cast<float>(std::max(v.texW, v.texH));
-    const ImVec2 size(std::floor(v.texW * fit), std::floor(v.texH * fit));
-    const float sx = size.x / static_cast<float>(v.texW),
-                sy = size.y / static_cast<float>(v.texH);  // screen px per texel
-    const ImVec2 p0 = ImGui::GetCursorScreenPos();
-    ImGui::Image(v.image.id(), size);
+    L.size = ImVec2(std::floor(v.texW * fit), std::floor(v.texH * fit));
+    L.sx = L.size.x / static_cast<float>(v.texW);
+    L.sy = L.size.y / static_cast<float>(v.texH);
+    L.p0 = ImGui::GetCursorScreenPos();
+    return L;
+}
+
+// Where the point being inserted falls in the buffer (the pixel the locator reads).
+void MarkCurrentVertex(ImDrawList* dl, const Engine& e, const IdBufferFrame& f,
+                       const ImageLayout& L) {
+    const std::int32_t cv = e.currentVertex();
+    if (cv == kNone || cv >= e.mesh().numVertices() || f.width <= 1 || f.height <= 1) return;
+    const Vec2 q = e.mesh().G[cv];
+    const Vec2 lo = f.centre(0, 0), hi = f.centre(f.width - 1, f.height - 1);
+    // Pixel centres span [0.5, W - 0.5] of the image's W pixel widths.
+    const double fx = ((q.x - lo.x) / (hi.x - lo.x) * (f.width - 1) + 0.5) / f.width;
+    const double fy = ((q.y - lo.y) / (hi.y - lo.y) * (f.height - 1) + 0.5) / f.height;
+    if (std::isfinite(fx) && std::isfinite(fy) && fx >= -0.01 && fx <= 1.01 && fy >= -0.01 &&
+        fy <= 1.01) {
+        const ImVec2 m(L.p0.x + static_cast<float>(fx) * L.size.x,
+                       L.p0.y + (1 - static_cast<float>(fy)) * L.size.y);
+        dl->AddCircle(m, 7, IM_COL32(0, 0, 0, 255), 0, 2.5f);
+        dl->AddCircle(m, 9, IM_COL32(255, 255, 255, 255), 0, 1.5f);
+    }
+}
+
+// The buffer as an image, framed, with the current point marked; returns whether it is hovered.
+bool DrawBufferImage(AppState& st, const IdBufferView& v, const IdBufferFrame& f,
+                     const ImageLayout& L) {
+    ImGui::Image(v.image.id(), L.size);
     RecordItem(st, "idbuffer-image");
-    st.itemRects["idbuffer-image-whole"] = {p0.x, p0.y, p0.x + size.x, p0.y + size.y};
+    st.itemRects["idbuffer-image-whole"] = {L.p0.x, L.p0.y, L.p0.x + L.size.x, L.p0.y + L.size.y};
     const bool hovered = ImGui::IsItemHovered();
     ImDrawList* dl = ImGui::GetWindowDrawList();
-    dl->AddRect(ImVec2(p0.x - 1, p0.y - 1), ImVec2(p0.x + size.x + 1, p0.y + size.y + 1),
-                IM_COL32(120, 120, 130, 255));
-    // Where the point being inserted falls in the buffer (the pixel the locator reads).
-    const std::int32_t cv = e.currentVertex();
-    if (cv != kNone && cv < e.mesh().numVertices() && f.width > 1 && f.height > 1) {
-        const Vec2 q = e.mesh().G[cv];
-        const Vec2 lo = f.centre(0, 0), hi = f.centre(f.width - 1, f.height - 1);
-        // Pixel centres span [0.5, W - 0.5] of the image's W pixel widths.
-        const double fx = ((q.x - lo.x) / (hi.x - lo.x) * (f.width - 1) + 0.5) / f.width;
-        const double fy = ((q.y - lo.y) / (hi.y - lo.y) * (f.height - 1) + 0.5) / f.height;
-        if (std::isfinite(fx) && std::isfinite(fy) && fx >= -0.01 && fx <= 1.01 && fy >= -0.01 &&
-            fy <= 1.01) {
-            const ImVec2 m(p0.x + static_cast<float>(fx) * size.x,
-                           p0.y + (1 - static_cast<float>(fy)) * size.y);
-            dl->AddCircle(m, 7, IM_COL32(0, 0, 0, 255), 0, 2.5f);
-            dl->AddCircle(m, 9, IM_COL32(255, 255, 255, 255), 0, 1.5f);
-        }
-    }
-    ImGui::SameLine();
-    ImGui::BeginGroup();
-    if (!hovered) {
-        ImGui::PushTextWrapPos(ImGui::GetCursorPosX() + sideW);
-        if (!slideMode(st))  // a slide has no room to spare: its image is small
-            ImGui::TextDisabled(
-                "Hover the image: the pixel under the mouse is decoded and checked exactly.");
-        ImGui::PopTextWrapPos();
-        ImGui::EndGroup();
-        return;
-    }
+    dl->AddRect(ImVec2(L.p0.x - 1, L.p0.y - 1),
+                ImVec2(L.p0.x + L.size.x + 1, L.p0.y + L.size.y + 1), IM_COL32(120, 120, 130, 255));
+    MarkCurrentVertex(dl, st.engine, f, L);
+    return hovered;
+}
 
-    // The texel under the mouse (the centre of the screen pixel, as GL samples it) and the
-    // buffer pixel it shows.
+// The texel under the mouse (the centre of the screen pixel, as GL samples it), marked on the
+// image, and the buffer pixel it shows, decoded into the hover.
+void PickHoveredPixel(IdBufferViewState::Hover& h, const IdBufferView& v, const IdBufferFrame& f,
+                      const ImageLayout& L) {
     const ImVec2 mouse = ImGui::GetIO().MousePos;
     const int tx =
-        std::clamp(static_cast<int>(std::floor((mouse.x + 0.5f - p0.x) / sx)), 0, v.texW - 1);
+        std::clamp(static_cast<int>(std::floor((mouse.x + 0.5f - L.p0.x) / L.sx)), 0, v.texW - 1);
     const int ty =
-        std::clamp(static_cast<int>(std::floor((mouse.y + 0.5f - p0.y) / sy)), 0, v.texH - 1);
+        std::clamp(static_cast<int>(std::floor((mouse.y + 0.5f - L.p0.y) / L.sy)), 0, v.texH - 1);
     // Mark the texel on the image (the mouse pointer is not in screenshots or on every projector).
-    const ImVec2 t0(p0.x + static_cast<float>(tx) * sx, p0.y + static_cast<float>(ty) * sy);
-    dl->AddRect(ImVec2(t0.x - 4, t0.y - 4), ImVec2(t0.x + sx + 4, t0.y + sy + 4),
+    ImDrawList* dl = ImGui::GetWindowDrawList();
+    const ImVec2 t0(L.p0.x + static_cast<float>(tx) * L.sx, L.p0.y + static_cast<float>(ty) * L.sy);
+    dl->AddRect(ImVec2(t0.x - 4, t0.y - 4), ImVec2(t0.x + L.sx + 4, t0.y + L.sy + 4),
                 IM_COL32(0, 0, 0, 255), 0, 0, 2);
-    dl->AddRect(ImVec2(t0.x - 6, t0.y - 6), ImVec2(t0.x + sx + 6, t0.y + sy + 6),
+    dl->AddRect(ImVec2(t0.x - 6, t0.y - 6), ImVec2(t0.x + L.sx + 6, t0.y + L.sy + 6),
                 IM_COL32(255, 255, 255, 255), 0, 0, 2);
-    IdBufferViewState::Hover& h = vs.hover;
     h.valid = true;
     h.i = static_cast<int>(static_cast<long long>(tx) * f.width / v.texW);
     h.j = f.height - 1 - static_cast<int>(static_cast<long long>(ty) * f.height / v.texH);
     h.id = f.ids[static_cast<std::size_t>(h.j) * f.width + h.i];
     h.centre = f.centre(h.i, h.j);
+}
+
+// The exact check of the hovered pixel's centre: which triangle contains it, and whether that is
+// the buffer's id (cached per pixel and mesh version).
+void CheckHoverExactly(IdBufferViewState::Hover& h, IdBufferView& v, const Engine& e) {
+    if (v.hoverI == h.i && v.hoverJ == h.j && v.hoverVersion == e.version()) return;
     const Mesh& m = e.mesh();
-    if (v.hoverI != h.i || v.hoverJ != h.j || v.hoverVersion != e.version()) {
-        v.hoverI = h.i;
-        v.hoverJ = h.j;
-        v.hoverVersion = e.version();
-        h.exactTriangle = kNone;
-        if (h.id != kNone && realTriangle(e, h.id) && containsClosed(m, h.id, h.centre)) {
-            h.exactTriangle = h.id;
-        } else if (m.numTriangles() <= kExactScanLimit) {
-            for (std::int32_t t = 0; t < m.numTriangles(); ++t) {
-                if (realTriangle(e, t) && containsClosed(m, t, h.centre)) {
-                    h.exactTriangle = t;
-                    break;
-                }
+    v.hoverI = h.i;
+    v.hoverJ = h.j;
+    v.hoverVersion = e.version();
+    h.exactTriangle = kNone;
+    if (h.id != kNone && realTriangle(e, h.id) && containsClosed(m, h.id, h.centre)) {
+        h.exactTriangle = h.id;
+    } else if (m.numTriangles() <= kExactScanLimit) {
+        for (std::int32_t t = 0; t < m.numTriangles(); ++t) {
+            if (realTriangle(e, t) && containsClosed(m, t, h.centre)) {
+                h.exactTriangle = t;
+                break;
             }
         }
-        h.agrees = h.id == kNone ? h.exactTriangle == kNone : h.exactTriangle == h.id;
     }
-    // A magnifier: the buffer pixels around the hovered one, at full resolution.
+    h.agrees = h.id == kNone ? h.exactTriangle == kNone : h.exactTriangle == h.id;
+}
+
+// A magnifier: the buffer pixels around the hovered one, at full resolution.
+void DrawMagnifier(const IdBufferViewState::Hover& h, const IdBufferFrame& f, bool trueColours,
+                   float cell) {
+    constexpr int kR = kMagnifierRadius;
+    ImDrawList* dl = ImGui::GetWindowDrawList();
     const ImVec2 m0 = ImGui::GetCursorScreenPos();
     for (int dy = -kR; dy <= kR; ++dy) {
         for (int dx = -kR; dx <= kR; ++dx) {
             const int i = h.i + dx, j = h.j - dy;
             ImU32 col = IM_COL32(200, 200, 200, 255);
-            if (i >= 0 && j >= 0 && i < f.width && j < f.height) {
-                const std::int32_t id = f.ids[static_cast<std::size_t>(j) * f.width + i];
-                if (vs.trueColours) {
-                    const auto c = encodeTriangleId(id);
-                    col = IM_COL32(c[0], c[1], c[2], 255);
-                } else {
-                    col = IdFalseColour(id);
-                }
-            }
+            if (i >= 0 && j >= 0 && i < f.width && j < f.height)
+                col = BufferColour(f.ids[static_cast<std::size_t>(j) * f.width + i], trueColours);
             const ImVec2 a(m0.x + (dx + kR) * cell, m0.y + (dy + kR) * cell);
             dl->AddRectFilled(a, ImVec2(a.x + cell - 1, a.y + cell - 1), col);
         }
@@ -353,6 +364,10 @@ void IdBufferBody(AppState& st) {
     const ImVec2 c0(m0.x + kR * cell - 1, m0.y + kR * cell - 1);
     dl->AddRect(c0, ImVec2(c0.x + cell + 1, c0.y + cell + 1), IM_COL32(0, 0, 0, 255), 0, 0, 2);
     ImGui::Dummy(ImVec2((2 * kR + 1) * cell, (2 * kR + 1) * cell));
+}
+
+// The hovered pixel decoded (pixel, id, colour) and the exact check's verdict.
+void ShowHoverVerdict(const IdBufferViewState::Hover& h, float sideW) {
     ImGui::PushFont(fonts().mono);
     ImGui::Text("pixel %d, %d", h.i, h.j);
     if (h.id == kNone)
@@ -376,6 +391,47 @@ void IdBufferBody(AppState& st) {
                            "exact: in no triangle - a stale hint (the walk fixes it)");
     }
     ImGui::PopTextWrapPos();
+}
+
+void IdBufferBody(AppState& st) {
+    const Engine& e = st.engine;
+    IdBufferViewState& vs = st.idBuffer;
+    vs.hover.valid = false;
+    if (!vs.cache) vs.cache = std::make_shared<IdBufferView>();
+    IdBufferView& v = *vs.cache;
+    IdBufferFrame f;
+    if (!readIdBuffer(e, f, v.copy)) {
+        ShowNoIdBuffer(st);
+        return;
+    }
+    if (v.version != e.version() || v.trueColours != vs.trueColours || v.bufW != f.width ||
+        v.bufH != f.height) {
+        rebuildTexture(st.renderer, v, f, vs.trueColours);
+        v.version = e.version();
+        v.trueColours = vs.trueColours;
+    }
+    ShowBufferHeader(vs, f);
+    ShowLastLocate(st);
+
+    // ---- The image, and beside it the pixel under the mouse -----------------------------------
+    const ImageLayout L = LayOutImage(st, v);
+    const bool hovered = DrawBufferImage(st, v, f, L);
+    ImGui::SameLine();
+    ImGui::BeginGroup();
+    if (!hovered) {
+        ImGui::PushTextWrapPos(ImGui::GetCursorPosX() + L.sideW);
+        if (!slideMode(st))  // a slide has no room to spare: its image is small
+            ImGui::TextDisabled(
+                "Hover the image: the pixel under the mouse is decoded and checked exactly.");
+        ImGui::PopTextWrapPos();
+        ImGui::EndGroup();
+        return;
+    }
+    IdBufferViewState::Hover& h = vs.hover;
+    PickHoveredPixel(h, v, f, L);
+    CheckHoverExactly(h, v, e);
+    DrawMagnifier(h, f, vs.trueColours, L.cell);
+    ShowHoverVerdict(h, L.sideW);
     ImGui::EndGroup();
     ImGui::TextDisabled("centre of pixel (%d, %d): (%.9g, %.9g)", h.i, h.j, h.centre.x, h.centre.y);
 }

@@ -15,22 +15,8 @@ namespace {
 
 std::string id(std::int32_t c) { return c == kNone ? "-1 (boundary)" : std::to_string(c); }
 
-}  // namespace
-
-void ShowInspector(AppState& st) {
-    const Mesh& m = st.engine.mesh();
-    const std::int32_t c = st.selection.corner;
-    ImGui::TextUnformatted("Corner inspector");
-    ImGui::SameLine();
-    ImGui::TextDisabled("(click a corner on the canvas or a table row; keys N P O L R S U move)");
-    if (c == kNone || c >= m.numCorners()) {
-        ImGui::TextWrapped(
-            "No corner selected. A corner is a triangle seen from one of its vertices: triangle t "
-            "owns "
-            "corners 3t, 3t+1 and 3t+2, counter-clockwise.");
-        return;
-    }
-    // Operator buttons.
+// A button per operator (N P O L R S U): a click moves the selection along it.
+void ShowOperatorButtons(AppState& st) {
     const struct {
         char op;
         const char* tip;
@@ -49,7 +35,10 @@ void ShowInspector(AppState& st) {
         ImGui::SameLine();
     }
     ImGui::NewLine();
+}
 
+// Corner c's t, v, n, p, o, l, r, s, u: the value, and how it comes from V and O.
+void ShowCornerValues(const Mesh& m, std::int32_t c) {
     const std::int32_t n = next(c), p = prev(c);
     const std::int32_t o = m.O[c], l = m.O[n], r = m.O[p];
     const std::int32_t s = l == kNone ? kNone : next(l), u = r == kNone ? kNone : prev(r);
@@ -90,6 +79,25 @@ void ShowInspector(AppState& st) {
         ImGui::EndTable();
     }
     ImGui::PopFont();
+}
+
+}  // namespace
+
+void ShowInspector(AppState& st) {
+    const Mesh& m = st.engine.mesh();
+    const std::int32_t c = st.selection.corner;
+    ImGui::TextUnformatted("Corner inspector");
+    ImGui::SameLine();
+    ImGui::TextDisabled("(click a corner on the canvas or a table row; keys N P O L R S U move)");
+    if (c == kNone || c >= m.numCorners()) {
+        ImGui::TextWrapped(
+            "No corner selected. A corner is a triangle seen from one of its vertices: triangle t "
+            "owns "
+            "corners 3t, 3t+1 and 3t+2, counter-clockwise.");
+        return;
+    }
+    ShowOperatorButtons(st);
+    ShowCornerValues(m, c);
     const Vec2 g = m.G[m.V[c]];
     const bool ghost = !st.engine.inserter().done() && st.engine.inserter().isVirtual(m.V[c]) &&
                        st.engine.options().boundary == Boundary::Exact;

@@ -58,114 +58,132 @@ bool loadPointFile(AppState& st, const std::string& path) {
     return false;
 }
 
-void ShowMenuBar(AppState& st) {
-    DialogState& dialog = st.dialogs;
-    if (!ImGui::BeginMenuBar()) return;
-    if (ImGui::BeginMenu("File")) {
-        if (ImGui::MenuItem("Open points or a session...", "Ctrl+O"))
-            st.files.dialog = FileState::Dialog::OpenFile;
-        if (ImGui::MenuItem("Built-in demo")) {
-            st.loadPoints(demoPoints(), "built-in demo");
-        }
-        ImGui::Separator();
-        if (ImGui::MenuItem("Save points as .node / .csv..."))
-            st.files.dialog = FileState::Dialog::SavePoints;
-        if (ImGui::MenuItem("Save session...", "Ctrl+S"))
-            st.files.dialog = FileState::Dialog::SaveSession;
-        if (ImGui::IsItemHovered())
-            ImGui::SetTooltip(
-                "Points, options, the step, view, selection and overlays in one JSON file:\nattach "
-                "it to a bug report, or share a class");
-        if (ImGui::MenuItem("Export mesh (.ele/.neigh, OFF, OBJ)..."))
-            st.files.dialog = FileState::Dialog::ExportMesh;
-        if (ImGui::MenuItem("Export SVG of the view..."))
-            st.files.dialog = FileState::Dialog::ExportSvg;
-        if (ImGui::MenuItem("Screenshot (PNG)", "F12")) st.files.screenshotRequested = true;
-        if (ImGui::MenuItem("Animated GIF of steps..."))
-            st.files.dialog = FileState::Dialog::ExportGif;
-        ImGui::Separator();
-        if (ImGui::MenuItem("Undo point edit", "Ctrl+Z", false, !st.undoPoints.empty()))
-            st.undoEdit();
-        if (ImGui::MenuItem("Redo point edit", "Ctrl+Y", false, !st.redoPoints.empty()))
-            st.redoEdit();
-        ImGui::Separator();
-        if (ImGui::MenuItem("Quit", "Ctrl+Q")) st.quitRequested = true;
-        ImGui::EndMenu();
+namespace {
+
+void ShowFileMenu(AppState& st) {
+    if (!ImGui::BeginMenu("File")) return;
+    if (ImGui::MenuItem("Open points or a session...", "Ctrl+O"))
+        st.files.dialog = FileState::Dialog::OpenFile;
+    if (ImGui::MenuItem("Built-in demo")) {
+        st.loadPoints(demoPoints(), "built-in demo");
     }
-    if (ImGui::BeginMenu("View")) {
-        Overlays& o = st.overlays;
-        ImGui::MenuItem("Fill triangles", nullptr, &o.fill);
-        ImGui::MenuItem("Vertex ids", nullptr, &o.vertexIds);
-        ImGui::MenuItem("Corner ids", nullptr, &o.cornerIds);
-        ImGui::MenuItem("Triangle ids", nullptr, &o.triangleIds);
-        ImGui::MenuItem("Walk path and line L", nullptr, &o.walk);
-        ImGui::MenuItem("Edges still to test", nullptr, &o.flipQueue);
-        ImGui::MenuItem("Flipped edges", nullptr, &o.flipped);
-        ImGui::MenuItem("Circumcircles", "C", &o.circumcircles);
-        ImGui::MenuItem("Voronoi diagram", "V", &o.voronoi);
-        ImGui::MenuItem("Queued points", nullptr, &o.pendingPoints);
-        ImGui::MenuItem("Super-triangle (super mode)", nullptr, &o.virtualTriangles);
-        ImGui::Separator();
-        ImGui::MenuItem("Snap new points to grid", "G", &st.snapToGrid);
-        ImGui::SetNextItemWidth(100);
-        ImGui::InputDouble("Grid step", &st.gridStep, 0, 0, "%g");
-        st.gridStep = std::max(st.gridStep, 1e-9);
-        if (ImGui::MenuItem("Fit to data", "F")) st.fitPending = true;
-        ImGui::Separator();
-        ImGui::MenuItem("Presentation mode (large, high contrast)", nullptr, &st.presentation);
-        ImGui::EndMenu();
-    }
-    if (ImGui::BeginMenu("Generate")) {
-        std::vector<int>& counts = dialog.generatorCounts;
-        counts.resize(std::size(kGenerators), 0);
-        int& seed = dialog.generatorSeed;
+    ImGui::Separator();
+    if (ImGui::MenuItem("Save points as .node / .csv..."))
+        st.files.dialog = FileState::Dialog::SavePoints;
+    if (ImGui::MenuItem("Save session...", "Ctrl+S"))
+        st.files.dialog = FileState::Dialog::SaveSession;
+    if (ImGui::IsItemHovered())
+        ImGui::SetTooltip(
+            "Points, options, the step, view, selection and overlays in one JSON file:\nattach "
+            "it to a bug report, or share a class");
+    if (ImGui::MenuItem("Export mesh (.ele/.neigh, OFF, OBJ)..."))
+        st.files.dialog = FileState::Dialog::ExportMesh;
+    if (ImGui::MenuItem("Export SVG of the view..."))
+        st.files.dialog = FileState::Dialog::ExportSvg;
+    if (ImGui::MenuItem("Screenshot (PNG)", "F12")) st.files.screenshotRequested = true;
+    if (ImGui::MenuItem("Animated GIF of steps...")) st.files.dialog = FileState::Dialog::ExportGif;
+    ImGui::Separator();
+    if (ImGui::MenuItem("Undo point edit", "Ctrl+Z", false, !st.undoPoints.empty())) st.undoEdit();
+    if (ImGui::MenuItem("Redo point edit", "Ctrl+Y", false, !st.redoPoints.empty())) st.redoEdit();
+    ImGui::Separator();
+    if (ImGui::MenuItem("Quit", "Ctrl+Q")) st.quitRequested = true;
+    ImGui::EndMenu();
+}
+
+void ShowViewMenu(AppState& st) {
+    if (!ImGui::BeginMenu("View")) return;
+    Overlays& o = st.overlays;
+    ImGui::MenuItem("Fill triangles", nullptr, &o.fill);
+    ImGui::MenuItem("Vertex ids", nullptr, &o.vertexIds);
+    ImGui::MenuItem("Corner ids", nullptr, &o.cornerIds);
+    ImGui::MenuItem("Triangle ids", nullptr, &o.triangleIds);
+    ImGui::MenuItem("Walk path and line L", nullptr, &o.walk);
+    ImGui::MenuItem("Edges still to test", nullptr, &o.flipQueue);
+    ImGui::MenuItem("Flipped edges", nullptr, &o.flipped);
+    ImGui::MenuItem("Circumcircles", "C", &o.circumcircles);
+    ImGui::MenuItem("Voronoi diagram", "V", &o.voronoi);
+    ImGui::MenuItem("Queued points", nullptr, &o.pendingPoints);
+    ImGui::MenuItem("Super-triangle (super mode)", nullptr, &o.virtualTriangles);
+    ImGui::Separator();
+    ImGui::MenuItem("Snap new points to grid", "G", &st.snapToGrid);
+    ImGui::SetNextItemWidth(100);
+    ImGui::InputDouble("Grid step", &st.gridStep, 0, 0, "%g");
+    st.gridStep = std::max(st.gridStep, 1e-9);
+    if (ImGui::MenuItem("Fit to data", "F")) st.fitPending = true;
+    ImGui::Separator();
+    ImGui::MenuItem("Presentation mode (large, high contrast)", nullptr, &st.presentation);
+    ImGui::EndMenu();
+}
+
+// Every generator with its point count, and one seed for all.
+void ShowGenerateMenu(AppState& st) {
+    if (!ImGui::BeginMenu("Generate")) return;
+    std::vector<int>& counts = st.dialogs.generatorCounts;
+    counts.resize(std::size(kGenerators), 0);
+    int& seed = st.dialogs.generatorSeed;
+    ImGui::SetNextItemWidth(120);
+    ImGui::InputInt("Seed", &seed);
+    ImGui::Separator();
+    for (std::size_t i = 0; i < std::size(kGenerators); ++i) {
+        const GeneratorChoice& g = kGenerators[i];
+        if (counts[i] == 0) counts[i] = g.defaultCount;
+        ImGui::PushID(static_cast<int>(i));
         ImGui::SetNextItemWidth(120);
-        ImGui::InputInt("Seed", &seed);
-        ImGui::Separator();
-        for (std::size_t i = 0; i < std::size(kGenerators); ++i) {
-            const GeneratorChoice& g = kGenerators[i];
-            if (counts[i] == 0) counts[i] = g.defaultCount;
-            ImGui::PushID(static_cast<int>(i));
-            ImGui::SetNextItemWidth(120);
-            ImGui::InputInt("##n", &counts[i], 10, 100);
-            counts[i] = std::clamp(counts[i], 1, 5000000);
-            ImGui::SameLine();
-            if (ImGui::MenuItem(g.label)) {
-                st.loadPoints(generatePoints(g.kind, static_cast<std::size_t>(counts[i]),
-                                             static_cast<std::uint64_t>(std::max(0, seed))),
-                              std::string(toString(g.kind)) + " (" + std::to_string(counts[i]) +
-                                  " points, seed " + std::to_string(seed) + ")");
-            }
-            ImGui::PopID();
+        ImGui::InputInt("##n", &counts[i], 10, 100);
+        counts[i] = std::clamp(counts[i], 1, 5000000);
+        ImGui::SameLine();
+        if (ImGui::MenuItem(g.label)) {
+            st.loadPoints(generatePoints(g.kind, static_cast<std::size_t>(counts[i]),
+                                         static_cast<std::uint64_t>(std::max(0, seed))),
+                          std::string(toString(g.kind)) + " (" + std::to_string(counts[i]) +
+                              " points, seed " + std::to_string(seed) + ")");
         }
-        ImGui::EndMenu();
+        ImGui::PopID();
     }
-    if (ImGui::BeginMenu("Lessons")) {
-        auto& list = st.dialogs.lessons;
-        if (list.empty()) {
-            std::error_code ec;
-            for (const auto& entry : std::filesystem::directory_iterator(DLAB_LESSONS_DIR, ec)) {
-                if (entry.path().extension() != ".toml") continue;
-                std::string title = entry.path().filename().string();
-                try {
-                    title = loadLesson(entry.path().string()).title;
-                } catch (const std::exception&) {
-                    title += " (cannot be read)";
-                }
-                list.emplace_back(entry.path().string(), title);
-            }
-            std::sort(list.begin(), list.end());
+    ImGui::EndMenu();
+}
+
+// The lessons in DLAB_LESSONS_DIR as (path, title), sorted by path.
+std::vector<std::pair<std::string, std::string>> findLessons() {
+    std::vector<std::pair<std::string, std::string>> list;
+    std::error_code ec;
+    for (const auto& entry : std::filesystem::directory_iterator(DLAB_LESSONS_DIR, ec)) {
+        if (entry.path().extension() != ".toml") continue;
+        std::string title = entry.path().filename().string();
+        try {
+            title = loadLesson(entry.path().string()).title;
+        } catch (const std::exception&) {
+            title += " (cannot be read)";
         }
-        for (const auto& [path, title] : list) {
-            const bool current = st.lessonPlayer.lesson && st.lessonPlayer.progress.lesson == path;
-            if (ImGui::MenuItem(title.c_str(), nullptr, current)) openLesson(st, path);
-        }
-        if (list.empty()) ImGui::TextDisabled("no lessons in %s", DLAB_LESSONS_DIR);
-        ImGui::Separator();
-        if (ImGui::MenuItem("Close the lesson", nullptr, false, st.lessonPlayer.lesson != nullptr))
-            closeLesson(st);
-        ImGui::EndMenu();
+        list.emplace_back(entry.path().string(), title);
     }
+    std::sort(list.begin(), list.end());
+    return list;
+}
+
+void ShowLessonsMenu(AppState& st) {
+    if (!ImGui::BeginMenu("Lessons")) return;
+    auto& list = st.dialogs.lessons;
+    if (list.empty()) list = findLessons();
+    for (const auto& [path, title] : list) {
+        const bool current = st.lessonPlayer.lesson && st.lessonPlayer.progress.lesson == path;
+        if (ImGui::MenuItem(title.c_str(), nullptr, current)) openLesson(st, path);
+    }
+    if (list.empty()) ImGui::TextDisabled("no lessons in %s", DLAB_LESSONS_DIR);
+    ImGui::Separator();
+    if (ImGui::MenuItem("Close the lesson", nullptr, false, st.lessonPlayer.lesson != nullptr))
+        closeLesson(st);
+    ImGui::EndMenu();
+}
+
+}  // namespace
+
+void ShowMenuBar(AppState& st) {
+    if (!ImGui::BeginMenuBar()) return;
+    ShowFileMenu(st);
+    ShowViewMenu(st);
+    ShowGenerateMenu(st);
+    ShowLessonsMenu(st);
     if (ImGui::BeginMenu("Help")) {
         if (ImGui::MenuItem("Shortcuts and conventions", "F1")) st.showHelp = true;
         ImGui::EndMenu();

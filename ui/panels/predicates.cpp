@@ -239,9 +239,9 @@ std::vector<PredicateCall> currentPredicateCalls(const Engine& e) {
     return calls;
 }
 
-void ShowPredicates(AppState& st) {
-    Engine& e = st.engine;
-    const std::vector<PredicateCall> calls = currentPredicateCalls(e);
+namespace {
+
+void ShowPredicatesTitle() {
     ImGui::TextUnformatted("The current operation");
     ImGui::SameLine();
     ImGui::TextDisabled("(?)");
@@ -253,7 +253,12 @@ void ShowPredicates(AppState& st) {
             "determinant is\n"
             "evaluated exactly (expansions, or big integers for extreme exponents).");
     }
-    ImGui::BeginChild("##predbody", ImVec2(0, 0), false);  // scrolls when the column is short
+}
+
+// The current operation's predicate calls, and buttons to step to the next op that makes one.
+void ShowCurrentCalls(AppState& st) {
+    Engine& e = st.engine;
+    const std::vector<PredicateCall> calls = currentPredicateCalls(e);
     if (calls.empty()) {
         ImGui::TextWrapped(
             "%s", e.current()
@@ -278,13 +283,11 @@ void ShowPredicates(AppState& st) {
         ImGui::Separator();
         ShowCall(st, calls[i], static_cast<int>(i));
     }
+}
 
-    // ---- The user's own four points --------------------------------------------------------
-    ImGui::Separator();
-    ImGui::TextUnformatted("Test your own points");
-    ImGui::TextDisabled("x, y each; read exactly (17 digits round-trip)");
+// The four fields a, b, c, d; returns whether each holds a point (a "?" marks one that does not).
+bool ReadOwnPoints(AppState& st, Vec2 (&p)[4]) {
     static const char* const kLabels[] = {"a", "b", "c", "d"};
-    Vec2 p[4];
     bool ok = true;
     ImGui::PushFont(fonts().mono);
     for (int k = 0; k < 4; ++k) {
@@ -298,10 +301,18 @@ void ShowPredicates(AppState& st) {
         }
     }
     ImGui::PopFont();
-    if (!ok) {
+    return ok;
+}
+
+// The user's own four points: orient2d(a, b, c) and incircle(a, b, c, d), verdicts first.
+void ShowOwnPoints(AppState& st) {
+    ImGui::Separator();
+    ImGui::TextUnformatted("Test your own points");
+    ImGui::TextDisabled("x, y each; read exactly (17 digits round-trip)");
+    Vec2 p[4];
+    if (!ReadOwnPoints(st, p)) {
         ImGui::TextColored(ImVec4(0.8f, 0.1f, 0.1f, 1),
                            "Each point is two finite numbers, e.g. 0.5, 1e-3");
-        ImGui::EndChild();
         return;
     }
     PredicateCall orient;
@@ -323,6 +334,15 @@ void ShowPredicates(AppState& st) {
     ImGui::Separator();
     ShowCall(st, orient, 100, false);
     ShowCall(st, circle, 101, false);
+}
+
+}  // namespace
+
+void ShowPredicates(AppState& st) {
+    ShowPredicatesTitle();
+    ImGui::BeginChild("##predbody", ImVec2(0, 0), false);  // scrolls when the column is short
+    ShowCurrentCalls(st);
+    ShowOwnPoints(st);
     ImGui::EndChild();
 }
 

@@ -86,47 +86,38 @@ ImVec4 opColour(OpType t) {
     }
 }
 
-// The breakpoints popup: quick toggles for the common ones, any kind by its text form, and the
-// list of active breakpoints. A running animation stops where one hits.
-void ShowBreakpointsButton(AppState& state) {
-    RunControl& run = state.run;
-    int active = 0;
-    for (const BreakpointEntry& b : run.breakpoints) active += b.enabled;
-    char label[48];
-    std::snprintf(label, sizeof label, "Breakpoints (%d)###breakpoints", active);
-    if (ImGui::Button(label)) ImGui::OpenPopup("##breakpoints");
-    RecordItem(state, "breakpoints");
-    if (ImGui::IsItemHovered())
-        ImGui::SetTooltip(
-            "Where Run stops: the next flip, a degenerate case, vertex k, a corner changing...");
-    if (!ImGui::BeginPopup("##breakpoints")) return;
-    const ImVec2 at = ImGui::GetWindowPos(), size = ImGui::GetWindowSize();
-    state.itemRects["breakpoints-popup"] = {at.x, at.y, at.x + size.x, at.y + size.y};
-    // Esc closes it (unless a text field in it has the keyboard: there Esc leaves the field).
-    if (!ImGui::GetIO().WantTextInput && ImGui::IsKeyPressed(key::kEscape, false))
-        ImGui::CloseCurrentPopup();
-    auto find = [&](const Breakpoint& bp) {
-        for (std::size_t i = 0; i < run.breakpoints.size(); ++i) {
-            if (run.breakpoints[i].bp == bp) return static_cast<int>(i);
-        }
-        return -1;
-    };
-    auto toggle = [&](const char* text, const Breakpoint& bp) {
-        const int i = find(bp);
-        bool on = i >= 0 && run.breakpoints[i].enabled;
-        if (ImGui::Checkbox(text, &on)) {
-            if (i >= 0)
-                run.breakpoints[i].enabled = on;
-            else
-                run.breakpoints.push_back({bp, true});
-        }
-    };
+int findBreakpoint(const RunControl& run, const Breakpoint& bp) {
+    for (std::size_t i = 0; i < run.breakpoints.size(); ++i) {
+        if (run.breakpoints[i].bp == bp) return static_cast<int>(i);
+    }
+    return -1;
+}
+
+// A checkbox for a common breakpoint: on when it is in the list and enabled.
+void BreakpointToggle(RunControl& run, const char* text, const Breakpoint& bp) {
+    const int i = findBreakpoint(run, bp);
+    bool on = i >= 0 && run.breakpoints[i].enabled;
+    if (ImGui::Checkbox(text, &on)) {
+        if (i >= 0)
+            run.breakpoints[i].enabled = on;
+        else
+            run.breakpoints.push_back({bp, true});
+    }
+}
+
+void ShowQuickBreakpoints(RunControl& run) {
     ImGui::TextUnformatted("Stop the run...");
-    toggle("at the next flip", {BreakKind::Flip, std::nullopt});
-    toggle("at a degenerate case (point on an edge or a vertex, cocircular test)",
-           {BreakKind::Degenerate, std::nullopt});
-    toggle("at a duplicate point", {BreakKind::Duplicate, std::nullopt});
-    toggle("after each whole insertion", {BreakKind::Insertion, std::nullopt});
+    BreakpointToggle(run, "at the next flip", {BreakKind::Flip, std::nullopt});
+    BreakpointToggle(run, "at a degenerate case (point on an edge or a vertex, cocircular test)",
+                     {BreakKind::Degenerate, std::nullopt});
+    BreakpointToggle(run, "at a duplicate point", {BreakKind::Duplicate, std::nullopt});
+    BreakpointToggle(run, "after each whole insertion", {BreakKind::Insertion, std::nullopt});
+}
+
+// Breakpoints at a vertex k or a corner c (the selected one to start with), and any kind by
+// its text form.
+void ShowAddBreakpoint(AppState& state) {
+    RunControl& run = state.run;
     ImGui::SetNextItemWidth(90);
     ImGui::InputInt("##vertex", &state.dialogs.breakVertex);
     RecordItem(state, "breakpoint-vertex");
@@ -158,7 +149,10 @@ void ShowBreakpointsButton(AppState& state) {
             state.log(Message::Level::Error, error);
         }
     }
-    ImGui::Separator();
+}
+
+// The active breakpoints, each with its meaning, an on/off box and a remove button.
+void ShowBreakpointList(RunControl& run) {
     if (run.breakpoints.empty()) ImGui::TextDisabled("no breakpoints: Run goes to the end");
     for (std::size_t i = 0; i < run.breakpoints.size(); ++i) {
         ImGui::PushID(static_cast<int>(i));
@@ -174,12 +168,36 @@ void ShowBreakpointsButton(AppState& state) {
             break;
         }
     }
+}
+
+// The breakpoints popup: quick toggles for the common ones, any kind by its text form, and the
+// list of active breakpoints. A running animation stops where one hits.
+void ShowBreakpointsButton(AppState& state) {
+    RunControl& run = state.run;
+    int active = 0;
+    for (const BreakpointEntry& b : run.breakpoints) active += b.enabled;
+    char label[48];
+    std::snprintf(label, sizeof label, "Breakpoints (%d)###breakpoints", active);
+    if (ImGui::Button(label)) ImGui::OpenPopup("##breakpoints");
+    RecordItem(state, "breakpoints");
+    if (ImGui::IsItemHovered())
+        ImGui::SetTooltip(
+            "Where Run stops: the next flip, a degenerate case, vertex k, a corner changing...");
+    if (!ImGui::BeginPopup("##breakpoints")) return;
+    const ImVec2 at = ImGui::GetWindowPos(), size = ImGui::GetWindowSize();
+    state.itemRects["breakpoints-popup"] = {at.x, at.y, at.x + size.x, at.y + size.y};
+    // Esc closes it (unless a text field in it has the keyboard: there Esc leaves the field).
+    if (!ImGui::GetIO().WantTextInput && ImGui::IsKeyPressed(key::kEscape, false))
+        ImGui::CloseCurrentPopup();
+    ShowQuickBreakpoints(run);
+    ShowAddBreakpoint(state);
+    ImGui::Separator();
+    ShowBreakpointList(run);
     ImGui::EndPopup();
 }
 
-}  // namespace
-
-void ShowToolbar(AppState& state) {
+// The step buttons (start, back and forward by an op or an insertion, end, run) and the speed.
+void ShowStepControls(AppState& state) {
     Engine& e = state.engine;
     RunControl& run = state.run;
     const bool canStep = !e.batch();
@@ -221,9 +239,12 @@ void ShowToolbar(AppState& state) {
     if (ImGui::IsItemHovered())
         ImGui::SetTooltip(
             "Animation speed in operations per second (right end: as fast as possible)");
-    SameLineOrWrap(ButtonWidth("Breakpoints (00)"));
-    ShowBreakpointsButton(state);
+}
 
+// The engine's modes: boundary, locator, insertion order and its seed; a change restarts the
+// run with the same points.
+void ShowModes(AppState& state) {
+    const Engine& e = state.engine;
     InsertOptions o = e.options();
     bool changed =
         EnumCombo(state, "Boundary", o.boundary, {Boundary::Exact, Boundary::Super}, 80, 24);
@@ -259,6 +280,15 @@ void ShowToolbar(AppState& state) {
         RecordItem(state, "seed");
     }
     if (changed) state.setOptions(o);
+}
+
+}  // namespace
+
+void ShowToolbar(AppState& state) {
+    ShowStepControls(state);
+    SameLineOrWrap(ButtonWidth("Breakpoints (00)"));
+    ShowBreakpointsButton(state);
+    ShowModes(state);
 }
 
 namespace {
