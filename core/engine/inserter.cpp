@@ -249,7 +249,8 @@ void Inserter::notifyChanged(const std::int32_t* tris, int count) {
 }
 
 void Inserter::setBulk(bool on) {
-    if (m_bulk && !on && m_locatorWantsChanges && m_ctl.phase != Phase::Start) m_locator->resync();
+    // Back at the start the mesh is empty and the resync clears the locator's index.
+    if (m_bulk && !on && m_locatorWantsChanges) m_locator->resync();
     m_bulk = on;
 }
 
