@@ -29,6 +29,12 @@ bool insideTriangle(const ImVec2 (&t)[3], ImVec2 p) {
     return (d0 >= 0 && d1 >= 0 && d2 >= 0) || (d0 <= 0 && d1 <= 0 && d2 <= 0);
 }
 
+// A label of this size centred at c overlaps no placed label (2 px of room on either side).
+bool boxFree(const LabelBoxes& labels, ImVec2 c, ImVec2 size) {
+    return labels.isFree(c.x - size.x / 2 - 2, c.y - size.y / 2, c.x + size.x / 2 + 2,
+                         c.y + size.y / 2);
+}
+
 }  // namespace
 
 ImVec2 placeAlong(LabelBoxes& labels, ImVec2 vertex, ImVec2 anchor, const ImVec2 (&tri)[3],
@@ -37,8 +43,7 @@ ImVec2 placeAlong(LabelBoxes& labels, ImVec2 vertex, ImVec2 anchor, const ImVec2
     for (float f : {1.0f, 1.5f, 2.0f, 2.6f, 0.75f}) {
         const ImVec2 c(vertex.x + (anchor.x - vertex.x) * f, vertex.y + (anchor.y - vertex.y) * f);
         if (f != 1.0f && !insideTriangle(tri, c)) continue;
-        if (labels.isFree(c.x - size.x / 2 - 2, c.y - size.y / 2, c.x + size.x / 2 + 2,
-                          c.y + size.y / 2)) {
+        if (boxFree(labels, c, size)) {
             best = c;
             break;
         }
@@ -50,8 +55,7 @@ ImVec2 placeAlong(LabelBoxes& labels, ImVec2 vertex, ImVec2 anchor, const ImVec2
 ImVec2 placeFirstFree(LabelBoxes& labels, std::initializer_list<ImVec2> candidates, ImVec2 size) {
     ImVec2 best = *candidates.begin();
     for (const ImVec2& c : candidates) {
-        if (labels.isFree(c.x - size.x / 2 - 2, c.y - size.y / 2, c.x + size.x / 2 + 2,
-                          c.y + size.y / 2)) {
+        if (boxFree(labels, c, size)) {
             best = c;
             break;
         }
