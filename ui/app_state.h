@@ -101,6 +101,7 @@ struct RunControl {
     // spare for a frame that costs more than the last.
     double targetFrameMs = 13;
     double lastStepMs = 0;         // the stepping part of the last frame
+    double previousRestMs = 0;     // the rest (not stepping) of the frame before the last
     double lastAdvanceMs = -1;     // when advanceRun last ran (steady clock ms), -1: not yet
     std::string stopReason;        // why the last run stopped ("end", "breakpoint: next flip", ...)
     std::size_t stopPosition = 0;  // where it stopped (the caption shows the reason only there)

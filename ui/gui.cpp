@@ -166,8 +166,11 @@ bool Gui::frame() {
     const double t1 = nowMs();
     int w = 0, h = 0;
     m_platform.framebufferSize(w, h);
-    static constexpr float kBackground[4] = {0.95f, 0.95f, 0.96f, 1.0f};
-    if (m_rendererReady) m_renderer->render(ImGui::GetDrawData(), w, h, kBackground);
+    // The host window draws no background: the clear is its colour (one full-window fill less
+    // for a software rasterizer).
+    const ImVec4 bg = ImGui::GetStyle().Colors[ImGuiCol_WindowBg];
+    const float clear[4] = {bg.x, bg.y, bg.z, 1.0f};
+    if (m_rendererReady) m_renderer->render(ImGui::GetDrawData(), w, h, clear);
     if (m_capture) readFramebuffer();
     m_pixelsStale = !m_capture;
     m_platform.present();

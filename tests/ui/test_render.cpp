@@ -109,3 +109,33 @@ TEST(Render, SteppingForwardAndBackRedrawsTheSamePixelsAsGoingThereDirectly) {
         EXPECT_EQ(differingPixels(before, back), 0u) << c.points << " points, back";
     }
 }
+
+// A dense canvas goes to one of two textures in turn (the one the last frame did not show):
+// single steps forward and back with one frame each end on the frame of a GUI that went there
+// directly.
+TEST(Render, DenseCanvasSteppedOneFrameAStepShowsTheMeshOfItsPosition) {
+    auto lastFrame = [](UiHarness& h) {
+        h.frames(1);
+        int w = 0, height = 0;
+        return h.gui().lastFrame(w, height);
+    };
+    std::size_t at = 0;
+    std::vector<std::uint8_t> stepped, first;
+    {
+        Opened o(16000);
+        auto& e = o.h.state().engine;
+        e.seek(e.recorded() * 2 / 3);
+        first = frame(o.h);
+        ASSERT_TRUE(o.h.state().frameStats.denseMesh);
+        for (const int move : {+1, +1, +1, -1, +1, +1, +40, -1, +1, +1}) {
+            e.seek(e.position() + move);
+            stepped = lastFrame(o.h);
+        }
+        at = e.position();
+    }
+    Opened direct(16000);
+    direct.h.state().engine.seek(at);
+    const std::vector<std::uint8_t> there = frame(direct.h);  // laid out in its first frames
+    EXPECT_GT(differingPixels(first, stepped), 20u) << "nothing moved";
+    EXPECT_EQ(differingPixels(stepped, there), 0u);
+}

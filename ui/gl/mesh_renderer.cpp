@@ -7,6 +7,7 @@
 #include <imgui.h>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 
@@ -20,9 +21,35 @@ bool sameView(const View& a, const View& b) {
 
 bool sameStyle(const MeshStyle& a, const MeshStyle& b) {
     return a.fill == b.fill && a.edge == b.edge && a.virtualEdge == b.virtualEdge &&
-           a.point == b.point && a.pending == b.pending && a.edgeWidth == b.edgeWidth &&
-           a.pointSize == b.pointSize && a.drawFill == b.drawFill &&
+           a.point == b.point && a.pending == b.pending && a.background == b.background &&
+           a.edgeWidth == b.edgeWidth && a.pointSize == b.pointSize && a.drawFill == b.drawFill &&
            a.drawVirtual == b.drawVirtual && a.drawPoints == b.drawPoints;
+}
+
+// `colour` (ImU32, ABGR) blended over the opaque `background` as GL blends: an opaque colour.
+std::uint32_t over(std::uint32_t colour, std::uint32_t background) {
+    const std::uint32_t a = colour >> 24;
+    std::uint32_t out = 0xFF000000u;
+    for (int shift = 0; shift < 24; shift += 8) {
+        const std::uint32_t c = (colour >> shift) & 0xFF, b = (background >> shift) & 0xFF;
+        out |= ((c * a + b * (255 - a) + 127) / 255) << shift;
+    }
+    return out;
+}
+
+// 1 / steps (0 for 0), from a table for the short edges a dense mesh is made of.
+float reciprocal(int steps) {
+    static const std::array<float, 256> table = [] {
+        std::array<float, 256> t{};
+        for (int i = 1; i < 256; ++i) t[i] = 1.0f / static_cast<float>(i);
+        return t;
+    }();
+    return steps < 256 ? table[steps] : 1.0f / static_cast<float>(steps);
+}
+
+// The raster covers the canvas: a fractional width or height takes one pixel more.
+int rasterSize(double canvasPixels) {
+    return std::max(1, static_cast<int>(std::ceil(canvasPixels)));
 }
 
 // Screen positions can be anywhere (a vertex far off the canvas at high zoom): clamp to a range
@@ -37,6 +64,8 @@ struct MeshScan {
     const Inserter& ins;
     const std::vector<float>& xy;
     bool ghostMode, running, drawVirtual;
+    bool hideVirtual;           // virtual triangles are not drawn
+    std::int32_t firstVirtual;  // vertices from here on are virtual
     float left, top, right, bottom;
 
     MeshScan(const Engine& engine, const std::vector<float>& screen, const View& view,
@@ -47,29 +76,38 @@ struct MeshScan {
           ghostMode(engine.inserter().options().boundary == Boundary::Exact),
           running(!engine.inserter().done()),
           drawVirtual(style.drawVirtual),
+          hideVirtual(running && (ghostMode || !drawVirtual)),
+          firstVirtual(engine.inserter().firstVirtual()),
           left(static_cast<float>(view.origin.x)),
           top(static_cast<float>(view.origin.y)),
           right(left + static_cast<float>(view.size.x)),
           bottom(top + static_cast<float>(view.size.y)) {}
 
-    bool skipped(std::int32_t t) const {
-        return running && ins.isVirtualTriangle(t) && (ghostMode || !drawVirtual);
+    bool isVirtual(std::int32_t v) const { return v >= firstVirtual; }
+    bool virtualTriangle(std::int32_t t) const {
+        return isVirtual(m.V[3 * t]) || isVirtual(m.V[3 * t + 1]) || isVirtual(m.V[3 * t + 2]);
     }
+    bool skipped(std::int32_t t) const { return hideVirtual && virtualTriangle(t); }
     bool visible(std::int32_t a, std::int32_t b) const {
         const float x0 = xy[2 * a], y0 = xy[2 * a + 1], x1 = xy[2 * b], y1 = xy[2 * b + 1];
         return std::max(x0, x1) >= left && std::min(x0, x1) <= right && std::max(y0, y1) >= top &&
                std::min(y0, y1) <= bottom;
     }
-    // Each edge once: from its lower corner, unless the other side is not drawn.
+    // Each edge once: from its lower corner, unless the other side is not drawn. (The triangle
+    // across the edge ab of a drawn triangle is virtual when its third vertex, V[o], is: a and b
+    // are not.)
     template <class F>
     void forEachEdge(F&& f) const {
+        const std::int32_t* V = m.V.data();
+        const std::int32_t* O = m.O.data();
         for (std::int32_t t = 0; t < m.numTriangles(); ++t) {
-            if (skipped(t)) continue;
+            const std::int32_t v[3] = {V[3 * t], V[3 * t + 1], V[3 * t + 2]};
+            if (hideVirtual && (isVirtual(v[0]) || isVirtual(v[1]) || isVirtual(v[2]))) continue;
             for (int k = 0; k < 3; ++k) {
-                const std::int32_t c = 3 * t + k, o = m.O[c];
-                if (o != kNone && o < c && !skipped(tri(o))) continue;
-                const std::int32_t a = m.V[next(c)], b = m.V[prev(c)];
-                if (visible(a, b)) f(a, b, running && (ins.isVirtual(a) || ins.isVirtual(b)));
+                const std::int32_t c = 3 * t + k, o = O[c];
+                if (o != kNone && o < c && !(hideVirtual && isVirtual(V[o]))) continue;
+                const std::int32_t a = v[k == 2 ? 0 : k + 1], b = v[k == 0 ? 2 : k - 1];
+                if (visible(a, b)) f(a, b, running && (isVirtual(a) || isVirtual(b)));
             }
         }
     }
@@ -146,7 +184,7 @@ void MeshRenderer::buildArrays(const Engine& engine) {
     };
     if (m_style.drawFill) {
         for (std::int32_t t = 0; t < m.numTriangles(); ++t) {
-            if (scan.skipped(t) || (scan.running && scan.ins.isVirtualTriangle(t))) continue;
+            if (scan.running && scan.virtualTriangle(t)) continue;
             const std::int32_t a = m.V[3 * t], b = m.V[3 * t + 1], c = m.V[3 * t + 2];
             if (!scan.visible(a, b) && !scan.visible(b, c) && !scan.visible(c, a)) {
                 // A triangle can cover the canvas with all its edges outside: keep it if its box
@@ -186,14 +224,16 @@ void MeshRenderer::drawRasterAll(const Engine& engine, bool masked) {
     const float left = scan.left, top = scan.top;
     const std::vector<float>& xy = m_xy;
     if (!masked) {
-        m_rasterW = std::max(1, static_cast<int>(m_view.size.x));
-        m_rasterH = std::max(1, static_cast<int>(m_view.size.y));
-        m_raster.assign(static_cast<std::size_t>(m_rasterW) * m_rasterH, 0u);
-        m_uploadY0 = 0;
-        m_uploadY1 = m_rasterH;
+        m_rasterW = rasterSize(m_view.size.x);
+        m_rasterH = rasterSize(m_view.size.y);
+        m_raster.assign(static_cast<std::size_t>(m_rasterW) * m_rasterH, m_style.background);
+        for (Rows& r : m_stale) r = {0, m_rasterH};
     }
     m_masked = masked;
     m_visibleEdges = 0;
+    const std::uint32_t bg = m_style.background;
+    const std::uint32_t edge = over(m_style.edge, bg), virtualEdge = over(m_style.virtualEdge, bg),
+                        point = over(m_style.point, bg), pendingPoint = over(m_style.pending, bg);
     scan.forEachEdge([&](std::int32_t a, std::int32_t b, bool virt) {
         ++m_visibleEdges;
         const float x0 = xy[2 * a] - left, y0 = xy[2 * a + 1] - top;
@@ -202,7 +242,7 @@ void MeshRenderer::drawRasterAll(const Engine& engine, bool masked) {
         if (masked && !boxDirty(std::min(x0, x1) - 2, std::min(y0, y1) - 2, std::max(x0, x1) + 2,
                                 std::max(y0, y1) + 2))
             return;
-        rasterLine(x0, y0, x1, y1, virt ? m_style.virtualEdge : m_style.edge);
+        rasterLine(x0, y0, x1, y1, virt ? virtualEdge : edge);
     });
     if (m_style.drawPoints) {
         const auto& states = engine.pointStates();
@@ -211,11 +251,10 @@ void MeshRenderer::drawRasterAll(const Engine& engine, bool masked) {
             if (!pending && states[i] != Engine::PointState::Inserted) continue;
             const float x = xy[2 * i] - left, y = xy[2 * i + 1] - top;
             if (masked && !boxDirty(x - 2, y - 2, x + 2, y + 2)) continue;
-            rasterDot(x, y, 2, pending ? m_style.pending : m_style.point);
+            rasterDot(x, y, 2, pending ? pendingPoint : point);
         }
     }
     m_masked = false;
-    if (!masked) m_rasterDirty = true;
 }
 
 // Redraws only the tiles that the operations since the last update touched: the triangles whose
@@ -225,8 +264,7 @@ void MeshRenderer::drawRasterAll(const Engine& engine, bool masked) {
 bool MeshRenderer::patchRaster(const Engine& engine) {
     const Journal* journal = engine.journal();
     if (!journal || engine.run() != m_run || m_running != !engine.inserter().done()) return false;
-    if (m_rasterW != std::max(1, static_cast<int>(m_view.size.x)) ||
-        m_rasterH != std::max(1, static_cast<int>(m_view.size.y)))
+    if (m_rasterW != rasterSize(m_view.size.x) || m_rasterH != rasterSize(m_view.size.y))
         return false;
     if (!markChanges(engine)) return false;
     int y0 = m_tilesH, y1 = -1;
@@ -237,21 +275,14 @@ bool MeshRenderer::patchRaster(const Engine& engine) {
             y1 = std::max(y1, ty);
             for (int y = ty * kTile; y < std::min(m_rasterH, (ty + 1) * kTile); ++y) {
                 std::uint32_t* row = m_raster.data() + static_cast<std::size_t>(y) * m_rasterW;
-                std::fill(row + tx * kTile, row + std::min(m_rasterW, (tx + 1) * kTile), 0u);
+                std::fill(row + tx * kTile, row + std::min(m_rasterW, (tx + 1) * kTile),
+                          m_style.background);
             }
         }
     }
     drawRasterAll(engine, true);  // with no dirty tile it only counts the visible edges
     if (y1 >= 0) {
-        m_rasterDirty = true;
-        const int rowsY0 = y0 * kTile, rowsY1 = std::min(m_rasterH, (y1 + 1) * kTile);
-        if (m_uploadY1 <= m_uploadY0) {
-            m_uploadY0 = rowsY0;
-            m_uploadY1 = rowsY1;
-        } else {
-            m_uploadY0 = std::min(m_uploadY0, rowsY0);
-            m_uploadY1 = std::max(m_uploadY1, rowsY1);
-        }
+        for (Rows& r : m_stale) r.add(y0 * kTile, std::min(m_rasterH, (y1 + 1) * kTile));
     }
     return true;
 }
@@ -267,6 +298,7 @@ bool MeshRenderer::markChanges(const Engine& engine) {
     m_tilesW = (m_rasterW + kTile - 1) / kTile;
     m_tilesH = (m_rasterH + kTile - 1) / kTile;
     m_tiles.assign(static_cast<std::size_t>(m_tilesW) * m_tilesH, 0);
+    m_dirtyTiles = 0;
     const MeshScan scan(engine, m_xy, m_view, m_style);
     const float left = scan.left, top = scan.top;
     auto markPoint = [&](std::int32_t v) {
@@ -277,11 +309,15 @@ bool MeshRenderer::markChanges(const Engine& engine) {
     markPoint(m_currentVertex);
     markPoint(engine.currentVertex());
     std::size_t changes = 0;
+    // Most of the canvas dirty: a full rebuild is cheaper (known as soon as it happens).
+    auto most = [&] { return 2 * m_dirtyTiles > m_tiles.size(); };
     for (std::size_t i = lo; i < hi; ++i) {
         const Op& op = journal.ops()[i];
-        if (op.type == OpType::Finalize) return false;
+        if (op.type == OpType::Finalize || most()) return false;
         changes += op.numChanges;
-        if (changes > static_cast<std::size_t>(m.numCorners())) return false;
+        // The masked redraw still visits every edge: past a few changes a corner, drawing the
+        // raster whole is cheaper than marking and testing tiles.
+        if (8 * changes > static_cast<std::size_t>(m.numCorners())) return false;
         markPoint(op.vertex);
         for (std::uint32_t k = 0; k < op.numChanges; ++k) {
             const std::int32_t t = tri(journal.changes()[op.firstChange + k].corner());
@@ -298,9 +334,7 @@ bool MeshRenderer::markChanges(const Engine& engine) {
             markBox(x0 - 2, y0 - 2, x1 + 2, y1 + 2);  // the DDA may end a pixel past a vertex
         }
     }
-    std::size_t dirty = 0;
-    for (std::uint8_t d : m_tiles) dirty += d;
-    return 2 * dirty <= m_tiles.size();  // most of the canvas: a full rebuild is cheaper
+    return !most();
 }
 
 namespace {
@@ -323,9 +357,13 @@ void MeshRenderer::markBox(float x0, float y0, float x1, float y1) {
     if (!tileRange(x0, x1, m_rasterW, m_tilesW, tx0, tx1) ||
         !tileRange(y0, y1, m_rasterH, m_tilesH, ty0, ty1))
         return;
-    for (int ty = ty0; ty <= ty1; ++ty)
-        std::fill(m_tiles.begin() + ty * m_tilesW + tx0, m_tiles.begin() + ty * m_tilesW + tx1 + 1,
-                  std::uint8_t{1});
+    for (int ty = ty0; ty <= ty1; ++ty) {
+        for (int tx = tx0; tx <= tx1; ++tx) {
+            std::uint8_t& tile = m_tiles[static_cast<std::size_t>(ty) * m_tilesW + tx];
+            m_dirtyTiles += tile == 0;
+            tile = 1;
+        }
+    }
 }
 
 bool MeshRenderer::boxDirty(float x0, float y0, float x1, float y1) const {
@@ -358,8 +396,20 @@ void MeshRenderer::rasterLine(float x0, float y0, float x1, float y1, std::uint3
                    y0 + dy * (t0 + (t1 - t0) * 0.999f), colour);
         return;
     }
-    const float sx = steps ? dx / steps : 0, sy = steps ? dy / steps : 0;
+    const float inverse = reciprocal(steps);
+    const float sx = dx * inverse, sy = dy * inverse;
     float x = x0, y = y0;
+    if (!m_masked && std::min(x0, x1) >= 0 && std::min(y0, y1) >= 0 &&
+        std::max(x0, x1) < static_cast<float>(m_rasterW - 1) &&
+        std::max(y0, y1) < static_cast<float>(m_rasterH - 1)) {
+        // Inside, with a pixel of margin for the float steps: the pixels of put(), untested.
+        std::uint32_t* const raster = m_raster.data();
+        const std::size_t w = static_cast<std::size_t>(m_rasterW);
+        for (int i = 0; i <= steps; ++i, x += sx, y += sy)
+            raster[static_cast<std::size_t>(static_cast<int>(y)) * w + static_cast<int>(x)] =
+                colour;
+        return;
+    }
     for (int i = 0; i <= steps; ++i, x += sx, y += sy) {
         put(static_cast<int>(x), static_cast<int>(y), colour);
     }
@@ -367,6 +417,12 @@ void MeshRenderer::rasterLine(float x0, float y0, float x1, float y1, std::uint3
 
 void MeshRenderer::rasterDot(float x, float y, int size, std::uint32_t colour) {
     const int px = static_cast<int>(x) - size / 2, py = static_cast<int>(y) - size / 2;
+    if (!m_masked && px >= 0 && py >= 0 && px + size <= m_rasterW && py + size <= m_rasterH) {
+        for (int j = py; j < py + size; ++j)
+            std::fill_n(m_raster.data() + static_cast<std::size_t>(j) * m_rasterW + px, size,
+                        colour);
+        return;
+    }
     for (int j = std::max(0, py); j < std::min(m_rasterH, py + size); ++j) {
         for (int i = std::max(0, px); i < std::min(m_rasterW, px + size); ++i) put(i, j, colour);
     }
@@ -374,12 +430,53 @@ void MeshRenderer::rasterDot(float x, float y, int size, std::uint32_t colour) {
 
 void MeshRenderer::enqueue(ImDrawList* drawList, Pass pass, float x0, float y0, float x1,
                            float y1) {
+    if (m_dense) {
+        if (pass == Pass::Lines) enqueueRaster(drawList, x0, y0, x1, y1);
+        return;
+    }
     m_clip[0] = x0;
     m_clip[1] = y0;
     m_clip[2] = x1;
     m_clip[3] = y1;
     drawList->AddCallback(reinterpret_cast<ImDrawCallback>(&MeshRenderer::drawCallback),
                           &m_passes[pass == Pass::Fill ? 0 : 1]);
+}
+
+// Dense mode: the raster goes to a texture now (the frame's GL context is current while ImGui
+// builds it) and ImGui draws it as an image, with blending off (the raster is opaque): llvmpipe
+// fills that quad several times faster than through our program (one shader for every shape).
+void MeshRenderer::enqueueRaster(ImDrawList* drawList, float x0, float y0, float x1, float y1) {
+    {
+        const GlStateScope scope;
+        if (!prepareGl()) return;
+        uploadRaster();
+    }
+    const unsigned texture = m_gl.texture[m_gl.shown];
+    drawList->PushClipRect(ImVec2(x0, y0), ImVec2(x1, y1), true);
+    if (texture == 0) {  // no GL: the background at least
+        drawList->AddRectFilled(ImVec2(x0, y0), ImVec2(x1, y1), m_style.background);
+        drawList->PopClipRect();
+        return;
+    }
+    const float x = static_cast<float>(m_view.origin.x), y = static_cast<float>(m_view.origin.y);
+    drawList->AddCallback([](const ImDrawList*, const ImDrawCmd*) { glDisable(GL_BLEND); },
+                          nullptr);
+    drawList->AddImage(
+        reinterpret_cast<ImTextureID>(static_cast<std::uintptr_t>(texture)), ImVec2(x, y),
+        ImVec2(x + static_cast<float>(m_rasterW), y + static_cast<float>(m_rasterH)));
+    drawList->AddCallback(ImDrawCallback_ResetRenderState, nullptr);
+    drawList->PopClipRect();
+}
+
+// When the texture shown last lacks rows of the raster, the other one receives what it lacks and
+// is shown from now on.
+void MeshRenderer::uploadRaster() {
+    if (m_stale[m_gl.shown].empty() && m_gl.texture[m_gl.shown] != 0) return;
+    const int k = 1 - m_gl.shown;
+    uploadRgbaTexture(m_gl.texture[k], m_gl.textureW[k], m_gl.textureH[k], m_rasterW, m_rasterH,
+                      m_raster.data(), m_stale[k].y0, m_stale[k].y1);
+    m_stale[k] = {};
+    m_gl.shown = k;
 }
 
 void MeshRenderer::drawCallback(const ImDrawList*, const void* cmdPtr) {
@@ -414,7 +511,7 @@ void MeshRenderer::drawCallback(const ImDrawList*, const void* cmdPtr) {
 
 namespace {
 
-enum Shape : GLint { kTriangles = 0, kSegments = 1, kSquares = 2, kImage = 3 };
+enum Shape : GLint { kTriangles = 0, kSegments = 1, kSquares = 2 };
 
 // Where each array starts in the one vertex buffer, in floats.
 struct BufferLayout {
@@ -446,7 +543,9 @@ MeshRenderer::~MeshRenderer() { releaseGl(); }
 // with it).
 void MeshRenderer::releaseGl() {
     if (m_gl.context && m_gl.context->alive()) {
-        if (m_gl.texture) glDeleteTextures(1, &m_gl.texture);
+        for (unsigned& t : m_gl.texture) {
+            if (t) glDeleteTextures(1, &t);
+        }
         if (m_gl.buffer) glDeleteBuffers(1, &m_gl.buffer);
         if (m_gl.vertexArray) glDeleteVertexArrays(1, &m_gl.vertexArray);
         if (m_gl.program) glDeleteProgram(m_gl.program);
@@ -472,9 +571,7 @@ bool MeshRenderer::prepareGl() {
         m_gl.uShape = glGetUniformLocation(p, "uShape");
         m_gl.uScreen = glGetUniformLocation(p, "uScreen");
         m_gl.uSize = glGetUniformLocation(p, "uSize");
-        m_gl.uRect = glGetUniformLocation(p, "uRect");
         m_gl.uColour = glGetUniformLocation(p, "uColour");
-        m_gl.uImage = glGetUniformLocation(p, "uImage");
     }
     if (m_gl.failed) return false;
     glUseProgram(m_gl.program);
@@ -484,19 +581,11 @@ bool MeshRenderer::prepareGl() {
     return true;
 }
 
-// The arrays of the last rebuild into the one vertex buffer (sparse), or the raster into the
-// texture (dense).
+// The arrays of the last rebuild into the one vertex buffer (sparse mode; the dense raster goes
+// to its texture in enqueueRaster).
 void MeshRenderer::upload() {
     m_gl.uploaded = m_built;
-    if (m_dense) {
-        if (m_rasterDirty) {
-            uploadRgbaTexture(m_gl.texture, m_gl.textureW, m_gl.textureH, m_rasterW, m_rasterH,
-                              m_raster.data(), m_uploadY0, m_uploadY1);
-            m_rasterDirty = false;
-            m_uploadY0 = m_uploadY1 = 0;
-        }
-        return;
-    }
+    if (m_dense) return;
     const BufferLayout l = layoutOf(m_fill, m_virtualEdges, m_edges, m_pending, m_points);
     glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(l.total * sizeof(float)), nullptr,
                  GL_DYNAMIC_DRAW);
@@ -516,7 +605,7 @@ void MeshRenderer::drawPass(Pass pass, const float screen[4]) {
     glUniform4f(m_gl.uScreen, screen[0], screen[1], screen[2], screen[3]);
     const MeshStyle& s = m_style;
     if (pass == Pass::Fill) {
-        if (m_dense || m_fill.empty()) return;
+        if (m_fill.empty()) return;
         glUniform1i(m_gl.uShape, kTriangles);
         setColourUniform(m_gl.uColour, s.fill);
         glDisableVertexAttribArray(1);
@@ -524,10 +613,6 @@ void MeshRenderer::drawPass(Pass pass, const float screen[4]) {
         glVertexAttribDivisor(0, 0);
         glVertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, 0, floatOffset(0));
         glDrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(m_fill.size() / 2));
-        return;
-    }
-    if (m_dense) {
-        drawRaster();
         return;
     }
     const BufferLayout l = layoutOf(m_fill, m_virtualEdges, m_edges, m_pending, m_points);
@@ -552,19 +637,6 @@ void MeshRenderer::drawInstances(int shape, std::size_t offset, std::size_t coun
     glVertexAttribPointer(attribute, shape == kSegments ? 4 : 2, GL_FLOAT, GL_FALSE, 0,
                           floatOffset(offset));
     glDrawArraysInstanced(GL_TRIANGLES, 0, 6, static_cast<GLsizei>(count));
-}
-
-void MeshRenderer::drawRaster() {
-    if (m_gl.texture == 0) return;
-    glUniform1i(m_gl.uShape, kImage);
-    glUniform1i(m_gl.uImage, 0);
-    const float x = static_cast<float>(m_view.origin.x), y = static_cast<float>(m_view.origin.y);
-    glUniform4f(m_gl.uRect, x, y, x + static_cast<float>(m_rasterW),
-                y + static_cast<float>(m_rasterH));
-    glBindTexture(GL_TEXTURE_2D, m_gl.texture);
-    glDisableVertexAttribArray(0);
-    glDisableVertexAttribArray(1);
-    glDrawArrays(GL_TRIANGLES, 0, 6);
 }
 
 }  // namespace dlab::ui

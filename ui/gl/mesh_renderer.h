@@ -19,6 +19,7 @@
 #include "ui/app_state.h"
 #include "ui/render/renderer.h"
 
+#include <algorithm>
 #include <cstdint>
 #include <memory>
 #include <vector>
@@ -64,9 +65,13 @@ private:
     // The GL side: objects of one context, made on the first draw on it.
     struct Gl {
         std::shared_ptr<GlContext> context;
-        unsigned program = 0, vertexArray = 0, buffer = 0, texture = 0;
-        int textureW = 0, textureH = 0;
-        int uShape = -1, uScreen = -1, uSize = -1, uRect = -1, uColour = -1, uImage = -1;
+        unsigned program = 0, vertexArray = 0, buffer = 0;
+        // Dense mode: two textures, the raster going to the one the last frame did not show, so
+        // that an upload never waits for a software rasterizer still drawing that frame.
+        unsigned texture[2] = {0, 0};
+        int textureW[2] = {0, 0}, textureH[2] = {0, 0};
+        int shown = 0;  // the texture the last upload went to
+        int uShape = -1, uScreen = -1, uSize = -1, uColour = -1;
         std::uint64_t uploaded = 0;  // m_built at the last upload
         bool failed = false;         // the program did not build: draw nothing
     };
@@ -76,7 +81,8 @@ private:
     void drawPass(Pass pass, const float screen[4]);
     void drawInstances(int shape, std::size_t offset, std::size_t count, std::uint32_t colour,
                        float size);
-    void drawRaster();
+    void uploadRaster();
+    void enqueueRaster(ImDrawList* drawList, float x0, float y0, float x1, float y1);
     void releaseGl();
     void screenPositions(const Mesh& m, const View& view);
     void buildArrays(const Engine& engine);
@@ -95,16 +101,27 @@ private:
     }
 
     std::vector<float> m_fill, m_edges, m_virtualEdges, m_points, m_pending;
-    // Dense mode: RGBA pixels of the canvas, row 0 at the top; uploaded to the texture when dirty.
+    // Dense mode: RGBA pixels of the canvas, row 0 at the top, opaque (the canvas' background
+    // where nothing is drawn); uploaded to a texture when changed.
     std::vector<std::uint32_t> m_raster;
     int m_rasterW = 0, m_rasterH = 0;
-    bool m_dense = false, m_rasterDirty = false;
+    bool m_dense = false;
     std::vector<float> m_xy;  // screen position of every vertex at the last update
-    // Patching: the dirty tiles of this update, and the rows not yet uploaded ([y0, y1)).
+    // Patching: the dirty tiles of this update.
     std::vector<std::uint8_t> m_tiles;
+    std::size_t m_dirtyTiles = 0;
     int m_tilesW = 0, m_tilesH = 0;
     bool m_masked = false, m_patched = false;
-    int m_uploadY0 = 0, m_uploadY1 = 0;
+    // Rows [y0, y1) of the raster that a texture has not received yet, per texture.
+    struct Rows {
+        int y0 = 0, y1 = 0;
+        bool empty() const { return y0 >= y1; }
+        void add(int a, int b) {
+            y0 = empty() ? a : std::min(y0, a);
+            y1 = empty() ? b : std::max(y1, b);
+        }
+    };
+    Rows m_stale[2];
     // Where the raster was drawn: the engine's run, journal position, current vertex, and
     // whether the run was still going (virtual triangles hidden).
     std::uint64_t m_run = ~std::uint64_t{0};

@@ -8,16 +8,14 @@ namespace dlab::ui::shaders {
 // ---- The mesh renderer (mesh_renderer.cpp) ----------------------------------------------------
 
 // Shapes: 0 triangles (aPoint per vertex), 1 segments and 2 squares (one instance each: six
-// vertices spanning a quad around aSegment or aPoint), 3 the dense raster over uRect. Positions
-// are display pixels, y down, as ImGui's.
+// vertices spanning a quad around aSegment or aPoint). Positions are display pixels, y down, as
+// ImGui's. (The dense raster is drawn by ImGui, as an image.)
 inline constexpr const char* kMeshVertexShader = R"(
 layout(location = 0) in vec2 aPoint;
 layout(location = 1) in vec4 aSegment;
 uniform int uShape;
 uniform vec4 uScreen;  // the display: left, top, width, height
 uniform float uSize;   // segment width, square side
-uniform vec4 uRect;    // the raster: left, top, right, bottom
-out vec2 vUv;
 const vec2 kCorner[6] = vec2[6](vec2(0.0, 0.0), vec2(1.0, 0.0), vec2(1.0, 1.0),
                                 vec2(0.0, 0.0), vec2(1.0, 1.0), vec2(0.0, 1.0));
 void main() {
@@ -32,25 +30,19 @@ void main() {
         vec2 n = vec2(-u.y, u.x);
         vec2 cap = 0.5 * uSize * u;  // square caps: joints stay closed at any width
         p = mix(aSegment.xy - cap, aSegment.zw + cap, q.x) + (q.y - 0.5) * uSize * n;
-    } else if (uShape == 2) {
-        p = aPoint + (q - 0.5) * uSize;
     } else {
-        p = mix(uRect.xy, uRect.zw, q);
+        p = aPoint + (q - 0.5) * uSize;
     }
-    vUv = q;
     gl_Position = vec4((p.x - uScreen.x) / uScreen.z * 2.0 - 1.0,
                        1.0 - (p.y - uScreen.y) / uScreen.w * 2.0, 0.0, 1.0);
 }
 )";
 
 inline constexpr const char* kMeshFragmentShader = R"(
-uniform int uShape;
 uniform vec4 uColour;
-uniform sampler2D uImage;
-in vec2 vUv;
 out vec4 fragColour;
 void main() {
-    fragColour = uShape == 3 ? texture(uImage, vUv) : uColour;
+    fragColour = uColour;
 }
 )";
 

@@ -911,6 +911,7 @@ MeshStyle canvasMeshStyle(const AppState& st, const Palette& pal) {
     ms.virtualEdge = pal.virtualEdge;
     ms.point = pal.vertex;
     ms.pending = pal.pending;
+    ms.background = pal.background;
     ms.edgeWidth = st.presentation ? 2.0f : 1.0f;
     ms.pointSize = st.engine.points().size() <= 5000 ? 4.0f : 2.0f;
     ms.drawPoints = st.engine.points().size() > kFewPoints;
@@ -953,14 +954,24 @@ void DrawCircumcircles(const Scene& scene) {
     }
 }
 
-// The mesh: our renderer (any size), with ImDrawList layers between and on top: the fill, the
-// current op's fills, the edges and points, then circles, Voronoi, ghosts and the op's lines.
+// The mesh: our renderer (any size), with ImDrawList layers between and on top: the background,
+// the grid, the fill, the current op's fills, the edges and points, then circles, Voronoi, ghosts
+// and the op's lines. A dense mesh is one opaque image with the background in it: the grid and
+// the op's fills go over it.
 void DrawMeshLayers(AppState& st, CanvasCache& cache, const Scene& scene, ImVec2 p0, ImVec2 p1) {
     const MeshStyle ms = canvasMeshStyle(st, scene.pal);
     CanvasMesh& mesh = updateCanvasMesh(st, cache, ms);
-    if (ms.drawFill) mesh.enqueue(scene.dl, CanvasMesh::Pass::Fill, p0.x, p0.y, p1.x, p1.y);
-    DrawOpUnderlay(scene);
-    mesh.enqueue(scene.dl, CanvasMesh::Pass::Lines, p0.x, p0.y, p1.x, p1.y);
+    if (mesh.dense()) {
+        mesh.enqueue(scene.dl, CanvasMesh::Pass::Lines, p0.x, p0.y, p1.x, p1.y);
+        if (st.snapToGrid) DrawGrid(scene, st.gridStep);
+        DrawOpUnderlay(scene);
+    } else {
+        scene.dl->AddRectFilled(p0, p1, scene.pal.background);
+        if (st.snapToGrid) DrawGrid(scene, st.gridStep);
+        if (ms.drawFill) mesh.enqueue(scene.dl, CanvasMesh::Pass::Fill, p0.x, p0.y, p1.x, p1.y);
+        DrawOpUnderlay(scene);
+        mesh.enqueue(scene.dl, CanvasMesh::Pass::Lines, p0.x, p0.y, p1.x, p1.y);
+    }
     if (st.overlays.circumcircles) DrawCircumcircles(scene);
     if (st.overlays.voronoi) DrawVoronoi(scene);
     DrawGhostTriangles(st, scene.dl);
@@ -1010,8 +1021,6 @@ void ShowCanvas(AppState& st) {
 
     st.frameStats.canvasFull = false;
     Scene scene = makeScene(st, dl);
-    dl->AddRectFilled(p0, p1, scene.pal.background);
-    if (st.snapToGrid) DrawGrid(scene, st.gridStep);
     DrawMeshLayers(st, cache, scene, p0, p1);
     const std::int32_t hoveredCorner = DrawLabelsAndPoints(st, cache, scene, hovered);
     dl->PopClipRect();

@@ -380,6 +380,27 @@ void ShowTimeline(AppState& state) {
     if (ImGui::IsItemHovered()) ImGui::SetTooltip("Timeline: drag to any recorded operation");
 }
 
+namespace {
+
+// The stepping time of a full-speed frame: what is left of the target frame time after the rest
+// (not stepping) of the last frame, from the previous call to this one. A large mesh is redrawn
+// every other frame (updateCanvasMesh): the dearer of the last two frames sets the budget, or a
+// cheap frame would hand its slack to the dear one.
+double fullSpeedBudget(RunControl& run, double nowMs) {
+    double budget = run.frameBudgetMs;
+    if (run.lastAdvanceMs >= 0) {
+        const double rest = nowMs - run.lastAdvanceMs - run.lastStepMs;
+        if (rest >= 0 && rest < 1000) {
+            budget = std::clamp(run.targetFrameMs - std::max(rest, run.previousRestMs), 2.0,
+                                run.frameBudgetMs);
+            run.previousRestMs = rest;
+        }
+    }
+    return budget;
+}
+
+}  // namespace
+
 void advanceRun(AppState& state, double dt) {
     RunControl& run = state.run;
     Engine& e = state.engine;
@@ -391,7 +412,8 @@ void advanceRun(AppState& state, double dt) {
     } count{state, startPos};
     if (!run.running) {
         run.lastAdvanceMs = -1;  // a pause is not a slow frame
-        run.toEnd = false;       // a paused run goes on at the slider's speed
+        run.previousRestMs = 0;
+        run.toEnd = false;  // a paused run goes on at the slider's speed
         return;
     }
     if (e.batch() || e.atEnd()) {
@@ -421,13 +443,7 @@ void advanceRun(AppState& state, double dt) {
         const auto t0 = std::chrono::steady_clock::now();
         const double nowMs =
             std::chrono::duration<double, std::milli>(t0.time_since_epoch()).count();
-        // The rest of the last frame: from the previous call to this one, less its stepping.
-        double budget = run.frameBudgetMs;
-        if (run.lastAdvanceMs >= 0) {
-            const double rest = nowMs - run.lastAdvanceMs - run.lastStepMs;
-            if (rest >= 0 && rest < 1000)
-                budget = std::clamp(run.targetFrameMs - rest, 2.0, run.frameBudgetMs);
-        }
+        const double budget = fullSpeedBudget(run, nowMs);
         run.lastAdvanceMs = nowMs;
         struct Stepped {
             RunControl& run;

@@ -26,7 +26,8 @@ struct View;
 
 struct MeshStyle {
     std::uint32_t fill = 0, edge = 0, virtualEdge = 0, point = 0,
-                  pending = 0;  // ImU32 colours (ABGR)
+                  pending = 0;               // ImU32 colours (ABGR)
+    std::uint32_t background = 0xFFFFFFFFu;  // opaque; a dense mesh's image has it
     float edgeWidth = 1.0f, pointSize = 4.0f;
     bool drawFill = true, drawVirtual = true, drawPoints = true;
 };
