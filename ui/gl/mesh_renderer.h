@@ -6,13 +6,15 @@
 //     at any zoom or offset): the fill as triangles, edges and points as instanced quads that
 //     the vertex shader spans (wide lines and big points exist on every target this way);
 //   dense: llvmpipe pays per primitive, so beyond kDenseEdges visible edges and points, they
-//     are rasterized on the CPU into one RGBA texture (a few pixel writes per short edge) and
-//     drawn as a single quad; the fill is skipped (the edges cover it anyway).
+//     are rasterized on the CPU into one opaque RGBA image, the canvas background included (a
+//     few pixel writes per short edge), that ImGui draws as an image with blending off; the
+//     fill is skipped (the edges cover it anyway). The image goes to one of two textures in
+//     turn, so that an upload never waits for llvmpipe still drawing the last frame.
 // Arrays and textures are rebuilt only when the mesh (engine version), the view or the style
-// changed, and uploaded on the next draw, so an idle frame costs a few draws. When only the mesh
-// moved along its journal, the dense raster is patched: the pixels of the canvas tiles that the
-// operations' triangles cover are cleared and drawn again (the same pixels as a full rebuild),
-// and only the rows of those tiles are uploaded. One shader program
+// changed, and uploaded on the next draw, so an idle frame costs a few draws. When only a few
+// operations moved the mesh along its journal, the dense raster is patched: the pixels of the
+// canvas tiles that the operations' triangles cover are cleared and drawn again (the same pixels
+// as a full rebuild), and only the rows of those tiles are uploaded. One shader program
 // (ui/gl/gl_api.h: GLSL 3.30 core or ES 3.00) serves every target.
 #pragma once
 
