@@ -61,7 +61,6 @@ bool g_patching = true;
 // The edges and triangles the renderer draws, over the screen positions of the last update.
 struct MeshScan {
     const Mesh& m;
-    const Inserter& ins;
     const std::vector<float>& xy;
     bool ghostMode, running, drawVirtual;
     bool hideVirtual;           // virtual triangles are not drawn
@@ -71,7 +70,6 @@ struct MeshScan {
     MeshScan(const Engine& engine, const std::vector<float>& screen, const View& view,
              const MeshStyle& style)
         : m(engine.mesh()),
-          ins(engine.inserter()),
           xy(screen),
           ghostMode(engine.inserter().options().boundary == Boundary::Exact),
           running(!engine.inserter().done()),
@@ -101,8 +99,8 @@ struct MeshScan {
         const std::int32_t* V = m.V.data();
         const std::int32_t* O = m.O.data();
         for (std::int32_t t = 0; t < m.numTriangles(); ++t) {
+            if (skipped(t)) continue;
             const std::int32_t v[3] = {V[3 * t], V[3 * t + 1], V[3 * t + 2]};
-            if (hideVirtual && (isVirtual(v[0]) || isVirtual(v[1]) || isVirtual(v[2]))) continue;
             for (int k = 0; k < 3; ++k) {
                 const std::int32_t c = 3 * t + k, o = O[c];
                 if (o != kNone && o < c && !(hideVirtual && isVirtual(V[o]))) continue;
@@ -112,7 +110,7 @@ struct MeshScan {
         }
     }
     // Whether vertex v has no position on the screen (the ghost vertex).
-    bool placeholder(std::int32_t v) const { return ghostMode && ins.isVirtual(v); }
+    bool placeholder(std::int32_t v) const { return ghostMode && isVirtual(v); }
 };
 
 }  // namespace
@@ -443,8 +441,8 @@ void MeshRenderer::enqueue(ImDrawList* drawList, Pass pass, float x0, float y0, 
 }
 
 // Dense mode: the raster goes to a texture now (the frame's GL context is current while ImGui
-// builds it) and ImGui draws it as an image, with blending off (the raster is opaque): llvmpipe
-// fills that quad several times faster than through our program (one shader for every shape).
+// builds it) and ImGui draws it as an image, with blending off: the raster is opaque, so the
+// canvas is one unblended quad for llvmpipe to fill instead of a background under a blended one.
 void MeshRenderer::enqueueRaster(ImDrawList* drawList, float x0, float y0, float x1, float y1) {
     {
         const GlStateScope scope;
