@@ -85,9 +85,8 @@ void benchFrames(ui::Gui& gui, ui::AppState& state, int frames) {
         const int n = std::max(1, timed);
         std::printf(
             "frame ms, full speed: mean %.1f, worst %.1f, cpu %.1f (main thread %.1f) over %d "
-            "running "
-            "frames (%.0f operations and %.1f ms of mesh rebuild per frame; the first frame, with "
-            "shader compilation: %.0f ms)\n",
+            "running frames (%.0f operations and %.1f ms of mesh rebuild per frame; the first "
+            "frame, with shader compilation: %.0f ms)\n",
             running.first * frames / n, running.second, cpuMs / n, mainMs / n, timed,
             static_cast<double>(state.engine.position() - p0) / n, buildMs / n, warmMs);
         state.run.running = false;
