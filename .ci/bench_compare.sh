@@ -65,8 +65,9 @@ input_for() { echo "$dir/$1_$2.node"; }
 # One row: alternating rounds (dtlab first in odd rounds, CGAL first in even ones: the VM's load
 # drifts, so both medians cover the same span of time), then the peak memory of each tool.
 ratios=()
+ratios2=()
 bench_row() {
-    local kind=$1 size=$2 nrounds=$3 input dt_json="" cg_json="" dt_ms=() cg_ms=() r
+    local kind=$1 size=$2 nrounds=$3 input dt_json="" cg_json="" dt_ms=() dt2_ms=() cg_ms=() r
     input=$(input_for "$kind" "$size")
     [[ -s $input ]] || "$dtlab" gen "$kind" "$size" --seed "$seed" -o "$input" >/dev/null
     for (( r = 1; r <= nrounds; ++r )); do
@@ -76,23 +77,27 @@ bench_row() {
         fi
         dt_json=$(json_of "$("$dtlab" bench --input "$input" --repeat 1 --json)")
         dt_ms+=("$(field "$dt_json" median_ms)")
+        dt2_ms+=("$(field "$(json_of "$("$dtlab" bench --input "$input" --repeat 1 --threads 2 --json)")" median_ms)")
         if (( have_cgal && r % 2 == 1 )); then
             cg_json=$(json_of "$("$cgal" "$input" --repeat 1 --json)")
             cg_ms+=("$(field "$cg_json" median_ms)")
         fi
         if (( have_cgal )); then
-            echo "  $kind $size round $r: dtlab ${dt_ms[-1]} ms, cgal ${cg_ms[-1]} ms" >&2
+            echo "  $kind $size round $r: dtlab ${dt_ms[-1]} ms (2 cores ${dt2_ms[-1]}), cgal ${cg_ms[-1]} ms" >&2
         else
             echo "  $kind $size round $r: dtlab ${dt_ms[-1]} ms" >&2
         fi
     done
-    local dt cg="n/a" ratio="n/a" dt_mem="-" cg_mem="-" count
+    local dt dt2 cg="n/a" ratio="n/a" ratio2="n/a" dt_mem="-" cg_mem="-" count
     count=$(field "$dt_json" n)
     dt=$(median "${dt_ms[@]}")
+    dt2=$(median "${dt2_ms[@]}")
     if (( have_cgal )); then
         cg=$(median "${cg_ms[@]}")
         ratio=$(calc "%.2f" "$dt / $cg")
+        ratio2=$(calc "%.2f" "$dt2 / $cg")
         ratios+=("$size $ratio")
+        ratios2+=("$size $ratio2")
         # Both tools must have made the same triangulation (CGAL counts finite faces).
         if [[ $(field "$dt_json" triangles) != $(field "$cg_json" faces) ]]; then
             echo "bench: $kind: dtlab made $(field "$dt_json" triangles) triangles, CGAL $(field "$cg_json" faces)" >&2
@@ -103,7 +108,7 @@ bench_row() {
         rm -f "$dir/out".{node,ele,neigh}
         (( have_cgal )) && cg_mem=$(peak_mib "$cgal" "$input" --repeat 1)
     fi
-    printf '| %s | %s | %s | %s | **%s** | %s | %s | %s | %s | %s |\n' "$kind" "$count" "$dt" "$cg" "$ratio" \
+    printf '| %s | %s | %s | %s | **%s** | %s | %s | %s | %s | %s | %s | %s |\n' "$kind" "$count" "$dt" "$cg" "$ratio" "$dt2" "$ratio2" \
         "$(calc "%.0f" "$dt * 1e6 / $count")" "$(calc "%.2f" "$(field "$dt_json" walk_steps_per_point)")" \
         "$(predicates "$dt_json" "$count")" "$dt_mem" "$cg_mem"
 }
@@ -115,13 +120,13 @@ small=$(input_for uniform 1024)
 cgal_version="no CGAL"
 (( have_cgal )) && cgal_version="CGAL $(field "$(json_of "$("$cgal" "$small" --repeat 1 --json)")" cgal_version)"
 echo "Machine: ${model:-unknown CPU}, $(nproc) cores, load average $(cut -d' ' -f1-3 /proc/loadavg); build ${build_type:-?}; $(date -u +%Y-%m-%d)"
-echo "Triangulation only (no I/O): dtlab bench (exact boundary, brio order, walk) and $cgal_version"
+echo "Triangulation only (no I/O): dtlab bench (exact boundary, brio order, walk; one core, and two with --threads 2) and $cgal_version"
 echo "Delaunay_triangulation_2<Epick> range insert, one warm-up and one timed run per process;"
 echo "medians of $rounds alternating rounds at n = $n ($rounds_large at larger n). Peak memory:"
 echo "dtlab triangulate IN -o BASE (read, triangulate, write) and cgal_baseline IN --repeat 1."
 echo
-echo "| distribution | n | dtlab ms | CGAL ms | dtlab/CGAL | dtlab ns/point | walk steps/point | predicate calls/point past the filter, by stage | dtlab peak MiB | CGAL peak MiB |"
-echo "|---|---:|---:|---:|---:|---:|---:|---|---:|---:|"
+echo "| distribution | n | dtlab ms | CGAL ms | dtlab/CGAL | dtlab 2 cores ms | 2 cores/CGAL | dtlab ns/point | walk steps/point | predicate calls/point past the filter, by stage | dtlab peak MiB | CGAL peak MiB |"
+echo "|---|---:|---:|---:|---:|---:|---:|---:|---:|---|---:|---:|"
 for kind in $kinds; do bench_row "$kind" "$n" "$rounds"; done
 for size in $large; do bench_row uniform "$size" "$rounds_large"; done
 
@@ -130,4 +135,7 @@ if (( have_cgal )) && (( ${#ratios[@]} )); then
     printf '%s\n' "${ratios[@]}" | awk -v n="$n" '
         $1 == n { s += log($2); c += 1; if ($2 > worst) worst = $2 }
         END { if (c) printf "Geometric mean of dtlab/CGAL over the %d distributions at n = %d: %.2f (worst %.2f)\n", c, n, exp(s / c), worst }'
+    printf '%s\n' "${ratios2[@]}" | awk -v n="$n" '
+        $1 == n { s += log($2); c += 1; if ($2 > worst) worst = $2 }
+        END { if (c) printf "The same with --threads 2 (two halves at once, joined; CGAL on one core): %.2f (worst %.2f)\n", exp(s / c), worst }'
 fi

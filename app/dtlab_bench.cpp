@@ -18,6 +18,7 @@ struct BenchArgs {
     int repeat = 5;
     int warmup = 1;
     bool json = false;
+    int threads = 1;
     EngineFlags engine;
 };
 
@@ -27,6 +28,7 @@ struct BenchResult {
     double median = 0;
     InsertStats stats;
     std::int32_t triangles = 0;
+    bool twoCores = false;  // the runs took the two-core path
     LocatorStats locStats;
     // Calls past the floating-point filter, by the stage that decided them (one run).
     std::int64_t orientStage[kNumPredicateTiers] = {}, incircleStage[kNumPredicateTiers] = {};
@@ -54,6 +56,17 @@ BenchResult timeRuns(const BenchArgs& args, const std::vector<Vec2>& points) {
     for (int r = 0; r < args.warmup + args.repeat; ++r) {  // the first `warmup` runs are not timed
         std::vector<Vec2> pts = points;                    // copied outside the timed region
         const auto t0 = std::chrono::steady_clock::now();
+        if (args.threads == 2) {
+            if (auto joined = triangulateOnTwoCores(pts, args.engine.options())) {
+                const auto t1 = std::chrono::steady_clock::now();
+                if (r >= args.warmup)
+                    res.ms.push_back(std::chrono::duration<double, std::milli>(t1 - t0).count());
+                res.stats = joined->stats;
+                res.triangles = joined->mesh.numTriangles();
+                res.twoCores = true;
+                continue;
+            }
+        }
         const auto made = args.engine.makeInserter(std::move(pts));  // GL locators need a context
         Inserter& ins = *made;
         ins.run();
@@ -82,6 +95,7 @@ void printBenchJson(const BenchArgs& args, std::size_t n, const BenchResult& res
     j["locate"] = args.engine.locate;
     j["order"] = args.engine.order;
     j["boundary"] = args.engine.boundary;
+    j["threads"] = res.twoCores ? 2 : 1;
     j["repeat"] = args.repeat;
     j["warmup"] = args.warmup;
     j["median_ms"] = res.median;
@@ -107,9 +121,9 @@ void printBenchJson(const BenchArgs& args, std::size_t n, const BenchResult& res
 void printBenchText(const BenchArgs& args, std::size_t n, const BenchResult& res) {
     const auto pn = static_cast<double>(n);
     const InsertStats& stats = res.stats;
-    std::printf("%s: n=%zu locate=%s order=%s boundary=%s\n", args.input.c_str(), n,
-                args.engine.locate.c_str(), args.engine.order.c_str(),
-                args.engine.boundary.c_str());
+    std::printf("%s: n=%zu locate=%s order=%s boundary=%s threads=%d\n", args.input.c_str(), n,
+                args.engine.locate.c_str(), args.engine.order.c_str(), args.engine.boundary.c_str(),
+                res.twoCores ? 2 : 1);
     std::printf("  median %.2f ms (min %.2f, max %.2f, %d runs after %d warm-up run(s))\n",
                 res.median, res.ms.front(), res.ms.back(), args.repeat, args.warmup);
     std::printf(
@@ -154,6 +168,11 @@ void addBench(CLI::App& app) {
         ->check(CLI::Range(0, 100))
         ->capture_default_str();
     cmd->add_flag("--json", args->json, "Print one JSON object");
+    cmd->add_option("--threads", args->threads,
+                    "2: the two-core batch path (halves at once, joined; exact boundary and walk "
+                    "only, else one thread)")
+        ->check(CLI::Range(1, 2))
+        ->capture_default_str();
     args->engine.add(*cmd);
     cmd->callback([args] { guarded([&] { runBench(*args); }); });
 }

@@ -6,6 +6,7 @@
 
 #include <iostream>
 #include <stdexcept>
+#include <thread>
 
 namespace dlab::cli {
 
@@ -63,6 +64,18 @@ InsertOptions EngineFlags::options() const {
         o.locator = readback == "one" ? LocatorKind::IdBufferGl : LocatorKind::IdBufferGlBatched;
     }
     return o;
+}
+
+std::optional<JoinedTriangulation> triangulateOnTwoCores(std::vector<Vec2>& points,
+                                                         const InsertOptions& options) {
+    if (options.boundary != Boundary::Exact || options.locator != LocatorKind::Walk) return {};
+    const Halves halves = splitAtMedian(points);
+    if (halves.left.empty()) return {};
+    HalfTriangulation right;
+    std::thread second([&] { right = triangulateHalf(points, halves.right, options); });
+    HalfTriangulation left = triangulateHalf(points, halves.left, options);
+    second.join();
+    return joinHalves(points, halves, std::move(left), std::move(right));
 }
 
 std::unique_ptr<Inserter> EngineFlags::makeInserter(std::vector<Vec2> points) const {

@@ -7,6 +7,7 @@
 // the pieces that differ are in dtlab_gl.cpp and dtlab_no_gl.cpp.
 #pragma once
 
+#include "core/engine/halves.h"
 #include "core/engine/inserter.h"
 #include "ui/gl/idbuffer_gl.h"
 
@@ -14,6 +15,7 @@
 
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -36,6 +38,13 @@ struct EngineFlags {
     std::unique_ptr<Inserter> makeInserter(std::vector<Vec2> points) const;
     std::unique_ptr<Inserter> makeGlInserter(std::vector<Vec2> points) const;  // dtlab-gl only
 };
+
+// The batch triangulation on two cores (core/engine/halves.h: the halves on two threads, then
+// joined; the points move into the result). Empty, the points untouched, when that path does not
+// apply (another boundary or locator than exact and walk, a set too small to split, a half on
+// one line): run the inserter then.
+std::optional<JoinedTriangulation> triangulateOnTwoCores(std::vector<Vec2>& points,
+                                                         const InsertOptions& options);
 
 // The process' headless GL context (OSMesa, made current on first use); fail()s when there is
 // none. GL locators on it must be destroyed before main returns. dtlab-gl only.

@@ -20,8 +20,28 @@ struct TriangulateArgs {
     std::string voronoiSvg, svg, off, obj, voronoiBase;
     bool check = false;
     bool quiet = false;
+    int threads = 1;
     EngineFlags engine;
 };
+
+// The result of either batch path: the inserter, or two halves joined (--threads 2).
+struct Triangulated {
+    Mesh mesh;
+    std::vector<std::int32_t> skipped;
+    InsertStats stats;
+    int threads = 1;
+};
+
+Triangulated triangulate(const TriangulateArgs& args, std::vector<Vec2> points) {
+    if (args.threads == 2) {
+        if (auto joined = triangulateOnTwoCores(points, args.engine.options()))
+            return {std::move(joined->mesh), std::move(joined->skipped), joined->stats, 2};
+    }
+    const auto made = args.engine.makeInserter(std::move(points));  // GL locators need a context
+    made->run();
+    Triangulated out{made->takeMesh(), made->skipped(), made->stats(), 1};
+    return out;
+}
 
 std::string idList(const std::vector<std::int32_t>& ids, int base, std::size_t most) {
     std::string s;
@@ -56,17 +76,15 @@ void runTriangulate(const TriangulateArgs& args) {
     const int base = loaded.indexBase;
     const std::size_t n = loaded.points.size();
     const auto t0 = std::chrono::steady_clock::now();
-    const auto made =
-        args.engine.makeInserter(std::move(loaded.points));  // GL locators need a context
-    Inserter& ins = *made;
-    ins.run();
+    const Triangulated result = triangulate(args, std::move(loaded.points));
     const double ms =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-    const Mesh& m = ins.mesh();
+    const Mesh& m = result.mesh;
+    const bool exact = args.engine.options().boundary == Boundary::Exact;
 
     if (args.check) {
         ValidateOptions vo;
-        vo.delaunay = ins.options().boundary == Boundary::Exact;  // super mode does not promise it
+        vo.delaunay = exact;  // super mode does not promise it
         const auto bad = validate(m, vo);
         if (!bad.empty())
             fail("result failed validation at corner " + std::to_string(bad[0].corner) + ": " +
@@ -100,18 +118,19 @@ void runTriangulate(const TriangulateArgs& args) {
     writeTextFiles(out, {args.input});  // all of them or none; never over the input
 
     if (args.quiet) return;
-    const InsertStats& st = ins.stats();
+    const InsertStats& st = result.stats;
     std::cout << args.input << ": " << n << " points, " << m.numTriangles() << " triangles in "
               << ms << " ms (locate " << args.engine.locate << ", order " << args.engine.order
-              << ", boundary " << args.engine.boundary << ")\n";
-    if (!ins.skipped().empty()) {
-        std::cout << "  " << ins.skipped().size()
+              << ", boundary " << args.engine.boundary
+              << (result.threads == 2 ? ", two halves on two cores, joined" : "") << ")\n";
+    if (!result.skipped.empty()) {
+        std::cout << "  " << result.skipped.size()
                   << " duplicate point(s) skipped, the first occurrence kept: "
-                  << idList(ins.skipped(), base, 10) << "\n";
+                  << idList(result.skipped, base, 10) << "\n";
     }
     if (m.numTriangles() == 0 && n > 0)
         std::cout << "  all points are collinear: no triangle exists\n";
-    if (ins.options().boundary == Boundary::Super) {
+    if (!exact) {
         std::cout << "  boundary=super: triangles near the hull may be missing or non-Delaunay "
                      "(the paper's "
                      "finite super-triangle)\n";
@@ -140,6 +159,12 @@ void addTriangulate(CLI::App& app) {
     cmd->add_flag("--check", args->check,
                   "Validate the result (corner table, orientation, Delaunay) before writing");
     cmd->add_flag("-q,--quiet", args->quiet, "Print nothing on success");
+    cmd->add_option("--threads", args->threads,
+                    "2: two halves at once on two cores, joined (exact boundary and walk only, "
+                    "else one thread; with cocircular points another of the Delaunay "
+                    "triangulations than one thread's)")
+        ->check(CLI::Range(1, 2))
+        ->capture_default_str();
     args->engine.add(*cmd);
     cmd->callback([args] { guarded([&] { runTriangulate(*args); }); });
 }

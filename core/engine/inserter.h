@@ -27,6 +27,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 namespace dlab {
@@ -154,6 +155,8 @@ public:
     bool done() const { return m_ctl.phase == Phase::Done; }
 
     const Mesh& mesh() const { return m_mesh; }
+    // After a batch run(): the mesh itself, handed over (this inserter keeps an empty one).
+    Mesh takeMesh() { return std::exchange(m_mesh, Mesh{}); }
     const InsertOptions& options() const { return m_options; }
     const std::vector<std::int32_t>& order() const { return m_order; }
     std::int32_t numInput() const { return m_numInput; }

@@ -1,0 +1,104 @@
+// The two-core batch path (core/engine/halves.h): the halves, joined, are exactly Delaunay (GMP)
+// on every distribution and on degenerate sets, with the vertices and duplicates of the
+// incremental path; where the triangulation is unique, the same triangles.
+#include "core/engine/generators.h"
+#include "core/engine/halves.h"
+#include "tests/exact_check.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <set>
+#include <string>
+#include <vector>
+
+using namespace dlab;
+
+namespace {
+
+std::optional<JoinedTriangulation> joined(std::vector<Vec2> points) {
+    const Halves halves = splitAtMedian(points);
+    if (halves.left.empty()) return std::nullopt;
+    HalfTriangulation left = triangulateHalf(points, halves.left, {});
+    HalfTriangulation right = triangulateHalf(points, halves.right, {});
+    return joinHalves(points, halves, std::move(left), std::move(right));
+}
+
+using Triangle = std::array<std::int32_t, 3>;
+
+// Each triangle as its vertices from the smallest on (orientation kept).
+std::set<Triangle> triangles(const Mesh& m) {
+    std::set<Triangle> out;
+    for (std::int32_t t = 0; t < m.numTriangles(); ++t) {
+        Triangle v{m.V[3 * t], m.V[3 * t + 1], m.V[3 * t + 2]};
+        std::rotate(v.begin(), std::min_element(v.begin(), v.end()), v.end());
+        out.insert(v);
+    }
+    return out;
+}
+
+// Checks the joined result against the incremental one; `unique`: no four cocircular points,
+// so the very triangles must agree.
+void expectJoinedDelaunay(const std::vector<Vec2>& points, const std::string& name, bool unique) {
+    SCOPED_TRACE(name);
+    const auto result = joined(points);
+    ASSERT_TRUE(result.has_value()) << "the set did not split or join";
+    const std::vector<std::int32_t> vertices = firstOccurrences(points);
+    EXPECT_EQ(checkDelaunayExact(result->mesh, &vertices), "");
+    Inserter whole(points);
+    whole.run();
+    EXPECT_EQ(result->mesh.numTriangles(), whole.mesh().numTriangles());
+    std::vector<std::int32_t> skipped = whole.skipped();  // in insertion order
+    std::sort(skipped.begin(), skipped.end());
+    EXPECT_EQ(result->skipped, skipped);
+    EXPECT_EQ(result->mesh.G, whole.mesh().G);
+    if (unique) EXPECT_EQ(triangles(result->mesh), triangles(whole.mesh()));
+}
+
+}  // namespace
+
+TEST(Halves, EveryDistributionJoinsIntoTheDelaunayTriangulation) {
+    for (Generator g : allGenerators()) {
+        if (g == Generator::AllCollinear) continue;
+        const bool unique = g == Generator::Uniform || g == Generator::Gaussian ||
+                            g == Generator::Kuzmin || g == Generator::Clusters;
+        expectJoinedDelaunay(generatePoints(g, 1 << 14, 5), toString(g), unique);
+    }
+}
+
+TEST(Halves, LatticesWithTheSeamOnAColumnOfPoints) {
+    // Every quadrilateral cocircular, hull sides collinear with the tangents, the median on a
+    // column shared by many points.
+    for (const int side : {64, 65, 101}) {
+        std::vector<Vec2> pts;
+        for (int i = 0; i < side; ++i) {
+            for (int j = 0; j < side; ++j) pts.push_back({double(i), double(j)});
+        }
+        expectJoinedDelaunay(pts, "lattice " + std::to_string(side), false);
+    }
+}
+
+TEST(Halves, CopiesOfTheMedianPointStayTogether) {
+    std::vector<Vec2> pts = generatePoints(Generator::Uniform, 6000, 3);
+    const Vec2 median = pts[17];
+    for (int k = 0; k < 3000; ++k) pts.push_back(k % 2 ? median : pts[k]);
+    const Halves halves = splitAtMedian(pts);
+    ASSERT_FALSE(halves.left.empty());
+    for (const std::int32_t i : halves.left) EXPECT_FALSE(pts[i] == median) << i;
+    expectJoinedDelaunay(pts, "duplicates", true);
+}
+
+TEST(Halves, AHalfOnOneLineDoesNotJoin) {
+    // The left half on the x axis (no triangle of its own), the right half in a box.
+    std::vector<Vec2> pts;
+    for (int i = 0; i < 5000; ++i) pts.push_back({-1.0 - i, 0.0});
+    const auto box = generatePoints(Generator::Uniform, 5001, 2);
+    pts.insert(pts.end(), box.begin(), box.end());
+    EXPECT_FALSE(joined(pts).has_value());
+}
+
+TEST(Halves, SmallSetsAreNotSplit) {
+    EXPECT_TRUE(splitAtMedian(generatePoints(Generator::Uniform, 1000, 1)).left.empty());
+}
