@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <numeric>
+#include <unordered_map>
 #include <utility>
 
 namespace dlab {
@@ -79,14 +80,15 @@ public:
         recordHull(shift, static_cast<std::int32_t>(corners));
     }
 
-    // Zips the gap between the hulls and repairs the seam; false when no zip was found.
+    // Merges the two triangulations along the seam from the lower common tangent to the upper
+    // one; false when the merge cannot close (then the caller triangulates the set in one).
     bool join(const std::vector<std::int32_t>& left, const std::vector<std::int32_t>& right,
               InsertStats& stats) {
         const auto [l0, r0] = lowerTangent(rightmost(left), leftmost(right));
         const auto [l1, r1] = upperTangent(rightmost(left), leftmost(right));
-        if (!zip(l0, r0, l1, r1)) return false;
-        repair(stats);
-        return true;
+        m_flags.assign(m_mesh.V.size(), 0);
+        if (!stitch(l0, r0, l1, r1, stats)) return false;
+        return assemble();
     }
 
     Mesh take() { return std::move(m_mesh); }
@@ -160,93 +162,184 @@ private:
         return {l, r};
     }
 
-    // Whether the segment from hull vertex v (between hull vertices a and b, counter-clockwise)
-    // to p starts into the hull: p strictly inside the corner a -> v -> b.
-    bool enters(std::int32_t a, std::int32_t v, std::int32_t b, std::int32_t p) const {
-        return orient(a, v, p) > 0 && orient(v, b, p) > 0;
+    // A spoke: the edge from the vertex of corner c to a neighbour in the same half, named by the
+    // triangle of c. Its wedge at that vertex runs counter-clockwise from V[n(c)] (the near end)
+    // to V[p(c)] (the far end); the spoke is one of the two.
+    struct Spoke {
+        std::int32_t c = kNone;
+        bool far = false;
+    };
+    std::int32_t tip(Spoke s) const { return m_mesh.V[s.far ? prev(s.c) : next(s.c)]; }
+    static std::int32_t across(Spoke s) { return s.far ? next(s.c) : prev(s.c); }  // faces it
+    bool erased(Spoke s) const { return (m_flags[across(s)] & kErased) != 0; }
+    void erase(Spoke s) {
+        const std::int32_t e = across(s);
+        m_flags[e] |= kErased;
+        if (m_mesh.O[e] != kNone) m_flags[m_mesh.O[e]] |= kErased;
+    }
+    // The next neighbour counter-clockwise; past a hull vertex's last one, its first one.
+    Spoke ccw(Spoke s) const {
+        if (!s.far) return {s.c, true};
+        const std::int32_t o = m_mesh.O[next(s.c)];  // across the far edge
+        if (o != kNone) return {next(o), true};
+        std::int32_t c = s.c;
+        for (std::int32_t b = m_mesh.O[prev(c)]; b != kNone; b = m_mesh.O[prev(c)]) c = prev(b);
+        return {c, false};
+    }
+    // The next neighbour clockwise; past a hull vertex's first one, its last one.
+    Spoke cw(Spoke s) const {
+        if (s.far) return {s.c, false};
+        const std::int32_t o = m_mesh.O[prev(s.c)];  // across the near edge
+        if (o != kNone) return {prev(o), false};
+        std::int32_t c = s.c;
+        for (std::int32_t b = m_mesh.O[next(c)]; b != kNone; b = m_mesh.O[next(c)]) c = next(b);
+        return {c, true};
+    }
+    // The first spoke after s that is not erased: counter-clockwise on the left half, clockwise
+    // on the right one. It ends at the latest where it started.
+    template <bool Left>
+    Spoke turn(Spoke s) const {
+        do {
+            s = Left ? ccw(s) : cw(s);
+        } while (erased(s));
+        return s;
+    }
+    // The same edge seen from its other end.
+    static Spoke reversed(Spoke s) {
+        return s.far ? Spoke{prev(s.c), false} : Spoke{next(s.c), true};
     }
 
-    std::int32_t newTriangle(std::int32_t a, std::int32_t b, std::int32_t c) {
-        const auto t = static_cast<std::int32_t>(m_mesh.V.size() / 3);
-        for (const std::int32_t v : {a, b, c}) {
-            m_mesh.V.push_back(v);
-            m_mesh.O.push_back(kNone);
+    // The candidate apex on one side of base l -> r, from spoke s on (Guibas and Stolfi): while
+    // the next spoke's end lies inside the circle of (l, r, candidate), the candidate's edge
+    // cannot stay and is erased.
+    template <bool Left>
+    Spoke settle(std::int32_t l, std::int32_t r, Spoke s, InsertStats& stats) {
+        for (Spoke nx = turn<Left>(s); tip(nx) != tip(s); nx = turn<Left>(s)) {
+            ++stats.inCircleTests;
+            if (incircle(at(l), at(r), at(tip(s)), at(tip(nx))) <= 0) break;
+            erase(s);
+            s = nx;
         }
-        return t;
+        return s;
+    }
+
+    // One triangle of the seam, (l, r, apex) counter-clockwise, its apex on the left half or the
+    // right one. Its side edge (l-apex or r-apex) stays from that half: `far` is the corner facing
+    // it from beyond (kNone on the hull), `inner` the one facing it from the seam's side, in a
+    // triangle the seam replaces.
+    struct SeamTriangle {
+        std::int32_t l, r, apex;
+        bool left;
+        std::int32_t far, inner;
+    };
+    SeamTriangle seamTriangle(std::int32_t l, std::int32_t r, Spoke s, bool left) const {
+        // The spoke's own triangle lies counter-clockwise of it: beyond the seam on the left
+        // half when it is the wedge's near end, on the right half when it is the far end.
+        const std::int32_t e = across(s), o = m_mesh.O[e];
+        const bool ownIsFar = left != s.far;
+        return {l, r, tip(s), left, ownIsFar ? e : o, ownIsFar ? o : e};
+    }
+
+    // The merge (Guibas and Stolfi), on the two corner tables as they are: an erased edge is only
+    // marked, and a base's candidate on either side is the first spoke not erased after the base.
+    bool stitch(std::int32_t l, std::int32_t r, std::int32_t l1, std::int32_t r1,
+                InsertStats& stats) {
+        Spoke sl{next(m_boundary[l]), false};         // l's first neighbour
+        Spoke sr{prev(m_boundary[m_pred[r]]), true};  // r's last neighbour
+        for (std::size_t guard = m_mesh.V.size(); guard > 0; --guard) {
+            const bool lValid = orient(l, r, tip(sl)) > 0;
+            if (lValid) sl = settle<true>(l, r, sl, stats);
+            const bool rValid = orient(l, r, tip(sr)) > 0;
+            if (rValid) sr = settle<false>(l, r, sr, stats);
+            if (!lValid && !rValid) return l == l1 && r == r1 && !m_seam.empty();
+            const std::int32_t lv = tip(sl), rv = tip(sr);
+            ++stats.inCircleTests;
+            if (!lValid || (rValid && incircle(at(l), at(r), at(lv), at(rv)) > 0)) {
+                m_seam.push_back(seamTriangle(l, r, sr, false));
+                sr = turn<false>(reversed(sr));
+                r = rv;
+            } else {
+                m_seam.push_back(seamTriangle(l, r, sl, true));
+                sl = turn<true>(reversed(sl));
+                l = lv;
+            }
+        }
+        return false;
+    }
+
+    // Replaces the triangles inside the seam (flooded from the side edges' inner corners, up to
+    // the side edges and the hulls) by the seam's. A vertex of one half can end up with only the
+    // seam's triangles around it: then its edge to the chain is a side edge twice, with the seam
+    // on both sides, and the two seam triangles face each other across it. False when the seam
+    // does not close.
+    bool assemble() {
+        auto& V = m_mesh.V;
+        auto& O = m_mesh.O;
+        std::vector<std::int32_t> slot, stack;
+        auto drop = [&](std::int32_t t) {
+            if (m_flags[3 * t] & kGone) return;
+            m_flags[3 * t] |= kGone;
+            slot.push_back(t);
+            stack.push_back(t);
+        };
+        std::unordered_map<std::int32_t, std::size_t> seamAt;  // inner corner -> seam triangle
+        for (std::size_t i = 0; i < m_seam.size(); ++i) {
+            if (m_seam[i].inner == kNone) continue;
+            m_flags[m_seam[i].inner] |= kSide;
+            seamAt.emplace(m_seam[i].inner, i);
+            drop(tri(m_seam[i].inner));
+        }
+        while (!stack.empty()) {
+            const std::int32_t t = stack.back();
+            stack.pop_back();
+            for (std::int32_t c = 3 * t; c < 3 * t + 3; ++c) {
+                if (!(m_flags[c] & kSide) && O[c] != kNone) drop(tri(O[c]));
+            }
+        }
+        for (const SeamTriangle& s : m_seam) {
+            if (s.far != kNone && (m_flags[3 * tri(s.far)] & kGone) && !seamAt.count(s.far))
+                return false;
+        }
+        // The seam has more triangles than it replaces (two more, plus one for every hull vertex
+        // of a half that is not one of the whole set's): the rest go at the end.
+        if (slot.size() > m_seam.size()) return false;
+        std::sort(slot.begin(), slot.end());
+        auto end = static_cast<std::int32_t>(V.size() / 3);
+        while (slot.size() < m_seam.size()) slot.push_back(end++);
+        V.resize(3 * static_cast<std::size_t>(end));
+        O.resize(V.size());
+        // Seam triangle (l, r, apex) in slot t: corner 3t + 2 faces the base below, the side
+        // edge is opposite r (apex on the left) or l, the base above opposite the other one.
+        auto sideCorner = [&](std::size_t i) { return 3 * slot[i] + (m_seam[i].left ? 1 : 0); };
+        std::int32_t below = kNone;
+        for (std::size_t i = 0; i < m_seam.size(); ++i) {
+            const SeamTriangle& s = m_seam[i];
+            const std::int32_t c = 3 * slot[i];
+            V[c] = s.l;
+            V[c + 1] = s.r;
+            V[c + 2] = s.apex;
+            link(c + 2, below);
+            const auto across = s.far == kNone ? seamAt.end() : seamAt.find(s.far);
+            link(sideCorner(i), across == seamAt.end() ? s.far : sideCorner(across->second));
+            below = s.left ? c : c + 1;
+            O[below] = kNone;
+        }
+        return true;
     }
     void link(std::int32_t c, std::int32_t d) {
         m_mesh.O[c] = d;
         if (d != kNone) m_mesh.O[d] = c;
     }
 
-    // Triangles between the left hull's chain l0 .. l1 (counter-clockwise) and the right hull's
-    // r0 .. r1 (clockwise), from the lower tangent up. A candidate apex must make a
-    // counter-clockwise triangle with the base and keep the new edge out of the other hull;
-    // when both may, the one whose circle holds the other not (fewer flips after).
-    bool zip(std::int32_t l, std::int32_t r, std::int32_t l1, std::int32_t r1) {
-        std::int32_t below = kNone;  // the corner facing the base from the last triangle
-        m_firstZip = static_cast<std::int32_t>(m_mesh.V.size() / 3);
-        while (l != l1 || r != r1) {
-            const std::int32_t lx = l != l1 ? m_succ[l] : kNone;
-            const std::int32_t rx = r != r1 ? m_pred[r] : kNone;
-            const bool leftOk =
-                lx != kNone && orient(l, r, lx) > 0 && !enters(m_pred[r], r, m_succ[r], lx);
-            const bool rightOk =
-                rx != kNone && orient(l, r, rx) > 0 && !enters(m_pred[l], l, m_succ[l], rx);
-            if (!leftOk && !rightOk) return false;
-            const bool takeLeft =
-                leftOk && (!rightOk || incircle(at(l), at(r), at(lx), at(rx)) <= 0);
-            if (takeLeft) {
-                // (l, r, lx): the base faces lx, the left hull edge l -> lx faces r.
-                const std::int32_t t = newTriangle(l, r, lx);
-                link(3 * t + 2, below);
-                link(3 * t + 1, m_boundary[l]);
-                below = 3 * t;  // the new base r - lx faces l
-                l = lx;
-            } else {
-                // (l, r, rx): the right hull edge rx -> r faces l.
-                const std::int32_t t = newTriangle(l, r, rx);
-                link(3 * t + 2, below);
-                link(3 * t, m_boundary[rx]);
-                below = 3 * t + 1;  // the new base rx - l faces r
-                r = rx;
-            }
-        }
-        return below != kNone;  // the last base is the upper tangent: a hull edge
-    }
-
-    // Lawson: every edge of a zip triangle, and every edge a flip gives a new quadrilateral.
-    void repair(InsertStats& stats) {
-        std::vector<std::int32_t> stack;
-        const auto nt = static_cast<std::int32_t>(m_mesh.V.size() / 3);
-        for (std::int32_t c = 3 * m_firstZip; c < 3 * nt; ++c) stack.push_back(c);
-        auto& V = m_mesh.V;
-        auto& O = m_mesh.O;
-        while (!stack.empty()) {
-            const std::int32_t c = stack.back();
-            stack.pop_back();
-            const std::int32_t d = O[c];
-            if (d == kNone) continue;
-            ++stats.inCircleTests;
-            if (incircle(at(V[d]), at(V[next(d)]), at(V[prev(d)]), at(V[c])) <= 0) continue;
-            // t = (P, A, B), u = (D, B, A) -> (P, A, D), (D, B, P), as the inserter's flip.
-            const std::int32_t cn = next(c), cp = prev(c), dn = next(d), dp = prev(d);
-            const std::int32_t P = V[c], D = V[d];
-            const std::int32_t ocn = O[cn], odn = O[dn];
-            V[cp] = D;
-            V[dp] = P;
-            link(c, odn);
-            link(d, ocn);
-            link(cn, dn);
-            ++stats.flips;
-            for (const std::int32_t e : {c, cp, d, dp}) stack.push_back(e);
-        }
-    }
+    static constexpr std::uint8_t kErased = 1;  // the edge opposite this corner is erased
+    static constexpr std::uint8_t kSide = 2;    // ... is a side edge of the seam
+    static constexpr std::uint8_t kGone = 4;    // (first corner) the seam replaces this triangle
 
     const std::vector<Vec2>& m_points;
     Mesh m_mesh;
     std::vector<std::int32_t> m_succ, m_pred, m_boundary;  // hull cycles, by input index
-    std::int32_t m_firstZip = 0;
+    std::vector<std::uint8_t> m_flags;                     // per corner, see kErased
+    std::vector<SeamTriangle> m_seam;
 };
 
 }  // namespace
