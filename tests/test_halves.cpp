@@ -18,12 +18,13 @@ using namespace dlab;
 
 namespace {
 
-std::optional<JoinedTriangulation> joined(std::vector<Vec2> points) {
-    const Halves halves = splitAtMedian(points);
-    if (halves.left.empty()) return std::nullopt;
-    HalfTriangulation left = triangulateHalf(points, halves.left, {});
-    HalfTriangulation right = triangulateHalf(points, halves.right, {});
-    return joinHalves(points, halves, std::move(left), std::move(right));
+std::optional<JoinedTriangulation> joined(std::vector<Vec2> points,
+                                          std::size_t smallest = kSmallestSplit) {
+    const std::optional<Vec2> split = splitPoint(points, smallest);
+    if (!split) return std::nullopt;
+    HalfTriangulation left = triangulateHalf(points, *split, true, {}, 2 * points.size() + 8);
+    HalfTriangulation right = triangulateHalf(points, *split, false, {});
+    return joinHalves(points, std::move(left), std::move(right));
 }
 
 using Triangle = std::array<std::int32_t, 3>;
@@ -41,9 +42,10 @@ std::set<Triangle> triangles(const Mesh& m) {
 
 // Checks the joined result against the incremental one; `unique`: no four cocircular points,
 // so the very triangles must agree.
-void expectJoinedDelaunay(const std::vector<Vec2>& points, const std::string& name, bool unique) {
+void expectJoinedDelaunay(const std::vector<Vec2>& points, const std::string& name, bool unique,
+                          std::size_t smallest = kSmallestSplit) {
     SCOPED_TRACE(name);
-    const auto result = joined(points);
+    const auto result = joined(points, smallest);
     ASSERT_TRUE(result.has_value()) << "the set did not split or join";
     const std::vector<std::int32_t> vertices = firstOccurrences(points);
     EXPECT_EQ(checkDelaunayExact(result->mesh, &vertices), "");
@@ -80,14 +82,47 @@ TEST(Halves, LatticesWithTheSeamOnAColumnOfPoints) {
     }
 }
 
-TEST(Halves, CopiesOfTheMedianPointStayTogether) {
+TEST(Halves, CopiesOfTheSplitPointStayTogether) {
+    // One point in five is a copy of the centre, one in five a copy of another point: the split
+    // point is the centre, and every copy of it goes to the right half.
     std::vector<Vec2> pts = generatePoints(Generator::Uniform, 6000, 3);
-    const Vec2 median = pts[17];
-    for (int k = 0; k < 3000; ++k) pts.push_back(k % 2 ? median : pts[k]);
-    const Halves halves = splitAtMedian(pts);
-    ASSERT_FALSE(halves.left.empty());
-    for (const std::int32_t i : halves.left) EXPECT_FALSE(pts[i] == median) << i;
+    const Vec2 centre{800, 800};  // the middle of the generators' box
+    for (int k = 0; k < 4000; ++k) pts.push_back(k % 2 ? centre : pts[k]);
+    const std::optional<Vec2> split = splitPoint(pts);
+    ASSERT_TRUE(split.has_value());
+    EXPECT_EQ(*split, centre);
+    const HalfTriangulation left = triangulateHalf(pts, centre, true, {});
+    for (const std::int32_t v : left.mesh.V) EXPECT_FALSE(pts[v] == centre) << v;
+    for (const std::int32_t v : left.skipped) EXPECT_FALSE(pts[v] == centre) << v;
     expectJoinedDelaunay(pts, "duplicates", true);
+}
+
+TEST(Halves, SmallSetsOfEveryShapeSplitAnywhere) {
+    // Hundreds of seams: small sets split however small, the seam crossing cocircular lattices,
+    // circles (every point on the hull), clusters and collinear runs.
+    const Generator shapes[] = {Generator::Uniform,   Generator::Grid,   Generator::RotatedGrid,
+                                Generator::Ngon,      Generator::Circle, Generator::Clusters,
+                                Generator::Collinear, Generator::Curves, Generator::NearDuplicates};
+    int joins = 0;
+    for (const Generator g : shapes) {
+        for (std::uint64_t seed = 1; seed <= 40; ++seed) {
+            const auto n = static_cast<std::size_t>(12 + (seed * 37) % 300);
+            const std::vector<Vec2> pts = generatePoints(g, n, seed);
+            const std::string name = std::string(toString(g)) + " seed " + std::to_string(seed);
+            const std::optional<Vec2> split = splitPoint(pts, 2);
+            ASSERT_TRUE(split.has_value()) << name;
+            const bool bothHaveTriangles =
+                triangulateHalf(pts, *split, true, {}).mesh.numTriangles() > 0 &&
+                triangulateHalf(pts, *split, false, {}).mesh.numTriangles() > 0;
+            if (!bothHaveTriangles) {  // a half on one line: the caller runs one inserter
+                EXPECT_FALSE(joined(pts, 2).has_value()) << name;
+                continue;
+            }
+            expectJoinedDelaunay(pts, name, false, 2);
+            ++joins;
+        }
+    }
+    EXPECT_GT(joins, 300);
 }
 
 TEST(Halves, AHalfOnOneLineDoesNotJoin) {
@@ -100,5 +135,6 @@ TEST(Halves, AHalfOnOneLineDoesNotJoin) {
 }
 
 TEST(Halves, SmallSetsAreNotSplit) {
-    EXPECT_TRUE(splitAtMedian(generatePoints(Generator::Uniform, 1000, 1)).left.empty());
+    EXPECT_FALSE(splitPoint(generatePoints(Generator::Uniform, 1000, 1)).has_value());
+    EXPECT_TRUE(splitPoint(generatePoints(Generator::Uniform, 5000, 1)).has_value());
 }

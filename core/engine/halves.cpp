@@ -13,42 +13,58 @@ namespace dlab {
 
 namespace {
 
-// Below this many points a split costs more than it saves.
-constexpr std::size_t kSmallest = 4096;
-
 bool lexLess(Vec2 a, Vec2 b) { return a.x < b.x || (a.x == b.x && a.y < b.y); }
+
+// The boundary corners of a finished triangulation (one disc, vertices 0 .. count - 1) in
+// counter-clockwise order: corner c faces the hull edge V[n(c)] -> V[p(c)].
+std::vector<std::int32_t> hullCorners(const Mesh& mesh, std::size_t count) {
+    std::vector<std::int32_t> from(count, kNone), hull;  // the boundary corner after each vertex
+    std::int32_t first = kNone;
+    for (std::int32_t c = 0; c < mesh.numCorners(); ++c) {
+        if (mesh.O[c] != kNone) continue;
+        from[mesh.V[next(c)]] = c;
+        first = c;
+    }
+    for (std::int32_t c = first; c != kNone && hull.size() < count; c = from[mesh.V[prev(c)]]) {
+        hull.push_back(c);
+        if (from[mesh.V[prev(c)]] == first) break;
+    }
+    return hull;
+}
 
 }  // namespace
 
-Halves splitAtMedian(const std::vector<Vec2>& points) {
-    Halves h;
-    if (points.size() < kSmallest) return h;
-    std::vector<std::int32_t> order(points.size());
-    std::iota(order.begin(), order.end(), 0);
-    const auto mid = order.begin() + static_cast<std::ptrdiff_t>(order.size() / 2);
-    auto less = [&](std::int32_t a, std::int32_t b) { return lexLess(points[a], points[b]); };
-    std::nth_element(order.begin(), mid, order.end(), less);
-    const Vec2 median = points[*mid];
-    // Strictly below the median point on the left: a point equal to it goes right, with its
-    // copies.
-    for (std::int32_t i = 0; i < static_cast<std::int32_t>(points.size()); ++i)
-        (lexLess(points[i], median) ? h.left : h.right).push_back(i);
-    if (h.left.size() < kSmallest / 4 || h.right.size() < kSmallest / 4) return {};
-    return h;
+std::optional<Vec2> splitPoint(const std::vector<Vec2>& points, std::size_t smallest) {
+    if (points.size() < std::max<std::size_t>(smallest, 1)) return std::nullopt;
+    // The median of an evenly spaced sample: one pass less than the exact median, and the halves
+    // stay within a few per cent of each other.
+    constexpr std::size_t kSample = 4095;
+    std::vector<Vec2> sample(kSample);
+    for (std::size_t i = 0; i < kSample; ++i) sample[i] = points[i * points.size() / kSample];
+    const auto mid = sample.begin() + kSample / 2;
+    std::nth_element(sample.begin(), mid, sample.end(), lexLess);
+    return *mid;
 }
 
-HalfTriangulation triangulateHalf(const std::vector<Vec2>& points,
-                                  const std::vector<std::int32_t>& indices,
-                                  const InsertOptions& options) {
+HalfTriangulation triangulateHalf(const std::vector<Vec2>& points, Vec2 split, bool left,
+                                  const InsertOptions& options, std::size_t room) {
+    std::vector<std::int32_t> indices;
     std::vector<Vec2> own;
-    own.reserve(indices.size());
-    for (const std::int32_t i : indices) own.push_back(points[i]);
+    indices.reserve(points.size() / 2 + points.size() / 16);
+    own.reserve(indices.capacity());
+    for (std::int32_t i = 0; i < static_cast<std::int32_t>(points.size()); ++i) {
+        if (lexLess(points[i], split) == left) {
+            indices.push_back(i);
+            own.push_back(points[i]);
+        }
+    }
     Inserter ins(std::move(own), options);
-    ins.run();
+    ins.reserveTriangles(room);
+    ins.runForTopology();
     HalfTriangulation h;
     h.stats = ins.stats();
     h.mesh = ins.takeMesh();
-    h.mesh.G = {};
+    h.hull = hullCorners(h.mesh, indices.size());
     for (std::int32_t& v : h.mesh.V) v = indices[v];
     for (const std::int32_t i : ins.skipped()) h.skipped.push_back(indices[i]);
     return h;
@@ -56,38 +72,34 @@ HalfTriangulation triangulateHalf(const std::vector<Vec2>& points,
 
 namespace {
 
-// The joined mesh under construction: both halves in one corner table, their hulls as cycles.
+// The joined mesh under construction: both halves in one corner table, their hulls as lists.
 class Joiner {
 public:
     Joiner(const std::vector<Vec2>& points, HalfTriangulation& left, HalfTriangulation& right)
-        : m_points(points),
-          m_succ(points.size(), kNone),
-          m_pred(points.size(), kNone),
-          m_boundary(points.size(), kNone) {
-        // The left half's arrays take the right half's triangles, and then the zip's (at most
-        // one per hull vertex of the two halves).
+        : m_points(points) {
+        // The left half's arrays (reserved for the whole result) take the right half's
+        // triangles, and then the seam's.
+        // Each of the right half's arrays goes as soon as it is copied: the peak holds one.
         m_mesh = std::move(left.mesh);
-        const std::size_t leftCorners = m_mesh.V.size();
-        const std::size_t corners = leftCorners + right.mesh.V.size();
-        m_mesh.V.reserve(corners + 3 * 1024);
-        m_mesh.O.reserve(m_mesh.V.capacity());
-        const auto shift = static_cast<std::int32_t>(leftCorners);
+        const auto shift = static_cast<std::int32_t>(m_mesh.V.size());
         m_mesh.V.insert(m_mesh.V.end(), right.mesh.V.begin(), right.mesh.V.end());
-        for (const std::int32_t o : right.mesh.O)
-            m_mesh.O.push_back(o == kNone ? kNone : o + shift);
-        right.mesh = {};
-        recordHull(0, shift);
-        recordHull(shift, static_cast<std::int32_t>(corners));
+        right.mesh.V = std::vector<std::int32_t>();  // (= {} would keep the capacity)
+        m_mesh.O.resize(m_mesh.V.size());
+        std::int32_t* o = m_mesh.O.data() + shift;
+        for (const std::int32_t d : right.mesh.O) *o++ = d == kNone ? kNone : d + shift;
+        right.mesh.O = std::vector<std::int32_t>();
+        m_left = std::move(left.hull);
+        m_right = std::move(right.hull);
+        for (std::int32_t& c : m_right) c += shift;
     }
 
     // Merges the two triangulations along the seam from the lower common tangent to the upper
     // one; false when the merge cannot close (then the caller triangulates the set in one).
-    bool join(const std::vector<std::int32_t>& left, const std::vector<std::int32_t>& right,
-              InsertStats& stats) {
-        const auto [l0, r0] = lowerTangent(rightmost(left), leftmost(right));
-        const auto [l1, r1] = upperTangent(rightmost(left), leftmost(right));
+    bool join(InsertStats& stats) {
+        const Ends start{extreme(m_left, true), extreme(m_right, false)};
+        const Ends lower = lowerTangent(start), upper = upperTangent(start);
         m_flags.assign(m_mesh.V.size(), 0);
-        if (!stitch(l0, r0, l1, r1, stats)) return false;
+        if (!stitch(lower, upper, stats)) return false;
         return assemble();
     }
 
@@ -99,67 +111,63 @@ private:
         return orient2d(at(a), at(b), at(c));
     }
 
-    // The hull edges of the corners [from, to): the hull edge a -> b (counter-clockwise, the
-    // triangle on its left) is opposite corner c.
-    void recordHull(std::int32_t from, std::int32_t to) {
-        for (std::int32_t c = from; c < to; ++c) {
-            if (m_mesh.O[c] != kNone) continue;
-            const std::int32_t a = m_mesh.V[next(c)], b = m_mesh.V[prev(c)];
-            m_succ[a] = b;
-            m_pred[b] = a;
-            m_boundary[a] = c;
-        }
+    // Positions on a hull list: corner hull[i] faces the hull edge from vertex(hull, i) to
+    // vertex(hull, i + 1), counter-clockwise.
+    std::int32_t vertex(const std::vector<std::int32_t>& hull, std::size_t i) const {
+        return m_mesh.V[next(hull[i])];
     }
-
-    std::int32_t rightmost(const std::vector<std::int32_t>& ids) const {
-        std::int32_t best = kNone;
-        for (const std::int32_t i : ids) {
-            if (m_succ[i] != kNone && (best == kNone || lexLess(at(best), at(i)))) best = i;
-        }
-        return best;
+    static std::size_t succ(const std::vector<std::int32_t>& hull, std::size_t i) {
+        return i + 1 == hull.size() ? 0 : i + 1;
     }
-    std::int32_t leftmost(const std::vector<std::int32_t>& ids) const {
-        std::int32_t best = kNone;
-        for (const std::int32_t i : ids) {
-            if (m_succ[i] != kNone && (best == kNone || lexLess(at(i), at(best)))) best = i;
+    static std::size_t pred(const std::vector<std::int32_t>& hull, std::size_t i) {
+        return i == 0 ? hull.size() - 1 : i - 1;
+    }
+    // The position of the hull's lexicographically greatest vertex (or least).
+    std::size_t extreme(const std::vector<std::int32_t>& hull, bool greatest) const {
+        std::size_t best = 0;
+        for (std::size_t i = 1; i < hull.size(); ++i) {
+            const Vec2 p = at(vertex(hull, i)), b = at(vertex(hull, best));
+            if (greatest ? lexLess(b, p) : lexLess(p, b)) best = i;
         }
         return best;
     }
 
+    // A base's ends: positions on the left hull and on the right one.
+    struct Ends {
+        std::size_t l, r;
+    };
     // The lower common tangent l -> r: every point on it or left of it, and of the points on
     // it, l and r the nearest to each other (the segment holds no other point).
-    std::pair<std::int32_t, std::int32_t> lowerTangent(std::int32_t l, std::int32_t r) const {
+    Ends lowerTangent(Ends e) const {
+        const auto& L = m_left;
+        const auto& R = m_right;
+        auto side = [&](std::size_t il, std::size_t ir, std::int32_t x) {
+            return orient(vertex(L, il), vertex(R, ir), x);
+        };
         for (bool moved = true; moved;) {
             moved = false;
-            while (orient(l, r, m_pred[l]) < 0) {
-                l = m_pred[l];
-                moved = true;
-            }
-            while (orient(l, r, m_succ[r]) < 0) {
-                r = m_succ[r];
-                moved = true;
-            }
+            for (; side(e.l, e.r, vertex(L, pred(L, e.l))) < 0; moved = true) e.l = pred(L, e.l);
+            for (; side(e.l, e.r, vertex(R, succ(R, e.r))) < 0; moved = true) e.r = succ(R, e.r);
         }
-        while (m_succ[l] != r && orient(l, r, m_succ[l]) == 0) l = m_succ[l];
-        while (m_pred[r] != l && orient(l, r, m_pred[r]) == 0) r = m_pred[r];
-        return {l, r};
+        while (side(e.l, e.r, vertex(L, succ(L, e.l))) == 0) e.l = succ(L, e.l);
+        while (side(e.l, e.r, vertex(R, pred(R, e.r))) == 0) e.r = pred(R, e.r);
+        return e;
     }
     // The upper one: every point on it or right of l -> r; l and r the nearest.
-    std::pair<std::int32_t, std::int32_t> upperTangent(std::int32_t l, std::int32_t r) const {
+    Ends upperTangent(Ends e) const {
+        const auto& L = m_left;
+        const auto& R = m_right;
+        auto side = [&](std::size_t il, std::size_t ir, std::int32_t x) {
+            return orient(vertex(L, il), vertex(R, ir), x);
+        };
         for (bool moved = true; moved;) {
             moved = false;
-            while (orient(l, r, m_succ[l]) > 0) {
-                l = m_succ[l];
-                moved = true;
-            }
-            while (orient(l, r, m_pred[r]) > 0) {
-                r = m_pred[r];
-                moved = true;
-            }
+            for (; side(e.l, e.r, vertex(L, succ(L, e.l))) > 0; moved = true) e.l = succ(L, e.l);
+            for (; side(e.l, e.r, vertex(R, pred(R, e.r))) > 0; moved = true) e.r = pred(R, e.r);
         }
-        while (m_pred[l] != r && orient(l, r, m_pred[l]) == 0) l = m_pred[l];
-        while (m_succ[r] != l && orient(l, r, m_succ[r]) == 0) r = m_succ[r];
-        return {l, r};
+        while (side(e.l, e.r, vertex(L, pred(L, e.l))) == 0) e.l = pred(L, e.l);
+        while (side(e.l, e.r, vertex(R, succ(R, e.r))) == 0) e.r = succ(R, e.r);
+        return e;
     }
 
     // A spoke: the edge from the vertex of corner c to a neighbour in the same half, named by the
@@ -242,10 +250,11 @@ private:
 
     // The merge (Guibas and Stolfi), on the two corner tables as they are: an erased edge is only
     // marked, and a base's candidate on either side is the first spoke not erased after the base.
-    bool stitch(std::int32_t l, std::int32_t r, std::int32_t l1, std::int32_t r1,
-                InsertStats& stats) {
-        Spoke sl{next(m_boundary[l]), false};         // l's first neighbour
-        Spoke sr{prev(m_boundary[m_pred[r]]), true};  // r's last neighbour
+    bool stitch(Ends lower, Ends upper, InsertStats& stats) {
+        std::int32_t l = vertex(m_left, lower.l), r = vertex(m_right, lower.r);
+        const std::int32_t l1 = vertex(m_left, upper.l), r1 = vertex(m_right, upper.r);
+        Spoke sl{next(m_left[lower.l]), false};                 // l's first neighbour
+        Spoke sr{prev(m_right[pred(m_right, lower.r)]), true};  // r's last neighbour
         for (std::size_t guard = m_mesh.V.size(); guard > 0; --guard) {
             const bool lValid = orient(l, r, tip(sl)) > 0;
             if (lValid) sl = settle<true>(l, r, sl, stats);
@@ -282,12 +291,10 @@ private:
             slot.push_back(t);
             stack.push_back(t);
         };
-        std::unordered_map<std::int32_t, std::size_t> seamAt;  // inner corner -> seam triangle
-        for (std::size_t i = 0; i < m_seam.size(); ++i) {
-            if (m_seam[i].inner == kNone) continue;
-            m_flags[m_seam[i].inner] |= kSide;
-            seamAt.emplace(m_seam[i].inner, i);
-            drop(tri(m_seam[i].inner));
+        for (const SeamTriangle& s : m_seam) {
+            if (s.inner == kNone) continue;
+            m_flags[s.inner] |= kSide;
+            drop(tri(s.inner));
         }
         while (!stack.empty()) {
             const std::int32_t t = stack.back();
@@ -296,8 +303,10 @@ private:
                 if (!(m_flags[c] & kSide) && O[c] != kNone) drop(tri(O[c]));
             }
         }
-        for (const SeamTriangle& s : m_seam) {
-            if (s.far != kNone && (m_flags[3 * tri(s.far)] & kGone) && !seamAt.count(s.far))
+        const std::vector<std::size_t> partner = partners();
+        for (std::size_t i = 0; i < m_seam.size(); ++i) {
+            const std::int32_t far = m_seam[i].far;
+            if (far != kNone && (m_flags[3 * tri(far)] & kGone) && partner[i] == kAlone)
                 return false;
         }
         // The seam has more triangles than it replaces (two more, plus one for every hull vertex
@@ -319,12 +328,31 @@ private:
             V[c + 1] = s.r;
             V[c + 2] = s.apex;
             link(c + 2, below);
-            const auto across = s.far == kNone ? seamAt.end() : seamAt.find(s.far);
-            link(sideCorner(i), across == seamAt.end() ? s.far : sideCorner(across->second));
+            link(sideCorner(i), partner[i] == kAlone ? s.far : sideCorner(partner[i]));
             below = s.left ? c : c + 1;
             O[below] = kNone;
         }
         return true;
+    }
+    // For each seam triangle, the one across its side edge when that edge has the seam on both
+    // sides (kAlone otherwise). The two name the edge by the same corners, swapped: its corner in
+    // a triangle of the half, or the two of them.
+    static constexpr std::size_t kAlone = ~std::size_t{0};
+    std::vector<std::size_t> partners() const {
+        std::vector<std::size_t> partner(m_seam.size(), kAlone);
+        std::unordered_map<std::int32_t, std::size_t> first;  // edge -> its first seam triangle
+        for (std::size_t i = 0; i < m_seam.size(); ++i) {
+            const SeamTriangle& s = m_seam[i];
+            const std::int32_t edge = s.inner == kNone ? s.far
+                                      : s.far == kNone ? s.inner
+                                                       : std::min(s.inner, s.far);
+            const auto [it, isNew] = first.emplace(edge, i);
+            if (!isNew) {
+                partner[i] = it->second;
+                partner[it->second] = i;
+            }
+        }
+        return partner;
     }
     void link(std::int32_t c, std::int32_t d) {
         m_mesh.O[c] = d;
@@ -337,15 +365,15 @@ private:
 
     const std::vector<Vec2>& m_points;
     Mesh m_mesh;
-    std::vector<std::int32_t> m_succ, m_pred, m_boundary;  // hull cycles, by input index
-    std::vector<std::uint8_t> m_flags;                     // per corner, see kErased
+    std::vector<std::int32_t> m_left, m_right;  // the halves' hulls (see vertex())
+    std::vector<std::uint8_t> m_flags;          // per corner, see kErased
     std::vector<SeamTriangle> m_seam;
 };
 
 }  // namespace
 
-std::optional<JoinedTriangulation> joinHalves(std::vector<Vec2>& points, const Halves& halves,
-                                              HalfTriangulation left, HalfTriangulation right) {
+std::optional<JoinedTriangulation> joinHalves(std::vector<Vec2>& points, HalfTriangulation left,
+                                              HalfTriangulation right) {
     if (left.mesh.numTriangles() == 0 || right.mesh.numTriangles() == 0) return std::nullopt;
     JoinedTriangulation out;
     out.stats = left.stats;
@@ -360,7 +388,7 @@ std::optional<JoinedTriangulation> joinHalves(std::vector<Vec2>& points, const H
     out.skipped.insert(out.skipped.end(), right.skipped.begin(), right.skipped.end());
     std::sort(out.skipped.begin(), out.skipped.end());
     Joiner joiner(points, left, right);
-    if (!joiner.join(halves.left, halves.right, out.stats)) return std::nullopt;
+    if (!joiner.join(out.stats)) return std::nullopt;
     out.mesh = joiner.take();
     out.mesh.G = std::move(points);
     return out;

@@ -1,15 +1,15 @@
 // Two triangulations at once, joined: the batch path for two cores.
 //
-// The points split at their median (x, then y): the left half lies lexicographically below the
-// right one, so their convex hulls are disjoint. Each half is triangulated by the incremental
-// inserter (the caller runs the two on two threads: nothing here starts one), then the gap
-// between the two hulls, from their lower common tangent to their upper one, is zipped with
-// triangles, and Lawson's flips repair the seam: an edge whose quadrilateral changed and whose
-// in-circle test is positive is flipped (its quadrilateral is convex), until none is left. Only
-// the zip's edges and those flips can be non-Delaunay: every other edge keeps the quadrilateral
-// it had in its half. Every decision is an exact predicate. The result is the Delaunay
-// triangulation of the whole set (with cocircular points, one of them), numbered differently
-// from the incremental path's.
+// The points split at a sampled median (x, then y): the left half lies lexicographically below
+// the right one, so their convex hulls are disjoint. Each half is triangulated by the incremental
+// inserter (the caller runs the two on two threads: nothing here starts one), then Guibas and
+// Stolfi's merge joins them. It climbs from the lower common tangent to the upper one, one seam
+// triangle a step: the apex is a neighbour of the base's left end or of its right end in its own
+// half, and a neighbour's edge is erased when the next neighbour lies inside the circle through
+// the base and it. The erased edges' triangles go and the seam's take their slots. Every decision
+// is an exact predicate, and the work is linear in the seam and
+// the edges it crosses. The result is the Delaunay triangulation of the whole set (with
+// cocircular points, one of them), numbered differently from the incremental path's.
 #pragma once
 
 #include "core/engine/inserter.h"
@@ -20,23 +20,25 @@
 
 namespace dlab {
 
-// Input indices of each half; both empty when the set is too small to be worth splitting.
-// Equal points are never split apart.
-struct Halves {
-    std::vector<std::int32_t> left, right;
-};
-Halves splitAtMedian(const std::vector<Vec2>& points);
+// Where the set splits in two: the left half is every point lexicographically below the split
+// point, the right half the rest, so the halves' convex hulls are disjoint and copies of a point
+// stay together. Empty below `smallest` points, where a split costs more than it saves (tests
+// split smaller sets).
+inline constexpr std::size_t kSmallestSplit = 4096;
+std::optional<Vec2> splitPoint(const std::vector<Vec2>& points,
+                               std::size_t smallest = kSmallestSplit);
 
-// One half, triangulated by the batch inserter; its vertex ids and duplicates are input indices
-// (mapped on the half's own thread). The mesh holds no points (G empty).
+// One half, triangulated by the batch inserter on the caller's thread; its vertex ids and
+// duplicates are input indices. The mesh holds no points (G empty). `room`: its corner table is
+// reserved for this many triangles (the left half makes room for the whole result's, 2n + 8).
 struct HalfTriangulation {
     Mesh mesh;
+    std::vector<std::int32_t> hull;     // boundary corners, counter-clockwise
     std::vector<std::int32_t> skipped;  // duplicates, input indices
     InsertStats stats;
 };
-HalfTriangulation triangulateHalf(const std::vector<Vec2>& points,
-                                  const std::vector<std::int32_t>& indices,
-                                  const InsertOptions& options);
+HalfTriangulation triangulateHalf(const std::vector<Vec2>& points, Vec2 split, bool left,
+                                  const InsertOptions& options, std::size_t room = 0);
 
 // The whole set's triangulation: vertex ids are input indices, as the incremental path's.
 struct JoinedTriangulation {
@@ -47,7 +49,7 @@ struct JoinedTriangulation {
 // Empty, `points` untouched, when the halves cannot be joined this way (a half without a
 // triangle: all its points on a line): triangulate the whole set in one then. Otherwise the
 // points move into the result's mesh.
-std::optional<JoinedTriangulation> joinHalves(std::vector<Vec2>& points, const Halves& halves,
-                                              HalfTriangulation left, HalfTriangulation right);
+std::optional<JoinedTriangulation> joinHalves(std::vector<Vec2>& points, HalfTriangulation left,
+                                              HalfTriangulation right);
 
 }  // namespace dlab

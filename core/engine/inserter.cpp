@@ -945,7 +945,7 @@ void Inserter::permuteForBatch() {
     adviseHugePages(byRank.data(), m_mesh.G.size() * sizeof(Vec2));
     for (std::int32_t k = 0; k < n; ++k) byRank.push_back(m_mesh.G[m_order[k]]);
     byRank.insert(byRank.end(), m_mesh.G.begin() + n, m_mesh.G.end());
-    m_byInput = std::move(m_mesh.G);
+    if (m_keepPoints) m_byInput = std::move(m_mesh.G);
     m_mesh.G = std::move(byRank);
     m_permuted = true;
 }
@@ -955,12 +955,28 @@ void Inserter::unpermute() {
     const std::size_t size = m_mesh.G.size();  // Finalize may have dropped the virtual points
     m_mesh.G = std::move(m_byInput);
     m_byInput = {};
-    m_mesh.G.resize(size);
+    if (m_keepPoints) m_mesh.G.resize(size);
     for (std::int32_t& v : m_mesh.V) {
         if (v < n) v = m_order[v];
     }
     m_ctl.lastTri = 0;
     m_permuted = false;
+}
+
+void Inserter::reserveTriangles(std::size_t count) {
+    const std::size_t corners = 3 * count;
+    if (m_mesh.V.capacity() >= corners) return;
+    m_mesh.V.reserve(corners);
+    m_mesh.O.reserve(corners);
+    adviseHugePages(m_mesh.V.data(), corners * sizeof(std::int32_t));
+    adviseHugePages(m_mesh.O.data(), corners * sizeof(std::int32_t));
+}
+
+void Inserter::runForTopology() {
+    m_keepPoints = m_ctl.phase != Phase::Start;  // only a run from the start works by rank
+    run();
+    m_mesh.G = std::vector<Vec2>();  // (= {} would keep the capacity)
+    m_keepPoints = true;
 }
 
 void Inserter::run() {
@@ -974,13 +990,7 @@ void Inserter::run() {
     }
     const std::int32_t n = m_numInput;
     if (m_ctl.phase == Phase::Locate) {
-        const std::size_t expected = 3 * static_cast<std::size_t>(2 * n + 8);
-        if (m_mesh.V.capacity() < expected) {
-            m_mesh.V.reserve(expected);
-            m_mesh.O.reserve(expected);
-            adviseHugePages(m_mesh.V.data(), expected * sizeof(std::int32_t));
-            adviseHugePages(m_mesh.O.data(), expected * sizeof(std::int32_t));
-        }
+        reserveTriangles(2 * static_cast<std::size_t>(n) + 8);
         m_stack.reserve(64);
         for (; m_ctl.cursor < n; ++m_ctl.cursor) {
             beginLocate();

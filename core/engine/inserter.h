@@ -152,6 +152,12 @@ public:
     Op step(Journal* journal = nullptr);
     // Batch: run to the end with recording compiled out.
     void run();
+    // run() for a caller that needs only the topology: the points in input order are not kept
+    // aside while the batch works in insertion order (n * 16 bytes less at the peak), and G is
+    // empty afterwards. V, O and skipped() are run()'s.
+    void runForTopology();
+    // Room in the corner table for this many triangles (run() makes room for its own, 2n + 8).
+    void reserveTriangles(std::size_t count);
     bool done() const { return m_ctl.phase == Phase::Done; }
 
     const Mesh& mesh() const { return m_mesh; }
@@ -253,6 +259,7 @@ private:
     bool m_locatorWantsChanges = false;
     bool m_permuted = false;
     std::vector<Vec2> m_byInput;  // while run() works by rank: the points in input order
+    bool m_keepPoints = true;     // false: runForTopology() (m_byInput not kept)
     bool m_bulk = false;
     Bounds m_bounds{};
     Control m_ctl;

@@ -14,6 +14,7 @@
 // Integer lattices scaled by powers of two keep collinear and cocircular sets exactly so.
 #include "tests/fuzz/fuzz_common.h"
 
+#include "core/engine/halves.h"
 #include "core/engine/inserter.h"
 #include "core/teaching/trace.h"
 #include "tests/exact_check.h"
@@ -247,6 +248,32 @@ void traceRoundTrip(const Journal& journal, const Mesh& mesh) {
             "an op's trace line reads back as the same record", line);
 }
 
+// The two-core path on the same set, split however small (both halves on this thread): where
+// both halves have a triangle, the join is exactly Delaunay, with the batch's vertices, triangle
+// count and duplicates.
+void checkHalves(const Case& c, const Inserter& batch) {
+    if (c.options.boundary != Boundary::Exact || c.options.locator != LocatorKind::Walk) return;
+    const std::string what = describe(c) + ", split in two";
+    std::vector<Vec2> points = c.points;
+    const std::optional<Vec2> split = splitPoint(points, 2);
+    if (!split) return;
+    HalfTriangulation left =
+        triangulateHalf(points, *split, true, c.options, 2 * points.size() + 8);
+    HalfTriangulation right = triangulateHalf(points, *split, false, c.options);
+    const bool bothHaveTriangles = left.mesh.numTriangles() > 0 && right.mesh.numTriangles() > 0;
+    const auto joined = joinHalves(points, std::move(left), std::move(right));
+    require(joined.has_value() == bothHaveTriangles, "two halves with triangles join", what);
+    if (!joined) return;
+    const auto distinct = firstOccurrences(c.points);
+    const std::string exact = checkDelaunayExact(joined->mesh, &distinct);
+    require(exact.empty(), "the exact GMP check accepts the joined halves", what + ": " + exact);
+    require(joined->mesh.numTriangles() == batch.mesh().numTriangles(),
+            "the joined halves have the batch's triangle count", what);
+    std::vector<std::int32_t> skipped = batch.skipped();
+    std::sort(skipped.begin(), skipped.end());
+    require(joined->skipped == skipped, "the joined halves skip the batch's duplicates", what);
+}
+
 void runCase(const Case& c) {
     const std::string what = describe(c);
     const auto n = static_cast<std::int32_t>(c.points.size());
@@ -288,6 +315,7 @@ void runCase(const Case& c) {
     require(sameStats(batch.stats(), endStats), "run() counts the same operations as stepping",
             what);
     require(batch.skipped() == ins.skipped(), "run() skips the same duplicates as stepping", what);
+    checkHalves(c, batch);
 
     // A mid-run state is a valid corner table (virtual triangles included).
     journal.seek(c.probe * ops / 255);
