@@ -67,7 +67,7 @@ input_for() { echo "$dir/$1_$2.node"; }
 ratios=()
 ratios2=()
 bench_row() {
-    local kind=$1 size=$2 nrounds=$3 input dt_json="" cg_json="" dt_ms=() dt2_ms=() cg_ms=() r
+    local kind=$1 size=$2 nrounds=$3 input dt_json="" dt2_json="" cg_json="" dt_ms=() dt2_ms=() cg_ms=() r
     input=$(input_for "$kind" "$size")
     [[ -s $input ]] || "$dtlab" gen "$kind" "$size" --seed "$seed" -o "$input" >/dev/null
     for (( r = 1; r <= nrounds; ++r )); do
@@ -75,9 +75,10 @@ bench_row() {
             cg_json=$(json_of "$("$cgal" "$input" --repeat 1 --json)")
             cg_ms+=("$(field "$cg_json" median_ms)")
         fi
-        dt_json=$(json_of "$("$dtlab" bench --input "$input" --repeat 1 --json)")
+        dt_json=$(json_of "$("$dtlab" bench --input "$input" --repeat 1 --threads 1 --json)")
         dt_ms+=("$(field "$dt_json" median_ms)")
-        dt2_ms+=("$(field "$(json_of "$("$dtlab" bench --input "$input" --repeat 1 --threads 2 --json)")" median_ms)")
+        dt2_json=$(json_of "$("$dtlab" bench --input "$input" --repeat 1 --threads 2 --json)")
+        dt2_ms+=("$(field "$dt2_json" median_ms)")
         if (( have_cgal && r % 2 == 1 )); then
             cg_json=$(json_of "$("$cgal" "$input" --repeat 1 --json)")
             cg_ms+=("$(field "$cg_json" median_ms)")
@@ -98,17 +99,19 @@ bench_row() {
         ratio2=$(calc "%.2f" "$dt2 / $cg")
         ratios+=("$size $ratio")
         ratios2+=("$size $ratio2")
-        # Both tools must have made the same triangulation (CGAL counts finite faces).
-        if [[ $(field "$dt_json" triangles) != $(field "$cg_json" faces) ]]; then
-            echo "bench: $kind: dtlab made $(field "$dt_json" triangles) triangles, CGAL $(field "$cg_json" faces)" >&2
-        fi
+        # Every run must have made a triangulation of the same size (CGAL counts finite faces).
+        for json in "$dt_json" "$dt2_json"; do
+            if [[ $(field "$json" triangles) != $(field "$cg_json" faces) ]]; then
+                echo "bench: $kind: dtlab (threads $(field "$json" threads)) made $(field "$json" triangles) triangles, CGAL $(field "$cg_json" faces)" >&2
+            fi
+        done
     fi
     if [[ $memory != 0 ]]; then
         dt_mem=$(peak_mib "$dtlab" triangulate "$input" -o "$dir/out" -q)
         rm -f "$dir/out".{node,ele,neigh}
         (( have_cgal )) && cg_mem=$(peak_mib "$cgal" "$input" --repeat 1)
     fi
-    printf '| %s | %s | %s | %s | **%s** | %s | %s | %s | %s | %s | %s | %s |\n' "$kind" "$count" "$dt" "$cg" "$ratio" "$dt2" "$ratio2" \
+    printf '| %s | %s | %s | %s | %s | %s | **%s** | %s | %s | %s | %s | %s |\n' "$kind" "$count" "$dt" "$cg" "$ratio" "$dt2" "$ratio2" \
         "$(calc "%.0f" "$dt * 1e6 / $count")" "$(calc "%.2f" "$(field "$dt_json" walk_steps_per_point)")" \
         "$(predicates "$dt_json" "$count")" "$dt_mem" "$cg_mem"
 }
@@ -120,12 +123,13 @@ small=$(input_for uniform 1024)
 cgal_version="no CGAL"
 (( have_cgal )) && cgal_version="CGAL $(field "$(json_of "$("$cgal" "$small" --repeat 1 --json)")" cgal_version)"
 echo "Machine: ${model:-unknown CPU}, $(nproc) cores, load average $(cut -d' ' -f1-3 /proc/loadavg); build ${build_type:-?}; $(date -u +%Y-%m-%d)"
-echo "Triangulation only (no I/O): dtlab bench (exact boundary, brio order, walk; one core, and two with --threads 2) and $cgal_version"
+echo "Triangulation only (no I/O): dtlab bench (exact boundary, brio order, walk; one core with --threads 1, and two with"
+echo "the default --threads 2) and $cgal_version"
 echo "Delaunay_triangulation_2<Epick> range insert, one warm-up and one timed run per process;"
 echo "medians of $rounds alternating rounds at n = $n ($rounds_large at larger n). Peak memory:"
-echo "dtlab triangulate IN -o BASE (read, triangulate, write) and cgal_baseline IN --repeat 1."
+echo "dtlab triangulate IN -o BASE (read, triangulate on two cores, write) and cgal_baseline IN --repeat 1."
 echo
-echo "| distribution | n | dtlab ms | CGAL ms | dtlab/CGAL | dtlab 2 cores ms | 2 cores/CGAL | dtlab ns/point | walk steps/point | predicate calls/point past the filter, by stage | dtlab peak MiB | CGAL peak MiB |"
+echo "| distribution | n | dtlab 1 core ms | CGAL ms | 1 core/CGAL | dtlab 2 cores ms | 2 cores/CGAL | dtlab ns/point | walk steps/point | predicate calls/point past the filter, by stage | dtlab peak MiB | CGAL peak MiB |"
 echo "|---|---:|---:|---:|---:|---:|---:|---:|---:|---|---:|---:|"
 for kind in $kinds; do bench_row "$kind" "$n" "$rounds"; done
 for size in $large; do bench_row uniform "$size" "$rounds_large"; done
@@ -134,7 +138,7 @@ if (( have_cgal )) && (( ${#ratios[@]} )); then
     echo
     printf '%s\n' "${ratios[@]}" | awk -v n="$n" '
         $1 == n { s += log($2); c += 1; if ($2 > worst) worst = $2 }
-        END { if (c) printf "Geometric mean of dtlab/CGAL over the %d distributions at n = %d: %.2f (worst %.2f)\n", c, n, exp(s / c), worst }'
+        END { if (c) printf "Geometric mean of dtlab (one core)/CGAL over the %d distributions at n = %d: %.2f (worst %.2f)\n", c, n, exp(s / c), worst }'
     printf '%s\n' "${ratios2[@]}" | awk -v n="$n" '
         $1 == n { s += log($2); c += 1; if ($2 > worst) worst = $2 }
         END { if (c) printf "The same with --threads 2 (two halves at once, joined; CGAL on one core): %.2f (worst %.2f)\n", exp(s / c), worst }'

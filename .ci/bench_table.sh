@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # The scaling table: for n = 2^10 ... 2^20 uniform points in the paper's 1600x1600 box,
-# dtlab bench's ns/point, flips/point and walk steps/point with the default options (exact
-# boundary, brio order, walk locator) and with the paper's baseline (--locate naive --order
-# input), as a Markdown table; then the CGAL comparison (.ci/bench_compare.sh).
+# dtlab bench's ns/point, flips/point and walk steps/point on one core (--threads 1) with the
+# default options (exact boundary, brio order, walk locator) and with the paper's baseline
+# (--locate naive --order input), as a Markdown table; then the CGAL comparison
+# (.ci/bench_compare.sh), which has the two-core column.
 #
 # The naive walk costs O(sqrt n) steps per point: each size's time is estimated from the sizes
 # before it, and a size whose estimate is over BENCH_TABLE_LIMIT_S is not run (the table says so).
@@ -46,7 +47,7 @@ model=$(lscpu 2>/dev/null | awk -F: '/^Model name/ { sub(/^[ \t]+/, "", $2); pri
 build_type=$(awk -F= '/^CMAKE_BUILD_TYPE:/ { print $2 }' "$build/CMakeCache.txt" 2>/dev/null || true)
 echo "Machine: ${model:-unknown CPU}, $(nproc) cores; build ${build_type:-?}; $(date -u +%Y-%m-%d)"
 echo "dtlab bench: triangulation only (no I/O), median and fastest of the timed runs after a warm-up."
-echo "default = exact boundary, brio order, walk locator; paper = --locate naive --order input."
+echo "One core (--threads 1). default = exact boundary, brio order, walk locator; paper = --locate naive --order input."
 echo
 echo "| n | default ns/point | (min) | flips/point | walk steps/point | paper ns/point | (min) | flips/point | walk steps/point |"
 echo "|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
@@ -58,7 +59,7 @@ for (( e = from; e <= to; ++e )); do
     input=$(input_for "$n")
     [[ -s $input ]] || "$dtlab" gen uniform "$n" --seed "$seed" -o "$input" >/dev/null
     repeat=$(repeats_for "$n")
-    def=$("$dtlab" bench --input "$input" --repeat "$repeat" --json)
+    def=$("$dtlab" bench --input "$input" --repeat "$repeat" --threads 1 --json)
 
     # The paper baseline: estimate before running; slow sizes get one timed run, no warm-up.
     paper="skipped | | | "

@@ -69,13 +69,13 @@ InsertOptions EngineFlags::options() const {
 std::optional<JoinedTriangulation> triangulateOnTwoCores(std::vector<Vec2>& points,
                                                          const InsertOptions& options) {
     if (options.boundary != Boundary::Exact || options.locator != LocatorKind::Walk) return {};
-    const Halves halves = splitAtMedian(points);
-    if (halves.left.empty()) return {};
+    const std::optional<Vec2> split = splitPoint(points);
+    if (!split) return {};
     HalfTriangulation right;
-    std::thread second([&] { right = triangulateHalf(points, halves.right, options); });
-    HalfTriangulation left = triangulateHalf(points, halves.left, options);
+    std::thread second([&] { right = triangulateHalf(points, *split, false, options); });
+    HalfTriangulation left = triangulateHalf(points, *split, true, options, 2 * points.size() + 8);
     second.join();
-    return joinHalves(points, halves, std::move(left), std::move(right));
+    return joinHalves(points, std::move(left), std::move(right));
 }
 
 std::unique_ptr<Inserter> EngineFlags::makeInserter(std::vector<Vec2> points) const {

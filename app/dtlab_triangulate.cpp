@@ -20,7 +20,7 @@ struct TriangulateArgs {
     std::string voronoiSvg, svg, off, obj, voronoiBase;
     bool check = false;
     bool quiet = false;
-    int threads = 1;
+    int threads = 2;
     EngineFlags engine;
 };
 
@@ -122,7 +122,7 @@ void runTriangulate(const TriangulateArgs& args) {
     std::cout << args.input << ": " << n << " points, " << m.numTriangles() << " triangles in "
               << ms << " ms (locate " << args.engine.locate << ", order " << args.engine.order
               << ", boundary " << args.engine.boundary
-              << (result.threads == 2 ? ", two halves on two cores, joined" : "") << ")\n";
+              << (result.threads == 2 ? ", two halves on two threads, joined" : "") << ")\n";
     if (!result.skipped.empty()) {
         std::cout << "  " << result.skipped.size()
                   << " duplicate point(s) skipped, the first occurrence kept: "
@@ -160,9 +160,10 @@ void addTriangulate(CLI::App& app) {
                   "Validate the result (corner table, orientation, Delaunay) before writing");
     cmd->add_flag("-q,--quiet", args->quiet, "Print nothing on success");
     cmd->add_option("--threads", args->threads,
-                    "2: two halves at once on two cores, joined (exact boundary and walk only, "
-                    "else one thread; with cocircular points another of the Delaunay "
-                    "triangulations than one thread's)")
+                    "2: the set split at a sampled median, the halves triangulated at once and "
+                    "joined (the same result on any machine; exact boundary, walk, 4096 points "
+                    "or more, else one). With cocircular points it may pick another of the "
+                    "Delaunay triangulations than 1")
         ->check(CLI::Range(1, 2))
         ->capture_default_str();
     args->engine.add(*cmd);

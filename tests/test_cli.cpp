@@ -14,8 +14,10 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <array>
 #include <filesystem>
 #include <fstream>
+#include <set>
 #include <sstream>
 #include <string>
 
@@ -111,9 +113,39 @@ TEST(Cli, TriangulatePeaksNearTheCornerTableFloor) {
     const std::string in = (dir / "peak.node").string();
     constexpr long kPoints = 1 << 18;
     ASSERT_EQ(dtlab("gen uniform " + std::to_string(kPoints) + " -o " + in).status, 0);
-    const long kib = peakKibOfDtlab({"triangulate", in, "-o", (dir / "peak_out").string()});
-    ASSERT_GT(kib, 0);
-    EXPECT_LT(kib * 1024, kPoints * 100 + (16l << 20)) << kib << " KiB";
+    for (const char* threads : {"1", "2"}) {
+        const long kib = peakKibOfDtlab(
+            {"triangulate", in, "-o", (dir / "peak_out").string(), "--threads", threads});
+        ASSERT_GT(kib, 0) << threads;
+        EXPECT_LT(kib * 1024, kPoints * 100 + (16l << 20)) << kib << " KiB, threads " << threads;
+    }
+}
+
+TEST(Cli, TwoHalvesJoinedGiveTheTrianglesOfOneRun) {
+    // Uniform points (no four cocircular): one Delaunay triangulation, whichever path makes it.
+    const fs::path dir = tempDir();
+    const std::string in = (dir / "h.node").string();
+    ASSERT_EQ(dtlab("gen uniform 9000 --seed 4 -o " + in).status, 0);
+    const std::string two = (dir / "two").string(), one = (dir / "one").string();
+    const Result r2 = dtlab("triangulate " + in + " -o " + two + " --check");
+    ASSERT_EQ(r2.status, 0) << r2.out;
+    EXPECT_NE(r2.out.find("two halves on two threads, joined"), std::string::npos) << r2.out;
+    const Result r1 = dtlab("triangulate " + in + " -o " + one + " --check --threads 1");
+    ASSERT_EQ(r1.status, 0) << r1.out;
+    EXPECT_EQ(r1.out.find("two halves"), std::string::npos) << r1.out;
+    auto triangles = [](const dlab::Mesh& m) {
+        std::set<std::array<std::int32_t, 3>> out;
+        for (std::int32_t t = 0; t < m.numTriangles(); ++t) {
+            std::array<std::int32_t, 3> v{m.V[3 * t], m.V[3 * t + 1], m.V[3 * t + 2]};
+            std::rotate(v.begin(), std::min_element(v.begin(), v.end()), v.end());
+            out.insert(v);
+        }
+        return out;
+    };
+    const dlab::Mesh a = readTriangleOutput(two), b = readTriangleOutput(one);
+    EXPECT_EQ(checkDelaunayExact(a), "");
+    EXPECT_EQ(a.numTriangles(), b.numTriangles());
+    EXPECT_EQ(triangles(a), triangles(b));
 }
 
 TEST(Cli, CommandsThatNeedGlRunInDtlabGl) {
