@@ -10,6 +10,10 @@
 #include <filesystem>
 #include <iostream>
 
+#if defined(__GLIBC__)
+#include <malloc.h>
+#endif
+
 namespace dlab::cli {
 
 namespace {
@@ -70,7 +74,18 @@ void checkOutputs(const TriangulateArgs& args) {
     }
 }
 
+// One run, then the process ends: every large buffer goes back to the system as soon as it is
+// freed. By default glibc raises its mmap threshold after the first large free and serves later
+// large buffers from the heap, which keeps what they free: 2^20 lattice points on two threads
+// then peak at 135 MiB instead of 92 (measured; no slower in a fresh process).
+void returnLargeBuffersWhenFreed() {
+#if defined(__GLIBC__)
+    mallopt(M_MMAP_THRESHOLD, 1 << 20);
+#endif
+}
+
 void runTriangulate(const TriangulateArgs& args) {
+    returnLargeBuffersWhenFreed();
     checkOutputs(args);
     LoadedPoints loaded = loadPoints(args.input);
     const int base = loaded.indexBase;

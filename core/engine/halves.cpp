@@ -1,11 +1,9 @@
 // Two triangulations at once, joined (see halves.h).
 #include "core/engine/halves.h"
 
-#include "core/engine/checks.h"
 #include "core/engine/predicates.h"
 
 #include <algorithm>
-#include <numeric>
 #include <unordered_map>
 #include <utility>
 
@@ -78,8 +76,8 @@ public:
     Joiner(const std::vector<Vec2>& points, HalfTriangulation& left, HalfTriangulation& right)
         : m_points(points) {
         // The left half's arrays (reserved for the whole result) take the right half's
-        // triangles, and then the seam's.
-        // Each of the right half's arrays goes as soon as it is copied: the peak holds one.
+        // triangles, then the seam's. Each of the right half's arrays goes as soon as it is
+        // copied, so the peak holds one of them.
         m_mesh = std::move(left.mesh);
         const auto shift = static_cast<std::int32_t>(m_mesh.V.size());
         m_mesh.V.insert(m_mesh.V.end(), right.mesh.V.begin(), right.mesh.V.end());
