@@ -98,7 +98,7 @@ public:
     // one; false when the merge cannot close (then the caller triangulates the set in one).
     bool join(InsertStats& stats) {
         const Ends start{extreme(m_left, true), extreme(m_right, false)};
-        const Ends lower = lowerTangent(start), upper = upperTangent(start);
+        const Ends lower = tangent(start, true), upper = tangent(start, false);
         m_flags.assign(m_mesh.V.size(), 0);
         if (!stitch(lower, upper, stats)) return false;
         return assemble();
@@ -137,37 +137,30 @@ private:
     struct Ends {
         std::size_t l, r;
     };
-    // The lower common tangent l -> r: every point on it or left of it, and of the points on
-    // it, l and r the nearest to each other (the segment holds no other point).
-    Ends lowerTangent(Ends e) const {
+    // A common tangent of the two hulls, l -> r: the lower one (every point on it or left of
+    // it) or the upper one (on it or right of it); of the points on it, l and r the nearest to
+    // each other (the segment holds no other point).
+    Ends tangent(Ends e, bool lower) const {
         const auto& L = m_left;
         const auto& R = m_right;
-        auto side = [&](std::size_t il, std::size_t ir, std::int32_t x) {
-            return orient(vertex(L, il), vertex(R, ir), x);
+        // Outward: down both hulls for the lower tangent (clockwise round the left one,
+        // counter-clockwise round the right one), up both for the upper one.
+        auto alongL = [&](std::size_t i, bool out) {
+            return out == lower ? pred(L, i) : succ(L, i);
+        };
+        auto alongR = [&](std::size_t i, bool out) {
+            return out == lower ? succ(R, i) : pred(R, i);
+        };
+        auto outside = [&](std::int32_t x) {  // > 0: x is on the side no point may be on
+            return orient(vertex(L, e.l), vertex(R, e.r), x) * (lower ? -1 : 1);
         };
         for (bool moved = true; moved;) {
             moved = false;
-            for (; side(e.l, e.r, vertex(L, pred(L, e.l))) < 0; moved = true) e.l = pred(L, e.l);
-            for (; side(e.l, e.r, vertex(R, succ(R, e.r))) < 0; moved = true) e.r = succ(R, e.r);
+            for (; outside(vertex(L, alongL(e.l, true))) > 0; moved = true) e.l = alongL(e.l, true);
+            for (; outside(vertex(R, alongR(e.r, true))) > 0; moved = true) e.r = alongR(e.r, true);
         }
-        while (side(e.l, e.r, vertex(L, succ(L, e.l))) == 0) e.l = succ(L, e.l);
-        while (side(e.l, e.r, vertex(R, pred(R, e.r))) == 0) e.r = pred(R, e.r);
-        return e;
-    }
-    // The upper one: every point on it or right of l -> r; l and r the nearest.
-    Ends upperTangent(Ends e) const {
-        const auto& L = m_left;
-        const auto& R = m_right;
-        auto side = [&](std::size_t il, std::size_t ir, std::int32_t x) {
-            return orient(vertex(L, il), vertex(R, ir), x);
-        };
-        for (bool moved = true; moved;) {
-            moved = false;
-            for (; side(e.l, e.r, vertex(L, succ(L, e.l))) > 0; moved = true) e.l = succ(L, e.l);
-            for (; side(e.l, e.r, vertex(R, pred(R, e.r))) > 0; moved = true) e.r = pred(R, e.r);
-        }
-        while (side(e.l, e.r, vertex(L, pred(L, e.l))) == 0) e.l = pred(L, e.l);
-        while (side(e.l, e.r, vertex(R, succ(R, e.r))) == 0) e.r = succ(R, e.r);
+        while (outside(vertex(L, alongL(e.l, false))) == 0) e.l = alongL(e.l, false);
+        while (outside(vertex(R, alongR(e.r, false))) == 0) e.r = alongR(e.r, false);
         return e;
     }
 
