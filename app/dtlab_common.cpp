@@ -73,7 +73,7 @@ std::optional<JoinedTriangulation> triangulateOnTwoCores(std::vector<Vec2>& poin
     if (!split) return {};
     HalfTriangulation right;
     std::thread second([&] { right = triangulateHalf(points, *split, false, options); });
-    HalfTriangulation left = triangulateHalf(points, *split, true, options, 2 * points.size() + 8);
+    HalfTriangulation left = triangulateHalf(points, *split, true, options);
     second.join();
     return joinHalves(points, std::move(left), std::move(right));
 }

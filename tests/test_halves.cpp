@@ -22,7 +22,7 @@ std::optional<JoinedTriangulation> joined(std::vector<Vec2> points,
                                           std::size_t smallest = kSmallestSplit) {
     const std::optional<Vec2> split = splitPoint(points, smallest);
     if (!split) return std::nullopt;
-    HalfTriangulation left = triangulateHalf(points, *split, true, {}, 2 * points.size() + 8);
+    HalfTriangulation left = triangulateHalf(points, *split, true, {});
     HalfTriangulation right = triangulateHalf(points, *split, false, {});
     return joinHalves(points, std::move(left), std::move(right));
 }

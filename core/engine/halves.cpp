@@ -48,7 +48,7 @@ std::optional<Vec2> splitPoint(const std::vector<Vec2>& points, std::size_t smal
 }
 
 HalfTriangulation triangulateHalf(const std::vector<Vec2>& points, Vec2 split, bool left,
-                                  const InsertOptions& options, std::size_t room) {
+                                  const InsertOptions& options) {
     std::vector<std::int32_t> indices;
     std::vector<Vec2> own;
     indices.reserve(points.size() / 2 + points.size() / 16);
@@ -60,7 +60,7 @@ HalfTriangulation triangulateHalf(const std::vector<Vec2>& points, Vec2 split, b
         }
     }
     Inserter ins(std::move(own), options);
-    ins.reserveTriangles(room);
+    if (left) ins.reserveTriangles(maxTriangles(points.size()));
     ins.runForTopology();
     HalfTriangulation h;
     h.stats = ins.stats();
@@ -371,13 +371,7 @@ std::optional<JoinedTriangulation> joinHalves(std::vector<Vec2>& points, HalfTri
     if (left.mesh.numTriangles() == 0 || right.mesh.numTriangles() == 0) return std::nullopt;
     JoinedTriangulation out;
     out.stats = left.stats;
-    const InsertStats& rs = right.stats;
-    out.stats.inserted += rs.inserted;
-    out.stats.duplicates += rs.duplicates;
-    out.stats.flips += rs.flips;
-    out.stats.inCircleTests += rs.inCircleTests;
-    out.stats.walkSteps += rs.walkSteps;
-    out.stats.edgeSplits += rs.edgeSplits;
+    out.stats += right.stats;
     out.skipped = std::move(left.skipped);
     out.skipped.insert(out.skipped.end(), right.skipped.begin(), right.skipped.end());
     std::sort(out.skipped.begin(), out.skipped.end());

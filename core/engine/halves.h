@@ -29,8 +29,8 @@ std::optional<Vec2> splitPoint(const std::vector<Vec2>& points,
                                std::size_t smallest = kSmallestSplit);
 
 // One half, triangulated by the batch inserter on the caller's thread; its vertex ids and
-// duplicates are input indices. The mesh holds no points (G empty). `room`: its corner table is
-// reserved for this many triangles (the left half makes room for the whole result's, 2n + 8).
+// duplicates are input indices. The mesh holds no points (G empty). The left half's corner table
+// has room for the whole result, which joinHalves() builds in it.
 struct HalfTriangulation {
     Mesh mesh;
     std::vector<std::int32_t> hull;     // boundary corners, counter-clockwise
@@ -38,7 +38,7 @@ struct HalfTriangulation {
     InsertStats stats;
 };
 HalfTriangulation triangulateHalf(const std::vector<Vec2>& points, Vec2 split, bool left,
-                                  const InsertOptions& options, std::size_t room = 0);
+                                  const InsertOptions& options);
 
 // The whole set's triangulation: vertex ids are input indices, as the incremental path's.
 struct JoinedTriangulation {

@@ -990,7 +990,7 @@ void Inserter::run() {
     }
     const std::int32_t n = m_numInput;
     if (m_ctl.phase == Phase::Locate) {
-        reserveTriangles(2 * static_cast<std::size_t>(n) + 8);
+        reserveTriangles(maxTriangles(static_cast<std::size_t>(n)));
         m_stack.reserve(64);
         for (; m_ctl.cursor < n; ++m_ctl.cursor) {
             beginLocate();

@@ -134,7 +134,19 @@ struct InsertStats {
     std::int64_t inCircleTests = 0;
     std::int64_t walkSteps = 0;
     std::int64_t edgeSplits = 0;
+    InsertStats& operator+=(const InsertStats& o) {
+        inserted += o.inserted;
+        duplicates += o.duplicates;
+        flips += o.flips;
+        inCircleTests += o.inCircleTests;
+        walkSteps += o.walkSteps;
+        edgeSplits += o.edgeSplits;
+        return *this;
+    }
 };
+
+// The most triangles a run on n points holds at once (ghosts included): the batch reserves it.
+inline constexpr std::size_t maxTriangles(std::size_t n) { return 2 * n + 8; }
 
 class Journal;
 
@@ -156,7 +168,7 @@ public:
     // aside while the batch works in insertion order (n * 16 bytes less at the peak), and G is
     // empty afterwards. V, O and skipped() are run()'s.
     void runForTopology();
-    // Room in the corner table for this many triangles (run() makes room for its own, 2n + 8).
+    // Room in the corner table for this many triangles (run() makes room for maxTriangles(n)).
     void reserveTriangles(std::size_t count);
     bool done() const { return m_ctl.phase == Phase::Done; }
 

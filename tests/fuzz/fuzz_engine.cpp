@@ -257,8 +257,7 @@ void checkHalves(const Case& c, const Inserter& batch) {
     std::vector<Vec2> points = c.points;
     const std::optional<Vec2> split = splitPoint(points, 2);
     if (!split) return;
-    HalfTriangulation left =
-        triangulateHalf(points, *split, true, c.options, 2 * points.size() + 8);
+    HalfTriangulation left = triangulateHalf(points, *split, true, c.options);
     HalfTriangulation right = triangulateHalf(points, *split, false, c.options);
     const bool bothHaveTriangles = left.mesh.numTriangles() > 0 && right.mesh.numTriangles() > 0;
     const auto joined = joinHalves(points, std::move(left), std::move(right));
