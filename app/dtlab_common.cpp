@@ -2,6 +2,7 @@
 #include "app/dtlab_common.h"
 
 #include "core/engine/io_read.h"
+#include "core/engine/predicates.h"
 #include "core/engine/text_util.h"
 
 #include <iostream>
@@ -72,9 +73,14 @@ std::optional<JoinedTriangulation> triangulateOnTwoCores(std::vector<Vec2>& poin
     const std::optional<Vec2> split = splitPoint(points);
     if (!split) return {};
     HalfTriangulation right;
-    std::thread second([&] { right = triangulateHalf(points, *split, false, options); });
+    PredicateCounters rightCounts;  // the second thread's (they start at zero)
+    std::thread second([&] {
+        right = triangulateHalf(points, *split, false, options);
+        rightCounts = predicateCounters();
+    });
     HalfTriangulation left = triangulateHalf(points, *split, true, options);
     second.join();
+    predicateCounters() += rightCounts;
     return joinHalves(points, std::move(left), std::move(right));
 }
 

@@ -244,16 +244,26 @@ TEST(Cli, BenchJsonHasTheAdvertisedFields) {
 TEST(Cli, BenchJsonSaysWhichStageDecidedThePredicates) {
     const fs::path dir = tempDir();
     const std::string in = (dir / "g.node").string();
-    ASSERT_EQ(dtlab("gen grid 4096 -o " + in).status, 0);
-    const Result r = dtlab("bench --input " + in + " --repeat 2 --json");
-    ASSERT_EQ(r.status, 0) << r.out;
-    const auto stages = nlohmann::json::parse(r.out).at("predicates_past_filter");
-    // A lattice: every quadrilateral cocircular, every difference exact, so the calls the
-    // filter leaves are all decided by the zero-tail stage, none by expansions.
-    EXPECT_GT(stages.at("incircle").at("zero-tail").get<std::int64_t>(), 1000);
-    EXPECT_EQ(stages.at("incircle").at("expansion").get<std::int64_t>(), 0);
-    EXPECT_EQ(stages.at("incircle").at("big-integer").get<std::int64_t>(), 0);
-    EXPECT_TRUE(stages.at("orient2d").contains("stage-b"));
+    ASSERT_EQ(dtlab("gen grid 16384 -o " + in).status, 0);
+    std::int64_t zeroTail[2] = {};
+    for (const int threads : {1, 2}) {
+        const Result r = dtlab("bench --input " + in + " --repeat 2 --json --threads " +
+                               std::to_string(threads));
+        ASSERT_EQ(r.status, 0) << r.out;
+        const auto j = nlohmann::json::parse(r.out);
+        EXPECT_EQ(j.at("threads").get<int>(), threads);
+        const auto stages = j.at("predicates_past_filter");
+        // A lattice: every quadrilateral cocircular, every difference exact, so the calls the
+        // filter leaves are all decided by the zero-tail stage, none by expansions.
+        zeroTail[threads - 1] = stages.at("incircle").at("zero-tail").get<std::int64_t>();
+        EXPECT_GT(zeroTail[threads - 1], 4000) << threads;
+        EXPECT_EQ(stages.at("incircle").at("expansion").get<std::int64_t>(), 0);
+        EXPECT_EQ(stages.at("incircle").at("big-integer").get<std::int64_t>(), 0);
+        EXPECT_TRUE(stages.at("orient2d").contains("stage-b"));
+    }
+    // Two threads count the second one's calls too: about as many as one thread makes.
+    EXPECT_GT(zeroTail[1], zeroTail[0] * 8 / 10);
+    EXPECT_LT(zeroTail[1], zeroTail[0] * 12 / 10);
 }
 
 TEST(Cli, BadInputGivesOneLineNamingTheFileAndLine) {

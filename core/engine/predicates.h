@@ -60,7 +60,17 @@ struct PredicateCounters {
     std::uint64_t incircleExact = 0;
     std::uint64_t orientByTier[kNumPredicateTiers] = {};
     std::uint64_t incircleByTier[kNumPredicateTiers] = {};
+    PredicateCounters& operator+=(const PredicateCounters& o) {
+        orientExact += o.orientExact;
+        incircleExact += o.incircleExact;
+        for (int t = 0; t < kNumPredicateTiers; ++t) {
+            orientByTier[t] += o.orientByTier[t];
+            incircleByTier[t] += o.incircleByTier[t];
+        }
+        return *this;
+    }
 };
+// This thread's counters; a thread that works for another adds its own to that one's when done.
 PredicateCounters& predicateCounters();
 
 // ============================================================================================
