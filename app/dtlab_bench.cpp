@@ -62,6 +62,7 @@ BenchResult timeRuns(const BenchArgs& args, const std::vector<Vec2>& points) {
                 if (r >= args.warmup)
                     res.ms.push_back(std::chrono::duration<double, std::milli>(t1 - t0).count());
                 res.stats = joined->stats;
+                res.locStats = joined->locatorStats;
                 res.triangles = joined->mesh.numTriangles();
                 res.twoCores = true;
                 continue;

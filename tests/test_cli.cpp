@@ -252,6 +252,7 @@ TEST(Cli, BenchJsonSaysWhichStageDecidedThePredicates) {
         ASSERT_EQ(r.status, 0) << r.out;
         const auto j = nlohmann::json::parse(r.out);
         EXPECT_EQ(j.at("threads").get<int>(), threads);
+        EXPECT_GT(j.at("locator_hit_rate").get<double>(), 0.0) << threads;  // both halves' walks
         const auto stages = j.at("predicates_past_filter");
         // A lattice: every quadrilateral cocircular, every difference exact, so the calls the
         // filter leaves are all decided by the zero-tail stage, none by expansions.

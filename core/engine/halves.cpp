@@ -64,6 +64,7 @@ HalfTriangulation triangulateHalf(const std::vector<Vec2>& points, Vec2 split, b
     ins.runForTopology();
     HalfTriangulation h;
     h.stats = ins.stats();
+    h.locatorStats = ins.locator()->stats();
     h.mesh = ins.takeMesh();
     h.hull = hullCorners(h.mesh, indices.size());
     for (std::int32_t& v : h.mesh.V) v = indices[v];
@@ -372,6 +373,8 @@ std::optional<JoinedTriangulation> joinHalves(std::vector<Vec2>& points, HalfTri
     JoinedTriangulation out;
     out.stats = left.stats;
     out.stats += right.stats;
+    out.locatorStats = left.locatorStats;
+    out.locatorStats += right.locatorStats;
     out.skipped = std::move(left.skipped);
     out.skipped.insert(out.skipped.end(), right.skipped.begin(), right.skipped.end());
     std::sort(out.skipped.begin(), out.skipped.end());

@@ -36,6 +36,7 @@ struct HalfTriangulation {
     std::vector<std::int32_t> hull;     // boundary corners, counter-clockwise
     std::vector<std::int32_t> skipped;  // duplicates, input indices
     InsertStats stats;
+    LocatorStats locatorStats;
 };
 HalfTriangulation triangulateHalf(const std::vector<Vec2>& points, Vec2 split, bool left,
                                   const InsertOptions& options);
@@ -45,6 +46,7 @@ struct JoinedTriangulation {
     Mesh mesh;
     std::vector<std::int32_t> skipped;  // input indices, increasing
     InsertStats stats;
+    LocatorStats locatorStats;
 };
 // Empty, `points` untouched, when the halves cannot be joined this way (a half without a
 // triangle: all its points on a line): triangulate the whole set in one then. Otherwise the

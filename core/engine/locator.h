@@ -51,6 +51,12 @@ struct LocatorStats {
     std::uint64_t queries = 0;
     std::uint64_t hits = 0;       // the hinted triangle contained the point (walk of length 0)
     std::uint64_t missSteps = 0;  // walk steps summed over the misses
+    LocatorStats& operator+=(const LocatorStats& o) {
+        queries += o.queries;
+        hits += o.hits;
+        missSteps += o.missSteps;
+        return *this;
+    }
 };
 
 class Locator {
