@@ -56,7 +56,9 @@ void expectJoinedDelaunay(const std::vector<Vec2>& points, const std::string& na
     std::sort(skipped.begin(), skipped.end());
     EXPECT_EQ(result->skipped, skipped);
     EXPECT_EQ(result->mesh.G, whole.mesh().G);
-    if (unique) EXPECT_EQ(triangles(result->mesh), triangles(whole.mesh()));
+    if (unique) {
+        EXPECT_EQ(triangles(result->mesh), triangles(whole.mesh()));
+    }
 }
 
 }  // namespace
@@ -137,4 +139,22 @@ TEST(Halves, AHalfOnOneLineDoesNotJoin) {
 TEST(Halves, SmallSetsAreNotSplit) {
     EXPECT_FALSE(splitPoint(generatePoints(Generator::Uniform, 1000, 1)).has_value());
     EXPECT_TRUE(splitPoint(generatePoints(Generator::Uniform, 5000, 1)).has_value());
+}
+
+TEST(Halves, TheSplitHalvesEveryDistributionWithinOnePerCent) {
+    // The two threads wait for the larger half: the sampled median must be close to the true
+    // one, on sets larger than the sample (the median of a sample) and smaller (exact).
+    for (const int n : {1 << 20, 20000}) {
+        for (Generator g : allGenerators()) {
+            if (g == Generator::NearDuplicates) continue;  // copies of a point stay together
+            const std::vector<Vec2> pts = generatePoints(g, n, 7);
+            const std::optional<Vec2> split = splitPoint(pts);
+            ASSERT_TRUE(split.has_value());
+            const auto below = std::count_if(pts.begin(), pts.end(), [&](Vec2 p) {
+                return p.x < split->x || (p.x == split->x && p.y < split->y);
+            });
+            EXPECT_NEAR(static_cast<double>(below) / n, 0.5, 0.01)
+                << toString(g) << ", " << n << " points";
+        }
+    }
 }
