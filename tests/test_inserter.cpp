@@ -341,10 +341,14 @@ TEST(Journal, IdBufferStepByStepMatchesAFreshPaintOfTheMesh) {
             }
         };
         while (journal.back()) {
-            if (journal.position() % 37 == 0) ASSERT_NO_FATAL_FAILURE(check());
+            if (journal.position() % 37 == 0) {
+                ASSERT_NO_FATAL_FAILURE(check());
+            }
         }
         while (journal.forward()) {
-            if (journal.position() % 37 == 0) ASSERT_NO_FATAL_FAILURE(check());
+            if (journal.position() % 37 == 0) {
+                ASSERT_NO_FATAL_FAILURE(check());
+            }
         }
         // A long seek back to the start repaints once; the steps forward from there repaint
         // only what they change.

@@ -207,8 +207,12 @@ TEST(Circumcenter, WithinAFewUlpsForMixedMagnitudes) {
         const std::string where = "(" + std::to_string(t.a.x) + "," + std::to_string(t.a.y) +
                                   ") (" + std::to_string(t.b.x) + "," + std::to_string(t.b.y) +
                                   ") (" + std::to_string(t.c.x) + "," + std::to_string(t.c.y) + ")";
-        if (exactFits(e.x)) EXPECT_LE(ulpsOff(o.x, e.x), 5.0) << where;
-        if (exactFits(e.y)) EXPECT_LE(ulpsOff(o.y, e.y), 5.0) << where;
+        if (exactFits(e.x)) {
+            EXPECT_LE(ulpsOff(o.x, e.x), 5.0) << where;
+        }
+        if (exactFits(e.y)) {
+            EXPECT_LE(ulpsOff(o.y, e.y), 5.0) << where;
+        }
         ++checked;
     }
     EXPECT_GT(checked, 2900);
