@@ -183,6 +183,32 @@ TEST(Inserter, SuperModeFlawNearTheHullIsDocumented) {
     EXPECT_TRUE(validate(s.mesh()).empty());  // still a valid, locally Delaunay corner table
 }
 
+TEST(Inserter, RunForTopologyGivesRunsMeshUnderTheCallersNames) {
+    // Copies of points (the lowest name must stay, as the lowest index does) and a lattice
+    // (cocircular: the very triangles must match, not only the triangulation).
+    for (Generator g : {Generator::NearDuplicates, Generator::Grid, Generator::Uniform}) {
+        SCOPED_TRACE(toString(g));
+        const std::vector<Vec2> pts = generatePoints(g, 3000, 6);
+        std::vector<std::int32_t> names(pts.size());
+        for (std::size_t i = 0; i < names.size(); ++i) names[i] = 7 + 3 * static_cast<int>(i);
+        Inserter whole(pts);
+        whole.run();
+        Inserter named(pts);
+        named.runForTopology(names);
+        EXPECT_TRUE(named.mesh().G.empty());
+        std::vector<std::int32_t> V = whole.mesh().V;
+        for (std::int32_t& v : V) v = names[v];
+        EXPECT_EQ(named.mesh().V, V);
+        EXPECT_EQ(named.mesh().O, whole.mesh().O);
+        std::vector<std::int32_t> skipped = whole.skipped();
+        for (std::int32_t& v : skipped) v = names[v];
+        EXPECT_EQ(named.skipped(), skipped);
+        if (g == Generator::NearDuplicates) {
+            EXPECT_FALSE(skipped.empty());
+        }
+    }
+}
+
 TEST(Inserter, RejectsNonFinitePoints) {
     EXPECT_THROW(Inserter({{0, 0}, {NAN, 1}, {1, 1}}), std::invalid_argument);
     EXPECT_THROW(Inserter({{0, 0}, {INFINITY, 1}, {1, 1}}), std::invalid_argument);

@@ -14,15 +14,17 @@ namespace {
 
 bool lexLess(Vec2 a, Vec2 b) { return a.x < b.x || (a.x == b.x && a.y < b.y); }
 
-// The boundary corners of a finished triangulation (one disc, vertices 0 .. count - 1) in
+// The boundary corners of a finished triangulation (one disc, vertex ids below idBound) in
 // counter-clockwise order: corner c faces the hull edge V[n(c)] -> V[p(c)].
-std::vector<std::int32_t> hullCorners(const Mesh& mesh, std::size_t count) {
-    std::vector<std::int32_t> from(count, kNone), hull;  // the boundary corner after each vertex
+std::vector<std::int32_t> hullCorners(const Mesh& mesh, std::size_t idBound) {
+    std::vector<std::int32_t> from(idBound, kNone), hull;  // the boundary corner after each vertex
     std::int32_t first = kNone;
+    std::size_t count = 0;
     for (std::int32_t c = 0; c < mesh.numCorners(); ++c) {
         if (mesh.O[c] != kNone) continue;
         from[mesh.V[next(c)]] = c;
         first = c;
+        ++count;
     }
     for (std::int32_t c = first; c != kNone && hull.size() < count; c = from[mesh.V[prev(c)]]) {
         hull.push_back(c);
@@ -68,14 +70,13 @@ HalfTriangulation triangulateHalf(const std::vector<Vec2>& points, Vec2 split, b
     }
     Inserter ins(std::move(own), options);
     if (left) ins.reserveTriangles(maxTriangles(points.size()));
-    ins.runForTopology();
+    ins.runForTopology(std::move(indices));  // the vertices come out as input indices
     HalfTriangulation h;
     h.stats = ins.stats();
     h.locatorStats = ins.locator()->stats();
     h.mesh = ins.takeMesh();
-    h.hull = hullCorners(h.mesh, indices.size());
-    for (std::int32_t& v : h.mesh.V) v = indices[v];
-    for (const std::int32_t i : ins.skipped()) h.skipped.push_back(indices[i]);
+    h.hull = hullCorners(h.mesh, points.size());
+    h.skipped = ins.skipped();
     return h;
 }
 

@@ -938,7 +938,7 @@ Op Inserter::step(Journal* journal) {
 // the cache misses of a million-point run. The points in input order are kept aside (G never
 // changes during a run) and put back at the end, where the ids are mapped back, so the result
 // is bit for bit the one the recorded path makes.
-void Inserter::permuteForBatch() {
+void Inserter::permuteForBatch(std::vector<std::int32_t> names) {
     const std::int32_t n = m_numInput;
     std::vector<Vec2> byRank;
     byRank.reserve(m_mesh.G.size());
@@ -948,6 +948,11 @@ void Inserter::permuteForBatch() {
     if (m_keepPoints) m_byInput = std::move(m_mesh.G);
     m_mesh.G = std::move(byRank);
     m_permuted = true;
+    // From here on m_order only names the vertices (inputId, unpermute): the caller's names
+    // keep every comparison between input indices, and the result carries them.
+    if (!names.empty()) {
+        for (std::int32_t& i : m_order) i = names[i];
+    }
 }
 
 void Inserter::unpermute() {
@@ -972,8 +977,12 @@ void Inserter::reserveTriangles(std::size_t count) {
     adviseHugePages(m_mesh.O.data(), corners * sizeof(std::int32_t));
 }
 
-void Inserter::runForTopology() {
+void Inserter::runForTopology(std::vector<std::int32_t> names) {
+    DLAB_ASSERT(names.empty() || (m_ctl.phase == Phase::Start &&
+                                  names.size() == static_cast<std::size_t>(m_numInput)),
+                "names for a run that has begun, or not one a point");
     m_keepPoints = m_ctl.phase != Phase::Start;  // only a run from the start works by rank
+    m_names = std::move(names);
     run();
     m_mesh.G = std::vector<Vec2>();  // (= {} would keep the capacity)
     m_keepPoints = true;
@@ -981,7 +990,7 @@ void Inserter::runForTopology() {
 
 void Inserter::run() {
     NullRec rec;
-    if (m_ctl.phase == Phase::Start) permuteForBatch();
+    if (m_ctl.phase == Phase::Start) permuteForBatch(std::exchange(m_names, {}));
     // Finish whatever the state machine was in the middle of.
     while (m_ctl.phase != Phase::Done &&
            !(m_ctl.phase == Phase::Locate && m_ctl.walk.tri == kNone)) {

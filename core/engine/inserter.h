@@ -166,8 +166,11 @@ public:
     void run();
     // run() for a caller that needs only the topology: the points in input order are not kept
     // aside while the batch works in insertion order (n * 16 bytes less at the peak), and G is
-    // empty afterwards. V, O and skipped() are run()'s.
-    void runForTopology();
+    // empty afterwards. V, O and skipped() are run()'s, with input point i called names[i] when
+    // `names` is not empty: the caller's own ids, increasing (equal points keep the lowest name,
+    // as they keep the lowest index), without a pass of its own over V and a list kept for it.
+    // Only from the start: then order() gives the names in insertion order.
+    void runForTopology(std::vector<std::int32_t> names = {});
     // Room in the corner table for this many triangles (run() makes room for maxTriangles(n)).
     void reserveTriangles(std::size_t count);
     bool done() const { return m_ctl.phase == Phase::Done; }
@@ -259,7 +262,7 @@ private:
         return m_permuted && v < m_numInput ? m_order[v] : v;
     }
     Vec2 currentPoint() const { return m_mesh.G[vertexAt(m_ctl.cursor)]; }
-    void permuteForBatch();
+    void permuteForBatch(std::vector<std::int32_t> names);
     void unpermute();
 
     InsertOptions m_options;
@@ -270,8 +273,9 @@ private:
     std::unique_ptr<Locator> m_locator;
     bool m_locatorWantsChanges = false;
     bool m_permuted = false;
-    std::vector<Vec2> m_byInput;  // while run() works by rank: the points in input order
-    bool m_keepPoints = true;     // false: runForTopology() (m_byInput not kept)
+    std::vector<Vec2> m_byInput;        // while run() works by rank: the points in input order
+    bool m_keepPoints = true;           // false: runForTopology() (m_byInput not kept)
+    std::vector<std::int32_t> m_names;  // runForTopology()'s names, until the batch starts
     bool m_bulk = false;
     Bounds m_bounds{};
     Control m_ctl;
