@@ -982,7 +982,7 @@ void Inserter::runForTopology(std::vector<std::int32_t> names) {
                                   names.size() == static_cast<std::size_t>(m_numInput)),
                 "names for a run that has begun, or not one a point");
     m_keepPoints = m_ctl.phase != Phase::Start;  // only a run from the start works by rank
-    m_names = std::move(names);
+    if (!m_keepPoints) permuteForBatch(std::move(names));
     run();
     m_mesh.G = std::vector<Vec2>();  // (= {} would keep the capacity)
     m_keepPoints = true;
@@ -990,7 +990,7 @@ void Inserter::runForTopology(std::vector<std::int32_t> names) {
 
 void Inserter::run() {
     NullRec rec;
-    if (m_ctl.phase == Phase::Start) permuteForBatch(std::exchange(m_names, {}));
+    if (m_ctl.phase == Phase::Start && !m_permuted) permuteForBatch({});
     // Finish whatever the state machine was in the middle of.
     while (m_ctl.phase != Phase::Done &&
            !(m_ctl.phase == Phase::Locate && m_ctl.walk.tri == kNone)) {

@@ -273,9 +273,8 @@ private:
     std::unique_ptr<Locator> m_locator;
     bool m_locatorWantsChanges = false;
     bool m_permuted = false;
-    std::vector<Vec2> m_byInput;        // while run() works by rank: the points in input order
-    bool m_keepPoints = true;           // false: runForTopology() (m_byInput not kept)
-    std::vector<std::int32_t> m_names;  // runForTopology()'s names, until the batch starts
+    std::vector<Vec2> m_byInput;  // while run() works by rank: the points in input order
+    bool m_keepPoints = true;     // false: runForTopology() (m_byInput not kept)
     bool m_bulk = false;
     Bounds m_bounds{};
     Control m_ctl;
