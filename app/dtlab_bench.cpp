@@ -28,7 +28,8 @@ struct BenchResult {
     double median = 0;
     InsertStats stats;
     std::int32_t triangles = 0;
-    bool twoCores = false;  // the runs took the two-core path
+    bool twoCores = false;   // the runs took the two-core path
+    std::string oneCoreWhy;  // with --threads 2, why they did not
     LocatorStats locStats;
     // Calls past the floating-point filter, by the stage that decided them (one run).
     std::int64_t orientStage[kNumPredicateTiers] = {}, incircleStage[kNumPredicateTiers] = {};
@@ -57,7 +58,7 @@ BenchResult timeRuns(const BenchArgs& args, const std::vector<Vec2>& points) {
         std::vector<Vec2> pts = points;                    // copied outside the timed region
         const auto t0 = std::chrono::steady_clock::now();
         if (args.threads == 2) {
-            if (auto joined = triangulateOnTwoCores(pts, args.engine.options())) {
+            if (auto joined = triangulateOnTwoCores(pts, args.engine.options(), &res.oneCoreWhy)) {
                 const auto t1 = std::chrono::steady_clock::now();
                 if (r >= args.warmup)
                     res.ms.push_back(std::chrono::duration<double, std::milli>(t1 - t0).count());
@@ -97,6 +98,7 @@ void printBenchJson(const BenchArgs& args, std::size_t n, const BenchResult& res
     j["order"] = args.engine.order;
     j["boundary"] = args.engine.boundary;
     j["threads"] = res.twoCores ? 2 : 1;
+    if (!res.oneCoreWhy.empty()) j["one_core_because"] = res.oneCoreWhy;
     j["repeat"] = args.repeat;
     j["warmup"] = args.warmup;
     j["median_ms"] = res.median;
@@ -125,6 +127,7 @@ void printBenchText(const BenchArgs& args, std::size_t n, const BenchResult& res
     std::printf("%s: n=%zu locate=%s order=%s boundary=%s threads=%d\n", args.input.c_str(), n,
                 args.engine.locate.c_str(), args.engine.order.c_str(), args.engine.boundary.c_str(),
                 res.twoCores ? 2 : 1);
+    if (!res.oneCoreWhy.empty()) std::printf("  one core: %s\n", res.oneCoreWhy.c_str());
     std::printf("  median %.2f ms (min %.2f, max %.2f, %d runs after %d warm-up run(s))\n",
                 res.median, res.ms.front(), res.ms.back(), args.repeat, args.warmup);
     std::printf(

@@ -6,6 +6,7 @@
 #include "core/engine/text_util.h"
 
 #include <array>
+#include <cstdio>
 #include <functional>
 #include <iostream>
 #include <stdexcept>
@@ -70,10 +71,28 @@ InsertOptions EngineFlags::options() const {
 }
 
 std::optional<JoinedTriangulation> triangulateOnTwoCores(std::vector<Vec2>& points,
-                                                         const InsertOptions& options) {
-    if (options.boundary != Boundary::Exact || options.locator != LocatorKind::Walk) return {};
+                                                         const InsertOptions& options,
+                                                         std::string* declined) {
+    auto decline = [&](const std::string& why) {
+        if (declined) *declined = why;
+        return std::nullopt;
+    };
+    if (options.boundary != Boundary::Exact || options.locator != LocatorKind::Walk)
+        return decline("the two-core path takes the exact boundary and the walk only");
     const std::optional<Vec2> split = splitPoint(points);
-    if (!split) return {};
+    if (!split) return decline("too few points to split");
+    // The pilot's predicate calls are timed with the run but not counted as the triangulation's.
+    const PredicateCounters before = predicateCounters();
+    const SplitPilot pilot = pilotSplit(points, *split, options);
+    predicateCounters() = before;
+    if (!pilot.pays()) {
+        char why[160];
+        std::snprintf(why, sizeof why,
+                      "a pilot on %zu sampled points: two halves and their join would cost %.2f "
+                      "of one run's work, the join alone %.2f",
+                      pilot.sample, pilot.ratio(), pilot.seamShare());
+        return decline(pilot.joined ? why : "a half of a sample has no triangle");
+    }
     // Both halves run on threads of their own, the caller's waits. On the caller's thread, in a
     // process that had triangulated before (dtlab bench's timed runs), a half's steps that fill
     // new buffers (picking its points, the BRIO sort, the copy in insertion order) took up to
@@ -92,7 +111,9 @@ std::optional<JoinedTriangulation> triangulateOnTwoCores(std::vector<Vec2>& poin
     leftThread.join();
     rightThread.join();
     for (const Half& half : halves) predicateCounters() += half.counts;
-    return joinHalves(points, std::move(halves[0].result), std::move(halves[1].result));
+    auto joined = joinHalves(points, std::move(halves[0].result), std::move(halves[1].result));
+    if (!joined) return decline("a half has no triangle");
+    return joined;
 }
 
 std::unique_ptr<Inserter> EngineFlags::makeInserter(std::vector<Vec2> points) const {

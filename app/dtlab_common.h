@@ -42,9 +42,11 @@ struct EngineFlags {
 // The batch triangulation on two cores (core/engine/halves.h: the halves on two threads, then
 // joined; the points move into the result). Empty, the points untouched, when that path does not
 // apply (another boundary or locator than exact and walk, a set too small to split, a half on
-// one line): run the inserter then.
+// one line, a pilot run on a sample that finds the split would cost more than it saves): run the
+// inserter then. `declined`, when given, gets why in a few words (empty when it applies).
 std::optional<JoinedTriangulation> triangulateOnTwoCores(std::vector<Vec2>& points,
-                                                         const InsertOptions& options);
+                                                         const InsertOptions& options,
+                                                         std::string* declined = nullptr);
 
 // The process' headless GL context (OSMesa, made current on first use); fail()s when there is
 // none. GL locators on it must be destroyed before main returns. dtlab-gl only.

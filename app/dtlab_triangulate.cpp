@@ -34,16 +34,18 @@ struct Triangulated {
     std::vector<std::int32_t> skipped;
     InsertStats stats;
     int threads = 1;
+    std::string oneCoreWhy;  // with --threads 2, why the one inserter ran
 };
 
 Triangulated triangulate(const TriangulateArgs& args, std::vector<Vec2> points) {
+    std::string why;
     if (args.threads == 2) {
-        if (auto joined = triangulateOnTwoCores(points, args.engine.options()))
-            return {std::move(joined->mesh), std::move(joined->skipped), joined->stats, 2};
+        if (auto joined = triangulateOnTwoCores(points, args.engine.options(), &why))
+            return {std::move(joined->mesh), std::move(joined->skipped), joined->stats, 2, {}};
     }
     const auto made = args.engine.makeInserter(std::move(points));  // GL locators need a context
     made->run();
-    Triangulated out{made->takeMesh(), made->skipped(), made->stats(), 1};
+    Triangulated out{made->takeMesh(), made->skipped(), made->stats(), 1, std::move(why)};
     return out;
 }
 
@@ -138,6 +140,7 @@ void runTriangulate(const TriangulateArgs& args) {
               << ms << " ms (locate " << args.engine.locate << ", order " << args.engine.order
               << ", boundary " << args.engine.boundary
               << (result.threads == 2 ? ", two halves on two threads, joined" : "") << ")\n";
+    if (!result.oneCoreWhy.empty()) std::cout << "  one core: " << result.oneCoreWhy << "\n";
     if (!result.skipped.empty()) {
         std::cout << "  " << result.skipped.size()
                   << " duplicate point(s) skipped, the first occurrence kept: "

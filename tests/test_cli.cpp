@@ -241,6 +241,24 @@ TEST(Cli, BenchJsonHasTheAdvertisedFields) {
     EXPECT_GT(j.at("flips_per_point").get<double>(), 1.0);
 }
 
+TEST(Cli, TwoThreadsRunOneInserterWhereTheSplitWouldCostMore) {
+    // Points on a parabola: the pilot finds the join a fifth of the work; the run says why it
+    // kept to one core, and bench reports the one thread it used.
+    const fs::path dir = tempDir();
+    const std::string in = (dir / "p.node").string();
+    ASSERT_EQ(dtlab("gen parabola 20000 --seed 2 -o " + in).status, 0);
+    const Result r = dtlab("triangulate " + in + " -o " + (dir / "out").string() + " --check");
+    ASSERT_EQ(r.status, 0) << r.out;
+    EXPECT_EQ(r.out.find("two halves on two threads"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("one core: a pilot on 4095 sampled points"), std::string::npos) << r.out;
+    const Result b = dtlab("bench --input " + in + " --repeat 1 --json");
+    ASSERT_EQ(b.status, 0) << b.out;
+    const auto j = nlohmann::json::parse(b.out);
+    EXPECT_EQ(j.at("threads").get<int>(), 1);
+    EXPECT_NE(j.at("one_core_because").get<std::string>().find("the join alone"),
+              std::string::npos);
+}
+
 TEST(Cli, BenchJsonSaysWhichStageDecidedThePredicates) {
     const fs::path dir = tempDir();
     const std::string in = (dir / "g.node").string();

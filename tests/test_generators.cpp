@@ -23,7 +23,7 @@ std::vector<double> sortedRadii(const std::vector<Vec2>& pts, Vec2 centre) {
 
 TEST(Generators, EveryKindIsNamedAndRepeatsForTheSameSeed) {
     const std::vector<Generator> all = allGenerators();
-    EXPECT_EQ(all.size(), 16u);
+    EXPECT_EQ(all.size(), 20u);
     for (Generator g : all) {
         SCOPED_TRACE(toString(g));
         EXPECT_EQ(parseGenerator(toString(g)), g);

@@ -158,3 +158,40 @@ TEST(Halves, TheSplitHalvesEveryDistributionWithinOnePerCent) {
         }
     }
 }
+
+TEST(Halves, APilotDeclinesTheSplitWhereTheSeamGrowsWithTheSet) {
+    // On a parabola the vertex next to the split is the apex of a fan over its whole half, and
+    // the join erases almost every edge; between two facing arcs every point has a seam
+    // triangle. There the join is a fifth of the whole run's work at any size (and slower per
+    // call than the inserter); elsewhere the seam is a thin line and the span about half.
+    for (Generator g : allGenerators()) {
+        if (g == Generator::AllCollinear) continue;
+        for (const std::uint64_t seed : {1, 3}) {
+            const std::vector<Vec2> pts = generatePoints(g, 1 << 16, seed);
+            const SplitPilot pilot = pilotSplit(pts, *splitPoint(pts), {});
+            SCOPED_TRACE(std::string(toString(g)) + " seed " + std::to_string(seed));
+            EXPECT_EQ(pilot.sample, kPilotSample);
+            EXPECT_TRUE(pilot.joined);
+            const bool seamGrows = g == Generator::Parabola || g == Generator::ConvexHull ||
+                                   g == Generator::FacingArcs;
+            EXPECT_EQ(pilot.pays(), !seamGrows)
+                << "span " << pilot.ratio() << ", join " << pilot.seamShare();
+            if (seamGrows) {
+                EXPECT_GT(pilot.seamShare(), 0.15);
+            } else {
+                EXPECT_LT(pilot.ratio(), 0.8);
+                EXPECT_LT(pilot.seamShare(), 0.06);
+            }
+        }
+    }
+}
+
+TEST(Halves, APilotOfAHalfOnOneLineDoesNotPay) {
+    std::vector<Vec2> pts;
+    for (int i = 0; i < 5000; ++i) pts.push_back({-1.0 - i, 0.0});
+    const auto box = generatePoints(Generator::Uniform, 5001, 2);
+    pts.insert(pts.end(), box.begin(), box.end());
+    const SplitPilot pilot = pilotSplit(pts, *splitPoint(pts), {});
+    EXPECT_FALSE(pilot.joined);
+    EXPECT_FALSE(pilot.pays());
+}

@@ -15,7 +15,8 @@ namespace {
 constexpr const char* kNames[] = {
     "uniform",   "clusters",        "grid",          "rotated-grid",  "ngon",     "circle",
     "collinear", "near-duplicates", "huge-tiny-box", "all-collinear", "gaussian", "uneven-clusters",
-    "kuzmin",    "log-radial",      "disc-in-box",   "curves"};
+    "kuzmin",    "log-radial",      "disc-in-box",   "curves",        "parabola", "facing-arcs",
+    "spiral",    "convex-hull"};
 constexpr int kCount = static_cast<int>(std::size(kNames));
 
 double gaussian(SplitMix64& rng) {
@@ -147,6 +148,33 @@ Vec2 discInBoxPoint(SplitMix64& rng) {
     return {800 + d.x, 800 + d.y};
 }
 
+// y = x^2 for x uniform over [-1, 1], scaled to the box: the hull holds every point.
+Vec2 parabolaPoint(SplitMix64& rng) {
+    const double x = 2 * rng.uniform01() - 1;
+    return {800 + 800 * x, 1600 * x * x};
+}
+
+// Two arcs of radius 1000, a third of a turn each, bulging towards each other: their points face
+// across the middle of the box, 40 apart at the closest.
+Vec2 facingArcsPoint(SplitMix64& rng) {
+    const double t = (rng.uniform01() - 0.5) * 2 * std::numbers::pi / 3;
+    const double side = rng.below(2) ? 1.0 : -1.0;
+    return {800 + side * (20 + 1000 * (1 - std::cos(t))), 800 + 1000 * std::sin(t)};
+}
+
+// r = 700 s, angle 12 pi s, with s = sqrt(u) for a uniform u: evenly spread along the curve.
+Vec2 spiralPoint(SplitMix64& rng) {
+    const double s = std::sqrt(rng.uniform01());
+    const double a = 12 * std::numbers::pi * s;
+    return {800 + 700 * s * std::cos(a), 800 + 700 * s * std::sin(a)};
+}
+
+// Integer x in [-2^20, 2^20) and y = x^2 < 2^40: exact, so every distinct point is a hull vertex.
+Vec2 convexHullPoint(SplitMix64& rng) {
+    const double x = double(rng.below(1u << 21)) - double(1u << 20);
+    return {x, x * x};
+}
+
 // About sqrt(n/16) clusters of spread 20, each point in one picked at random.
 void clusters(std::vector<Vec2>& pts, std::size_t n, SplitMix64& rng) {
     const std::size_t k = std::max<std::size_t>(1, static_cast<std::size_t>(std::sqrt(n / 16.0)));
@@ -208,6 +236,10 @@ PointFn pointFunction(Generator kind) {
         case Generator::LogRadial: return logRadialPoint;
         case Generator::DiscInBox: return discInBoxPoint;
         case Generator::Curves: return onCurve;
+        case Generator::Parabola: return parabolaPoint;
+        case Generator::FacingArcs: return facingArcsPoint;
+        case Generator::Spiral: return spiralPoint;
+        case Generator::ConvexHull: return convexHullPoint;
         default: return nullptr;
     }
 }

@@ -29,6 +29,11 @@ enum class Generator : std::uint8_t {
     LogRadial,       // around the origin, the radius log-uniform over 12 decades (1e-12 ... 1)
     DiscInBox,       // 90 % in a disc of radius 4, 10 % spread over the 1600 x 1600 box
     Curves,          // on a line, a circle and a spiral, bunched towards one end of each
+    // Points in convex position and long facing chains: what a split in two and a join attack.
+    Parabola,    // y = x^2 for a uniform x: every point on the hull, both halves convex chains
+    FacingArcs,  // two circular arcs bulging towards each other across the middle
+    Spiral,      // an Archimedean spiral of six turns, evenly spread along its length
+    ConvexHull,  // integer x and y = x^2 exactly: every point a hull vertex, no rounding
 };
 
 const char* toString(Generator g);

@@ -28,6 +28,32 @@ inline constexpr std::size_t kSmallestSplit = 4096;
 std::optional<Vec2> splitPoint(const std::vector<Vec2>& points,
                                std::size_t smallest = kSmallestSplit);
 
+// Whether two halves split at `split` and joined cost less than the whole set in one, judged by a
+// pilot run on a sample (fixed seed: the same answer on every machine). It exists for the sets
+// whose seam is not a thin line across the set: points in convex position (a half's fan around
+// the vertex next to the split re-forms every time a point lands beyond it, and the join erases
+// nearly every edge of both halves) and long chains that face each other across the split (the
+// seam holds a triangle for every point of both). The join reaches its points by input index,
+// a cache miss each at a million points, so a seam of a fixed share of the set costs more than
+// the one inserter's whole run.
+struct SplitPilot {
+    std::size_t sample = 0;  // points in the pilot's sample
+    // Work in predicate calls (in-circle tests, walk steps, and two per insertion): the whole
+    // sample in one, each half, and the join.
+    std::int64_t whole = 0, left = 0, right = 0, join = 0;
+    bool joined = false;  // the sample's halves could be joined
+    // The two-core path's span (the larger half, then the join) over the one inserter's work.
+    double ratio() const;
+    // The join's work over the one inserter's. A seam across the set grows as the square root of
+    // its size: about 0.01 to 0.04 of the work at the pilot's size, less on the whole set. A
+    // seam that grows with the set stays near 0.2 at any size.
+    double seamShare() const;
+    bool pays() const;
+};
+inline constexpr std::size_t kPilotSample = 4095;
+SplitPilot pilotSplit(const std::vector<Vec2>& points, Vec2 split, const InsertOptions& options,
+                      std::size_t sample = kPilotSample);
+
 // One half, triangulated by the batch inserter on the caller's thread; its vertex ids and
 // duplicates are input indices. The mesh holds no points (G empty). The left half's corner table
 // has room for the whole result, which joinHalves() builds in it.

@@ -41,6 +41,10 @@ constexpr GeneratorChoice kGenerators[] = {
     {Generator::LogRadial, "Radii over 12 decades", 300},
     {Generator::DiscInBox, "Dense disc in a sparse box", 300},
     {Generator::Curves, "On curves, bunched", 200},
+    {Generator::Parabola, "On a parabola (all on the hull)", 60},
+    {Generator::FacingArcs, "Two facing arcs", 80},
+    {Generator::Spiral, "On a spiral", 120},
+    {Generator::ConvexHull, "Convex position, exact", 60},
 };
 
 }  // namespace
