@@ -8,7 +8,9 @@
 # usage: bash .ci/bench_compare.sh [BUILD_DIR]      (default: build)
 # Environment:
 #   BENCH_KINDS         distributions at BENCH_N (default: uniform gaussian clusters
-#                       uneven-clusters kuzmin log-radial grid rotated-grid disc-in-box curves)
+#                       uneven-clusters kuzmin log-radial grid rotated-grid disc-in-box curves,
+#                       and the sets that attack the two-core split and join: circle parabola
+#                       convex-hull facing-arcs spiral)
 #   BENCH_N             their size (default 1048576 = 2^20)
 #   BENCH_LARGE         sizes of uniform points after them (default "4194304 16777216"; "" none)
 #   BENCH_ROUNDS        alternating rounds at BENCH_N (default 7)
@@ -18,7 +20,7 @@
 set -euo pipefail
 
 build=${1:-build}
-kinds=${BENCH_KINDS:-uniform gaussian clusters uneven-clusters kuzmin log-radial grid rotated-grid disc-in-box curves}
+kinds=${BENCH_KINDS:-uniform gaussian clusters uneven-clusters kuzmin log-radial grid rotated-grid disc-in-box curves circle parabola convex-hull facing-arcs spiral}
 n=${BENCH_N:-1048576}
 large=${BENCH_LARGE-4194304 16777216}
 rounds=${BENCH_ROUNDS:-7}
@@ -66,6 +68,7 @@ input_for() { echo "$dir/$1_$2.node"; }
 # drifts, so both medians cover the same span of time), then the peak memory of each tool.
 ratios=()
 ratios2=()
+ratios21=()
 bench_row() {
     local kind=$1 size=$2 nrounds=$3 input dt_json="" dt2_json="" cg_json="" dt_ms=() dt2_ms=() cg_ms=() r
     input=$(input_for "$kind" "$size")
@@ -99,6 +102,7 @@ bench_row() {
         ratio2=$(calc "%.2f" "$dt2 / $cg")
         ratios+=("$size $ratio")
         ratios2+=("$size $ratio2")
+        ratios21+=("$size $(calc "%.2f" "$dt2 / $dt") $kind")
         # Every run must have made a triangulation of the same size (CGAL counts finite faces).
         for json in "$dt_json" "$dt2_json"; do
             if [[ $(field "$json" triangles) != $(field "$cg_json" faces) ]]; then
@@ -111,7 +115,9 @@ bench_row() {
         rm -f "$dir/out".{node,ele,neigh}
         (( have_cgal )) && cg_mem=$(peak_mib "$cgal" "$input" --repeat 1)
     fi
-    printf '| %s | %s | %s | %s | %s | %s | **%s** | %s | %s | %s | %s | %s |\n' "$kind" "$count" "$dt" "$cg" "$ratio" "$dt2" "$ratio2" \
+    local paths
+    paths=$(jq -r 'if .one_core_because then "one core" else "two" end' <<<"$dt2_json")
+    printf '| %s | %s | %s | %s | %s | %s | **%s** | %s | %s | %s | %s | %s | %s |\n' "$kind" "$count" "$dt" "$cg" "$ratio" "$dt2" "$ratio2" "$(calc "%.2f" "$dt2 / $dt") ($paths)" \
         "$(calc "%.0f" "$dt * 1e6 / $count")" "$(calc "%.2f" "$(field "$dt_json" walk_steps_per_point)")" \
         "$(predicates "$dt_json" "$count")" "$dt_mem" "$cg_mem"
 }
@@ -129,8 +135,8 @@ echo "Delaunay_triangulation_2<Epick> range insert, one warm-up and one timed ru
 echo "medians of $rounds alternating rounds at n = $n ($rounds_large at larger n). Peak memory:"
 echo "dtlab triangulate IN -o BASE (read, triangulate on two cores, write) and cgal_baseline IN --repeat 1."
 echo
-echo "| distribution | n | dtlab 1 core ms | CGAL ms | 1 core/CGAL | dtlab 2 cores ms | 2 cores/CGAL | dtlab ns/point | walk steps/point | predicate calls/point past the filter, by stage | dtlab peak MiB | CGAL peak MiB |"
-echo "|---|---:|---:|---:|---:|---:|---:|---:|---:|---|---:|---:|"
+echo "| distribution | n | dtlab 1 core ms | CGAL ms | 1 core/CGAL | dtlab 2 cores ms | 2 cores/CGAL | 2 cores/1 core (path) | dtlab ns/point | walk steps/point | predicate calls/point past the filter, by stage | dtlab peak MiB | CGAL peak MiB |"
+echo "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|---:|---:|"
 for kind in $kinds; do bench_row "$kind" "$n" "$rounds"; done
 for size in $large; do bench_row uniform "$size" "$rounds_large"; done
 
@@ -142,4 +148,7 @@ if (( have_cgal )) && (( ${#ratios[@]} )); then
     printf '%s\n' "${ratios2[@]}" | awk -v n="$n" '
         $1 == n { s += log($2); c += 1; if ($2 > worst) worst = $2 }
         END { if (c) printf "The same with --threads 2 (two halves at once, joined; CGAL on one core): %.2f (worst %.2f)\n", exp(s / c), worst }'
+    printf '%s\n' "${ratios21[@]}" | awk -v n="$n" '
+        $1 == n { if ($2 > worst) { worst = $2; which = $3 } }
+        END { if (which != "") printf "Worst of --threads 2 against --threads 1 at n = %d: %.2f (%s)\n", n, worst, which }'
 fi
