@@ -318,7 +318,7 @@ TEST(CliOutputs, ARenameThatFailsLastUndoesTheOnesBeforeIt) {
     fs::remove_all(dir);
 }
 
-TEST(CliOutputs, TwoWritersOfOneSetLeaveOneWriterSWholeSet) {
+TEST(CliOutputs, TwoWritersOfOneSetLeaveOneOfTheirWholeSets) {
     const fs::path dir = freshDir("race");
     const std::string a = (dir / "a.node").string(), b = (dir / "b.node").string();
     ASSERT_EQ(runDtlab("gen uniform 3000 --seed 1 -o " + a).status, 0);

@@ -504,7 +504,7 @@ std::string whatOf(const std::function<void()>& write) {
 
 }  // namespace
 
-TEST(WriteTextFile, ADeviceThatTakesNothingGivesTheSystemSReason) {
+TEST(WriteTextFile, ADeviceThatTakesNothingGivesTheSystemsReason) {
     const std::string expect = std::string("cannot write /dev/full: ") + std::strerror(ENOSPC);
     // A body smaller than the stream's buffer (the error shows at the flush) and one larger.
     for (const std::size_t bytes : {std::size_t{10}, std::size_t{1} << 20}) {

@@ -555,8 +555,8 @@ void keepOld(Step& s) {
     }
     if (stickyRefuses(p.target, st))
         cannotWrite(p.out->path, errnoText(EPERM) +
-                                     " (it belongs to another user, in a folder that lets only "
-                                     "the owner replace a file)");
+                                     " (it belongs to another user, in a sticky "
+                                     "folder: only its owner may replace it)");
     if (linkOld(p.target, s.kept))
         s.keep = Keep::Link;
     else if (copyOld(p.target, st, s.kept))
