@@ -362,9 +362,12 @@ void removeTemp(Pending& p) {
 void prepareFolder(Pending& p, const struct stat* existing) {
     if (existing && !S_ISDIR(existing->st_mode)) cannotWrite(p.out->path, "it is not a folder");
     std::string pattern = hiddenPattern(p.target, "tmp");
-    if (!::mkdtemp(pattern.data())) cannotWrite(p.out->path, errnoText(errno));
-    p.temp = pattern;
-    p.slot = track(p.temp, true);
+    {
+        const SignalsHeld held;  // no signal between creating it and registering it
+        if (!::mkdtemp(pattern.data())) cannotWrite(p.out->path, errnoText(errno));
+        p.temp = pattern;
+        p.slot = track(p.temp, true);
+    }
     if (::chmod(p.temp.c_str(), modeFor(existing, true)) != 0)
         cannotWrite(p.out->path, errnoText(errno));
 }
@@ -384,10 +387,14 @@ void prepare(Pending& p) {
         return;
     }
     std::string pattern = hiddenPattern(p.target, "tmp");
-    const int fd = ::mkstemp(pattern.data());
-    if (fd < 0) cannotWrite(path, errnoText(errno));
-    p.temp = pattern;
-    p.slot = track(p.temp, false);
+    int fd = -1;
+    {
+        const SignalsHeld held;  // no signal between creating it and registering it
+        fd = ::mkstemp(pattern.data());
+        if (fd < 0) cannotWrite(path, errnoText(errno));
+        p.temp = pattern;
+        p.slot = track(p.temp, false);
+    }
     const bool modeSet = ::fchmod(fd, modeFor(exists ? &st : nullptr, false)) == 0;
     const int e = errno;
     ::close(fd);
