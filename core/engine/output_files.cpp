@@ -29,6 +29,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cerrno>
+#include <chrono>
 #include <csignal>
 #include <cstdio>
 #include <cstdlib>
@@ -40,6 +41,7 @@
 #include <stdexcept>
 #include <streambuf>
 #include <system_error>
+#include <thread>
 #include <utility>
 #include <vector>
 
@@ -460,26 +462,35 @@ struct Step {
 class FolderLocks {
 public:
     explicit FolderLocks(const std::vector<Step>& steps) {
-        std::vector<std::pair<std::pair<dev_t, ino_t>, int>> fds;
+        struct Folder {
+            std::pair<dev_t, ino_t> id;
+            int fd;
+            const std::string* shown;  // an output in it, to name in a message
+            bool operator<(const Folder& o) const { return id < o.id; }
+        };
+        std::vector<Folder> folders;
         for (const Step& s : steps) {
             const int fd =
                 ::open(folderOf(s.p->target).c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
             if (fd < 0) continue;
             struct stat st {};
             const bool known =
-                ::fstat(fd, &st) != 0 || std::any_of(fds.begin(), fds.end(), [&](const auto& f) {
-                    return f.first == std::make_pair(st.st_dev, st.st_ino);
+                ::fstat(fd, &st) != 0 || std::any_of(folders.begin(), folders.end(), [&](auto& f) {
+                    return f.id == std::make_pair(st.st_dev, st.st_ino);
                 });
             if (known) {
                 ::close(fd);
                 continue;
             }
-            fds.push_back({{st.st_dev, st.st_ino}, fd});
+            folders.push_back({{st.st_dev, st.st_ino}, fd, &s.p->out->path});
+            m_fds.push_back(fd);
         }
-        std::sort(fds.begin(), fds.end());
-        for (const auto& f : fds) {
-            while (::flock(f.second, LOCK_EX) != 0 && errno == EINTR) {}
-            m_fds.push_back(f.second);
+        std::sort(folders.begin(), folders.end());
+        for (const Folder& f : folders) {
+            if (!lock(f.fd)) {
+                for (const int fd : m_fds) ::close(fd);
+                cannotWrite(*f.shown, "its folder stays locked by another program");
+            }
         }
     }
     ~FolderLocks() {
@@ -493,6 +504,19 @@ public:
     }
 
 private:
+    // A commit holds its lock for milliseconds: waiting a minute means that another program
+    // holds it (a lock on a folder is rare), and a write never waits for ever. False then; a
+    // folder that cannot be locked at all (no flock there) is renamed into unlocked.
+    static bool lock(int fd) {
+        const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+        while (::flock(fd, LOCK_EX | LOCK_NB) != 0) {
+            if (errno != EWOULDBLOCK && errno != EINTR) return true;
+            if (std::chrono::steady_clock::now() > until) return false;
+            std::this_thread::sleep_for(std::chrono::milliseconds(5));
+        }
+        return true;
+    }
+
     std::vector<int> m_fds;
 };
 
@@ -683,8 +707,8 @@ void commit(std::vector<Pending>& pending) {
         if (!p.temp.empty()) steps.push_back(Step{&p});
     }
     if (steps.empty()) return;
+    const FolderLocks locks(steps);  // waiting for another writer, Ctrl-C still works
     const SignalsHeld held;
-    const FolderLocks locks(steps);
     try {
         for (Step& s : steps) keepOld(s);
         const auto unkept = std::count_if(steps.begin(), steps.end(),
