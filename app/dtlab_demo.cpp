@@ -64,12 +64,12 @@ void runDemo(const DemoArgs& args) {
     so.circumcircles = false;
     so.title = "Delaunay Lab demo: " + std::to_string(result.numTriangles()) +
                " triangles and their Voronoi diagram";
-    writeTextFile(args.outDir + "/demo.svg", [&](std::ostream& os) { writeSvg(os, result, so); });
-    writeTextFile(args.outDir + "/demo.node",
-                  [&](std::ostream& os) { writeNode(os, result.G, 0); });
-    writeTextFile(args.outDir + "/demo.ele", [&](std::ostream& os) { writeEle(os, result, 0); });
-    writeTextFile(args.outDir + "/demo.neigh",
-                  [&](std::ostream& os) { writeNeigh(os, result, 0); });
+    writeTextFiles({
+        {args.outDir + "/demo.svg", [&](std::ostream& os) { writeSvg(os, result, so); }, {}},
+        {args.outDir + "/demo.node", [&](std::ostream& os) { writeNode(os, result.G, 0); }, {}},
+        {args.outDir + "/demo.ele", [&](std::ostream& os) { writeEle(os, result, 0); }, {}},
+        {args.outDir + "/demo.neigh", [&](std::ostream& os) { writeNeigh(os, result, 0); }, {}},
+    });
 
     std::cout
         << "demo: " << result.numTriangles() << " triangles, " << total << " operations (" << tests

@@ -2,17 +2,18 @@
 // computed, every expectation met), prints a lesson's answer key, or writes a student handout.
 #include "app/dtlab_common.h"
 
+#include "core/engine/output_files.h"
 #include "core/engine/text_util.h"
 #include "core/teaching/lesson.h"
 
 #include <fcntl.h>
 #include <spawn.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 #include <sstream>
 
@@ -172,9 +173,25 @@ std::string htmlText(const std::string& text) {
     return out;
 }
 
+// What a child said on stderr: its last line, without its "dtlab: error: " (fail adds it).
+std::string childMessage(int fd) {
+    std::string said;
+    char buf[4096];
+    for (ssize_t n; (n = ::read(fd, buf, sizeof buf)) != 0;) {
+        if (n < 0 && errno == EINTR) continue;
+        if (n < 0) break;
+        said.append(buf, static_cast<std::size_t>(n));
+    }
+    while (!said.empty() && said.back() == '\n') said.pop_back();
+    said = said.substr(said.rfind('\n') + 1);
+    const std::string prefix = "dtlab: error: ";
+    return said.rfind(prefix, 0) == 0 ? said.substr(prefix.size()) : said;
+}
+
 // One slide per stop (DIR/01.png, ...) by `dtlab-gl render --slides`: GL runs in dtlab-gl, so
-// that dtlab itself never loads it.
-void renderSlides(const std::string& lesson, const std::string& dir) {
+// that dtlab itself never loads it. DIR is a temporary folder that becomes `shownDir`: a
+// message from dtlab-gl names shownDir.
+void renderSlides(const std::string& lesson, const std::string& dir, const std::string& shownDir) {
     std::error_code ec;
     const std::filesystem::path self = std::filesystem::read_symlink("/proc/self/exe", ec);
     const std::string gl = ((ec ? std::filesystem::path(".") : self.parent_path()) / "dtlab-gl");
@@ -184,20 +201,29 @@ void renderSlides(const std::string& lesson, const std::string& dir) {
     for (std::string& a : args) argv.push_back(a.data());
     argv.push_back(nullptr);
     std::cout.flush();
+    int err[2];
+    if (::pipe2(err, O_CLOEXEC) != 0) fail("cannot start " + gl + ": " + std::strerror(errno));
     pid_t pid = 0;
     posix_spawn_file_actions_t quiet;  // its "wrote N slides" is not ours to print
     posix_spawn_file_actions_init(&quiet);
     posix_spawn_file_actions_addopen(&quiet, 1, "/dev/null", O_WRONLY, 0);
-    const int err = posix_spawn(&pid, gl.c_str(), &quiet, nullptr, argv.data(), environ);
+    posix_spawn_file_actions_adddup2(&quiet, err[1], 2);
+    const int spawned = posix_spawn(&pid, gl.c_str(), &quiet, nullptr, argv.data(), environ);
     posix_spawn_file_actions_destroy(&quiet);
-    if (err != 0)
+    ::close(err[1]);
+    std::string said = spawned == 0 ? childMessage(err[0]) : std::string();
+    ::close(err[0]);
+    if (spawned != 0)
         fail("the handout's pictures need " + gl +
-             ", which cannot be started: " + std::strerror(err));
+             ", which cannot be started: " + std::strerror(spawned));
     int status = 0;
-    waitpid(pid, &status, 0);
+    while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {}
     if (!WIFEXITED(status))
         fail("the handout's pictures could not be rendered (" + gl + " render crashed)");
-    if (WEXITSTATUS(status) != 0) throw Exit{WEXITSTATUS(status)};  // it said why, in one line
+    if (WEXITSTATUS(status) == 0) return;
+    for (std::size_t at; (at = said.find(dir)) != std::string::npos;)
+        said.replace(at, dir.size(), shownDir);
+    fail(said.empty() ? gl + " render failed" : said, WEXITSTATUS(status));
 }
 
 // The handout as HTML: each stop's slide (PNGs in FILE_files/ beside it), text and question.
@@ -243,33 +269,32 @@ std::string handoutMarkdown(const Lesson& lesson, const LessonPlan& plan) {
 }
 
 // A handout for students: the lesson's text and questions, no answers; Markdown, or HTML with
-// each stop's picture when FILE ends in .html.
+// each stop's picture when FILE ends in .html. The HTML and its folder of pictures are one set:
+// both new, or both as they were.
 void runHandout(const LessonArgs& args) {
     namespace fs = std::filesystem;
     const fs::path out(args.output);
     const bool html = out.extension() == ".html" || out.extension() == ".htm";
+    const std::string pictures = out.stem().string() + "_files";
+    const std::string folder = (out.parent_path() / pictures).string();
     std::string text;
+    std::vector<OutputFile> files = {{args.output, [&](std::ostream& os) { os << text; }, {}}};
     try {
         const Lesson lesson = loadLesson(args.file);
         const LessonPlan plan = planLesson(lesson);
-        const std::string pictures = out.stem().string() + "_files";
         if (html) {
-            renderSlides(args.file, (out.parent_path() / pictures).string());
             text = handoutHtml(lesson, plan, pictures);
+            files.push_back({folder, {}, [&](const std::string& dir) {
+                                 renderSlides(args.file, dir, folder);
+                             }});
         } else {
             text = handoutMarkdown(lesson, plan);
         }
     } catch (const LessonError& e) {
         fail(e.what());
     }
-    std::ofstream file(args.output, std::ios::binary);
-    file << text;
-    file.close();
-    if (!file) fail("cannot write " + args.output);
-    std::cout << "wrote " << args.output
-              << (html ? " (pictures in " +
-                             (out.parent_path() / (out.stem().string() + "_files")).string() + ")"
-                       : std::string())
+    writeTextFiles(files, {args.file});
+    std::cout << "wrote " << args.output << (html ? " (pictures in " + folder + ")" : std::string())
               << "\n";
 }
 

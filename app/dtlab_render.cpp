@@ -2,6 +2,7 @@
 #include "app/dtlab_common.h"
 
 #include "core/engine/generators.h"
+#include "core/engine/output_files.h"
 #include "ui/gl/mesh_renderer.h"
 #include "ui/gui.h"
 #include "ui/lesson_player.h"
@@ -149,12 +150,14 @@ std::pair<int, int> checkRenderArgs(const RenderArgs& args) {
     return {width, height};
 }
 
-// One slide per stop of the open lesson: DIR/01.png, DIR/02.png, ...
+// One slide per stop of the open lesson: DIR/01.png, DIR/02.png, ..., written as one set (all
+// of them, or none and the old ones kept).
 void writeSlides(ui::Gui& gui, ui::AppState& state, const RenderArgs& args, int height) {
     const std::size_t stops = state.lessonPlayer.lesson->stops.size();
     std::error_code ec;
     std::filesystem::create_directories(args.slides, ec);
-    std::string error;
+    std::vector<std::string> pngs(stops);
+    std::vector<OutputFile> files;
     for (std::size_t k = 0; k < stops; ++k) {
         ui::goToStop(state, k);
         for (int i = 0; i < 3; ++i) gui.frame();
@@ -164,8 +167,13 @@ void writeSlides(ui::Gui& gui, ui::AppState& state, const RenderArgs& args, int 
             std::cout << "stop " << k + 1 << ": the question does not fit the slide\n";
         char name[32];
         std::snprintf(name, sizeof name, "/%02zu.png", k + 1);
-        if (!gui.saveScreenshot(args.slides + name, error)) fail(error);
+        pngs[k] = gui.screenshotPng();
+        if (pngs[k].empty()) fail("cannot write " + args.slides + name + ": no image to write");
+        files.push_back({args.slides + name, [&png = pngs[k]](std::ostream& os) {
+                             os.write(png.data(), std::ssize(png));
+                         }});
     }
+    writeTextFiles(files);
     std::cout << "wrote " << stops << " slides to " << args.slides << "\n";
 }
 

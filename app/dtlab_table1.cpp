@@ -4,6 +4,7 @@
 #include "app/dtlab_common.h"
 
 #include "core/engine/generators.h"
+#include "core/engine/output_files.h"
 #include "ui/gl/idbuffer_gl.h"
 #include "ui/gl/imgui_gl.h"
 #include "ui/gui.h"
@@ -16,7 +17,6 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 #include <map>
 #include <sstream>
@@ -552,25 +552,23 @@ void runSweep(const Table1Args& args, std::size_t n, const std::vector<int>& swe
 
 void writeCsv(const std::string& path, const std::vector<std::size_t>& sizes, const MethodSet& on,
               const Timings& t) {
-    std::ofstream out(path);
-    if (!out) fail("cannot write " + path);
-    out << "n";
-    for (int m = 0; m < kNumMethods; ++m) {
-        if (on[m]) out << "," << kMethods[m].name;
-    }
-    out << "\n";
-    char v[32];
-    for (std::size_t k = 0; k < sizes.size(); ++k) {
-        out << sizes[k];
+    writeTextFile(path, [&](std::ostream& out) {
+        out << "n";
         for (int m = 0; m < kNumMethods; ++m) {
-            if (!on[m]) continue;
-            std::snprintf(v, sizeof v, "%.3f", t.table[k][m]);
-            out << "," << v;
+            if (on[m]) out << "," << kMethods[m].name;
         }
         out << "\n";
-    }
-    out.flush();
-    if (!out) fail("cannot write " + path + " (disk full?)");
+        char v[32];
+        for (std::size_t k = 0; k < sizes.size(); ++k) {
+            out << sizes[k];
+            for (int m = 0; m < kNumMethods; ++m) {
+                if (!on[m]) continue;
+                std::snprintf(v, sizeof v, "%.3f", t.table[k][m]);
+                out << "," << v;
+            }
+            out << "\n";
+        }
+    });
     std::printf("\nwrote %s\n", path.c_str());
 }
 

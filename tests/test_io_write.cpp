@@ -16,6 +16,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <limits>
 #include <random>
 #include <sstream>
@@ -487,5 +488,73 @@ TEST(WriteTextFile, AtomicWriteAndErrors) {
     const PointSet back = readPointsFile(node);
     EXPECT_EQ(back.indexBase, 1);
     EXPECT_EQ(back.points, m.G);
+    std::filesystem::remove_all(dir);
+}
+
+namespace {
+
+std::string whatOf(const std::function<void()>& write) {
+    try {
+        write();
+    } catch (const std::runtime_error& e) {
+        return e.what();
+    }
+    return "no exception";
+}
+
+}  // namespace
+
+TEST(WriteTextFile, ADeviceThatTakesNothingGivesTheSystemsReason) {
+    const std::string expect = std::string("cannot write /dev/full: ") + std::strerror(ENOSPC);
+    // A body smaller than the stream's buffer (the error shows at the flush) and one larger.
+    for (const std::size_t bytes : {std::size_t{10}, std::size_t{1} << 20}) {
+        EXPECT_EQ(whatOf([&] {
+                      writeTextFile("/dev/full",
+                                    [&](std::ostream& os) { os << std::string(bytes, 'x'); });
+                  }),
+                  expect)
+            << bytes;
+    }
+}
+
+TEST(WriteTextFiles, AFolderOutputReplacesTheOldFolderWholeOrNotAtAll) {
+    const auto dir = scratchDir("folder");
+    const std::string folder = (dir / "pictures").string(), page = (dir / "page.html").string();
+    std::filesystem::create_directories(folder);
+    std::ofstream(folder + "/01.png") << "old 1";
+    std::ofstream(folder + "/02.png") << "old 2";
+    std::ofstream(page) << "old page";
+    auto fill = [](int n, bool fail) {
+        return [n, fail](const std::string& d) {
+            for (int k = 1; k <= n; ++k)
+                std::ofstream(d + "/0" + std::to_string(k) + ".png") << "new " << k;
+            if (fail) throw std::runtime_error("cannot write 03.png: the picture failed");
+        };
+    };
+    auto set = [&](bool fail) {
+        writeTextFiles({{page, [](std::ostream& os) { os << "new page"; }},
+                        {folder, {}, fill(fail ? 2 : 1, fail)}});
+    };
+    // A fill that fails: the old page and the old folder, nothing else.
+    EXPECT_EQ(whatOf([&] { set(true); }), "cannot write 03.png: the picture failed");
+    EXPECT_EQ(slurp(page), "old page");
+    EXPECT_EQ(slurp(folder + "/01.png"), "old 1");
+    EXPECT_EQ(slurp(folder + "/02.png"), "old 2");
+    std::size_t entries = 0;
+    for ([[maybe_unused]] const auto& e : std::filesystem::directory_iterator(dir)) ++entries;
+    EXPECT_EQ(entries, 2u);  // no temporary left
+    // Success: the folder is the new one (its old 02.png gone with it).
+    set(false);
+    EXPECT_EQ(slurp(page), "new page");
+    EXPECT_EQ(slurp(folder + "/01.png"), "new 1");
+    EXPECT_FALSE(std::filesystem::exists(folder + "/02.png"));
+    entries = 0;
+    for ([[maybe_unused]] const auto& e : std::filesystem::directory_iterator(dir)) ++entries;
+    EXPECT_EQ(entries, 2u);
+    // A file where the folder goes is refused before anything is written.
+    std::filesystem::remove_all(folder);
+    std::ofstream(folder) << "a file";
+    EXPECT_EQ(whatOf([&] { set(false); }), "cannot write " + folder + ": it is not a folder");
+    EXPECT_EQ(slurp(page), "new page");
     std::filesystem::remove_all(dir);
 }

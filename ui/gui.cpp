@@ -1,6 +1,7 @@
 // Gui: ImGui context, fonts (DejaVu when installed), light theme, frames and PNG screenshots.
 #include "ui/gui.h"
 
+#include "core/engine/output_files.h"
 #include "core/teaching/lesson.h"
 
 #include <imgui.h>
@@ -11,6 +12,8 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
+#include <ostream>
+#include <stdexcept>
 
 namespace dlab::ui {
 
@@ -199,7 +202,8 @@ const std::vector<std::uint8_t>& Gui::lastFrame(int& width, int& height) {
     return m_pixels;
 }
 
-bool Gui::saveScreenshot(const std::string& path, std::string& error) {
+// The pixels of a screenshot: the next frame captured (or, headless, the last one).
+void Gui::captureScreenshot() {
     if (m_pixelsStale && m_platform.headless()) {
         readFramebuffer();
     } else if (m_pixels.empty() || m_pixelsStale) {
@@ -208,21 +212,46 @@ bool Gui::saveScreenshot(const std::string& path, std::string& error) {
         frame();
         m_capture = was;
     }
+}
+
+bool Gui::saveScreenshot(const std::string& path, std::string& error) {
+    captureScreenshot();
     return writePng(path, m_pixels, m_pixelsW, m_pixelsH, error);
 }
 
-bool writePng(const std::string& path, const std::vector<std::uint8_t>& rgba, int width, int height,
-              std::string& error) {
-    if (width <= 0 || height <= 0 || rgba.size() < static_cast<std::size_t>(width) * height * 4) {
-        error = "no image to write";
-        return false;
-    }
+std::string Gui::screenshotPng() {
+    captureScreenshot();
+    return encodePng(m_pixels, m_pixelsW, m_pixelsH);
+}
+
+std::string encodePng(const std::vector<std::uint8_t>& rgba, int width, int height) {
+    if (width <= 0 || height <= 0 || rgba.size() < static_cast<std::size_t>(width) * height * 4)
+        return {};
     // Opaque output: the framebuffer's alpha is whatever blending left there.
     std::vector<std::uint8_t> opaque(
         rgba.begin(), rgba.begin() + static_cast<std::ptrdiff_t>(width) * height * 4);
     for (std::size_t i = 3; i < opaque.size(); i += 4) opaque[i] = 255;
-    if (!stbi_write_png(path.c_str(), width, height, 4, opaque.data(), width * 4)) {
-        error = "cannot write " + path;
+    std::string png;
+    const auto append = [](void* context, void* data, int size) {
+        static_cast<std::string*>(context)->append(static_cast<const char*>(data),
+                                                   static_cast<std::size_t>(size));
+    };
+    if (!stbi_write_png_to_func(append, &png, width, height, 4, opaque.data(), width * 4))
+        return {};
+    return png;
+}
+
+bool writePng(const std::string& path, const std::vector<std::uint8_t>& rgba, int width, int height,
+              std::string& error) {
+    const std::string png = encodePng(rgba, width, height);
+    if (png.empty()) {
+        error = "cannot write " + path + ": no image to write";
+        return false;
+    }
+    try {
+        writeTextFile(path, [&](std::ostream& os) { os.write(png.data(), std::ssize(png)); });
+    } catch (const std::runtime_error& e) {
+        error = e.what();  // "cannot write PATH: why"
         return false;
     }
     return true;

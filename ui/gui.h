@@ -39,8 +39,10 @@ public:
     // The pixels of the last frame as RGBA rows, top row first (headless: any time after
     // frame(); in a window: with captureFrames on).
     const std::vector<std::uint8_t>& lastFrame(int& width, int& height);
-    // Captures the next frame (or, headless, the last one) to a PNG file.
+    // Captures the next frame (or, headless, the last one) to a PNG file (writePng).
     bool saveScreenshot(const std::string& path, std::string& error);
+    // The same capture as the bytes of a PNG file (empty: nothing drawn), for a set of files.
+    std::string screenshotPng();
     // Requests that frame() captures its image (needed for windows: the back buffer is gone
     // after the swap).
     void captureFrames(bool on) { m_capture = on; }
@@ -53,6 +55,7 @@ public:
 private:
     void loadFonts();
     void readFramebuffer();
+    void captureScreenshot();
     void applyTheme();
     float fontSize() const;  // presentation: grows with the window's height
 
@@ -71,7 +74,10 @@ private:
     double m_lastTime = 0;
 };
 
-// Writes RGBA rows (top first) to a PNG file; false with a reason on failure.
+// RGBA rows (top first) as the bytes of a PNG file; empty when there is no image.
+std::string encodePng(const std::vector<std::uint8_t>& rgba, int width, int height);
+// Writes RGBA rows (top first) to a PNG file, whole or not at all (writeTextFile); false with
+// "cannot write PATH: why" on failure, the old file left as it was.
 bool writePng(const std::string& path, const std::vector<std::uint8_t>& rgba, int width, int height,
               std::string& error);
 

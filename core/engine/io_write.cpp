@@ -1,27 +1,17 @@
-// Writers for a finished mesh: Triangle formats, OFF, OBJ and SVG, plus atomic file output.
+// Writers for a finished mesh: Triangle formats, OFF, OBJ and SVG.
 //
 // [SECTION] Text output helpers
-// [SECTION] Files
 // [SECTION] Triangle formats
 // [SECTION] OFF / OBJ
 // [SECTION] SVG
 #include "core/engine/io_write.h"
 
 #include <algorithm>
-#include <cerrno>
 #include <charconv>
 #include <cmath>
-#include <cstdio>
-#include <filesystem>
-#include <fstream>
 #include <limits>
 #include <ostream>
 #include <stdexcept>
-#include <system_error>
-
-#include <fcntl.h>
-#include <sys/stat.h>
-#include <unistd.h>
 
 namespace dlab {
 
@@ -73,169 +63,6 @@ void checkTriangles(const Mesh& m, const char* who) {
 }
 
 }  // namespace
-
-//-----------------------------------------------------------------------------------------------
-// [SECTION] Files
-//-----------------------------------------------------------------------------------------------
-
-namespace {
-
-namespace fs = std::filesystem;
-
-[[noreturn]] void cannotWrite(const std::string& path, const std::string& why) {
-    throw std::runtime_error("cannot write " + path + ": " + why);
-}
-
-std::string errnoText(int e) { return std::generic_category().message(e); }
-
-// Where the bytes of an output go: the file a symbolic link points to (followed link by link,
-// so a dangling link names the file it will create), not the link.
-fs::path targetOf(const std::string& path) {
-    fs::path p = path;
-    std::error_code ec;
-    for (int hops = 0; hops < 40 && fs::is_symlink(fs::symlink_status(p, ec)); ++hops) {
-        const fs::path to = fs::read_symlink(p, ec);
-        if (ec) break;
-        p = to.is_absolute() ? to : p.parent_path() / to;
-    }
-    return p;
-}
-
-// The identity of an existing file (device and inode, so hard links match too), or of the
-// path it would have.
-struct FileId {
-    bool exists = false;
-    dev_t dev = 0;
-    ino_t ino = 0;
-    std::string name;  // weakly canonical path, for files that do not exist yet
-    bool operator==(const FileId& o) const {
-        return exists == o.exists && (exists ? dev == o.dev && ino == o.ino : name == o.name);
-    }
-};
-
-FileId fileId(const std::string& path) {
-    FileId id;
-    struct stat st {};
-    if (::stat(path.c_str(), &st) == 0) {
-        id.exists = true;
-        id.dev = st.st_dev;
-        id.ino = st.st_ino;
-    } else {
-        std::error_code ec;
-        const fs::path c = fs::weakly_canonical(fs::absolute(path, ec), ec);
-        id.name = (ec ? fs::path(path) : c).lexically_normal().string();
-    }
-    return id;
-}
-
-// One output on its way: written to a unique temporary beside its target, renamed at the end;
-// or, for a device (/dev/null, a terminal), written straight through.
-struct Pending {
-    const OutputFile* out = nullptr;
-    fs::path target;
-    std::string temp;  // empty: written through
-};
-
-void writeBody(const std::string& shownPath, const std::string& file, const OutputFile& out,
-               std::ios::openmode mode) {
-    errno = 0;
-    std::ofstream os(file, mode);
-    if (!os) cannotWrite(shownPath, errnoText(errno != 0 ? errno : EIO));
-    out.body(os);
-    errno = 0;
-    os.flush();
-    if (!os) cannotWrite(shownPath, errnoText(errno != 0 ? errno : EIO));
-    errno = 0;
-    os.close();
-    if (!os) cannotWrite(shownPath, errnoText(errno != 0 ? errno : EIO));
-}
-
-// The mode a new file gets (0666 less the umask), or the mode of the file it replaces; the owner
-// can always read and write what they asked to write (Emscripten's umask reads as 0777).
-mode_t modeFor(const struct stat* existing) {
-    if (existing) return existing->st_mode & 07777;
-    const mode_t mask = ::umask(0);
-    ::umask(mask);
-    return (0666 & ~mask) | 0600;
-}
-
-void prepare(Pending& p) {
-    const std::string& path = p.out->path;
-    struct stat st {};
-    const bool exists = ::stat(p.target.c_str(), &st) == 0;
-    if (exists && S_ISDIR(st.st_mode)) cannotWrite(path, "it is a directory");
-    if (exists && !S_ISREG(st.st_mode)) {
-        // A device or pipe is written through; a pipe without a reader is refused, not waited on.
-        const int fd = ::open(p.target.c_str(), O_WRONLY | O_NONBLOCK | O_NOCTTY | O_CLOEXEC);
-        if (fd < 0 && errno == ENXIO) cannotWrite(path, "it is a named pipe that nobody reads");
-        if (fd < 0) cannotWrite(path, errnoText(errno));
-        ::close(fd);
-        return;
-    }
-    const fs::path dir = p.target.parent_path();
-    std::string pattern = (dir / ("." + p.target.filename().string() + ".tmp.XXXXXX")).string();
-    const int fd = ::mkstemp(pattern.data());
-    if (fd < 0) cannotWrite(path, errnoText(errno));
-    p.temp = pattern;
-    const bool modeSet = ::fchmod(fd, modeFor(exists ? &st : nullptr)) == 0;
-    ::close(fd);
-    if (!modeSet) cannotWrite(path, errnoText(errno));
-}
-
-}  // namespace
-
-void checkOutputFiles(const std::vector<OutputFile>& outputs,
-                      const std::vector<std::string>& inputs) {
-    std::vector<FileId> ids;
-    for (const OutputFile& o : outputs) {
-        if (o.path.empty() || fs::path(o.path).filename().empty())
-            cannotWrite("\"" + o.path + "\"", "an output needs a file name");
-        const FileId id = fileId(o.path);
-        for (const std::string& in : inputs) {
-            if (fileId(in) == id)
-                cannotWrite(o.path, "it is the input file " + in + " (choose another output)");
-        }
-        for (std::size_t k = 0; k < ids.size(); ++k) {
-            if (ids[k] == id) cannotWrite(o.path, "it is also the output " + outputs[k].path);
-        }
-        ids.push_back(id);
-    }
-}
-
-void writeTextFiles(const std::vector<OutputFile>& outputs,
-                    const std::vector<std::string>& inputs) {
-    checkOutputFiles(outputs, inputs);
-    std::vector<Pending> pending(outputs.size());
-    auto removeTemps = [&] {
-        for (const Pending& p : pending) {
-            if (!p.temp.empty()) std::remove(p.temp.c_str());
-        }
-    };
-    try {
-        for (std::size_t k = 0; k < outputs.size(); ++k) {
-            pending[k].out = &outputs[k];
-            pending[k].target = targetOf(outputs[k].path);
-            prepare(pending[k]);
-        }
-        for (const Pending& p : pending) {
-            const std::string file = p.temp.empty() ? p.target.string() : p.temp;
-            writeBody(p.out->path, file, *p.out, std::ios::binary | std::ios::trunc);
-        }
-        for (Pending& p : pending) {
-            if (p.temp.empty()) continue;
-            if (std::rename(p.temp.c_str(), p.target.c_str()) != 0)
-                cannotWrite(p.out->path, errnoText(errno));
-            p.temp.clear();
-        }
-    } catch (...) {
-        removeTemps();
-        throw;
-    }
-}
-
-void writeTextFile(const std::string& path, const std::function<void(std::ostream&)>& body) {
-    writeTextFiles({OutputFile{path, body}});
-}
 
 //-----------------------------------------------------------------------------------------------
 // [SECTION] Triangle formats

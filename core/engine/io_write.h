@@ -1,48 +1,26 @@
 // Writers for a finished mesh: Triangle's .node/.ele/.neigh and .v.node/.v.edge, OFF, OBJ, SVG.
 //
 // Every writer takes a std::ostream& and writes text only; failures show in the stream's state
-// (writeTextFile checks it). Coordinates are written in the shortest form that reads back to the
-// same double (appendShortest), so a .node written here and read by parseNode is bit-exact,
+// (writeTextFile, in output_files.h, checks it). Coordinates are written in the shortest form
+// that reads back to the same double (appendShortest), so a .node written here and read by
+// parseNode is bit-exact,
 // subnormals and ±DBL_MAX included. Ids are in indexBase (0 or 1; anything else throws
 // std::invalid_argument); "no neighbour" / "ray" is -1 whatever the base, as in Triangle.
 #pragma once
 
 #include "core/engine/geometry.h"
 #include "core/engine/mesh.h"
-#include "core/engine/numbers.h"  // appendShortest
+#include "core/engine/numbers.h"       // appendShortest
+#include "core/engine/output_files.h"  // writeTextFile(s): every writer here goes through them
 #include "core/engine/voronoi.h"
 
 #include <cstdint>
-#include <functional>
 #include <iosfwd>
 #include <string>
 #include <string_view>
 #include <vector>
 
 namespace dlab {
-
-// One output file and what to write into it.
-struct OutputFile {
-    std::string path;
-    std::function<void(std::ostream&)> body;
-};
-
-// Writes several outputs so that either all of them replace their files or none does: every
-// body is written to a unique temporary beside its file (".NAME.tmp.XXXXXX", the user's own
-// NAME.tmp untouched), then all are renamed over their files (atomic on POSIX: readers see the
-// old file or the new one). A symbolic link is followed (its target is replaced, not the link);
-// a device or pipe (/dev/null, a terminal) is written straight through; a directory is refused.
-// Before anything is written, refuses (std::runtime_error "cannot write PATH: why") an empty
-// file name, an output that is one of `inputs` (also through a link), and two outputs that are
-// the same file. Throws the same on any failure to create, write or rename, after removing the
-// temporaries; an exception from a body is passed on, the temporaries removed.
-void writeTextFiles(const std::vector<OutputFile>& outputs,
-                    const std::vector<std::string>& inputs = {});
-// writeTextFiles' checks alone (the bodies are not called): to refuse before any work.
-void checkOutputFiles(const std::vector<OutputFile>& outputs,
-                      const std::vector<std::string>& inputs = {});
-// writeTextFiles with one output.
-void writeTextFile(const std::string& path, const std::function<void(std::ostream&)>& body);
 
 // Triangle .node: "N 2 0 0", then "i x y" per point.
 void writeNode(std::ostream& os, const std::vector<Vec2>& points, int indexBase = 0);

@@ -2,6 +2,7 @@
 // file shows (the logic of files and sessions: logic/test_files.cpp).
 #include "core/engine/generators.h"
 #include "core/engine/io_read.h"
+#include "tests/full_disk.h"
 #include "tests/ui/ui_harness.h"
 #include "ui/files/files.h"
 #include "ui/files/gif_export.h"
@@ -16,6 +17,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -133,6 +135,51 @@ TEST(Files, AnimatedGifHasOneFramePerStepAsRendered) {
     st.files.gif = req;
     dlab::ui::serviceCaptures(h.gui());
     EXPECT_NE(st.files.notice.find("steps.gif"), std::string::npos) << st.files.notice;
+}
+
+TEST(Files, ACaptureThatCannotBeWrittenKeepsTheOldFileAndSaysWhy) {
+    UiHarness h(800, 600);
+    auto& st = h.state();
+    st.engine.seek(10);
+    h.frames(2);
+    const std::string noSpace = std::strerror(ENOSPC);
+    auto gif = [&](const std::string& path) {
+        dlab::ui::GifRequest req;
+        req.path = path;
+        req.from = 2;
+        req.to = 6;
+        req.every = 2;
+        st.files.gif = req;
+        st.files.notice.clear();
+        dlab::ui::serviceCaptures(h.gui());
+    };
+    // A device that takes nothing: the reason, never "wrote".
+    EXPECT_FALSE(dlab::ui::saveScreenshotFile(h.gui(), "/dev/full"));
+    EXPECT_NE(st.files.notice.find("/dev/full: " + noSpace), std::string::npos) << st.files.notice;
+    gif("/dev/full");
+    EXPECT_NE(st.files.notice.find("/dev/full: " + noSpace), std::string::npos) << st.files.notice;
+    // A full disk: the old files stay whole, no temporary is left.
+    const dlab::testutil::SmallDisk disk("gui");
+    if (!disk.ok()) GTEST_SKIP() << disk.why();
+    const fs::path d = disk.dir();
+    std::ofstream(d / "old.png") << "old png";
+    std::ofstream(d / "old.gif") << "old gif";
+    disk.fill();
+    EXPECT_FALSE(dlab::ui::saveScreenshotFile(h.gui(), (d / "old.png").string()));
+    EXPECT_NE(st.files.notice.find("old.png: " + noSpace), std::string::npos) << st.files.notice;
+    st.files.screenshotFolder = d.string();  // F12: a new name in that folder
+    st.files.screenshotRequested = true;
+    st.files.notice.clear();
+    dlab::ui::serviceCaptures(h.gui());
+    EXPECT_NE(st.files.notice.find(noSpace), std::string::npos) << st.files.notice;
+    gif((d / "old.gif").string());
+    EXPECT_NE(st.files.notice.find("old.gif: " + noSpace), std::string::npos) << st.files.notice;
+    EXPECT_EQ(dlab::testutil::slurpFile(d / "old.png"), "old png");
+    EXPECT_EQ(dlab::testutil::slurpFile(d / "old.gif"), "old gif");
+    std::vector<std::string> names;
+    for (const auto& e : fs::directory_iterator(d)) names.push_back(e.path().filename().string());
+    std::sort(names.begin(), names.end());
+    EXPECT_EQ(names, (std::vector<std::string>{"filler", "old.gif", "old.png"}));
 }
 
 TEST(Files, ABadFileChangesNothingAndShowsOneLineNamingFileAndLine) {

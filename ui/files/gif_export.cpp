@@ -2,6 +2,7 @@
 // loop extension), and the export of a range of steps rendered through the GUI.
 #include "ui/files/gif_export.h"
 
+#include "core/engine/output_files.h"
 #include "ui/gui.h"
 
 #include <gif_lib.h>
@@ -10,7 +11,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <filesystem>
+#include <ostream>
+#include <stdexcept>
 #include <unordered_map>
 
 namespace dlab::ui {
@@ -95,8 +97,20 @@ bool quantizeFrame(const std::vector<GifByteType>& r, const std::vector<GifByteT
 
 struct GifWriter::File {
     GifFileType* gif = nullptr;
+    std::ostream* os = nullptr;
     bool failed = false;
 };
+
+namespace {
+
+// giflib's output: the stream (a temporary of writeTextFile); a short count is its error.
+int writeToStream(GifFileType* gif, const GifByteType* bytes, int n) {
+    auto* os = static_cast<std::ostream*>(gif->UserData);
+    os->write(reinterpret_cast<const char*>(bytes), n);
+    return *os ? n : 0;
+}
+
+}  // namespace
 
 GifWriter::GifWriter() : m_file(std::make_unique<File>()) {}
 
@@ -105,24 +119,24 @@ GifWriter::~GifWriter() {
         int err = 0;
         EGifCloseFile(m_file->gif, &err);
         m_file->gif = nullptr;
-        std::error_code ec;
-        std::filesystem::remove(m_path, ec);  // never finished: no half file left behind
     }
 }
 
-bool GifWriter::open(const std::string& path, int width, int height, std::string& error) {
+bool GifWriter::open(std::ostream& os, const std::string& path, int width, int height,
+                     std::string& error) {
     if (width < 1 || height < 1 || width > 65535 || height > 65535) {
         error = path + ": a GIF frame must be 1 to 65535 pixels wide and high, not " +
                 std::to_string(width) + "x" + std::to_string(height);
         return false;
     }
     int err = 0;
-    GifFileType* gif = EGifOpenFileName(path.c_str(), false, &err);
+    GifFileType* gif = EGifOpen(&os, writeToStream, &err);
     if (!gif) {
         error = gifError(path, err);
         return false;
     }
     m_file->gif = gif;
+    m_file->os = &os;
     m_path = path;
     m_width = width;
     m_height = height;
@@ -201,8 +215,6 @@ bool GifWriter::close(std::string& error) {
     if (!closed || m_file->failed || m_frames == 0) {
         if (error.empty())
             error = closed ? m_path + ": no frame was written" : gifError(m_path, err);
-        std::error_code ec;
-        std::filesystem::remove(m_path, ec);
         return false;
     }
     return true;
@@ -237,6 +249,34 @@ std::vector<std::uint8_t> CaptureRegion(Gui& gui, bool wholeWindow, int& width, 
     return out;
 }
 
+namespace {
+
+// Renders steps req.from .. req.to (every `every`) into a GIF on `os`; false with `error` set.
+bool renderGifFrames(Gui& gui, const GifRequest& req, std::size_t every, std::ostream& os,
+                     int& frames, std::string& error) {
+    Engine& e = gui.state().engine;
+    GifWriter gif;
+    for (std::size_t p = req.from;; p = std::min(req.to, p + every)) {
+        e.seek(p);
+        // Two frames: ImGui settles a layout (tables measure columns) in the first.
+        gui.frame();
+        gui.frame();
+        int w = 0, h = 0;
+        const std::vector<std::uint8_t> px = CaptureRegion(gui, req.wholeWindow, w, h);
+        if (gif.frames() == 0 && !gif.open(os, req.path, w, h, error)) return false;
+        if (w * h * 4 != static_cast<int>(px.size()) ||
+            !gif.addFrame(px.data(), req.delayMs, error)) {
+            if (error.empty()) error = req.path + ": the window changed size during the export";
+            return false;
+        }
+        if (p >= req.to || e.position() < p) break;  // done, or the run ended before `to`
+    }
+    frames = gif.frames();
+    return gif.close(error);
+}
+
+}  // namespace
+
 int exportStepsGif(Gui& gui, const GifRequest& req, std::string& error) {
     AppState& st = gui.state();
     Engine& e = st.engine;
@@ -261,29 +301,22 @@ int exportStepsGif(Gui& gui, const GifRequest& req, std::string& error) {
     const bool wasRunning = st.run.running;
     st.run.running = false;
     gui.captureFrames(true);
-    GifWriter gif;
-    bool ok = true;
-    for (std::size_t p = req.from;; p = std::min(req.to, p + every)) {
-        e.seek(p);
-        // Two frames: ImGui settles a layout (tables measure columns) in the first.
-        gui.frame();
-        gui.frame();
-        int w = 0, h = 0;
-        const std::vector<std::uint8_t> px = CaptureRegion(gui, req.wholeWindow, w, h);
-        if (gif.frames() == 0 && !gif.open(req.path, w, h, error)) {
-            ok = false;
-            break;
-        }
-        if (w * h * 4 != static_cast<int>(px.size()) ||
-            !gif.addFrame(px.data(), req.delayMs, error)) {
-            if (error.empty()) error = req.path + ": the window changed size during the export";
-            ok = false;
-            break;
-        }
-        if (p >= req.to || e.position() < p) break;  // done, or the run ended before `to`
+    struct GifFailed {};
+    int frames = 0;
+    bool ok = false;
+    try {
+        // Written whole to a temporary, then renamed over the old file: a failure keeps it.
+        writeTextFile(req.path, [&](std::ostream& os) {
+            ok = renderGifFrames(gui, req, every, os, frames, error);
+            // A stream that failed to write: writeTextFile says why (the system's reason).
+            if (!ok && os) throw GifFailed{};
+        });
+    } catch (const GifFailed&) {
+        ok = false;
+    } catch (const std::runtime_error& failed) {
+        error = failed.what();  // "cannot write PATH: why"
+        ok = false;
     }
-    const int frames = gif.frames();
-    ok = ok && gif.close(error);
     gui.captureFrames(false);
     e.seek(saved);
     st.run.running = wasRunning;

@@ -6,6 +6,7 @@
 #include "ui/app_state.h"
 
 #include <cstdint>
+#include <iosfwd>
 #include <memory>
 #include <string>
 #include <vector>
@@ -21,11 +22,12 @@ public:
     GifWriter(const GifWriter&) = delete;
     GifWriter& operator=(const GifWriter&) = delete;
 
-    // Creates the file (width x height frames). False with a one-line reason.
-    bool open(const std::string& path, int width, int height, std::string& error);
+    // Starts a GIF of width x height frames on `os` (`path` names it in messages). False with a
+    // one-line reason.
+    bool open(std::ostream& os, const std::string& path, int width, int height, std::string& error);
     // One frame: RGBA rows, top row first, `width` pixels each; shown for delayMs.
     bool addFrame(const std::uint8_t* rgba, int delayMs, std::string& error);
-    // Finishes the file. False (and the file removed) when anything failed.
+    // Finishes the GIF. False when anything failed.
     bool close(std::string& error);
     int frames() const { return m_frames; }
 
@@ -37,8 +39,9 @@ private:
 };
 
 // Renders operations request.from .. request.to (every request.every) through `gui` and writes
-// them to request.path; the run goes back to where it was. Returns the number of frames, 0 with
-// a one-line `error` on failure.
+// them to request.path, whole or not at all (writeTextFile: a failure keeps the old file); the
+// run goes back to where it was. Returns the number of frames, 0 with a one-line `error` on
+// failure.
 int exportStepsGif(Gui& gui, const GifRequest& request, std::string& error);
 
 // The pixels of the last frame inside the canvas (or the whole frame), RGBA, top row first.
