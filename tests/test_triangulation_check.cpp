@@ -309,7 +309,8 @@ std::vector<Planted> plantDefects(const Mesh& base) {
     }
     {
         Planted& p = plant(Kind::OppositeNotInvolution);
-        const std::int32_t far = d == 0 || tri(d) == 0 || c == 0 ? base.numCorners() - 1 : 0;
+        std::int32_t far = 0;  // a corner of a third triangle
+        while (tri(far) == tri(c) || tri(far) == tri(d)) far += 3;
         p.mesh.O[d] = far;  // O[c] = d still, but O[d] no longer c
         p.corners = {c};
         p.needsOpposites = true;

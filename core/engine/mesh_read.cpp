@@ -701,6 +701,7 @@ JsonArrays readJsonArrays(Json& j) {
     j.expect('{');
     if (!j.accept('}')) {
         do {
+            j.peek();  // the key's own line
             const LineNo at = j.line();
             const std::string key = j.string();
             if (std::find(a.seen.begin(), a.seen.end(), key) != a.seen.end())

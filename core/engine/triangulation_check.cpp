@@ -195,23 +195,28 @@ private:
                              [](TriState s) { return s == TriState::Good; });
     }
 
-    // The corners grouped by the edge they face: a bucket sort by the lower vertex, then a sort
-    // of each (small) bucket by the higher one.
-    std::vector<std::int32_t> cornersByEdge() const {
+    // The corners grouped by the edge they face: a bucket sort by the lower vertex (read in
+    // corner order), then a sort of each small, contiguous bucket by the higher one.
+    struct EdgeRef {
+        std::int32_t hi, corner;
+    };
+    std::vector<EdgeRef> cornersByEdge(std::vector<std::int32_t>& start) const {
         const Mesh& m = m_m;
-        std::vector<std::int32_t> start(static_cast<std::size_t>(m.numVertices()) + 1, 0);
-        const auto lo = [&](std::int32_t c) { return std::min(m.V[next(c)], m.V[prev(c)]); };
-        const auto hi = [&](std::int32_t c) { return std::max(m.V[next(c)], m.V[prev(c)]); };
+        start.assign(static_cast<std::size_t>(m.numVertices()) + 1, 0);
         for (std::int32_t c = 0; c < m.numCorners(); ++c)
-            if (m_state[tri(c)] != TriState::Broken) ++start[lo(c) + 1];
+            if (m_state[tri(c)] != TriState::Broken)
+                ++start[std::min(m.V[next(c)], m.V[prev(c)]) + 1];
         std::partial_sum(start.begin(), start.end(), start.begin());
-        std::vector<std::int32_t> out(static_cast<std::size_t>(start.back()));
+        std::vector<EdgeRef> out(static_cast<std::size_t>(start.back()));
         std::vector<std::int32_t> fill(start.begin(), start.end() - 1);
-        for (std::int32_t c = 0; c < m.numCorners(); ++c)
-            if (m_state[tri(c)] != TriState::Broken) out[fill[lo(c)]++] = c;
+        for (std::int32_t c = 0; c < m.numCorners(); ++c) {
+            if (m_state[tri(c)] == TriState::Broken) continue;
+            const std::int32_t a = m.V[next(c)], b = m.V[prev(c)];
+            out[fill[std::min(a, b)]++] = {std::max(a, b), c};
+        }
         for (std::size_t v = 0; v + 1 < start.size(); ++v)
             std::sort(out.begin() + start[v], out.begin() + start[v + 1],
-                      [&](std::int32_t a, std::int32_t b) { return hi(a) < hi(b); });
+                      [](const EdgeRef& x, const EdgeRef& y) { return x.hi < y.hi; });
         return out;
     }
 
@@ -244,24 +249,27 @@ private:
 
     void groupEdges() {
         m_r.opposites.assign(m_m.V.size(), kNone);
-        const std::vector<std::int32_t> order = cornersByEdge();
-        const auto key = [&](std::int32_t c) {
-            return std::pair(std::min(m_m.V[next(c)], m_m.V[prev(c)]),
-                             std::max(m_m.V[next(c)], m_m.V[prev(c)]));
-        };
-        for (std::size_t i = 0; i < order.size();) {
-            std::size_t j = i + 1;
-            while (j < order.size() && key(order[j]) == key(order[i])) ++j;
-            pairEdge(order.data() + i, j - i);
-            i = j;
+        std::vector<std::int32_t> start;
+        const std::vector<EdgeRef> order = cornersByEdge(start);
+        std::vector<std::int32_t> run;
+        for (std::size_t v = 0; v + 1 < start.size(); ++v) {
+            const auto end = static_cast<std::size_t>(start[v + 1]);
+            for (auto i = static_cast<std::size_t>(start[v]); i < end;) {
+                run.clear();
+                std::size_t j = i;
+                for (; j < end && order[j].hi == order[i].hi; ++j) run.push_back(order[j].corner);
+                pairEdge(run.data(), run.size());
+                i = j;
+            }
         }
     }
 
     void checkOpposite(std::int32_t c) {
         const Mesh& m = m_m;
         const std::int32_t o = m.O[c], computed = m_r.opposites[c];
-        const std::string cs = "corner " + std::to_string(c) + " of " + tid(tri(c));
         const std::int32_t a = m.V[next(c)], b = m.V[prev(c)];
+        if (o != kNone && o == computed && m.O[o] == c) return;  // the pair the triangles make
+        const std::string cs = "corner " + std::to_string(c) + " of " + tid(tri(c));
         if (o == kNone) {
             if (computed != kNone)
                 add(Kind::OppositeWrongEdge, {tri(c), tri(computed)}, {a, b}, {c, computed},
@@ -321,12 +329,18 @@ private:
         m_used.assign(static_cast<std::size_t>(m.numVertices()), 0);
         for (std::int32_t c = 0; c < m.numCorners(); ++c)
             if (m_state[tri(c)] != TriState::Broken) m_used[m.V[c]] = 1;
-        m_sorted.resize(static_cast<std::size_t>(m.numVertices()));
-        std::iota(m_sorted.begin(), m_sorted.end(), 0);
-        std::sort(m_sorted.begin(), m_sorted.end(), [&](std::int32_t a, std::int32_t b) {
-            const Vec2 p = m.G[a], q = m.G[b];
-            return p.x < q.x || (p.x == q.x && (p.y < q.y || (p.y == q.y && a < b)));
+        struct At {
+            Vec2 p;
+            std::int32_t v;
+        };
+        std::vector<At> at(static_cast<std::size_t>(m.numVertices()));
+        for (std::int32_t v = 0; v < m.numVertices(); ++v) at[v] = {m.G[v], v};
+        std::sort(at.begin(), at.end(), [](const At& a, const At& b) {
+            return a.p.x < b.p.x ||
+                   (a.p.x == b.p.x && (a.p.y < b.p.y || (a.p.y == b.p.y && a.v < b.v)));
         });
+        m_sorted.resize(at.size());
+        for (std::size_t i = 0; i < at.size(); ++i) m_sorted[i] = at[i].v;
         for (std::size_t i = 0; i < m_sorted.size();) {
             std::size_t j = i + 1;
             while (j < m_sorted.size() && m.G[m_sorted[j]] == m.G[m_sorted[i]]) ++j;
@@ -381,8 +395,9 @@ private:
 
     void checkCoverage() {
         if (!m_good || m_edgesBroken || m_m.numTriangles() == 0) {
-            if (m_m.numTriangles() == 0 && hull().size() >= 3)
-                add(Kind::Hole, {}, hull(), {}, "no triangles: the points' hull is not covered");
+            std::vector<std::int32_t> h;
+            if (m_m.numTriangles() == 0 && (h = hull()).size() >= 3)
+                add(Kind::Hole, {}, h, {}, "no triangles: the points' hull is not covered");
             return;
         }
         indexBoundary();

@@ -1,4 +1,4 @@
-// Fuzz target: the corner table as text (parseCornerText) mesh reader and the exact checker on what it reads.
+// Fuzz target: the corner-table text reader (parseCornerText) and the exact checker.
 #include "tests/fuzz/fuzz_mesh.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {

@@ -1,4 +1,4 @@
-// Fuzz target: the JSON corner table or Delaunator output (parseMeshJson) mesh reader and the exact checker on what it reads.
+// Fuzz target: the JSON mesh reader (corner table or Delaunator) and the exact checker.
 #include "tests/fuzz/fuzz_mesh.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
