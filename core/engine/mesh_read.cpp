@@ -543,7 +543,12 @@ public:
     const std::string& name() const { return m_name; }
     LineNo line() const { return m_line; }
 
-    [[noreturn]] void error(const std::string& what) const { fail(m_name, m_line, what); }
+    // At the end of a text that ends with its last line's end, the last line is to blame.
+    [[noreturn]] void error(const std::string& what) const {
+        const bool pastLastLine =
+            m_pos >= m_text.size() && !m_text.empty() && m_text.back() == '\n';
+        fail(m_name, m_line - (pastLastLine ? 1 : 0), what);
+    }
 
     void ws() {
         while (m_pos < m_text.size()) {
