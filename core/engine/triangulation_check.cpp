@@ -131,8 +131,16 @@ public:
         m_r.points = m_m.numVertices();
         m_r.triangles = m_m.numTriangles();
         checkTriangles();
-        groupEdges();
-        if (m_o.hasOpposites) checkOpposites();
+        // A given O that pairs every shared edge consistently is the adjacency (the coverage
+        // test below proves that no other triangle has those edges); else the edges are sorted.
+        m_fast = m_o.hasOpposites && m_good && oppositesConsistent();
+        if (m_fast) {
+            m_r.opposites = m_m.O;
+            for (std::int32_t c = 0; c < m_m.numCorners(); ++c)
+                if (m_m.O[c] == kNone) m_boundary.push_back(c);
+        } else {
+            sortEdges();
+        }
         checkPoints();
         checkCoverage();
         checkDelaunay();
@@ -393,6 +401,34 @@ private:
         return kNone;
     }
 
+    // Every O in range, an involution across two triangles that run the edge both ways.
+    bool oppositesConsistent() const {
+        const Mesh& m = m_m;
+        for (std::int32_t c = 0; c < m.numCorners(); ++c) {
+            const std::int32_t o = m.O[c];
+            if (o == kNone) continue;
+            if (o < 0 || o >= m.numCorners() || tri(o) == tri(c) || m.O[o] != c ||
+                m.V[prev(o)] != m.V[next(c)] || m.V[next(o)] != m.V[prev(c)])
+                return false;
+        }
+        return true;
+    }
+
+    void sortEdges() {
+        groupEdges();
+        if (m_o.hasOpposites) checkOpposites();
+    }
+
+    // The boundary edges are the hull's, no two triangles on one side of an edge, Euler's count.
+    bool covered(const std::vector<std::int32_t>& h) {
+        indexBoundary();
+        m_outlineIsHull = m_boundary.size() == h.size();
+        for (std::size_t i = 0; i < h.size() && m_outlineIsHull; ++i)
+            m_outlineIsHull = boundaryEdge(h[i], h[(i + 1) % h.size()]) != kNone;
+        const std::int64_t euler = 2 * std::int64_t{m_r.usedPoints} - std::int64_t(h.size()) - 2;
+        return m_outlineIsHull && m_sameSide.empty() && euler == m_m.numTriangles();
+    }
+
     void checkCoverage() {
         if (!m_good || m_edgesBroken || m_m.numTriangles() == 0) {
             std::vector<std::int32_t> h;
@@ -400,13 +436,16 @@ private:
                 add(Kind::Hole, {}, h, {}, "no triangles: the points' hull is not covered");
             return;
         }
-        indexBoundary();
         const std::vector<std::int32_t> h = hull();
-        bool outlineIsHull = m_boundary.size() == h.size();
-        for (std::size_t i = 0; i < h.size() && outlineIsHull; ++i)
-            outlineIsHull = boundaryEdge(h[i], h[(i + 1) % h.size()]) != kNone;
+        if (covered(h)) return;
+        if (m_fast) {  // name what is wrong from the triangles themselves
+            m_fast = false;
+            m_boundary.clear();
+            sortEdges();
+            if (m_edgesBroken || covered(h)) return;
+        }
+        const bool outlineIsHull = m_outlineIsHull;
         const std::int64_t euler = 2 * std::int64_t{m_r.usedPoints} - std::int64_t(h.size()) - 2;
-        if (outlineIsHull && m_sameSide.empty() && euler == m_m.numTriangles()) return;
         findOverlaps();
         if (!outlineIsHull) traceOutline(h);
         if (outlineIsHull && m_r.count(Kind::Overlap) == 0 && !m_r.overlapSearchCut)
@@ -515,7 +554,7 @@ private:
     const CheckOptions& m_o;
     CheckReport m_r;
     std::vector<TriState> m_state;
-    bool m_good = true, m_edgesBroken = false;
+    bool m_good = true, m_edgesBroken = false, m_fast = false, m_outlineIsHull = false;
     std::vector<std::int32_t> m_boundary;  // corners facing an edge of one triangle
     std::vector<std::array<std::int32_t, 2>> m_sameSide;
     std::vector<char> m_used;
