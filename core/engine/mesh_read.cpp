@@ -275,6 +275,8 @@ void oppositesFromNeighbours(Mesh& m, const std::vector<std::int32_t>& neighbour
     }
 }
 
+}  // namespace
+
 void parseNeigh(std::string_view text, const std::string& name, ImportedMesh& im) {
     checkText(text, name);
     Lines lines(text, name);
@@ -314,8 +316,6 @@ void parseNeigh(std::string_view text, const std::string& name, ImportedMesh& im
     im.hasOpposites = true;
     im.inputs.push_back(name);
 }
-
-}  // namespace
 
 ImportedMesh parseEle(std::string_view ele, const std::string& eleName, const PointSet& nodes,
                       std::string_view neigh, const std::string& neighName) {
@@ -858,10 +858,9 @@ ImportedMesh readEleFile(const std::string& path, const std::string& pointsPath)
         fail(path, 0, "no " + nodePath + " beside it for the points (or name one with --points)");
     const PointSet nodes = readPointsFile(nodePath);
     const std::string neighPath = stem + ".neigh";
-    const bool hasNeigh = fileExists(neighPath);
-    const std::string ele = readText(path);
-    const std::string neigh = hasNeigh ? readText(neighPath) : std::string();
-    return parseEle(ele, path, nodes, neigh, hasNeigh ? neighPath : std::string());
+    ImportedMesh im = parseEle(readText(path), path, nodes);  // one file's text at a time
+    if (fileExists(neighPath)) parseNeigh(readText(neighPath), neighPath, im);
+    return im;
 }
 
 }  // namespace

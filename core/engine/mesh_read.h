@@ -68,6 +68,8 @@ bool isMeshPath(const std::string& path);
 // An .ele against given points (indexBase from the .node); `neigh` may be empty (none).
 ImportedMesh parseEle(std::string_view ele, const std::string& eleName, const PointSet& nodes,
                       std::string_view neigh = {}, const std::string& neighName = {});
+// A .neigh for a mesh read from an .ele: gives its O (hasOpposites), or throws.
+void parseNeigh(std::string_view neigh, const std::string& neighName, ImportedMesh& im);
 ImportedMesh parseOff(std::string_view text, const std::string& name);
 ImportedMesh parseObj(std::string_view text, const std::string& name);
 ImportedMesh parseCornerText(std::string_view text, const std::string& name);
