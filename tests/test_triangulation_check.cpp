@@ -576,8 +576,25 @@ TEST(TriangulationCheck, DtlabCheckAndRepairEndToEnd) {
     auto nd = testutil::runDtlab("check " + bad + ".ele --json");
     EXPECT_EQ(nd.status, 1) << nd.out;
     EXPECT_NE(nd.out.find("\"not-delaunay\": "), std::string::npos) << nd.out;
-    auto rep = testutil::runDtlab("repair " + bad + ".ele -o " + (dir / "fixed").string());
+    const std::string trace = (dir / "flips.jsonl").string();
+    auto rep = testutil::runDtlab("repair " + bad + ".ele -o " + (dir / "fixed").string() +
+                                  " --trace " + trace);
     EXPECT_EQ(rep.status, 0) << rep.out;
+    std::ifstream traceIn(trace);
+    std::size_t flipLines = 0;
+    for (std::string line; std::getline(traceIn, line); ++flipLines) {
+        EXPECT_NE(line.find("\"op\":\"Flip\""), std::string::npos) << line;
+    }
+    EXPECT_GE(flipLines, 1u);
+    EXPECT_NE(rep.out.find(": " + std::to_string(flipLines) + " flips ("), std::string::npos)
+        << rep.out;
+    {  // the vertex numbering kept: the same .node, byte for byte
+        std::ifstream a(bad + ".node"), b((dir / "fixed.node").string());
+        std::stringstream sa, sb;
+        sa << a.rdbuf();
+        sb << b.rdbuf();
+        EXPECT_EQ(sa.str(), sb.str());
+    }
     EXPECT_NE(rep.out.find(" flips ("), std::string::npos) << rep.out;
     EXPECT_NE(rep.out.find("valid Delaunay triangulation"), std::string::npos) << rep.out;
     EXPECT_EQ(testutil::runDtlab("check " + (dir / "fixed.ele").string()).status, 0);
