@@ -20,6 +20,7 @@ int main(int argc, char** argv) {
     dlab::cli::addBench(app);
     dlab::cli::addLesson(app);
     dlab::cli::addDiffTrace(app);
+    dlab::cli::addCheck(app);
     dlab::cli::addRender(app);
     dlab::cli::addTable1(app);
     int code = 0;

@@ -85,6 +85,7 @@ void addTrace(CLI::App& app);
 void addBench(CLI::App& app);
 void addLesson(CLI::App& app);     // dtlab_lesson.cpp
 void addDiffTrace(CLI::App& app);  // dtlab_diff_trace.cpp
+void addCheck(CLI::App& app);      // dtlab_check.cpp: check and repair
 void addRender(CLI::App& app);
 void addTable1(CLI::App& app);  // dtlab_table1.cpp
 

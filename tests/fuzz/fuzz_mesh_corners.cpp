@@ -1,0 +1,9 @@
+// Fuzz target: the corner-table text reader (parseCornerText) and the exact checker.
+#include "tests/fuzz/fuzz_mesh.h"
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+    const std::string_view text = dlab::fuzz::asText(data, size);
+    dlab::fuzz::checkMeshReader(text, "mesh.corners",
+                                [&] { return dlab::parseCornerText(text, "mesh.corners"); });
+    return 0;
+}
