@@ -45,8 +45,8 @@ std::unique_ptr<ui::Platform> headlessPlatform(int width, int height) {
         const char* renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
         const char* version = reinterpret_cast<const char*>(glGetString(GL_VERSION));
         g_info = {headlessApi(*platform), renderer ? renderer : "?", version ? version : "?"};
-        std::cerr << "dtlab: GL: " << g_info.renderer << " (" << g_info.version << ") on "
-                  << g_info.api << ", --gl " << glFlag() << "\n";
+        std::cerr << "dtlab: GL: " << g_info.renderer << ", OpenGL " << g_info.version << ", on "
+                  << g_info.api << " (--gl " << glFlag() << ")\n";
     }
     return platform;
 }
