@@ -808,6 +808,8 @@ TEST(IdBufferGlTable1, WritesTheCsvAndThePlotAndSaysWhereItRan) {
     const std::string out = slurp(dir / "out.txt");
     EXPECT_NE(out.find("here: " + renderer + ", OpenGL "), std::string::npos) << out;
     EXPECT_NE(out.find("dtlab: GL: " + renderer), std::string::npos) << out;
+    const std::string api = std::string(dtlabGlFlag()) == "--gl egl" ? ", on EGL" : ", on OSMesa";
+    EXPECT_NE(out.find(api), std::string::npos) << out;
     EXPECT_NE(out.find("One pixel read costs "), std::string::npos) << out;
     EXPECT_NE(out.find("A read costs "), std::string::npos) << out;
     std::ifstream in(csv);
