@@ -774,6 +774,10 @@ TEST(IdBufferGlGui, TheGuiRunsTheGlLocatorOnItsContext) {
 // dtlab table1: the files it writes
 // ============================================================================================
 
+namespace {
+
+using test::dtlabGlFlag;
+
 // A folder of its own for each test executable (OSMesa, EGL): ctest may run them side by side.
 std::filesystem::path table1Dir() {
     const std::string gl = dtlabGlFlag();
@@ -791,8 +795,10 @@ std::string slurp(const std::filesystem::path& path) {
     return ss.str();
 }
 
+}  // namespace
+
 TEST(IdBufferGlTable1, WritesTheCsvAndThePlotAndSaysWhereItRan) {
-    HeadlessGl context;  // this executable's GL, as dtlab's --gl gets it
+    test::HeadlessGl context;  // this executable's GL, as dtlab's --gl gets it
     std::string error;
     ASSERT_TRUE(context.open(error)) << error;
     const std::string renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
