@@ -43,9 +43,12 @@ TEST_FUZZ_SECONDS ?= 20
 # serve `make bench`; xvfb and xauth (xvfb-run needs it) serve the real-window tests, xdotool
 # (keys and clicks) and python3 (reads the screenshots) the lesson-slides one;
 # fonts-dejavu-core gives the GUI a readable font (it falls back to ImGui's own without it).
+# Headless GL: libegl-dev and libopengl-dev (glvnd) with libegl-mesa0 (Mesa's EGL: llvmpipe, and
+# the GPUs Mesa drives) for dtlab-gl; libosmesa6-dev for dtlab-gl-osmesa (optional in CMake).
 DEB_PACKAGES := \
 	build-essential cmake pkg-config \
 	libimgui-dev libglfw3-dev libgl-dev libglm-dev libosmesa6-dev libstb-dev libgif-dev \
+	libegl-dev libopengl-dev libegl-mesa0 \
 	libcli11-dev libtomlplusplus-dev nlohmann-json3-dev libgmp-dev libfast-float-dev libfmt-dev \
 	libgtest-dev libbenchmark-dev clang-format \
 	xvfb xauth xdotool python3 fonts-dejavu-core \
@@ -125,7 +128,7 @@ build: configure
 	cmake --build $(BUILD_DIR) -j $(JOBS)
 
 # The main job: the GUI on the built-in demo. With no display, delaunay-lab says so and
-# renders the demo headlessly (OSMesa) to $(BUILD_DIR)/demo.png instead.
+# renders the demo headlessly (dtlab render) to $(BUILD_DIR)/demo.png instead.
 run: build
 	$(BUILD_DIR)/app/delaunay-lab --headless-png $(BUILD_DIR)/demo.png
 

@@ -1,6 +1,6 @@
 // delaunay-lab: the step-through GUI in a real window (GLFW + libGL). With no display it says
-// so and renders the same view headlessly to a PNG (through `dtlab render`, which uses OSMesa:
-// one GL provider per executable).
+// so and renders the same view headlessly to a PNG (through `dtlab render`, which uses EGL or
+// OSMesa: one GL provider per executable).
 #include "ui/files/files.h"
 #include "ui/files/settings.h"
 #include "ui/gui.h"

@@ -23,6 +23,7 @@ int main(int argc, char** argv) {
     dlab::cli::addCheck(app);
     dlab::cli::addRender(app);
     dlab::cli::addTable1(app);
+    app.parse_complete_callback(dlab::cli::chooseGl);  // before the command runs
     int code = 0;
     try {
         app.parse(argc, argv);

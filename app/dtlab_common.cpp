@@ -5,8 +5,14 @@
 #include "core/engine/predicates.h"
 #include "core/engine/text_util.h"
 
+#include <unistd.h>
+
 #include <array>
+#include <cerrno>
 #include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
 #include <functional>
 #include <iostream>
 #include <stdexcept>
@@ -23,11 +29,38 @@ void rememberCommandLine(int argc, char** argv) { g_commandLine.assign(argv, arg
 
 const std::vector<char*>& commandLine() { return g_commandLine; }
 
+void execBeside(const char* name, const std::string& why) {
+    std::error_code ec;
+    const std::filesystem::path self = std::filesystem::read_symlink("/proc/self/exe", ec);
+    const std::string path = ((ec ? std::filesystem::path(".") : self.parent_path()) / name);
+    std::vector<char*> argv = commandLine();  // argv[0] as typed: help texts say "dtlab"
+    argv.push_back(nullptr);
+    std::cout.flush();
+    execv(path.c_str(), argv.data());
+    std::cerr << "dtlab: error: " << why << ", which runs in " << path
+              << ", and that cannot be started: " << std::strerror(errno) << "\n";
+    std::exit(1);
+}
+
+namespace {
+std::string g_gl = "auto";
+}  // namespace
+
+void addGlFlag(CLI::App& cmd) {
+    cmd.add_option("--gl", g_gl,
+                   "Headless OpenGL: egl (a GPU, else Mesa's llvmpipe) | osmesa | auto (EGL on a "
+                   "GPU if there is one, else OSMesa, else EGL on llvmpipe)")
+        ->check(CLI::IsMember({"egl", "osmesa", "auto"}))
+        ->capture_default_str();
+}
+
+const std::string& glFlag() { return g_gl; }
+
 void EngineFlags::add(CLI::App& cmd) {
     cmd.add_option(
            "--locate", locate,
            "Point location: naive | walk | grid | idbuffer-cpu | idbuffer-gl | idbuffer-gl-batched "
-           "(the GL ones on a headless OSMesa context)")
+           "(the GL ones on a headless GL context: --gl)")
         ->check(CLI::IsMember(
             {"naive", "walk", "grid", "idbuffer-cpu", "idbuffer-gl", "idbuffer-gl-batched"}))
         ->each([](const std::string& value) {
@@ -54,6 +87,7 @@ void EngineFlags::add(CLI::App& cmd) {
     cmd.add_option("--batch", batch, "GL ID buffer, batched readback: points per read")
         ->check(CLI::Range(1, ui::IdBufferGlOptions::kMaxBatch))
         ->capture_default_str();
+    addGlFlag(cmd);
 }
 
 InsertOptions EngineFlags::options() const {

@@ -1,15 +1,19 @@
 // Shared pieces of dtlab's subcommands: option sets, loading with one-line errors, and the
 // registration function of each subcommand (one file each).
 //
-// Two executables share these sources: dtlab-gl links the headless GL context (OSMesa, whose
-// LLVM alone keeps ~50 MB resident), dtlab does not. dtlab runs every command that needs no GL
-// itself and re-runs the others (render, table1, --locate idbuffer-gl*) in dtlab-gl beside it:
-// the pieces that differ are in dtlab_gl.cpp and dtlab_no_gl.cpp.
+// Three executables share these sources: dtlab links no GL (Mesa's LLVM alone keeps ~50 MB
+// resident); dtlab-gl links EGL and libOpenGL (a GPU, or Mesa's llvmpipe) and dtlab-gl-osmesa
+// OSMesa (libOSMesa and libOpenGL both export the gl* functions: one executable cannot link
+// both). dtlab runs every command that needs no GL itself and re-runs the others (render,
+// table1, --locate idbuffer-gl*) in dtlab-gl beside it, which re-runs them in dtlab-gl-osmesa
+// when --gl says so (auto: when there is no GPU). The pieces that differ are in dtlab_no_gl.cpp,
+// dtlab_gl.cpp (both GL executables) and dtlab_gl_egl.cpp / dtlab_gl_osmesa.cpp.
 #pragma once
 
 #include "core/engine/halves.h"
 #include "core/engine/inserter.h"
 #include "ui/gl/idbuffer_gl.h"
+#include "ui/platform/platform.h"
 
 #include <CLI/CLI.hpp>
 
@@ -34,7 +38,7 @@ struct EngineFlags {
     InsertOptions options() const;
     ui::IdBufferGlOptions glOptions() const;
     // An Inserter for these flags. The GL locators (--locate idbuffer-gl[-batched]) need a GL
-    // context, which core cannot make: they are built on the headless OSMesa context.
+    // context, which core cannot make: they are built on the headless GL context (--gl).
     std::unique_ptr<Inserter> makeInserter(std::vector<Vec2> points) const;
     std::unique_ptr<Inserter> makeGlInserter(std::vector<Vec2> points) const;  // dtlab-gl only
 };
@@ -48,18 +52,39 @@ std::optional<JoinedTriangulation> triangulateOnTwoCores(std::vector<Vec2>& poin
                                                          const InsertOptions& options,
                                                          std::string* declined = nullptr);
 
-// The process' headless GL context (OSMesa, made current on first use); fail()s when there is
-// none. GL locators on it must be destroyed before main returns. dtlab-gl only.
+// --gl egl | osmesa | auto: which headless OpenGL the GL commands run on (auto: EGL on a GPU
+// when there is one, else OSMesa, else EGL on Mesa's llvmpipe). Every GL command has it.
+void addGlFlag(CLI::App& cmd);
+const std::string& glFlag();
+
+// The process' headless GL context (--gl; made current on first use); fail()s when there is
+// none. GL locators on it must be destroyed before main returns. The GL executables only.
 std::shared_ptr<ui::GlContext> headlessGl();
+// A headless platform of that size on the GL --gl chose (render: the whole GUI); fail()s when
+// there is none. The first context made says on stderr which GL it is. The GL executables only.
+std::unique_ptr<ui::Platform> headlessPlatform(int width, int height);
+// Where the GL runs, once a context was made: "EGL (GPU device 0)", "OSMesa", ...; GL_RENDERER
+// and GL_VERSION.
+struct GlInfo {
+    std::string api, renderer, version;
+};
+const GlInfo& glInfo();
 // Destroys that context (if any) before main returns; nothing in dtlab.
 void releaseGl();
 
 // The command line as main() received it, for dtlab to hand on to dtlab-gl.
 void rememberCommandLine(int argc, char** argv);
 const std::vector<char*>& commandLine();
-// The command line asks for GL (called while it is parsed, before any work): nothing in
-// dtlab-gl; dtlab replaces itself with dtlab-gl on the same command line.
+// Replaces this process with the executable `name` beside it, on the same command line; when
+// that cannot start, says so (`why` needs it) and exits 1.
+[[noreturn]] void execBeside(const char* name, const std::string& why);
+// The command line asks for GL (called while it is parsed, before any work): dtlab replaces
+// itself with dtlab-gl on the same command line; the GL executables note it for chooseGl.
 void needGl();
+// Called once the whole command line is parsed, before the command runs: when it needs GL, the
+// GL executables settle --gl, and re-run it in the other GL executable when that one has the GL
+// asked for. Nothing in dtlab.
+void chooseGl();
 
 // Loads a point file; on bad input prints "dtlab: error: FILE:LINE: what" and throws Exit.
 struct LoadedPoints {

@@ -1,4 +1,5 @@
-// dtlab render: a screenshot of the whole GUI after K operations, rendered headlessly (OSMesa).
+// dtlab render: a screenshot of the whole GUI after K operations, rendered headlessly (EGL or
+// OSMesa: --gl).
 #include "app/dtlab_common.h"
 
 #include "core/engine/generators.h"
@@ -239,8 +240,7 @@ void runRender(const RenderArgs& args) {
     const auto [width, height] = checkRenderArgs(args);
     ui::AppState state;
     std::string error;
-    auto platform = ui::makeOsmesaPlatform(width, height, error);
-    if (!platform) fail(error);
+    auto platform = headlessPlatform(width, height);
     ui::Gui gui(*platform, state);
     state.presentation = args.presentation;
     state.setOptions(args.engine.options());  // the defaults its help states (order brio)
@@ -275,7 +275,7 @@ void runRender(const RenderArgs& args) {
 void addRender(CLI::App& app) {
     auto args = std::make_shared<RenderArgs>();
     CLI::App* cmd = app.add_subcommand(
-        "render", "Screenshot of the whole GUI after K operations (headless, OSMesa)");
+        "render", "Screenshot of the whole GUI after K operations (headless GL: --gl)");
     cmd->add_option("input", args->input,
                     "Point file (.node, .csv, .xy, .pts); the built-in demo when absent");
     cmd->add_option("-o,--output", args->output,
@@ -307,6 +307,7 @@ void addRender(CLI::App& app) {
     cmd->add_option("--overlay", args->overlays,
                     "voronoi, circumcircles, triangle-ids, no-corner-ids, no-fill (repeatable)");
     args->engine.add(*cmd);
+    cmd->parse_complete_callback(needGl);
     cmd->callback([args] { guarded([&] { runRender(*args); }); });
 }
 

@@ -1,6 +1,6 @@
-// The GL layer on OSMesa's core-profile context: the context it asks for, and every shader
-// program built in both shader languages we ship to (GLSL 3.30 core here and in the window,
-// GLSL ES 3.00 in the browser: desktop GL 4.3 and later compile it too).
+// The GL layer on the headless core-profile context (OSMesa, or EGL on llvmpipe): the context it
+// asks for, and every shader program built in both shader languages we ship to (GLSL 3.30 core
+// here and in the window, GLSL ES 3.00 in the browser: desktop GL 4.3 and later compile it too).
 #include "tests/ui/ui_harness.h"
 #include "ui/gl/gl_api.h"
 #include "ui/gl/shaders.h"

@@ -1,6 +1,6 @@
-// The GL colour-ID buffer on OSMesa: its pixels against the CPU reference away from edges, exact
-// locates from its hints, whole triangulations in every readback mode, undo/redo through the
-// Journal, the GL state it must leave alone, the GUI path and `dtlab table1`'s files.
+// The GL colour-ID buffer (OSMesa, EGL): its pixels against the CPU reference away from edges,
+// exact locates from its hints, whole triangulations in every readback mode, undo/redo through
+// the Journal, the GL state it must leave alone, the GUI path and `dtlab table1`'s files.
 #include "core/engine/generators.h"
 #include "core/engine/inserter.h"
 #include "core/engine/predicates.h"
@@ -774,18 +774,55 @@ TEST(IdBufferGlGui, TheGuiRunsTheGlLocatorOnItsContext) {
 // dtlab table1: the files it writes
 // ============================================================================================
 
-TEST(IdBufferGlTable1, WritesTheCsvAndThePlot) {
-    const std::filesystem::path dir = std::filesystem::temp_directory_path() / "dlab_table1_test";
+namespace {
+
+using test::dtlabGlFlag;
+
+// A folder of its own for each test executable (OSMesa, EGL): ctest may run them side by side.
+std::filesystem::path table1Dir() {
+    const std::string gl = dtlabGlFlag();
+    const std::filesystem::path dir = std::filesystem::temp_directory_path() /
+                                      ("dlab_table1_test_" + gl.substr(gl.rfind(' ') + 1));
     std::filesystem::create_directories(dir);
+    return dir;
+}
+
+// The whole of a text file.
+std::string slurp(const std::filesystem::path& path) {
+    std::ifstream in(path);
+    std::stringstream ss;
+    ss << in.rdbuf();
+    return ss.str();
+}
+
+}  // namespace
+
+TEST(IdBufferGlTable1, WritesTheCsvAndThePlotAndSaysWhereItRan) {
+    test::HeadlessGl context;  // this executable's GL, as dtlab's --gl gets it
+    std::string error;
+    ASSERT_TRUE(context.open(error)) << error;
+    const std::string renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+    const std::filesystem::path dir = table1Dir();
     const std::string csv = (dir / "t1.csv").string(), png = (dir / "t1.png").string();
     std::filesystem::remove(csv);
     std::filesystem::remove(png);
-    const std::string cmd = std::string(DLAB_DTLAB_PATH) +
-                            " table1 --sizes 200,400,800 --repeat 1 --batch 32 --csv " + csv +
-                            " --png " + png + " > " + (dir / "out.txt").string() + " 2>&1";
+    const std::string cmd =
+        std::string(DLAB_DTLAB_PATH) + " table1 --sizes 200,400,800 --repeat 1 --batch 32 --csv " +
+        csv + " --png " + png + " " + dtlabGlFlag() + " > " + (dir / "out.txt").string() + " 2>&1";
     ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
+    // The header, the stderr line and the CSV's comment name the renderer; the read's cost.
+    const std::string out = slurp(dir / "out.txt");
+    EXPECT_NE(out.find("here: " + renderer + ", OpenGL "), std::string::npos) << out;
+    EXPECT_NE(out.find("dtlab: GL: " + renderer), std::string::npos) << out;
+    const std::string api = std::string(dtlabGlFlag()) == "--gl egl" ? ", on EGL" : ", on OSMesa";
+    EXPECT_NE(out.find(api), std::string::npos) << out;
+    EXPECT_NE(out.find("One pixel read costs "), std::string::npos) << out;
+    EXPECT_NE(out.find("A read costs "), std::string::npos) << out;
     std::ifstream in(csv);
-    std::string header;
+    std::string comment, header;
+    std::getline(in, comment);
+    EXPECT_EQ(comment.rfind("# dtlab table1, median ms; " + renderer + ", OpenGL ", 0), 0u)
+        << comment;
     std::getline(in, header);
     EXPECT_EQ(header, "n,naive,idbuffer-gl,idbuffer-gl-batched,idbuffer-cpu,walk,best");
     std::vector<std::size_t> ns;
@@ -814,8 +851,8 @@ TEST(IdBufferGlTable1, WritesTheCsvAndThePlot) {
     EXPECT_EQ(w, 1400u);
     EXPECT_EQ(hgt, 900u);
     // Bad sizes: one line, a non-zero status.
-    const std::string bad = std::string(DLAB_DTLAB_PATH) + " table1 --sizes 100,x > " +
-                            (dir / "bad.txt").string() + " 2>&1";
+    const std::string bad = std::string(DLAB_DTLAB_PATH) + " table1 --sizes 100,x " +
+                            dtlabGlFlag() + " > " + (dir / "bad.txt").string() + " 2>&1";
     EXPECT_NE(std::system(bad.c_str()), 0);
     std::ifstream b(dir / "bad.txt");
     std::string line;
@@ -824,19 +861,18 @@ TEST(IdBufferGlTable1, WritesTheCsvAndThePlot) {
 }
 
 TEST(IdBufferGlTable1, DtlabTriangulatesWithTheGlLocatorInEveryReadbackMode) {
-    const std::filesystem::path dir = std::filesystem::temp_directory_path() / "dlab_table1_test";
-    std::filesystem::create_directories(dir);
+    const std::filesystem::path dir = table1Dir();
     const std::string dtlab = DLAB_DTLAB_PATH, pts = (dir / "u.node").string(),
                       log = (dir / "tri.txt").string();
     ASSERT_EQ(std::system((dtlab + " gen uniform 3000 -o " + pts + " > " + log).c_str()), 0);
     // "FILE: 3000 points, T triangles in ..." must say the same T as the walk locator's run.
     auto triangles = [&](const char* flags) {
         const std::string cmd = dtlab + " triangulate " + pts + " -o " + (dir / "out").string() +
-                                " --check " + flags + " > " + log + " 2>&1";
+                                " --check " + dtlabGlFlag() + " " + flags + " > " + log + " 2>&1";
         EXPECT_EQ(std::system(cmd.c_str()), 0) << cmd;
         std::ifstream in(log);
-        std::string first;
-        std::getline(in, first);
+        std::string first;  // the summary (the GL locators' runs say on a line before which GL)
+        while (std::getline(in, first) && first.find(" points, ") == std::string::npos) {}
         const std::size_t at = first.find(" points, ");
         return at == std::string::npos ? std::string("?")
                                        : first.substr(at, first.find(" triangles") - at);

@@ -1,4 +1,4 @@
-// The one renderer in the running GUI (OSMesa, core profile): after stepping, the frame shows the
+// The one renderer in the running GUI (headless core profile): after stepping, the frame shows the
 // engine's mesh and is, pixel for pixel, the frame of a GUI that went there directly; stepping
 // back redraws the frame before. Whichever path drew the mesh (our vertex buffer, the dense
 // raster), with the GL ID buffer's view on screen.

@@ -1,4 +1,4 @@
-// UiHarness: the test platform (harness_gl.cpp: OSMesa; harness_null.cpp: no GL) + AppState +
+// UiHarness: the test platform (harness_osmesa.cpp, harness_egl.cpp, harness_null.cpp) + AppState +
 // Gui on the built-in demo, and synthetic input.
 #include "tests/ui/ui_harness.h"
 

@@ -43,12 +43,17 @@ inline bool sameBits(const std::vector<Vec2>& a, const std::vector<Vec2>& b) {
            (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(Vec2)) == 0);
 }
 
-// The platform the harness runs on: OSMesa in dlab_ui_tests (harness_gl.cpp), the null platform
-// (no GL, no pixels) in dlab_ui_logic_tests (harness_null.cpp).
+// The platform the harness runs on: OSMesa in dlab_ui_tests (harness_osmesa.cpp), EGL on Mesa's
+// llvmpipe in dlab_ui_tests_egl (harness_egl.cpp), the null platform (no GL, no pixels) in
+// dlab_ui_logic_tests (harness_null.cpp).
 std::unique_ptr<ui::Platform> makeTestPlatform(int width, int height, std::string& error);
 
-// A headless GL context (OSMesa, 16 x 16), current, for tests of the GL layer without the GUI
-// (dlab_ui_tests only).
+// The GL tests' headless GL as dtlab's --gl flag ("--gl osmesa", "--gl egl"): the tests that run
+// dtlab's GL commands run them on the same GL as the rest of their executable.
+const char* dtlabGlFlag();
+
+// A headless GL context (that platform's, 16 x 16), current, for tests of the GL layer without
+// the GUI (dlab_ui_tests and dlab_ui_tests_egl only).
 struct HeadlessGl {
     std::unique_ptr<ui::Platform> platform;
     std::shared_ptr<ui::GlContext> gl;

@@ -101,6 +101,8 @@ std::shared_ptr<GlContext> GlContext::fromCurrent(std::string& error) {
     }
     auto ctx = std::make_shared<GlContext>();
     ctx->m_version = version ? version : "";
+    const char* renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+    ctx->m_renderer = renderer ? renderer : "";
     return ctx;
 }
 

@@ -1,10 +1,12 @@
 // The GL of every target from one source: OpenGL 3.3 core (the window through libGL, headless
-// through OSMesa), OpenGL ES 3.0 / WebGL2 (the browser); the context handle, shader programs,
-// texture upload and the scope that saves and restores the GL state our drawing touches.
+// through EGL and libOpenGL, or OSMesa), OpenGL ES 3.0 / WebGL2 (the browser); the context
+// handle, shader programs, texture upload and the scope that saves and restores the GL state our
+// drawing touches.
 //
-// The entry points are called directly: each executable's GL provider (libGL, libOSMesa,
-// Emscripten's WebGL library) exports all of them, so there is no loader and no pointer table.
-// Only the core subset is declared (GL/glcorearb.h): fixed-function calls do not compile.
+// The entry points are called directly: each executable's GL provider (libGL, libOpenGL,
+// libOSMesa, Emscripten's WebGL library) exports all of them, so there is no loader and no
+// pointer table. Only the core subset is declared (GL/glcorearb.h): fixed-function calls do not
+// compile.
 #pragma once
 
 #if defined(__EMSCRIPTEN__)
@@ -57,11 +59,12 @@ public:
     // ui/gl/idbuffer_gl.cpp
     std::unique_ptr<GpuIdBuffer> makeIdBuffer(LocatorKind kind,
                                               const LocatorOptions& options) override;
-    const std::string& version() const { return m_version; }  // GL_VERSION
+    const std::string& version() const { return m_version; }    // GL_VERSION
+    const std::string& renderer() const { return m_renderer; }  // GL_RENDERER
 
 private:
     bool m_alive = true;
-    std::string m_version;
+    std::string m_version, m_renderer;
 };
 
 // A linked program from a vertex and a fragment shader body, `preamble` first (the target's, or

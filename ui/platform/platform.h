@@ -1,10 +1,12 @@
 // What the UI needs from a window system: a current GL context that runs our shaders (OpenGL 3.3
 // core; ui/gl/gl_api.h), frames, and input for ImGui.
 //
-// Three implementations, one file each, each in its own library because each brings its own GL
-// provider or none: platform_glfw.cpp (a real window, libGL), platform_osmesa.cpp (headless,
-// OSMesa; the only file that includes OSMesa, so that EGL can replace it when Mesa drops OSMesa)
-// and platform_null.cpp (headless, no GL at all: the null renderer).
+// Four implementations, one file each, each in its own library because each brings its own GL
+// provider or none: platform_glfw.cpp (a real window, libGL), platform_egl.cpp (headless, EGL
+// and libOpenGL: a GPU, or Mesa's llvmpipe), platform_osmesa.cpp (headless, OSMesa: the only
+// file that includes it, and optional, since Mesa 25.1 dropped it) and platform_null.cpp
+// (headless, no GL at all: the null renderer). libOSMesa and libOpenGL both export the gl*
+// functions, so one executable links one of them.
 #pragma once
 
 #include "ui/render/renderer.h"
@@ -46,6 +48,18 @@ std::unique_ptr<Platform> makeNullPlatform(int width, int height,
 // Headless, OSMesa: a core-profile context (3.3 asked for; Mesa gives 4.5). Returns nullptr and
 // sets `error` when no context can be made.
 std::unique_ptr<Platform> makeOsmesaPlatform(int width, int height, std::string& error);
+
+// Headless, EGL: an OpenGL 3.3 core context on an RGBA8 pbuffer of width x height, current.
+// Gpu: a GPU's EGL device only; Software: Mesa's software device or surfaceless platform
+// (llvmpipe) only; Any: the GPUs first. Returns nullptr and sets `error` (every display tried and
+// why it failed) when no context can be made. The EGL displays stay initialized until exit.
+enum class EglDevice { Any, Gpu, Software };
+std::unique_ptr<Platform> makeEglPlatform(int width, int height, EglDevice device,
+                                          std::string& error);
+// Whether EGL lists a device that is not Mesa's software one (a GPU's driver).
+bool eglHasGpu();
+// The display an EGL platform runs on ("GPU device 0", "Mesa surfaceless"); "" for others.
+std::string eglDisplayName(const Platform& platform);
 
 struct WindowOptions {
     int width = 1600, height = 1000;

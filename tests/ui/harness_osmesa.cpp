@@ -1,4 +1,4 @@
-// The GL tests' platform: OSMesa, a software OpenGL core-profile context.
+// The GL tests' platform in dlab_ui_tests: OSMesa, a software OpenGL core-profile context.
 #include "tests/ui/ui_harness.h"
 #include "ui/gl/gl_api.h"
 
@@ -13,5 +13,7 @@ bool HeadlessGl::open(std::string& error) {
     if (platform) gl = ui::GlContext::fromCurrent(error);
     return gl != nullptr;
 }
+
+const char* dtlabGlFlag() { return "--gl osmesa"; }
 
 }  // namespace dlab::test
