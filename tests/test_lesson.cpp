@@ -566,6 +566,102 @@ TEST(LessonAnswers, LabelsAndPhrasesAsPeopleWriteThem) {
     EXPECT_FALSE(acceptsAnswer(yes, "no"));
 }
 
+TEST(LessonAnswers, UnitsNumberWordsPunctuationAndSpellings) {
+    LiveRun r = start({{0, 0}, {10, 0}, {5, 8}, {5, -2}, {3, 3}});
+    while (!r.ins->done()) r.journal->forward();
+    Answer angle = answer(r, "min_angle");
+    ASSERT_EQ(angle.kind, Answer::Kind::Integer);
+    const std::string a = std::to_string(angle.a);
+    for (const std::string& typed : {a, a + "\u00b0", a + " \u00b0", a + " degrees", a + " degree",
+                                     a + "deg", a + " degrees.", " " + a + "! "})
+        EXPECT_TRUE(acceptsAnswer(angle, typed)) << typed;
+    const std::string off = std::to_string(angle.a + 1);
+    for (const std::string& typed : {off + "\u00b0", off + " degrees", a + " steps",
+                                     a + " triangles", a + "x", a + " degrees 5"})
+        EXPECT_FALSE(acceptsAnswer(angle, typed)) << typed;
+
+    Answer steps = answer(r, "walk_steps");
+    const std::string n = std::to_string(steps.a);
+    EXPECT_TRUE(acceptsAnswer(steps, n + " steps"));
+    EXPECT_TRUE(acceptsAnswer(steps, n + " step."));
+    EXPECT_FALSE(acceptsAnswer(steps, n + " corners"));
+    EXPECT_FALSE(acceptsAnswer(steps, std::to_string(steps.a + 1) + " steps"));
+
+    Answer corners = answer(r, "corners");
+    EXPECT_TRUE(acceptsAnswer(corners, std::to_string(corners.a) + " corners"));
+    EXPECT_TRUE(acceptsAnswer(corners, std::to_string(corners.a) + " rows"));
+    EXPECT_FALSE(acceptsAnswer(corners, std::to_string(corners.a) + " degrees"));
+
+    Answer six;  // a count with its unit as the quantity gives it, and number words to twenty
+    six.kind = Answer::Kind::Integer;
+    six.a = 6;
+    six.units = {"times", "time"};
+    for (const char* typed : {"6 times", "Six.", "six times", "SIX", "\"6\"", "6!"})
+        EXPECT_TRUE(acceptsAnswer(six, typed)) << typed;
+    for (const char* typed : {"Seven.", "6 steps", "times", "66 times", "6 timesx", ".6"})
+        EXPECT_FALSE(acceptsAnswer(six, typed)) << typed;
+    Answer twenty = six;
+    twenty.a = 20;
+    EXPECT_TRUE(acceptsAnswer(twenty, "twenty"));
+    EXPECT_TRUE(acceptsAnswer(twenty, "Twenty times."));
+    EXPECT_FALSE(acceptsAnswer(twenty, "nineteen"));
+
+    Answer where;  // the hints' own words for a point on a hull edge, or beyond the hull
+    where.kind = Answer::Kind::Text;
+    where.text = "edge";
+    for (const char* typed :
+         {"on the boundary", "On the hull edge.", "boundary", "on the boundary of the mesh"})
+        EXPECT_TRUE(acceptsAnswer(where, typed)) << typed;
+    for (const char* typed : {"in a ghost triangle", "inside", "on a vertex", "outside the hull"})
+        EXPECT_FALSE(acceptsAnswer(where, typed)) << typed;
+    where.text = "outside-hull";
+    for (const char* typed : {"in a ghost triangle", "ghost triangle", "Outside the hull."})
+        EXPECT_TRUE(acceptsAnswer(where, typed)) << typed;
+    EXPECT_FALSE(acceptsAnswer(where, "on the boundary"));
+
+    Answer pixel;  // the ID-buffer's three cases, in the panel's words too
+    pixel.kind = Answer::Kind::Text;
+    pixel.text = "empty";
+    for (const char* typed : {"empty", "empty pixel", "an empty pixel.", "Unpainted"})
+        EXPECT_TRUE(acceptsAnswer(pixel, typed)) << typed;
+    for (const char* typed : {"miss", "missed", "hit"})
+        EXPECT_FALSE(acceptsAnswer(pixel, typed)) << typed;
+    pixel.text = "miss";
+    for (const char* typed : {"miss", "missed", "a miss"})
+        EXPECT_TRUE(acceptsAnswer(pixel, typed)) << typed;
+    EXPECT_FALSE(acceptsAnswer(pixel, "empty pixel"));
+
+    Answer op;  // British spellings of the tool's names
+    op.kind = Answer::Kind::Text;
+    op.text = "Finalize";
+    for (const char* typed : {"Finalize", "Finalise", "finalise.", "FINALISE"})
+        EXPECT_TRUE(acceptsAnswer(op, typed)) << typed;
+    for (const char* typed : {"Final", "Finish", "Flip"})
+        EXPECT_FALSE(acceptsAnswer(op, typed)) << typed;
+}
+
+TEST(LessonAnswers, TheQuestionsNounIsAUnitOfItsAnswer) {
+    const fs::path p = write(scratchDir() / "lessons" / "units.toml", kHead + R"(
+[[stop]]
+run_to = "end"
+question = "How many Voronoi vertices will the diagram have?"
+answer = "triangles"
+
+[[stop]]
+question = "How many times must you press S?"
+answer = "corners"
+)");
+    const LessonPlan plan = planLesson(loadLesson(p.string()));
+    const Answer& t = *plan.stops[0].answer;
+    const std::string n = std::to_string(t.a);
+    for (const std::string& typed : {n + " voronoi vertices", n + " vertices", n + " triangles"})
+        EXPECT_TRUE(acceptsAnswer(t, typed)) << typed;
+    EXPECT_FALSE(acceptsAnswer(t, n + " steps"));
+    const Answer& c = *plan.stops[1].answer;
+    EXPECT_TRUE(acceptsAnswer(c, std::to_string(c.a) + " times"));
+    EXPECT_FALSE(acceptsAnswer(c, std::to_string(c.a) + " degrees"));
+}
+
 TEST(LessonAnswers, LiveAnswersCarryTheCanvasLabels) {
     // Super mode: the first in-circle tests involve super vertices, named s0..s2 as on canvas.
     InsertOptions super;
