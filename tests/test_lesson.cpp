@@ -911,6 +911,105 @@ TEST(LessonCheck, RefusesAnswersGivenAwayByTheTextOrTheBanner) {
     EXPECT_EQ(dtlab("lesson check " + p.string()).status, 1);
 }
 
+TEST(LessonCheck, AnswerOnTheRenderedSlideInAnyPhrasingItTakes) {
+    Answer corners;
+    corners.kind = Answer::Kind::Integer;
+    corners.a = 6;
+    corners.units = {"corners", "corner"};
+    const std::string q = "How many corners does the table have (that is, how many rows)?";
+    EXPECT_EQ(answerOnSlide(corners, {"Go to corner | 6 corners   l(c) = o(n(c))"}, q).value_or(""),
+              "Go to corner | 6 corners   l(c) = o(n(c))");
+    EXPECT_TRUE(answerOnSlide(corners, {"corners | 6"}, q)) << "a statistics row: unit first";
+    EXPECT_TRUE(answerOnSlide(corners, {"six corners"}, q));
+    // Ids are everywhere on a slide: a bare number, or another count, gives nothing away.
+    EXPECT_FALSE(answerOnSlide(corners, {"6", "1 | 0 | 6 | -1", "vertex 6", "7 corners"}, q));
+    EXPECT_FALSE(answerOnSlide(corners, {"How many corners does the table have"}, q))
+        << "the question itself is on the slide";
+    Answer angle;
+    angle.kind = Answer::Kind::Integer;
+    angle.a = 32;
+    angle.units = {"degrees", "degree", "\u00b0"};
+    EXPECT_TRUE(answerOnSlide(angle, {"smallest angle 32\u00b0"}, ""));
+    EXPECT_FALSE(answerOnSlide(angle, {"smallest angle 22\u00b0"}, ""));
+    Answer outcome;
+    outcome.kind = Answer::Kind::Text;
+    outcome.text = "hit";
+    EXPECT_TRUE(answerOnSlide(outcome, {"Last locate (v15): HIT - the pixel's triangle t3"}, ""));
+    outcome.text = "empty";
+    EXPECT_TRUE(answerOnSlide(outcome, {"Last locate (v4): empty pixel - nothing painted"}, ""));
+    EXPECT_FALSE(answerOnSlide(outcome, {"Last locate (v4): miss - walked 2 steps"}, ""));
+    Answer steps;
+    steps.kind = Answer::Kind::Integer;
+    steps.a = 2;
+    steps.units = {"steps", "step"};
+    EXPECT_TRUE(answerOnSlide(steps, {"Last locate (v16): miss - walked 2 steps from t5"}, ""));
+    Answer e;
+    e.kind = Answer::Kind::Edge;
+    e.a = 0;
+    e.b = 2;
+    EXPECT_TRUE(answerOnSlide(e, {"[12] Flip: flip edge 1-3 to 0-2"}, ""));
+    Answer yes;
+    yes.kind = Answer::Kind::Truth;
+    yes.truth = true;
+    EXPECT_FALSE(answerOnSlide(yes, {"yes"}, "")) << "a truth value is never said";
+}
+
+TEST(LessonCheck, FailsWhereTheRenderedSlideShowsTheAnswer) {
+    // Planted: the answer in the statistics (a table of counts) and in a corner-table cell.
+    const std::string stats = write(scratchDir() / "lessons" / "on_stats.toml", kHead + R"(
+[[stop]]
+run_to = "end"
+tab = "statistics"
+text = "Every point is in."
+question = "How many in-circle tests did the run make?"
+answer = "tests"
+)");
+    Result r = dtlab("lesson check " + stats);
+    EXPECT_EQ(r.status, 1) << r.out;
+    EXPECT_NE(r.out.find(stats + ":4: stop 1: the answer ("), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("is on the rendered slide"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("in-circle tests |"), std::string::npos) << r.out;
+
+    const std::string cell = write(scratchDir() / "lessons" / "in_cell.toml", kHead + R"(
+[[stop]]
+run_to = "end"
+tab = "vertex-table"
+text = "Every point is in."
+
+[[stop]]
+select = "1"
+tab = "corner-table"
+text = "Corner 1 is selected."
+question = "What is O[c] for the selected corner?"
+answer = "O[c]"
+)");
+    r = dtlab("lesson check " + cell);
+    EXPECT_EQ(r.status, 1) << r.out;
+    EXPECT_NE(r.out.find(cell + ":9: stop 2: the answer ("), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("row 1 of the corner table"), std::string::npos) << r.out;
+    EXPECT_EQ(r.out.find("stop 1:"), std::string::npos) << r.out;
+
+    // The same questions on slides that do not show the answer pass.
+    const std::string fine = write(scratchDir() / "lessons" / "fine.toml", kHead + R"(
+[[stop]]
+run_to = "end"
+tab = "vertex-table"
+text = "Every point is in."
+question = "How many in-circle tests did the run make?"
+answer = "tests"
+
+[[stop]]
+select = "1"
+text = "Corner 1 is selected."
+question = "What is O[c] for the selected corner?"
+answer = "O[c]"
+)");
+    r = dtlab("lesson check " + fine);
+    EXPECT_EQ(r.status, 0) << r.out;
+    // Without GL the slides are not read.
+    EXPECT_EQ(dtlab("lesson check --no-slides " + stats).status, 0);
+}
+
 TEST(LessonHandout, WritesTextAndQuestionsWithoutAnswers) {
     const std::string lesson = std::string(DLAB_SOURCE_DIR) + "/lessons/01_corner_table.toml";
     const fs::path out = scratchDir() / "handout.md";

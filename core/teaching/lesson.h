@@ -255,6 +255,25 @@ bool answerAppearsIn(const Answer& answer, std::string_view text);
 // file, line and stop.
 std::vector<LessonError> lessonProblems(const Lesson& lesson, const LessonPlan& plan);
 
+// ---- The check of the rendered slide -----------------------------------------------------------
+
+// The line of a rendered slide that shows `answer` in a phrasing acceptsAnswer takes: a number
+// with a unit the answer allows, either way round ("6 corners", "flips  24", "walked 2 steps",
+// "32°"), a phrase ("HIT", "empty pixel"), an edge, a point. A bare number is not read: ids are
+// everywhere on a slide. Each line is read alone and with the next one (a phrase wrapped over
+// two lines). Lines that are part of `ownText` (the stop's text and question, drawn on the slide
+// too and checked on their own by lessonProblems) are skipped. nullopt when no line shows it.
+std::optional<std::string> answerOnSlide(const Answer& answer,
+                                         const std::vector<std::string>& lines,
+                                         std::string_view ownText);
+
+// The stops whose answer is on their rendered slide: `slides[k]` holds the lines of text drawn
+// at stop k + 1 (every panel, the banner, the canvas labels). Besides answerOnSlide, a question
+// that reads one cell of the corner table (`O[c]`, `V[4]`, `n(5)`, `c.l`) fails when that cell's
+// row is on the slide. Each names file, line and stop.
+std::vector<LessonError> slideProblems(const Lesson& lesson, const LessonPlan& plan,
+                                       const std::vector<std::vector<std::string>>& slides);
+
 // ---- Markdown-light text ------------------------------------------------------------------------
 
 struct TextSpan {
