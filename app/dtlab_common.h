@@ -86,6 +86,11 @@ void needGl();
 // asked for. Nothing in dtlab.
 void chooseGl();
 
+// The lines of text drawn on each stop's slide of a lesson (1280x720, presentation mode), read
+// back from the rendered frames (ui/render/drawn_text.h). dtlab-gl only: dtlab runs `lesson check`
+// there (needGl). On a lesson that cannot be opened: fail()s with its error.
+std::vector<std::vector<std::string>> renderedSlideText(const std::string& lessonPath);
+
 // Loads a point file; on bad input prints "dtlab: error: FILE:LINE: what" and throws Exit.
 struct LoadedPoints {
     std::vector<Vec2> points;

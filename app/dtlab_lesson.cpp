@@ -28,6 +28,7 @@ struct LessonArgs {
     std::string file;
     std::string output;
     bool tables = false;
+    bool noSlides = false;
 };
 
 // The corner table at a stop, one triangle per line: "t 3: V 4 2 5 | O 7 -1 12".
@@ -57,12 +58,17 @@ std::size_t questions(const Lesson& lesson) {
 }
 
 void runCheck(const LessonArgs& args) {
+    if (!args.noSlides) needGl();  // the slides are rendered: dtlab-gl runs the check
     int failed = 0;
     for (const std::string& path : args.files) {
         try {
             const Lesson lesson = loadLesson(path);
             const LessonPlan plan = planLesson(lesson);
-            const std::vector<LessonError> problems = lessonProblems(lesson, plan);
+            std::vector<LessonError> problems = lessonProblems(lesson, plan);
+            if (!args.noSlides && !lesson.stops.empty()) {
+                for (LessonError& e : slideProblems(lesson, plan, renderedSlideText(path)))
+                    problems.push_back(std::move(e));
+            }
             if (!problems.empty()) {
                 for (const LessonError& e : problems)
                     std::cerr << "dtlab: error: " << e.what() << "\n";
@@ -308,8 +314,12 @@ void addLesson(CLI::App& app) {
                                           "Run every lesson to its end headlessly: each stop "
                                           "reached in order, each answer computable, each "
                                           "expectation met, every character drawable, no "
-                                          "answer given away");
+                                          "answer given away by the text, the banner or the "
+                                          "rendered slide");
     check->add_option("lessons", args->files, "Lesson files (.toml)")->required();
+    check->add_flag("--no-slides", args->noSlides,
+                    "Do not render the slides (no GL): skip the check that the answer is not on "
+                    "the slide as drawn");
     check->callback([args] { guarded([&] { runCheck(*args); }); });
     CLI::App* show =
         cmd->add_subcommand("show", "Print a lesson stop by stop with the engine's answers");

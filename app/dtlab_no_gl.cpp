@@ -11,6 +11,11 @@ void chooseGl() {}
 
 void releaseGl() {}
 
+std::vector<std::vector<std::string>> renderedSlideText(const std::string&) {
+    needGl();
+    return {};
+}
+
 std::unique_ptr<Inserter> EngineFlags::makeGlInserter(std::vector<Vec2>) const {
     needGl();
     return nullptr;

@@ -4,10 +4,12 @@
 
 #include "core/engine/generators.h"
 #include "core/engine/output_files.h"
+#include "core/engine/text_util.h"
 #include "ui/gl/mesh_renderer.h"
 #include "ui/gui.h"
 #include "ui/lesson_player.h"
 #include "ui/panels/panels.h"
+#include "ui/render/drawn_text.h"
 
 #include <imgui.h>
 
@@ -32,6 +34,7 @@ struct RenderArgs {
     std::vector<std::string> overlays;
     int benchFrames = 0;
     std::string tab;
+    bool slideText = false;
     std::string lesson;
     int stop = 1;
     std::string slides;
@@ -139,7 +142,8 @@ void benchChangingFrames(ui::Gui& gui, ui::AppState& state, int frames, std::siz
 
 // The window size from --size, after checking that the options make a command.
 std::pair<int, int> checkRenderArgs(const RenderArgs& args) {
-    if (args.output.empty() && (args.slides.empty() || args.lesson.empty()))
+    if (args.slideText && args.lesson.empty()) fail("--slide-text needs --lesson", 2);
+    if (args.output.empty() && !args.slideText && (args.slides.empty() || args.lesson.empty()))
         fail("render needs -o FILE.png (or --lesson L --slides DIR)", 2);
     if (!args.slides.empty() && args.lesson.empty()) fail("--slides needs --lesson", 2);
     int width = 0, height = 0;
@@ -236,8 +240,18 @@ void moveAndSelect(ui::AppState& state, const RenderArgs& args) {
     state.select(static_cast<std::int32_t>(args.select));
 }
 
+// What `lesson check` reads on each slide: the lines of text drawn, stop by stop.
+void printSlideText(const std::string& lesson) {
+    const auto slides = renderedSlideText(lesson);
+    for (std::size_t k = 0; k < slides.size(); ++k) {
+        std::cout << "## stop " << k + 1 << "\n";
+        for (const std::string& line : slides[k]) std::cout << escapeControls(line) << "\n";
+    }
+}
+
 void runRender(const RenderArgs& args) {
     const auto [width, height] = checkRenderArgs(args);
+    if (args.slideText) return printSlideText(args.lesson);
     ui::AppState state;
     std::string error;
     auto platform = headlessPlatform(width, height);
@@ -272,6 +286,21 @@ void runRender(const RenderArgs& args) {
 
 }  // namespace
 
+std::vector<std::vector<std::string>> renderedSlideText(const std::string& lessonPath) {
+    ui::AppState state;
+    auto platform = headlessPlatform(1280, 720);
+    ui::Gui gui(*platform, state);
+    state.presentation = true;
+    if (!ui::openLesson(state, lessonPath)) fail(state.messages.back().text, 2);
+    std::vector<std::vector<std::string>> out;
+    for (std::size_t k = 0; k < state.lessonPlayer.lesson->stops.size(); ++k) {
+        ui::goToStop(state, k);
+        for (int i = 0; i < 3; ++i) gui.frame();  // as the slides are: laid out, then drawn
+        out.push_back(ui::drawnLines(ui::drawnText(ImGui::GetDrawData())));
+    }
+    return out;
+}
+
 void addRender(CLI::App& app) {
     auto args = std::make_shared<RenderArgs>();
     CLI::App* cmd = app.add_subcommand(
@@ -299,6 +328,9 @@ void addRender(CLI::App& app) {
     cmd->add_option("--slides", args->slides,
                     "Render every stop of the lesson to DIR/01.png, DIR/02.png, ... (slides with "
                     "--presentation)");
+    cmd->add_flag("--slide-text", args->slideText,
+                  "With --lesson: print the text drawn on each stop's slide (1280x720, "
+                  "presentation), as `lesson check` reads it");
     cmd->add_option("--bench-frames", args->benchFrames,
                     "Also time this many frames idle, running and scrolling");
     cmd->add_option("--tab", args->tab, "The side tab to show")

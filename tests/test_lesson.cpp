@@ -566,6 +566,102 @@ TEST(LessonAnswers, LabelsAndPhrasesAsPeopleWriteThem) {
     EXPECT_FALSE(acceptsAnswer(yes, "no"));
 }
 
+TEST(LessonAnswers, UnitsNumberWordsPunctuationAndSpellings) {
+    LiveRun r = start({{0, 0}, {10, 0}, {5, 8}, {5, -2}, {3, 3}});
+    while (!r.ins->done()) r.journal->forward();
+    Answer angle = answer(r, "min_angle");
+    ASSERT_EQ(angle.kind, Answer::Kind::Integer);
+    const std::string a = std::to_string(angle.a);
+    for (const std::string& typed : {a, a + "\u00b0", a + " \u00b0", a + " degrees", a + " degree",
+                                     a + "deg", a + " degrees.", " " + a + "! "})
+        EXPECT_TRUE(acceptsAnswer(angle, typed)) << typed;
+    const std::string off = std::to_string(angle.a + 1);
+    for (const std::string& typed : {off + "\u00b0", off + " degrees", a + " steps",
+                                     a + " triangles", a + "x", a + " degrees 5"})
+        EXPECT_FALSE(acceptsAnswer(angle, typed)) << typed;
+
+    Answer steps = answer(r, "walk_steps");
+    const std::string n = std::to_string(steps.a);
+    EXPECT_TRUE(acceptsAnswer(steps, n + " steps"));
+    EXPECT_TRUE(acceptsAnswer(steps, n + " step."));
+    EXPECT_FALSE(acceptsAnswer(steps, n + " corners"));
+    EXPECT_FALSE(acceptsAnswer(steps, std::to_string(steps.a + 1) + " steps"));
+
+    Answer corners = answer(r, "corners");
+    EXPECT_TRUE(acceptsAnswer(corners, std::to_string(corners.a) + " corners"));
+    EXPECT_TRUE(acceptsAnswer(corners, std::to_string(corners.a) + " rows"));
+    EXPECT_FALSE(acceptsAnswer(corners, std::to_string(corners.a) + " degrees"));
+
+    Answer six;  // a count with its unit as the quantity gives it, and number words to twenty
+    six.kind = Answer::Kind::Integer;
+    six.a = 6;
+    six.units = {"times", "time"};
+    for (const char* typed : {"6 times", "Six.", "six times", "SIX", "\"6\"", "6!"})
+        EXPECT_TRUE(acceptsAnswer(six, typed)) << typed;
+    for (const char* typed : {"Seven.", "6 steps", "times", "66 times", "6 timesx", ".6"})
+        EXPECT_FALSE(acceptsAnswer(six, typed)) << typed;
+    Answer twenty = six;
+    twenty.a = 20;
+    EXPECT_TRUE(acceptsAnswer(twenty, "twenty"));
+    EXPECT_TRUE(acceptsAnswer(twenty, "Twenty times."));
+    EXPECT_FALSE(acceptsAnswer(twenty, "nineteen"));
+
+    Answer where;  // the hints' own words for a point on a hull edge, or beyond the hull
+    where.kind = Answer::Kind::Text;
+    where.text = "edge";
+    for (const char* typed :
+         {"on the boundary", "On the hull edge.", "boundary", "on the boundary of the mesh"})
+        EXPECT_TRUE(acceptsAnswer(where, typed)) << typed;
+    for (const char* typed : {"in a ghost triangle", "inside", "on a vertex", "outside the hull"})
+        EXPECT_FALSE(acceptsAnswer(where, typed)) << typed;
+    where.text = "outside-hull";
+    for (const char* typed : {"in a ghost triangle", "ghost triangle", "Outside the hull."})
+        EXPECT_TRUE(acceptsAnswer(where, typed)) << typed;
+    EXPECT_FALSE(acceptsAnswer(where, "on the boundary"));
+
+    Answer pixel;  // the ID-buffer's three cases, in the panel's words too
+    pixel.kind = Answer::Kind::Text;
+    pixel.text = "empty";
+    for (const char* typed : {"empty", "empty pixel", "an empty pixel.", "Unpainted"})
+        EXPECT_TRUE(acceptsAnswer(pixel, typed)) << typed;
+    for (const char* typed : {"miss", "missed", "hit"})
+        EXPECT_FALSE(acceptsAnswer(pixel, typed)) << typed;
+    pixel.text = "miss";
+    for (const char* typed : {"miss", "missed", "a miss"})
+        EXPECT_TRUE(acceptsAnswer(pixel, typed)) << typed;
+    EXPECT_FALSE(acceptsAnswer(pixel, "empty pixel"));
+
+    Answer op;  // British spellings of the tool's names
+    op.kind = Answer::Kind::Text;
+    op.text = "Finalize";
+    for (const char* typed : {"Finalize", "Finalise", "finalise.", "FINALISE"})
+        EXPECT_TRUE(acceptsAnswer(op, typed)) << typed;
+    for (const char* typed : {"Final", "Finish", "Flip"})
+        EXPECT_FALSE(acceptsAnswer(op, typed)) << typed;
+}
+
+TEST(LessonAnswers, TheQuestionsNounIsAUnitOfItsAnswer) {
+    const fs::path p = write(scratchDir() / "lessons" / "units.toml", kHead + R"(
+[[stop]]
+run_to = "end"
+question = "How many Voronoi vertices will the diagram have?"
+answer = "triangles"
+
+[[stop]]
+question = "How many times must you press S?"
+answer = "corners"
+)");
+    const LessonPlan plan = planLesson(loadLesson(p.string()));
+    const Answer& t = *plan.stops[0].answer;
+    const std::string n = std::to_string(t.a);
+    for (const std::string& typed : {n + " voronoi vertices", n + " vertices", n + " triangles"})
+        EXPECT_TRUE(acceptsAnswer(t, typed)) << typed;
+    EXPECT_FALSE(acceptsAnswer(t, n + " steps"));
+    const Answer& c = *plan.stops[1].answer;
+    EXPECT_TRUE(acceptsAnswer(c, std::to_string(c.a) + " times"));
+    EXPECT_FALSE(acceptsAnswer(c, std::to_string(c.a) + " degrees"));
+}
+
 TEST(LessonAnswers, LiveAnswersCarryTheCanvasLabels) {
     // Super mode: the first in-circle tests involve super vertices, named s0..s2 as on canvas.
     InsertOptions super;
@@ -813,6 +909,105 @@ TEST(LessonCheck, RefusesAnswersGivenAwayByTheTextOrTheBanner) {
     EXPECT_NE(problems[1].message().find("appears in the operation banner"), std::string::npos)
         << problems[1].what();
     EXPECT_EQ(dtlab("lesson check " + p.string()).status, 1);
+}
+
+TEST(LessonCheck, AnswerOnTheRenderedSlideInAnyPhrasingItTakes) {
+    Answer corners;
+    corners.kind = Answer::Kind::Integer;
+    corners.a = 6;
+    corners.units = {"corners", "corner"};
+    const std::string q = "How many corners does the table have (that is, how many rows)?";
+    EXPECT_EQ(answerOnSlide(corners, {"Go to corner | 6 corners   l(c) = o(n(c))"}, q).value_or(""),
+              "Go to corner | 6 corners   l(c) = o(n(c))");
+    EXPECT_TRUE(answerOnSlide(corners, {"corners | 6"}, q)) << "a statistics row: unit first";
+    EXPECT_TRUE(answerOnSlide(corners, {"six corners"}, q));
+    // Ids are everywhere on a slide: a bare number, or another count, gives nothing away.
+    EXPECT_FALSE(answerOnSlide(corners, {"6", "1 | 0 | 6 | -1", "vertex 6", "7 corners"}, q));
+    EXPECT_FALSE(answerOnSlide(corners, {"How many corners does the table have"}, q))
+        << "the question itself is on the slide";
+    Answer angle;
+    angle.kind = Answer::Kind::Integer;
+    angle.a = 32;
+    angle.units = {"degrees", "degree", "\u00b0"};
+    EXPECT_TRUE(answerOnSlide(angle, {"smallest angle 32\u00b0"}, ""));
+    EXPECT_FALSE(answerOnSlide(angle, {"smallest angle 22\u00b0"}, ""));
+    Answer outcome;
+    outcome.kind = Answer::Kind::Text;
+    outcome.text = "hit";
+    EXPECT_TRUE(answerOnSlide(outcome, {"Last locate (v15): HIT - the pixel's triangle t3"}, ""));
+    outcome.text = "empty";
+    EXPECT_TRUE(answerOnSlide(outcome, {"Last locate (v4): empty pixel - nothing painted"}, ""));
+    EXPECT_FALSE(answerOnSlide(outcome, {"Last locate (v4): miss - walked 2 steps"}, ""));
+    Answer steps;
+    steps.kind = Answer::Kind::Integer;
+    steps.a = 2;
+    steps.units = {"steps", "step"};
+    EXPECT_TRUE(answerOnSlide(steps, {"Last locate (v16): miss - walked 2 steps from t5"}, ""));
+    Answer e;
+    e.kind = Answer::Kind::Edge;
+    e.a = 0;
+    e.b = 2;
+    EXPECT_TRUE(answerOnSlide(e, {"[12] Flip: flip edge 1-3 to 0-2"}, ""));
+    Answer yes;
+    yes.kind = Answer::Kind::Truth;
+    yes.truth = true;
+    EXPECT_FALSE(answerOnSlide(yes, {"yes"}, "")) << "a truth value is never said";
+}
+
+TEST(LessonCheck, FailsWhereTheRenderedSlideShowsTheAnswer) {
+    // Planted: the answer in the statistics (a table of counts) and in a corner-table cell.
+    const std::string stats = write(scratchDir() / "lessons" / "on_stats.toml", kHead + R"(
+[[stop]]
+run_to = "end"
+tab = "statistics"
+text = "Every point is in."
+question = "How many in-circle tests did the run make?"
+answer = "tests"
+)");
+    Result r = dtlab("lesson check " + stats);
+    EXPECT_EQ(r.status, 1) << r.out;
+    EXPECT_NE(r.out.find(stats + ":4: stop 1: the answer ("), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("is on the rendered slide"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("in-circle tests |"), std::string::npos) << r.out;
+
+    const std::string cell = write(scratchDir() / "lessons" / "in_cell.toml", kHead + R"(
+[[stop]]
+run_to = "end"
+tab = "vertex-table"
+text = "Every point is in."
+
+[[stop]]
+select = "1"
+tab = "corner-table"
+text = "Corner 1 is selected."
+question = "What is O[c] for the selected corner?"
+answer = "O[c]"
+)");
+    r = dtlab("lesson check " + cell);
+    EXPECT_EQ(r.status, 1) << r.out;
+    EXPECT_NE(r.out.find(cell + ":9: stop 2: the answer ("), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("row 1 of the corner table"), std::string::npos) << r.out;
+    EXPECT_EQ(r.out.find("stop 1:"), std::string::npos) << r.out;
+
+    // The same questions on slides that do not show the answer pass.
+    const std::string fine = write(scratchDir() / "lessons" / "fine.toml", kHead + R"(
+[[stop]]
+run_to = "end"
+tab = "vertex-table"
+text = "Every point is in."
+question = "How many in-circle tests did the run make?"
+answer = "tests"
+
+[[stop]]
+select = "1"
+text = "Corner 1 is selected."
+question = "What is O[c] for the selected corner?"
+answer = "O[c]"
+)");
+    r = dtlab("lesson check " + fine);
+    EXPECT_EQ(r.status, 0) << r.out;
+    // Without GL the slides are not read.
+    EXPECT_EQ(dtlab("lesson check --no-slides " + stats).status, 0);
 }
 
 TEST(LessonHandout, WritesTextAndQuestionsWithoutAnswers) {

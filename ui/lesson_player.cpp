@@ -171,7 +171,7 @@ void goToStop(AppState& st, std::size_t k) {
     L.showHint = false;
     // The stop's tab in front, or else the first panel it names.
     L.pendingTabSelect = stop.tab.empty();
-    st.pendingTab = stop.tab;
+    st.pendingTab = stop.tab == "none" ? std::string() : stop.tab;
     saveProgress(st);
 }
 

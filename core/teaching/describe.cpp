@@ -82,7 +82,7 @@ std::string describe(const Op& op, const Inserter& ins) {
                    std::to_string(std::min(op.vertex, op.b)) + ", the first occurrence, is kept)";
         case OpType::Inserted: return p + " inserted; every edge around it is Delaunay";
         case OpType::Finalize:
-            return "finalize: " + std::to_string(op.a) +
+            return std::to_string(op.a) +
                    (ins.options().boundary == Boundary::Super
                         ? " triangles touching the super-triangle"
                         : " ghost triangles") +

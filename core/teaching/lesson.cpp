@@ -234,15 +234,46 @@ bool isOneOf(std::string_view w, std::initializer_list<std::string_view> list) {
     return std::find(list.begin(), list.end(), w) != list.end();
 }
 
-// Number words as people type them ("three").
+// Number words as people type them ("three"), up to twenty.
 std::optional<std::int64_t> numberWord(std::string_view w) {
     static constexpr std::string_view kWords[] = {
-        "zero",  "one",  "two", "three",  "four",   "five",     "six",      "seven",
-        "eight", "nine", "ten", "eleven", "twelve", "thirteen", "fourteen", "fifteen"};
+        "zero",     "one",     "two",     "three",     "four",     "five",     "six",
+        "seven",    "eight",   "nine",    "ten",       "eleven",   "twelve",   "thirteen",
+        "fourteen", "fifteen", "sixteen", "seventeen", "eighteen", "nineteen", "twenty"};
     for (std::size_t i = 0; i < std::size(kWords); ++i) {
         if (w == kWords[i]) return static_cast<std::int64_t>(i);
     }
     return std::nullopt;
+}
+
+// What a student typed without what surrounds the answer: trimmed, lower case, without the
+// punctuation that ends a sentence ("Six." -> "six") and without quotes around it.
+std::string withoutMarks(std::string_view in) {
+    std::string t = lowered(trimmed(in));
+    const auto isMark = [](char ch) { return std::strchr(".!?,;:\"'`", ch) != nullptr; };
+    while (!t.empty() && (isMark(t.back()) || std::isspace(static_cast<unsigned char>(t.back()))))
+        t.pop_back();
+    std::size_t lead = 0;
+    while (lead < t.size() && (t[lead] == '"' || t[lead] == '\'' || t[lead] == '`' ||
+                               std::isspace(static_cast<unsigned char>(t[lead]))))
+        ++lead;
+    return t.substr(lead);
+}
+
+// `t` without one unit word the answer allows after its number: "8 steps" -> "8", "32°" -> "32",
+// "six times" -> "six". A word unit needs a space or a digit before it ("8steps" too); anything
+// else is left as it is, so that "8 triangles" stays wrong where steps are counted.
+std::string withoutUnit(const std::string& t, const std::vector<std::string>& units) {
+    for (const std::string& u : units) {
+        if (u.empty() || t.size() <= u.size() || t.compare(t.size() - u.size(), u.size(), u) != 0)
+            continue;
+        const char before = t[t.size() - u.size() - 1];
+        const bool word = std::isalpha(static_cast<unsigned char>(u[0])) != 0;
+        if (word && before != ' ' && !std::isdigit(static_cast<unsigned char>(before))) continue;
+        std::string rest = trimmed(std::string_view(t).substr(0, t.size() - u.size()));
+        if (!rest.empty()) return rest;
+    }
+    return t;
 }
 
 // A whole number as typed: "17", "+17", "- 1", "t25" (a triangle), "seven".
@@ -265,24 +296,53 @@ std::optional<std::int64_t> typedInteger(std::string t) {
     return v;
 }
 
+// A word in American spelling, as the tool writes its names: "finalise" -> "finalize",
+// "neighbour" -> "neighbor", "centre" -> "center".
+std::string americanSpelling(std::string w) {
+    const auto endsWith = [&](std::string_view e) {
+        return w.size() > e.size() + 2 && w.compare(w.size() - e.size(), e.size(), e) == 0;
+    };
+    for (const auto& [british, american] :
+         {std::pair<std::string_view, std::string_view>{"isation", "ization"},
+          {"ising", "izing"},
+          {"ised", "ized"},
+          {"ise", "ize"},
+          {"our", "or"},
+          {"ours", "ors"},
+          {"tre", "ter"},
+          {"tres", "ters"}}) {
+        if (endsWith(british))
+            return w.replace(w.size() - british.size(), british.size(), american);
+    }
+    return w;
+}
+
 // A phrase reduced to what it names: filler words dropped, then synonyms mapped, so that
-// "on an edge" and "edge", "outside the hull" and "outside-hull" read the same.
+// "on an edge" and "edge", "outside the hull" and "outside-hull", "on the boundary" and "edge",
+// "in a ghost triangle" and "outside-hull", "empty pixel" and "empty" read the same.
 std::string canonicalPhrase(std::string_view s) {
     std::string joined;
     for (const std::string& w : words(s)) {
         if (isOneOf(w, {"on", "an", "a", "the", "in", "at", "it", "its", "is", "of", "lies",
                         "exactly", "point", "found", "was", "will", "be", "by"}))
             continue;
-        joined += w;
+        joined += americanSpelling(w);
     }
     if (isOneOf(joined, {"inside", "insidetriangle", "intriangle", "triangle", "interior"}))
         return "inside";
-    if (isOneOf(joined, {"edge", "anedge", "insideedge"})) return "edge";
+    if (isOneOf(joined, {"edge", "anedge", "insideedge", "boundary", "boundaryedge", "hulledge",
+                         "edgehull", "boundarymesh", "meshboundary", "hullboundary"}))
+        return "edge";
     if (isOneOf(joined, {"vertex", "duplicate", "existingvertex", "samevertex"})) return "vertex";
     if (isOneOf(joined, {"outside", "outsidehull", "beyondhull", "outsidemesh", "outsideconvexhull",
-                         "beyondconvexhull"}))
+                         "beyondconvexhull", "ghost", "ghosttriangle", "outsideghosttriangle"}))
         return "outsidehull";
     if (isOneOf(joined, {"none", "noflip", "nothing", "noedge", "no"})) return "none";
+    if (isOneOf(joined, {"empty", "emptypixel", "pixelempty", "unpainted", "unpaintedpixel",
+                         "blank", "blankpixel"}))
+        return "empty";
+    if (isOneOf(joined, {"miss", "missed", "pixelmissed"})) return "miss";
+    if (isOneOf(joined, {"hit", "hits", "pixelhit"})) return "hit";
     return joined;
 }
 
@@ -293,16 +353,21 @@ bool sameVertex(const std::string& w, std::int64_t v, const std::string& label) 
 }  // namespace
 
 bool acceptsAnswer(const Answer& expected, std::string_view typedIn) {
-    const std::string typed = lowered(trimmed(typedIn));
+    const std::string typed = withoutMarks(typedIn);
     if (typed.empty()) return false;
     switch (expected.kind) {
         case Answer::Kind::Integer: {
-            if (expected.corner && expected.a == kNone &&
-                isOneOf(canonicalPhrase(typed), {"none", "boundary", "nocorner", "hull"}))
-                return true;
+            if (expected.corner && expected.a == kNone) {
+                // No corner across: "none", or where that happens ("boundary", "hull edge").
+                const std::string said = canonicalPhrase(typed);
+                if (isOneOf(said, {"none", "nocorner", "hull"}) ||
+                    (said == "edge" && typed.find("edge") == std::string::npos) ||
+                    isOneOf(looseName(typed), {"hulledge", "onthehulledge", "onhulledge"}))
+                    return true;
+            }
             if (!expected.labelA.empty() && looseName(typed) == looseName(expected.labelA))
                 return true;
-            const auto v = typedInteger(typed);
+            const auto v = typedInteger(withoutUnit(typed, expected.units));
             return v && *v == expected.a;
         }
         case Answer::Kind::Edge: {
@@ -793,6 +858,43 @@ private:
     std::int32_t m_sel;
 };
 
+// The words that may follow a quantity's number: what it counts ("8 steps", "32 degrees").
+std::vector<std::string> quantityUnits(std::string_view name) {
+    struct Units {
+        const char* name;
+        std::initializer_list<const char*> words;
+    };
+    static const Units kUnits[] = {
+        {"triangles", {"triangles", "triangle"}},
+        {"all_triangles", {"triangles", "triangle"}},
+        {"corners", {"corners", "corner", "rows", "row"}},
+        {"vertices", {"vertices", "vertex", "points", "point"}},
+        {"input_points", {"points", "point"}},
+        {"position", {"operations", "operation", "ops", "op"}},
+        {"flips", {"flips", "flip", "times", "time"}},
+        {"insertion_flips", {"flips", "flip", "times", "time"}},
+        {"tests", {"tests", "test", "times", "time"}},
+        {"insertion_tests", {"tests", "test", "times", "time"}},
+        {"queue", {"edges", "edge"}},
+        {"walk_steps", {"steps", "step"}},
+        {"locate_steps", {"steps", "step"}},
+        {"next_locate_steps", {"steps", "step"}},
+        {"duplicates", {"duplicates", "duplicate", "points", "point"}},
+        {"edge_splits", {"splits", "split"}},
+        {"hull_edges", {"edges", "edge", "sides", "side"}},
+        {"delaunay_violations", {"edges", "edge"}},
+        {"degree", {"triangles", "triangle"}},
+        {"triangles_around", {"triangles", "triangle", "times", "time", "presses", "press"}},
+        {"edges_around", {"edges", "edge", "neighbours", "neighbour", "neighbors", "neighbor"}},
+        {"changed_corners", {"corners", "corner"}},
+        {"min_angle", {"degrees", "degree", "deg", "\u00b0"}},
+    };
+    for (const Units& u : kUnits) {
+        if (name == u.name) return {u.words.begin(), u.words.end()};
+    }
+    return {};
+}
+
 const QuantityInfo* findQuantity(std::string_view name) {
     for (const QuantityInfo& q : kQuantities) {
         if (name == q.name) return &q;
@@ -829,7 +931,9 @@ std::optional<Answer> computeAnswer(std::string_view specIn, Inserter& ins, Jour
     };
     if (findQuantity(spec)) {
         try {
-            return Quantities(ins, journal, selected).get(spec);
+            Answer a = Quantities(ins, journal, selected).get(spec);
+            if (a.kind == Answer::Kind::Integer) a.units = quantityUnits(spec);
+            return a;
         } catch (const Unavailable& u) {
             return fail(spec + " is not available here: " + u.why);
         }
@@ -1502,6 +1606,32 @@ std::int32_t selectAtStop(const Lesson& lesson, std::size_t k, Inserter& ins,
     return static_cast<std::int32_t>(v.i);
 }
 
+// The noun a "How many ..." question counts, as units its answer may carry: "How many walk
+// steps ..." lets "8 walk steps" and "8 steps" through, "How many times ..." "6 times".
+void addQuestionUnits(Answer& a, std::string_view question) {
+    const std::vector<std::string> w = words(question);
+    for (std::size_t i = 0; i + 2 < w.size(); ++i) {
+        if (w[i] != "how" || w[i + 1] != "many") continue;
+        std::size_t j = i + 2;
+        while (j < w.size() && isOneOf(w[j], {"of", "the"})) ++j;
+        if (j >= w.size()) continue;
+        std::vector<std::string> nouns{w[j]};
+        if (j + 1 < w.size() && w[j + 1].size() > 1 && w[j + 1].back() == 's' &&
+            !isOneOf(w[j + 1], {"is", "was", "has", "does"})) {
+            nouns.push_back(w[j] + " " + w[j + 1]);
+            nouns.push_back(w[j + 1]);
+        }
+        for (const std::string& n : nouns) {
+            a.units.push_back(n);
+            if (n.size() > 1 && n.back() == 's') a.units.push_back(n.substr(0, n.size() - 1));
+        }
+    }
+    // Longest first: "8 walk steps" loses "walk steps", not only "steps".
+    std::stable_sort(
+        a.units.begin(), a.units.end(),
+        [](const std::string& x, const std::string& y) { return x.size() > y.size(); });
+}
+
 // What the player shows at stop k: position, caption, answer and the rendered text, after
 // checking the stop's figure and expectations.
 StopState stopStateAt(const Lesson& lesson, std::size_t k, Inserter& ins, Journal& journal,
@@ -1520,6 +1650,8 @@ StopState stopStateAt(const Lesson& lesson, std::size_t k, Inserter& ins, Journa
         state.answer = computeAnswer(s.answer, ins, journal, selected, &why);
         if (!state.answer)
             stopError(lesson, k, s.answerLine, "the answer cannot be computed: " + why);
+        if (state.answer->kind == Answer::Kind::Integer)
+            addQuestionUnits(*state.answer, s.question);
     }
     if (s.figure == "lifting-map" && !liftingMapAt(ins, journal.current())) {
         stopError(lesson, k, s.line,

@@ -89,9 +89,10 @@ struct StopView {
     bool empty() const { return !rect && fit.empty(); }
 };
 
-// The side tabs a stop can bring to the front (`tab = "idbuffer"`).
-inline constexpr const char* kTabNames[] = {"corner-table", "vertex-table", "expressions",
-                                            "predicates",   "idbuffer",     "statistics"};
+// The side tabs a stop can bring to the front (`tab = "idbuffer"`); "none": a slide shows no
+// side tab (its text has the column), a window keeps the tab in front.
+inline constexpr const char* kTabNames[] = {
+    "corner-table", "vertex-table", "expressions", "predicates", "idbuffer", "statistics", "none"};
 
 // An expectation: at the stop, `spec` (a quantity or a corner expression) reads `value`.
 struct LessonExpect {
@@ -156,11 +157,16 @@ struct Answer {
     Vec2 point{};               // Point
     // The canvas labels of virtual vertices ("s0", "g"): of a (a vertex) or of a and b (edge).
     std::string labelA, labelB;
-    bool triangle = false;        // Integer that is a triangle: "t25" reads 25 too
+    bool triangle = false;  // Integer that is a triangle: "t25" reads 25 too
+    // Words that may follow the number of an Integer, singular and plural ("step", "steps"):
+    // what the quantity counts ("8 steps", "32 degrees", "6 times"). Empty: a bare number.
+    std::vector<std::string> units;
     std::string display() const;  // "17", "4-9", "1-s0", "Flip", "yes", "(1, 2)"
 };
 // Whether what a student typed means the same as `expected` (edges in either order, numbers
-// with spaces, "split edge" for SplitEdge, yes/no for truth values...).
+// with spaces or as words up to twenty, a unit the quantity allows after the number ("8 steps",
+// "32°"), trailing punctuation, "split edge" for SplitEdge, British spellings, the phrases of
+// the hints ("on the boundary" for an edge), yes/no for truth values...).
 bool acceptsAnswer(const Answer& expected, std::string_view typed);
 
 struct QuantityInfo {
@@ -248,6 +254,25 @@ bool answerAppearsIn(const Answer& answer, std::string_view text);
 // whose answer is already in their own text or in the operation banner at the stop. Each names
 // file, line and stop.
 std::vector<LessonError> lessonProblems(const Lesson& lesson, const LessonPlan& plan);
+
+// ---- The check of the rendered slide -----------------------------------------------------------
+
+// The line of a rendered slide that shows `answer` in a phrasing acceptsAnswer takes: a number
+// with a unit the answer allows, either way round ("6 corners", "flips  24", "walked 2 steps",
+// "32°"), a phrase ("HIT", "empty pixel"), an edge, a point. A bare number is not read: ids are
+// everywhere on a slide. Each line is read alone and with the next one (a phrase wrapped over
+// two lines). Lines that are part of `ownText` (the stop's text and question, drawn on the slide
+// too and checked on their own by lessonProblems) are skipped. nullopt when no line shows it.
+std::optional<std::string> answerOnSlide(const Answer& answer,
+                                         const std::vector<std::string>& lines,
+                                         std::string_view ownText);
+
+// The stops whose answer is on their rendered slide: `slides[k]` holds the lines of text drawn
+// at stop k + 1 (every panel, the banner, the canvas labels). Besides answerOnSlide, a question
+// that reads one cell of the corner table (`O[c]`, `V[4]`, `n(5)`, `c.l`) fails when that cell's
+// row is on the slide. Each names file, line and stop.
+std::vector<LessonError> slideProblems(const Lesson& lesson, const LessonPlan& plan,
+                                       const std::vector<std::vector<std::string>>& slides);
 
 // ---- Markdown-light text ------------------------------------------------------------------------
 

@@ -1,6 +1,6 @@
 // Lessons the engine vouches for: {{values}} in the text rendered from the engine, and the
 // checks `dtlab lesson check` adds to planning (characters the GUI's font cannot draw, answers
-// given away by the text or the operation banner).
+// given away by the text, the operation banner or the rendered slide).
 #include "core/teaching/lesson.h"
 
 #include "core/engine/numbers.h"
@@ -332,6 +332,206 @@ std::vector<LessonError> lessonProblems(const Lesson& lesson, const LessonPlan& 
                                  "\"): ask one operation earlier what will happen, or ask "
                                  "something else");
         }
+    }
+    return out;
+}
+
+}  // namespace dlab
+
+// ============================================================================================
+// [SECTION] The rendered slide
+// ============================================================================================
+
+namespace dlab {
+
+namespace {
+
+// Words and numbers of a drawn line, in order: "flips | 24 (3.0 per insertion)" -> flips, 24, 3,
+// 0, per, insertion; "32°" -> 32, °.
+std::vector<std::string> slideWords(std::string_view s) {
+    std::vector<std::string> out;
+    for (const Token& t : tokens(s)) {
+        out.push_back(t.word);
+        if (s.substr(t.end, 2) == "\u00b0") out.push_back("\u00b0");
+    }
+    return out;
+}
+
+// Letters and digits only, lower case: a text as drawn, whatever its wrapping and markup.
+std::string alnumOnly(std::string_view s) {
+    std::string out;
+    for (char ch : s) {
+        if (std::isalnum(static_cast<unsigned char>(ch)))
+            out += static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+    }
+    return out;
+}
+
+// Whether `line` is a piece of `text` as drawn (wrapped over several lines, markup gone).
+bool partOf(const std::string& line, const std::string& text) {
+    const std::string l = alnumOnly(line);
+    return !l.empty() && text.find(l) != std::string::npos;
+}
+
+// A number with a unit next to it, in either order, that the answer takes as its own.
+bool countWithUnit(const Answer& answer, const std::vector<std::string>& w) {
+    Answer bare = answer;
+    bare.units.clear();
+    for (std::size_t i = 0; i < w.size(); ++i) {
+        if (!acceptsAnswer(bare, w[i])) continue;
+        // Only with its unit: "0 0" (two cells) reads 0 too, and ids are everywhere.
+        std::vector<std::string> tries;
+        if (i + 1 < w.size()) tries.push_back(w[i] + " " + w[i + 1]);
+        if (i + 2 < w.size()) tries.push_back(w[i] + " " + w[i + 1] + " " + w[i + 2]);
+        if (i > 0) tries.push_back(w[i] + " " + w[i - 1]);
+        if (i > 1) tries.push_back(w[i] + " " + w[i - 2] + " " + w[i - 1]);
+        for (const std::string& t : tries) {
+            if (acceptsAnswer(answer, t) && !acceptsAnswer(bare, t)) return true;
+        }
+    }
+    return false;
+}
+
+// A phrase the answer takes, one to three words long. Where a point was found ("edge",
+// "inside") is left to answerAppearsIn: those words are everywhere in a lesson.
+bool phrase(const Answer& answer, const std::vector<std::string>& w, const std::string& line) {
+    for (const char* where : {"inside", "edge", "vertex", "outside-hull", "none"}) {
+        if (answer.text == where) return answerAppearsIn(answer, line);
+    }
+    for (std::size_t i = 0; i < w.size(); ++i) {
+        std::string t;
+        for (std::size_t n = 0; n < 3 && i + n < w.size(); ++n) {
+            t += (n ? " " : "") + w[i + n];
+            if (acceptsAnswer(answer, t)) return true;
+        }
+    }
+    return false;
+}
+
+// The corner-table column and row an answer reads in one look: "O[c]" with corner 2 selected
+// -> ("O[c]", 2); "n(5)" -> ("n", 5); "c.l" -> ("l", selected). nullopt for anything longer.
+std::optional<std::pair<std::string, std::int64_t>> tableCell(std::string spec,
+                                                              std::int32_t selected) {
+    spec = trimmed(spec);
+    const auto column = [](char x) -> std::string {
+        switch (x) {
+            case 'V': return "V[c]";
+            case 'O':
+            case 'o': return "O[c]";
+            case 'n':
+            case 'p':
+            case 'l':
+            case 'r': return std::string(1, x);
+            default: return "";
+        }
+    };
+    if (spec.size() == 3 && spec.rfind("c.", 0) == 0 && !column(spec[2]).empty() &&
+        selected != kNone)
+        return std::make_pair(column(spec[2]), std::int64_t{selected});
+    if (spec.size() < 4 || column(spec[0]).empty()) return std::nullopt;
+    const char open = spec[1], close = spec.back();
+    if (!((open == '[' && close == ']') || (open == '(' && close == ')'))) return std::nullopt;
+    const std::string inner = trimmed(spec.substr(2, spec.size() - 3));
+    if (inner == "c" && selected != kNone)
+        return std::make_pair(column(spec[0]), std::int64_t{selected});
+    if (inner.empty() || !std::all_of(inner.begin(), inner.end(), [](char ch) {
+            return std::isdigit(static_cast<unsigned char>(ch));
+        }))
+        return std::nullopt;
+    return std::make_pair(column(spec[0]), std::stoll(inner));
+}
+
+std::vector<std::string> cells(const std::string& line) {
+    std::vector<std::string> out;
+    for (std::size_t at = 0;;) {
+        const std::size_t bar = line.find(" | ", at);
+        out.push_back(trimmed(line.substr(at, bar == std::string::npos ? bar : bar - at)));
+        if (bar == std::string::npos) return out;
+        at = bar + 3;
+    }
+}
+
+// The row of the corner table on the slide that shows the cell the answer reads.
+std::optional<std::string> cellOnSlide(const Answer& answer, const std::string& spec,
+                                       std::int32_t selected,
+                                       const std::vector<std::string>& lines) {
+    const auto cell = tableCell(spec, selected);
+    if (!cell) return std::nullopt;
+    // The header's names have no spaces, but narrow columns can run them together ("O[c] n").
+    std::vector<std::string> header;
+    for (const std::string& line : lines) {
+        std::vector<std::string> names;
+        std::string cur;
+        for (char ch : line + " ") {
+            if (ch != ' ' && ch != '|') {
+                cur += ch;
+            } else if (!cur.empty()) {
+                names.push_back(std::move(cur));
+                cur.clear();
+            }
+        }
+        if (names.size() > 4 && names[0] == "c" && names[1] == "t" && names[2] == "V[c]")
+            header = names;
+    }
+    const auto col = std::find(header.begin(), header.end(), cell->first);
+    if (col == header.end()) return std::nullopt;
+    const auto k = static_cast<std::size_t>(col - header.begin());
+    for (const std::string& line : lines) {
+        const std::vector<std::string> c = cells(line);
+        if (c.size() != header.size() || c[0] != std::to_string(cell->second)) continue;
+        const std::vector<Token> value = tokens(c[k]);
+        const bool minus = !c[k].empty() && c[k][0] == '-';
+        if (!value.empty() && acceptsAnswer(answer, (minus ? "-" : "") + value[0].word))
+            return "row " + c[0] + " of the corner table: " + line;
+    }
+    return std::nullopt;
+}
+
+}  // namespace
+
+std::optional<std::string> answerOnSlide(const Answer& answer,
+                                         const std::vector<std::string>& lines,
+                                         std::string_view ownText) {
+    const std::string own = alnumOnly(ownText);
+    // Each line, and each line with the next (a phrase wrapped: "walked 2" / "steps from t3").
+    std::vector<std::string> read;
+    for (std::size_t i = 0; i < lines.size(); ++i) {
+        if (partOf(lines[i], own)) continue;
+        read.push_back(lines[i]);
+        if (i + 1 < lines.size() && !partOf(lines[i + 1], own))
+            read.push_back(lines[i] + " " + lines[i + 1]);
+    }
+    for (const std::string& line : read) {
+        const std::vector<std::string> w = slideWords(line);
+        bool shown = false;
+        switch (answer.kind) {
+            case Answer::Kind::Integer: shown = countWithUnit(answer, w); break;
+            case Answer::Kind::Text: shown = phrase(answer, w, line); break;
+            case Answer::Kind::Edge:
+            case Answer::Kind::Point: shown = answerAppearsIn(answer, line); break;
+            case Answer::Kind::Truth: break;
+        }
+        if (shown) return line;
+    }
+    return std::nullopt;
+}
+
+std::vector<LessonError> slideProblems(const Lesson& lesson, const LessonPlan& plan,
+                                       const std::vector<std::vector<std::string>>& slides) {
+    std::vector<LessonError> out;
+    for (std::size_t k = 0; k < lesson.stops.size() && k < plan.stops.size() && k < slides.size();
+         ++k) {
+        const StopState& st = plan.stops[k];
+        if (!st.answer) continue;
+        // The stop's text and question are checked on their own (lessonProblems): here, what
+        // the panels, the banner and the canvas show.
+        auto line = answerOnSlide(*st.answer, slides[k], st.text + "\n" + st.question);
+        if (!line) line = cellOnSlide(*st.answer, lesson.stops[k].answer, st.selected, slides[k]);
+        if (!line) continue;
+        out.emplace_back(lesson.file, lesson.stops[k].line, static_cast<int>(k) + 1,
+                         "the answer (" + st.answer->display() + ") is on the rendered slide: \"" +
+                             escapeControls(*line) +
+                             "\": show another tab (tab = \"...\"), or ask before it shows");
     }
     return out;
 }

@@ -16,6 +16,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <optional>
 
 namespace dlab::ui {
 
@@ -82,9 +83,10 @@ void rebuildTexture(Renderer* renderer, IdBufferView& v, const IdBufferFrame& f,
 }
 
 // The last locate of the journal up to the current position: its start triangle (the hint),
-// steps and result.
+// steps and result; `justDone` while nothing has happened since it ended (the buffer is still
+// the one it read).
 struct LocateSummary {
-    bool found = false;
+    bool found = false, justDone = false;
     std::int32_t vertex = kNone, start = kNone, end = kNone, steps = 0;
 };
 
@@ -98,6 +100,7 @@ LocateSummary lastLocate(const Engine& e) {
     if (k == 0) return s;
     const Op& located = ops[k - 1];
     s.found = true;
+    s.justDone = k == e.position();
     s.vertex = located.vertex;
     s.end = located.a;
     std::size_t first = k - 1;
@@ -107,6 +110,48 @@ LocateSummary lastLocate(const Engine& e) {
     s.steps = static_cast<std::int32_t>(k - 1 - first);
     s.start = ops[first].a;
     return s;
+}
+
+// The id the buffer holds under world point p (kNone: nothing painted), from the grid of pixel
+// centres; nullopt outside the image.
+std::optional<std::int32_t> idUnder(const IdBufferFrame& f, Vec2 p) {
+    if (f.width < 2 || f.height < 2 || !f.centre) return std::nullopt;
+    const Vec2 c0 = f.centre(0, 0), cx = f.centre(1, 0), cy = f.centre(0, 1);
+    const double dx = cx.x - c0.x, dy = cy.y - c0.y;
+    if (!(dx > 0) || !(dy > 0)) return std::nullopt;
+    long i = std::lround((p.x - c0.x) / dx), j = std::lround((p.y - c0.y) / dy);
+    if (i < -1 || j < -1 || i > f.width || j > f.height) return std::nullopt;
+    i = std::clamp(i, 0L, static_cast<long>(f.width - 1));  // the image's far sides are closed
+    j = std::clamp(j, 0L, static_cast<long>(f.height - 1));
+    return f.ids[static_cast<std::size_t>(j) * f.width + static_cast<std::size_t>(i)];
+}
+
+// The three cases a lesson asks about, as `pixel_outcome` names them: hit (the pixel's triangle
+// holds the point), miss (a walk from the pixel's triangle), empty pixel (a walk from the last
+// insertion). Told apart only while the buffer is the one the locate read; otherwise "walked".
+void ShowLocateCase(const Engine& e, const LocateSummary& loc, const IdBufferFrame& f) {
+    std::optional<std::int32_t> pixel;
+    if (loc.justDone && e.options().locator != LocatorKind::IdBufferGlBatched && loc.vertex >= 0 &&
+        static_cast<std::size_t>(loc.vertex) < e.mesh().G.size())
+        pixel = idUnder(f, e.mesh().G[loc.vertex]);
+    const char* s = loc.steps == 1 ? "" : "s";
+    if (pixel && *pixel == kNone) {
+        ImGui::TextWrapped(
+            "Last locate (v%d): empty pixel - nothing painted there: walked %d "
+            "step%s from the last insertion's t%d to t%d",
+            loc.vertex, loc.steps, s, loc.start, loc.end);
+    } else if (loc.steps == 0 && (!pixel || *pixel == loc.end)) {
+        ImGui::TextWrapped("Last locate (v%d): HIT - the pixel's triangle t%d contains it",
+                           loc.vertex, loc.end);
+    } else if (pixel) {
+        ImGui::TextWrapped(
+            "Last locate (v%d): miss - the pixel's t%d does not hold it: walked %d "
+            "step%s from t%d to t%d",
+            loc.vertex, *pixel, loc.steps, s, loc.start, loc.end);
+    } else {
+        ImGui::TextWrapped("Last locate (v%d): walked %d step%s from t%d to t%d", loc.vertex,
+                           loc.steps, s, loc.start, loc.end);
+    }
 }
 
 void hexColour(const char* label, std::int32_t id) {
@@ -215,19 +260,12 @@ void ShowBufferHeader(IdBufferViewState& vs, const IdBufferFrame& f) {
 }
 
 // The last locate: did the buffer's hint already contain the point? And the run's hits so far.
-void ShowLastLocate(AppState& st) {
+void ShowLastLocate(AppState& st, const IdBufferFrame& f) {
     const LocateSummary loc = lastLocate(st.engine);
     if (loc.found) {
         ImGui::PushStyleColor(ImGuiCol_Text, loc.steps == 0 ? ImVec4(0.05f, 0.45f, 0.15f, 1)
                                                             : ImVec4(0.7f, 0.4f, 0.0f, 1));
-        if (loc.steps == 0) {
-            ImGui::TextWrapped("Last locate (v%d): HIT - the hinted triangle t%d contains it",
-                               loc.vertex, loc.end);
-        } else {
-            ImGui::TextWrapped("Last locate (v%d): missed - walked %d step%s from t%d to t%d",
-                               loc.vertex, loc.steps, loc.steps == 1 ? "" : "s", loc.start,
-                               loc.end);
-        }
+        ShowLocateCase(st.engine, loc, f);
         ImGui::PopStyleColor();
     } else {
         ImGui::TextDisabled("No locate yet.");
@@ -411,7 +449,7 @@ void IdBufferBody(AppState& st) {
         v.trueColours = vs.trueColours;
     }
     ShowBufferHeader(vs, f);
-    ShowLastLocate(st);
+    ShowLastLocate(st, f);
 
     // ---- The image, and beside it the pixel under the mouse -----------------------------------
     const ImageLayout L = LayOutImage(st, v);

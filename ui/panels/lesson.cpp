@@ -127,7 +127,8 @@ void Question(AppState& st, const LessonStop& stop, std::size_t k) {
 }
 
 // The side tab a slide shows: the `tab` of this stop or of the last stop before it that named
-// one (the same whichever way the slides are visited); none when no stop named one.
+// one (the same whichever way the slides are visited); none when no stop named one or the last
+// one named "none".
 using PanelFn = void (*)(AppState&);
 PanelFn SlideTab(const Lesson& lesson, std::size_t k) {
     static const std::pair<const char*, PanelFn> tabs[] = {

@@ -6,6 +6,7 @@
 #include "ui/panels/labels.h"
 #include "ui/panels/panels.h"
 #include "ui/platform/keys.h"
+#include "ui/render/drawn_text.h"
 
 #include <gtest/gtest.h>
 #include <imgui.h>
@@ -384,4 +385,43 @@ TEST(CanvasLabels, AGhostCornerLabelTakesTheFirstFreeSpot) {
         dlab::ui::placeFirstFree(labels, {ImVec2(52, 50), ImVec2(52, 90)}, ImVec2(20, 14));
     EXPECT_EQ(at.y, 90.0f);
     EXPECT_FALSE(labels.isFree(42, 83, 62, 97)) << "the label is registered";
+}
+
+TEST(LessonSlides, TheTextOfAFrameIsReadBackFromItsDrawLists) {
+    UiHarness h(1280, 720);
+    auto& st = h.state();
+    st.presentation = true;
+    ASSERT_TRUE(dlab::ui::openLesson(st, lessonPath("01_corner_table.toml")));
+    const auto& stops = st.lessonPlayer.lesson->stops;
+    const auto last = stops.size() - 1;  // the corner table, corner 2 selected
+    ASSERT_EQ(stops[last].tab, "corner-table");
+    dlab::ui::goToStop(st, last);
+    h.frames(3);
+    const std::vector<std::string> lines =
+        dlab::ui::drawnLines(dlab::ui::drawnText(ImGui::GetDrawData()));
+    const auto has = [&](const std::string& want) {
+        return std::any_of(lines.begin(), lines.end(),
+                           [&](const std::string& l) { return l.find(want) != std::string::npos; });
+    };
+    std::string all;
+    for (const std::string& l : lines) all += l + "\n";
+    // Table cells, one row per line; its header; the banner; canvas labels; the question.
+    const dlab::Mesh& m = st.engine.mesh();
+    const std::string row2 = "2 | 0 | " + std::to_string(m.V[2]) + " | " + std::to_string(m.O[2]);
+    EXPECT_TRUE(has(row2)) << row2 << "\n" << all;
+    EXPECT_TRUE(has(std::to_string(m.numCorners()) + " corners")) << all;
+    EXPECT_TRUE(has("Finalize: 4 ghost triangles removed")) << all;
+    EXPECT_TRUE(std::count(lines.begin(), lines.end(), std::string("t1")) == 1) << all;
+    EXPECT_TRUE(has("which")) << all;
+    // What the check makes of them: the count of corners is on this slide, and not on one whose
+    // side tab is the vertex table.
+    dlab::Answer corners;
+    corners.kind = dlab::Answer::Kind::Integer;
+    corners.a = m.numCorners();
+    corners.units = {"corners", "corner"};
+    EXPECT_TRUE(dlab::answerOnSlide(corners, lines, ""));
+    dlab::ui::goToStop(st, last - 1);
+    h.frames(3);
+    EXPECT_FALSE(dlab::answerOnSlide(
+        corners, dlab::ui::drawnLines(dlab::ui::drawnText(ImGui::GetDrawData())), ""));
 }
