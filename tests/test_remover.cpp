@@ -277,3 +277,36 @@ TEST(Remover, GhostsAddedToAFinishedMeshEqualTheInsertersClosedMesh) {
         EXPECT_EQ(checkDelaunayExact(closed, &left), "");
     }
 }
+
+TEST(Remover, CentreOfExactlyCocircularPointsAndThenTheCircleItself) {
+    // The 36 lattice points of x^2 + y^2 = 65^2 and their centre: the centre has degree 36 and
+    // every ear of its hole is cocircular with all the others.
+    std::vector<Vec2> pts = {{0, 0}};
+    for (int x = -65; x <= 65; ++x) {
+        for (int y = -65; y <= 65; ++y) {
+            if (x * x + y * y == 65 * 65) pts.push_back({double(x), double(y)});
+        }
+    }
+    ASSERT_EQ(pts.size(), 37u);
+    for (const Boundary boundary : {Boundary::Exact, Boundary::Super}) {
+        Mesh mesh = closedMesh(pts, boundary, 1);
+        const std::int32_t n = static_cast<std::int32_t>(pts.size());
+        Remover remover(mesh, n, boundary);
+        ASSERT_EQ(remover.remove(0), RemoveResult::Removed);
+        ValidateOptions vo;
+        vo.firstVirtual = boundary == Boundary::Exact ? n : -1;
+        const auto bad = validate(mesh, vo);
+        ASSERT_TRUE(bad.empty()) << bad[0].message;
+        if (boundary == Boundary::Exact) {
+            Mesh finished = mesh;
+            dropVirtual(finished, n);
+            std::vector<std::int32_t> left;
+            for (std::int32_t i = 1; i < n; ++i) left.push_back(i);
+            EXPECT_EQ(checkDelaunayExact(finished, &left), "");
+            EXPECT_EQ(finished.numTriangles(), n - 3);  // 36 hull points: 34 triangles
+        }
+    }
+    RemovalRun run;
+    run.pts = pts;
+    removeAll(run, "circle of 36 lattice points and its centre");
+}

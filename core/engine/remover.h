@@ -81,6 +81,7 @@ private:
     bool leavesNoTriangle(std::int32_t v) const;
     int inCircleOf(std::int32_t a, std::int32_t b, std::int32_t c, std::int32_t w) const;
     int earSign(std::int32_t v, std::size_t i) const;
+    int testEar(std::int32_t v, std::size_t i);
     std::size_t chooseEar(std::int32_t v);
     void cutEar(std::int32_t v, std::size_t i);
     void merge(std::int32_t v);
@@ -102,6 +103,8 @@ private:
     RemovalRecord* m_record = nullptr;     // where the current removal records, if anywhere
     std::vector<std::int32_t> m_link;      // the link of v, counter-clockwise
     std::vector<std::int32_t> m_corners;   // corner at v of triangle (v, link[i], link[i+1])
+    static constexpr std::int8_t kUntested = 2;
+    std::vector<std::int8_t> m_ear;  // earSign of the ear with tip link[i], or kUntested
 };
 
 // The exact mode's closed form of a finished mesh: the ghost vertex (index |G|, placed at the
