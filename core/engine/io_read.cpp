@@ -13,6 +13,7 @@
 #include "core/engine/numbers.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <charconv>
 #include <climits>
@@ -869,6 +870,48 @@ PointSet readPointsFile(const std::string& path) {
     }
     ps.warnings.insert(ps.warnings.begin(), shown + ": read as " + guess + " by its content");
     return ps;
+}
+
+std::vector<std::int32_t> parseIdList(std::string_view text, const std::string& name, int base,
+                                      std::size_t count) {
+    std::vector<std::int32_t> ids;
+    std::vector<int> lineOf(count, 0);
+    int lineNo = 0;
+    while (!text.empty()) {
+        const std::size_t eol = text.find('\n');
+        std::string_view line = text.substr(0, eol);
+        text = eol == std::string_view::npos ? std::string_view{} : text.substr(eol + 1);
+        ++lineNo;
+        line = line.substr(0, line.find('#'));
+        while (!line.empty() && std::isspace(static_cast<unsigned char>(line.front())))
+            line.remove_prefix(1);
+        while (!line.empty() && std::isspace(static_cast<unsigned char>(line.back())))
+            line.remove_suffix(1);
+        if (line.empty()) continue;
+        long long id = 0;
+        const auto [end, ec] = std::from_chars(line.data(), line.data() + line.size(), id);
+        if (ec != std::errc{} || end != line.data() + line.size()) {
+            throw InputError(name, lineNo,
+                             "\"" + printable(line, 40, false) +
+                                 "\" is not a point id (a whole "
+                                 "number, one a line)");
+        }
+        if (id < base || id - base >= static_cast<long long>(count)) {
+            throw InputError(name, lineNo,
+                             "point id " + std::to_string(id) + " is not in the input (ids run " +
+                                 std::to_string(base) + " to " +
+                                 std::to_string(static_cast<long long>(count) + base - 1) + ")");
+        }
+        const auto i = static_cast<std::int32_t>(id - base);
+        if (lineOf[i] != 0) {
+            throw InputError(name, lineNo,
+                             "point id " + std::to_string(id) + " is listed twice (line " +
+                                 std::to_string(lineOf[i]) + " too)");
+        }
+        lineOf[i] = lineNo;
+        ids.push_back(i);
+    }
+    return ids;
 }
 
 }  // namespace dlab

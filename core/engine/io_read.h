@@ -96,4 +96,10 @@ PointSet parseNode(std::string_view text, const std::string& name);
 PointSet parseXY(std::string_view text, const std::string& name);
 PointSet parsePts(std::string_view text, const std::string& name);
 
+// A list of point ids, one a line, in the points' index base (blank lines and text after '#'
+// ignored): the 0-based ids in the file's order. Refuses a line that is not one whole number,
+// an id outside [base, base + count) and an id listed twice, naming the line.
+std::vector<std::int32_t> parseIdList(std::string_view text, const std::string& name, int base,
+                                      std::size_t count);
+
 }  // namespace dlab
