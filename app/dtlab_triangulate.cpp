@@ -2,16 +2,20 @@
 // OFF, OBJ and SVG), ids in the input's index base.
 #include "app/dtlab_common.h"
 
+#include "core/engine/constrainer.h"
 #include "core/engine/io_read.h"
 #include "core/engine/io_write.h"
 #include "core/engine/mesh.h"
+#include "core/engine/predicates.h"
 #include "core/engine/remover.h"
 #include "core/engine/voronoi.h"
 
 #include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <filesystem>
 #include <iostream>
+#include <optional>
 
 #if defined(__GLIBC__)
 #include <malloc.h>
@@ -38,7 +42,8 @@ struct Triangulated {
     std::vector<std::int32_t> skipped;
     InsertStats stats;
     int threads = 1;
-    std::size_t removed = 0;  // --remove: vertices removed
+    std::vector<std::pair<std::int32_t, std::int32_t>> constrained{};  // IN.poly: the segments
+    std::size_t removed = 0;                                           // --remove: vertices removed
     double removeMs = 0;
 };
 
@@ -129,6 +134,76 @@ Triangulated triangulateThenRemove(const TriangulateArgs& args, std::vector<Vec2
     return out;
 }
 
+bool isPoly(const std::string& path) {
+    std::string ext = std::filesystem::path(path).extension().string();
+    for (char& ch : ext) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+    return ext == ".poly";
+}
+
+// The constrained edge p-q lies on which of the first `upTo` segments?
+std::size_t segmentHolding(const PolyFile& poly, std::size_t upTo, std::int32_t p, std::int32_t q) {
+    const auto& G = poly.points.points;
+    for (std::size_t k = 0; k < upTo; ++k) {
+        const auto [a, b] = poly.segments[k];
+        if (orient2d(G[a], G[b], G[p]) == 0 && orient2d(G[a], G[b], G[q]) == 0) return k;
+    }
+    return upTo;
+}
+
+// IN.poly: the one inserter, the ghosts back, every segment constrained (Sloan's flips), the
+// ghosts dropped. Two segments that cross stop with both named.
+Triangulated triangulatePoly(const TriangulateArgs& args, const PolyFile& poly) {
+    if (args.engine.options().boundary != Boundary::Exact)
+        fail(args.input + ": segments need --boundary exact", 2);
+    if (!args.removeFile.empty()) fail(args.input + ": --remove does not take a .poly yet", 2);
+    const auto n = static_cast<std::int32_t>(poly.points.points.size());
+    const int base = poly.points.indexBase;
+    const auto made = args.engine.makeInserter(poly.points.points);
+    made->run();
+    Triangulated out{made->takeMesh(), made->skipped(), made->stats(), 1};
+    if (out.mesh.numTriangles() == 0) return out;  // collinear: no triangle to constrain
+    addGhosts(out.mesh);
+    Constrainer con(out.mesh, n);
+    for (std::size_t k = 0; k < poly.segments.size(); ++k) {
+        const auto [a, b] = poly.segments[k];
+        const ConstrainOutcome r = con.insert(a, b);
+        if (r.result != ConstrainResult::Crosses) continue;
+        const std::size_t other = segmentHolding(poly, k, r.crossed.first, r.crossed.second);
+        fail(args.input + ": segment " + std::to_string(k + base) + " (" +
+                 std::to_string(a + base) + "-" + std::to_string(b + base) + ") crosses segment " +
+                 std::to_string(other + base) + " (" +
+                 std::to_string(poly.segments[other].first + base) + "-" +
+                 std::to_string(poly.segments[other].second + base) +
+                 "); crossing segments are not split",
+             2);
+    }
+    const Mesh& m = out.mesh;
+    for (std::int32_t c = 0; c < m.numCorners(); ++c) {
+        if (con.isConstrained(c) && c < m.O[c])
+            out.constrained.push_back({m.V[next(c)], m.V[prev(c)]});
+    }
+    dropVirtual(out.mesh, n);
+    return out;
+}
+
+// BASE.poly: the vertices in BASE.node, the constrained edges (pieces of the input's segments).
+void writeSegmentsPoly(std::ostream& os, const Triangulated& t, int base) {
+    os << "0 2 0 0\n" << t.constrained.size() << " 0\n";
+    for (std::size_t k = 0; k < t.constrained.size(); ++k) {
+        os << k + base << " " << t.constrained[k].first + base << " "
+           << t.constrained[k].second + base << "\n";
+    }
+    os << "0\n";
+}
+
+PolyFile loadPoly(const std::string& path) {
+    try {
+        return readPolyFile(path);
+    } catch (const InputError& e) {
+        fail(e.what(), 2);
+    }
+}
+
 std::vector<std::int32_t> loadRemoveIds(const std::string& path, int base, std::size_t n) {
     try {
         return parseIdList(readRegularFile(path, kMaxFileBytes), path, base, n);
@@ -163,6 +238,7 @@ void checkOutputs(const TriangulateArgs& args) {
         out.push_back({args.voronoiBase + ".v.node", {}});
         out.push_back({args.voronoiBase + ".v.edge", {}});
     }
+    if (isPoly(args.input)) out.push_back({args.base + ".poly", {}});
     try {
         checkOutputFiles(out, inputsOf(args));
     } catch (const std::runtime_error& e) {
@@ -217,13 +293,21 @@ void printSummary(const TriangulateArgs& args, const Triangulated& result, int b
 void runTriangulate(const TriangulateArgs& args) {
     returnLargeBuffersWhenFreed();
     checkOutputs(args);
-    LoadedPoints loaded = loadPoints(args.input);
+    std::optional<PolyFile> poly;
+    LoadedPoints loaded;
+    if (isPoly(args.input)) {
+        poly = loadPoly(args.input);
+        loaded = {poly->points.points, poly->points.indexBase};
+    } else {
+        loaded = loadPoints(args.input);
+    }
     const int base = loaded.indexBase;
     const std::size_t n = loaded.points.size();
     std::vector<std::int32_t> gone;
     if (!args.removeFile.empty()) gone = loadRemoveIds(args.removeFile, base, n);
     const auto t0 = std::chrono::steady_clock::now();
-    const Triangulated result = args.removeFile.empty()
+    const Triangulated result = poly ? triangulatePoly(args, *poly)
+                                : args.removeFile.empty()
                                     ? triangulate(args, std::move(loaded.points))
                                     : triangulateThenRemove(args, std::move(loaded.points), gone);
     const double ms =
@@ -233,7 +317,7 @@ void runTriangulate(const TriangulateArgs& args) {
 
     if (args.check) {
         ValidateOptions vo;
-        vo.delaunay = exact;  // super mode does not promise it
+        vo.delaunay = exact && !poly;  // super mode does not promise it, nor do constraints
         const auto bad = validate(m, vo);
         if (!bad.empty())
             fail("result failed validation at corner " + std::to_string(bad[0].corner) + ": " +
@@ -247,6 +331,8 @@ void runTriangulate(const TriangulateArgs& args) {
     add(args.base + ".node", [&](std::ostream& os) { writeNode(os, m.G, base); });
     add(args.base + ".ele", [&](std::ostream& os) { writeEle(os, m, base); });
     add(args.base + ".neigh", [&](std::ostream& os) { writeNeigh(os, m, base); });
+    if (poly)
+        add(args.base + ".poly", [&](std::ostream& os) { writeSegmentsPoly(os, result, base); });
     if (!args.off.empty()) add(args.off, [&](std::ostream& os) { writeOff(os, m); });
     if (!args.obj.empty()) add(args.obj, [&](std::ostream& os) { writeObj(os, m); });
     SvgOptions meshSvg, voronoiSvg;
