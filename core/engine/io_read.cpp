@@ -13,6 +13,7 @@
 #include "core/engine/numbers.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <charconv>
 #include <climits>
@@ -584,6 +585,75 @@ PointSet parseNode(std::string_view text, const std::string& name) {
     return ps;
 }
 
+namespace {
+
+// The segment section of a .poly: its header, then one 'i a b [marker]' line a segment.
+void parsePolySegments(LineReader& reader, PolyFile& out, std::int64_t base,
+                       const std::string& name) {
+    Line line;
+    if (!reader.next(line)) fail(name, 0, "no segment section after the vertices");
+    std::vector<std::string_view> f;
+    splitFields(line.text, Sep::Blanks, f, 2);
+    const std::int64_t count = parseInteger(f[0], name, line.number, "segment count");
+    const std::int64_t markers =
+        f.size() > 1 ? parseInteger(f[1], name, line.number, "segment marker count") : 0;
+    const auto n = static_cast<std::int64_t>(out.points.points.size());
+    if (count < 0 || count > 2 * static_cast<std::int64_t>(kMaxPoints))
+        fail(name, line.number, "segment count " + std::to_string(count) + " is out of range");
+    for (std::int64_t k = 0; k < count; ++k) {
+        if (!reader.next(line)) {
+            fail(name, reader.linesRead(),
+                 "end of file: expected " + std::to_string(count) + " segments, found " +
+                     std::to_string(k));
+        }
+        const std::size_t fields = splitFields(line.text, Sep::Blanks, f, 4);
+        if (fields < 3 || fields > static_cast<std::size_t>(markers > 0 ? 4 : 3)) {
+            fail(name, line.number,
+                 std::string("a segment line holds: index, first vertex, second vertex") +
+                     (markers > 0 ? ", boundary marker" : ""));
+        }
+        std::int32_t ends[2];
+        for (int e = 0; e < 2; ++e) {
+            const std::int64_t id = parseInteger(f[1 + e], name, line.number, "segment vertex");
+            if (id < base || id - base >= n) {
+                fail(name, line.number,
+                     "segment vertex " + std::to_string(id) + " is not a vertex (ids run " +
+                         std::to_string(base) + " to " + std::to_string(n + base - 1) + ")");
+            }
+            ends[e] = static_cast<std::int32_t>(id - base);
+        }
+        out.segments.push_back({ends[0], ends[1]});
+    }
+    if (reader.next(line)) {
+        splitFields(line.text, Sep::Blanks, f, 1);
+        if (parseInteger(f[0], name, line.number, "hole count") != 0)
+            fail(name, line.number, "holes are not supported (the result covers the convex hull)");
+    }
+}
+
+}  // namespace
+
+PolyFile parsePoly(std::string_view text, const std::string& name) {
+    PolyFile out;
+    out.points = emptyPointSet(text, name);
+    LineReader reader(text);
+    const NodeHeader h = parseNodeHeader(firstLine(reader, name, "no header line"), name);
+    if (h.vertices.count == 0)
+        fail(name, h.vertices.line, "vertices in a separate .node file are not supported");
+    h.vertices.checkFits(2 * static_cast<std::uint64_t>(h.fieldsPerLine), reader, name);
+    auto& points = out.points.points;
+    points.reserve(h.vertices.count);
+    std::int64_t base = 0;
+    std::vector<std::string_view> f;
+    for (Line line; points.size() < h.vertices.count;) {
+        if (!reader.next(line)) h.vertices.checkAllRead(out.points, reader, name);
+        points.push_back(parseNodeVertex(line, h, points.size(), base, f, name));
+    }
+    out.points.indexBase = static_cast<int>(base);
+    parsePolySegments(reader, out, base, name);
+    return out;
+}
+
 //-----------------------------------------------------------------------------------------------
 // [SECTION] XY / CSV
 //-----------------------------------------------------------------------------------------------
@@ -869,6 +939,50 @@ PointSet readPointsFile(const std::string& path) {
     }
     ps.warnings.insert(ps.warnings.begin(), shown + ": read as " + guess + " by its content");
     return ps;
+}
+
+PolyFile readPolyFile(const std::string& path) { return parsePoly(readFileText(path), path); }
+
+std::vector<std::int32_t> parseIdList(std::string_view text, const std::string& name, int base,
+                                      std::size_t count) {
+    std::vector<std::int32_t> ids;
+    std::vector<int> lineOf(count, 0);
+    int lineNo = 0;
+    while (!text.empty()) {
+        const std::size_t eol = text.find('\n');
+        std::string_view line = text.substr(0, eol);
+        text = eol == std::string_view::npos ? std::string_view{} : text.substr(eol + 1);
+        ++lineNo;
+        line = line.substr(0, line.find('#'));
+        while (!line.empty() && std::isspace(static_cast<unsigned char>(line.front())))
+            line.remove_prefix(1);
+        while (!line.empty() && std::isspace(static_cast<unsigned char>(line.back())))
+            line.remove_suffix(1);
+        if (line.empty()) continue;
+        long long id = 0;
+        const auto [end, ec] = std::from_chars(line.data(), line.data() + line.size(), id);
+        if (ec != std::errc{} || end != line.data() + line.size()) {
+            throw InputError(name, lineNo,
+                             "\"" + printable(line, 40, false) +
+                                 "\" is not a point id (a whole "
+                                 "number, one a line)");
+        }
+        if (id < base || id - base >= static_cast<long long>(count)) {
+            throw InputError(name, lineNo,
+                             "point id " + std::to_string(id) + " is not in the input (ids run " +
+                                 std::to_string(base) + " to " +
+                                 std::to_string(static_cast<long long>(count) + base - 1) + ")");
+        }
+        const auto i = static_cast<std::int32_t>(id - base);
+        if (lineOf[i] != 0) {
+            throw InputError(name, lineNo,
+                             "point id " + std::to_string(id) + " is listed twice (line " +
+                                 std::to_string(lineOf[i]) + " too)");
+        }
+        lineOf[i] = lineNo;
+        ids.push_back(i);
+    }
+    return ids;
 }
 
 }  // namespace dlab

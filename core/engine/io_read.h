@@ -44,6 +44,7 @@
 #include <stdexcept>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 namespace dlab {
@@ -95,5 +96,22 @@ PointSet readPointsFile(const std::string& path);
 PointSet parseNode(std::string_view text, const std::string& name);
 PointSet parseXY(std::string_view text, const std::string& name);
 PointSet parsePts(std::string_view text, const std::string& name);
+
+// Triangle's .poly (a planar straight-line graph): the vertices as in a .node, then
+// '<#segments> <#boundary markers>' and 'i a b [marker]' lines, then '<#holes>'. The vertices
+// must be in the file itself, and holes are refused (the result is the constrained Delaunay
+// triangulation of the convex hull). Segment ends are 0-based ids.
+struct PolyFile {
+    PointSet points;
+    std::vector<std::pair<std::int32_t, std::int32_t>> segments;
+};
+PolyFile parsePoly(std::string_view text, const std::string& name);
+PolyFile readPolyFile(const std::string& path);
+
+// A list of point ids, one a line, in the points' index base (blank lines and text after '#'
+// ignored): the 0-based ids in the file's order. Refuses a line that is not one whole number,
+// an id outside [base, base + count) and an id listed twice, naming the line.
+std::vector<std::int32_t> parseIdList(std::string_view text, const std::string& name, int base,
+                                      std::size_t count);
 
 }  // namespace dlab

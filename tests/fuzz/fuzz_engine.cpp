@@ -12,10 +12,14 @@
 //     (cocircular sets), midpoint of two points (points on edges), raw doubles (any finite
 //     bits), a change of scale (huge and tiny together), a finer cloud point.
 // Integer lattices scaled by powers of two keep collinear and cocircular sets exactly so.
+// After the insertion checks, vertices are removed from the closed mesh (the state before
+// Finalize) in an order drawn from the seed and the probe, each removal checked exactly, then all
+// of them undone bit for bit.
 #include "tests/fuzz/fuzz_common.h"
 
 #include "core/engine/halves.h"
 #include "core/engine/inserter.h"
+#include "core/engine/remover.h"
 #include "core/teaching/trace.h"
 #include "tests/exact_check.h"
 
@@ -273,6 +277,62 @@ void checkHalves(const Case& c, const Inserter& batch) {
     require(joined->skipped == skipped, "the joined halves skip the batch's duplicates", what);
 }
 
+// One removal checked: the closed mesh valid (Delaunay with the super-triangle's real vertices),
+// and in the exact mode the finished mesh exactly the Delaunay triangulation of the vertices left.
+void checkRemoval(const Case& c, const Mesh& closed, const std::vector<std::int32_t>& left,
+                  bool exactCheck) {
+    const std::string what = describe(c) + ", after removals";
+    const auto n = static_cast<std::int32_t>(c.points.size());
+    const bool exact = c.options.boundary == Boundary::Exact;
+    ValidateOptions vo;
+    vo.firstVirtual = exact ? n : -1;
+    const auto bad = validate(closed, vo);
+    if (!bad.empty())
+        fail("a removal leaves a valid Delaunay corner table", what + ": " + bad[0].message);
+    if (!exact || !exactCheck) return;
+    Mesh finished = closed;
+    dropVirtual(finished, n);
+    std::vector<Vec2> leftPoints;
+    for (const std::int32_t v : left) leftPoints.push_back(c.points[v]);
+    if (allCollinearExact(leftPoints)) {
+        require(finished.numTriangles() == 0, "collinear points left give no triangle", what);
+        return;
+    }
+    const std::string err = checkDelaunayExact(finished, &left);
+    require(err.empty(), "the exact GMP check accepts the mesh after a removal", what + ": " + err);
+}
+
+// Removes vertices of the closed mesh in a drawn order (about two in three), checking each
+// removal, then undoes them all: the closed mesh again, bit for bit.
+void checkRemovals(const Case& c, Mesh closed) {
+    const std::string what = describe(c) + ", removals";
+    const auto n = static_cast<std::int32_t>(c.points.size());
+    const Snapshot start = snap(closed);
+    std::vector<std::int32_t> left = firstOccurrences(c.points), order = left;
+    std::uint64_t state =
+        c.options.seed * 6364136223846793005ULL + c.probe + 1442695040888963407ULL;
+    for (std::size_t i = order.size(); i > 1; --i) {
+        state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+        std::swap(order[i - 1], order[(state >> 33) % i]);
+    }
+    order.resize(order.size() * 2 / 3);
+    Remover remover(closed, n, c.options.boundary);
+    RemovalRecord record;
+    for (std::size_t k = 0; k < order.size(); ++k) {
+        const std::int32_t v = order[k];
+        const bool hadTriangles = closed.numTriangles() > 0;
+        const RemoveResult r = remover.remove(v, &record);
+        left.erase(std::find(left.begin(), left.end(), v));
+        require(hadTriangles ? r != RemoveResult::NotInMesh && r != RemoveResult::Virtual
+                             : r == RemoveResult::NotInMesh,
+                "a vertex of the mesh is removed, none other", what);
+        checkRemoval(c, closed, left, left.size() <= 40 || k % 4 == 0 || k + 1 == order.size());
+    }
+    remover.undo(record);
+    require(snap(closed) == start, "undoing every removal restores the closed mesh bit for bit",
+            what);
+}
+
 void runCase(const Case& c) {
     const std::string what = describe(c);
     const auto n = static_cast<std::int32_t>(c.points.size());
@@ -337,6 +397,11 @@ void runCase(const Case& c) {
     require(journal.position() == ops && ins.done(), "the journal replays to the end", what);
     require(snap(ins.mesh()) == end, "replaying every op gives the same end state", what);
     require(sameStats(ins.stats(), endStats), "replaying restores the statistics", what);
+
+    // The state before Finalize is the closed mesh (ghosts or super-triangle) removals work on.
+    journal.seek(ops - 1);
+    require(ins.control().phase == Phase::Finalize, "the last op is Finalize", what);
+    checkRemovals(c, ins.mesh());
 }
 
 // DLAB_FUZZ_PRINT=1: print the decoded case (hex floats, exact) before running it, to turn a

@@ -1,0 +1,159 @@
+// Constrained edges: random segments on uniform sets and lattices (segments through vertices,
+// collinear runs), each insertion checked: a valid table, the segment's pieces constrained,
+// every other edge locally Delaunay in GMP, crossings refused without a change.
+#include "core/engine/constrainer.h"
+#include "core/engine/generators.h"
+#include "core/engine/inserter.h"
+#include "core/engine/remover.h"
+#include "tests/exact_check.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <random>
+#include <set>
+#include <string>
+
+using namespace dlab;
+
+namespace {
+
+bool flaggedEdge(const Mesh& m, const Constrainer& con, std::int32_t a, std::int32_t b) {
+    for (std::int32_t c = 0; c < m.numCorners(); ++c) {
+        const std::int32_t u = m.V[next(c)], w = m.V[prev(c)];
+        if (((u == a && w == b) || (u == b && w == a)) && con.isConstrained(c)) return true;
+    }
+    return false;
+}
+
+// The vertices on the closed segment a-b, in order from a.
+std::vector<std::int32_t> onSegment(const std::vector<Vec2>& pts, std::int32_t a, std::int32_t b) {
+    std::vector<std::int32_t> out;
+    const Vec2 pa = pts[a], pb = pts[b];
+    for (std::int32_t i = 0; i < static_cast<std::int32_t>(pts.size()); ++i) {
+        const Vec2 p = pts[i];
+        if (orientGmp(pa, pb, p) != 0) continue;
+        const double t = (p.x - pa.x) * (pb.x - pa.x) + (p.y - pa.y) * (pb.y - pa.y);
+        const double len = (pb.x - pa.x) * (pb.x - pa.x) + (pb.y - pa.y) * (pb.y - pa.y);
+        if (t >= 0 && t <= len) out.push_back(i);
+    }
+    std::sort(out.begin(), out.end(), [&](std::int32_t i, std::int32_t j) {
+        return std::abs(pts[i].x - pa.x) + std::abs(pts[i].y - pa.y) <
+               std::abs(pts[j].x - pa.x) + std::abs(pts[j].y - pa.y);
+    });
+    return out;
+}
+
+// Every unconstrained edge between finite triangles is locally Delaunay (exact, GMP).
+std::string checkConstrainedDelaunay(const Mesh& m, const Constrainer& con, std::int32_t n) {
+    for (std::int32_t c = 0; c < m.numCorners(); ++c) {
+        const std::int32_t o = m.O[c];
+        if (o == kNone) return "corner " + std::to_string(c) + " has no opposite (closed mesh)";
+        if (con.isConstrained(c) != con.isConstrained(o))
+            return "corner " + std::to_string(c) + ": the flag differs across its edge";
+        const std::int32_t t = tri(c);
+        const std::int32_t a = m.V[3 * t], b = m.V[3 * t + 1], d = m.V[3 * t + 2];
+        if (a >= n || b >= n || d >= n || m.V[o] >= n || con.isConstrained(c)) continue;
+        if (incircleGmp(m.G[a], m.G[b], m.G[d], m.G[m.V[o]]) > 0)
+            return "edge opposite corner " + std::to_string(c) + " is not Delaunay";
+    }
+    return "";
+}
+
+// Distinct points only: every id is a vertex.
+std::vector<Vec2> distinct(const std::vector<Vec2>& pts) {
+    std::vector<Vec2> out;
+    std::set<std::pair<double, double>> seen;
+    for (const Vec2 p : pts) {
+        if (seen.insert({p.x, p.y}).second) out.push_back(p);
+    }
+    return out;
+}
+
+void insertRandomSegments(const std::vector<Vec2>& input, int count, std::uint64_t seed,
+                          const std::string& label) {
+    SCOPED_TRACE(label);
+    const std::vector<Vec2> pts = distinct(input);
+    const auto n = static_cast<std::int32_t>(pts.size());
+    Inserter ins(pts);
+    ins.run();
+    Mesh mesh = ins.takeMesh();
+    addGhosts(mesh);
+    Constrainer con(mesh, n);
+    std::mt19937_64 rng(seed);
+    std::vector<std::pair<std::int32_t, std::int32_t>> inserted;
+    int accepted = 0, refused = 0;
+    for (int k = 0; k < count; ++k) {
+        const auto a = static_cast<std::int32_t>(rng() % n),
+                   b = static_cast<std::int32_t>(rng() % n);
+        if (a == b) continue;
+        const Mesh before = mesh;
+        const auto flagsBefore = con.flags();
+        const ConstrainOutcome out = con.insert(a, b);
+        const std::string at = "segment " + std::to_string(a) + "-" + std::to_string(b);
+        if (out.result == ConstrainResult::Crosses) {
+            ++refused;
+            ASSERT_TRUE(mesh.V == before.V && mesh.O == before.O && con.flags() == flagsBefore)
+                << at << ": a refusal changed the mesh";
+            const auto [p, q] = out.crossed;
+            ASSERT_TRUE(flaggedEdge(mesh, con, p, q)) << at;
+            ASSERT_LT(orientGmp(pts[a], pts[b], pts[p]) * orientGmp(pts[a], pts[b], pts[q]), 0)
+                << at;
+            continue;
+        }
+        ASSERT_EQ(out.result, ConstrainResult::Inserted) << at;
+        ++accepted;
+        inserted.push_back({a, b});
+        ValidateOptions vo;
+        vo.firstVirtual = n;
+        vo.delaunay = false;
+        const auto bad = validate(mesh, vo);
+        ASSERT_TRUE(bad.empty()) << at << ": " << bad[0].message;
+        ASSERT_EQ(checkConstrainedDelaunay(mesh, con, n), "") << at;
+        for (const auto& [s, t] : inserted) {
+            const auto chain = onSegment(pts, s, t);
+            for (std::size_t i = 0; i + 1 < chain.size(); ++i)
+                ASSERT_TRUE(flaggedEdge(mesh, con, chain[i], chain[i + 1]))
+                    << at << ": piece " << chain[i] << "-" << chain[i + 1] << " lost";
+        }
+    }
+    EXPECT_GT(accepted, 0);
+    ::testing::Test::RecordProperty(label + " refused", refused);
+}
+
+}  // namespace
+
+TEST(Constrainer, RandomSegmentsOnUniformSetsGiveTheConstrainedDelaunayTriangulation) {
+    for (std::uint64_t seed = 1; seed <= 4; ++seed) {
+        insertRandomSegments(generatePoints(Generator::Uniform, 300, seed), 60, seed,
+                             "uniform seed " + std::to_string(seed));
+    }
+}
+
+TEST(Constrainer, SegmentsThroughLatticeVerticesSplitThere) {
+    std::vector<Vec2> pts;
+    for (int y = 0; y < 12; ++y) {
+        for (int x = 0; x < 12; ++x) pts.push_back({double(x), double(y)});
+    }
+    insertRandomSegments(pts, 80, 7, "lattice 12x12");
+    insertRandomSegments(generatePoints(Generator::Collinear, 200, 3), 60, 3, "collinear runs");
+}
+
+TEST(Constrainer, CrossingSegmentsAreRefusedNamingTheConstrainedEdge) {
+    const std::vector<Vec2> pts = {{0, 0}, {4, 0}, {4, 4}, {0, 4}, {1, 2}, {3, 2}};
+    Inserter ins(pts);
+    ins.run();
+    Mesh mesh = ins.takeMesh();
+    addGhosts(mesh);
+    Constrainer con(mesh, 6);
+    ASSERT_EQ(con.insert(0, 2).result, ConstrainResult::Inserted);
+    const ConstrainOutcome out = con.insert(1, 3);
+    ASSERT_EQ(out.result, ConstrainResult::Crosses);
+    const std::set<std::int32_t> named = {out.crossed.first, out.crossed.second};
+    EXPECT_EQ(named, std::set<std::int32_t>({0, 2}));
+    EXPECT_EQ(con.insert(4, 5).result, ConstrainResult::Crosses);  // through (2, 2)
+    EXPECT_EQ(con.insert(2, 2).result, ConstrainResult::SameVertex);
+    EXPECT_EQ(con.insert(0, 6).result, ConstrainResult::NotInMesh);
+    EXPECT_EQ(con.insert(4, 3).result, ConstrainResult::Inserted);
+    EXPECT_EQ(checkConstrainedDelaunay(mesh, con, 6), "");
+}
