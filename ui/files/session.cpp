@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <new>
 #include <sstream>
 
 namespace dlab::ui {
@@ -127,40 +128,35 @@ private:
         ++m_p;
         return out;
     }
+    // Past one value, however deeply nested: a count of open brackets, not a recursion (the
+    // error path holds any file the parser held).
     void skip() {
         ws();
         if (m_p >= m_s.size()) return;
-        const char c = m_s[m_p];
-        if (c == '"') {
+        const char first = m_s[m_p];
+        if (first == '"') {
             string();
-        } else if (c == '{' || c == '[') {
-            const char close = c == '{' ? '}' : ']';
-            ++m_p;
-            ws();
-            if (m_p < m_s.size() && m_s[m_p] == close) {
-                ++m_p;
-                return;
-            }
-            while (m_p < m_s.size()) {
-                if (c == '{') {
-                    ws();
-                    string();
-                    ws();
-                    ++m_p;  // ':'
-                }
-                skip();
-                ws();
-                if (m_p < m_s.size() && m_s[m_p] == ',') {
-                    ++m_p;
-                    continue;
-                }
-                ++m_p;  // close
-                return;
-            }
-        } else {
+            return;
+        }
+        if (first != '{' && first != '[') {
             while (m_p < m_s.size() &&
                    std::string_view(",]} \n\r\t").find(m_s[m_p]) == std::string_view::npos)
                 ++m_p;
+            return;
+        }
+        std::size_t depth = 0;
+        while (m_p < m_s.size()) {
+            const char c = m_s[m_p];
+            if (c == '"') {
+                string();
+                continue;
+            }
+            ++m_p;
+            if (c == '{' || c == '[') {
+                ++depth;
+            } else if ((c == '}' || c == ']') && --depth == 0) {
+                return;
+            }
         }
     }
     bool find(const std::vector<std::string>& tokens, std::size_t depth) {
@@ -526,6 +522,17 @@ static std::string numberTooLarge(std::string_view text, const std::string& name
            escapeControls(number) + " is too large (a coordinate must be a finite double)";
 }
 
+// Out of memory while a session of `bytes` bytes was read or checked: which limit, in one line.
+static std::string outOfMemory(const std::string& name, std::size_t bytes) {
+    const std::string need = bytes == 0
+                                 ? std::string()
+                                 : std::to_string(bytes >> 20) + " MiB of JSON needs about " +
+                                       std::to_string((bytes >> 20) * kSessionMemoryPerByte) +
+                                       " MiB while it is checked; ";
+    return name + ": not enough memory to open the session (" + need + "sessions up to " +
+           std::to_string(kMaxSessionFileBytes >> 20) + " MiB are accepted)";
+}
+
 namespace {
 
 // The file's text parsed and checked; a problem is one line naming the file, its line and
@@ -548,6 +555,9 @@ bool readSessionText(std::string_view textIn, const std::string& name, Session& 
         return false;
     } catch (const Json::out_of_range& e) {
         error = numberTooLarge(textIn, name, e.what());
+        return false;
+    } catch (const std::bad_alloc&) {
+        error = outOfMemory(name, textIn.size());
         return false;
     } catch (const SessionError& e) {
         LineFinder finder(textIn);
@@ -646,17 +656,19 @@ bool loadSessionText(AppState& st, std::string_view textIn, const std::string& n
 bool loadSession(AppState& st, const std::string& path, std::string& error) {
     std::string body;
     try {
-        body = readRegularFile(path, kMaxFileBytes);
+        body = readRegularFile(path, kMaxSessionFileBytes);
+        return loadSessionText(st, body, path, error);
     } catch (const InputError& e) {
         error = escapeControls(e.what());
-        return false;
+    } catch (const std::bad_alloc&) {  // applying it (the run restarted at the saved step)
+        error = outOfMemory(escapeControls(path), body.size());
     }
-    return loadSessionText(st, body, path, error);
+    return false;
 }
 
 bool peekSession(const std::string& path, SessionSummary& out, std::string& error) {
     try {
-        const Json j = Json::parse(readRegularFile(path, kMaxFileBytes));
+        const Json j = Json::parse(readRegularFile(path, kMaxSessionFileBytes));
         const Session s = parseSession(j);
         out.points = s.points.size();
         out.position = s.position;
@@ -667,6 +679,9 @@ bool peekSession(const std::string& path, SessionSummary& out, std::string& erro
     } catch (const SessionError& e) {
         error = path + (e.pointer.empty() ? "" : ": " + readablePath(e.pointer)) + ": " +
                 escapeControls(e.message);
+        return false;
+    } catch (const std::bad_alloc&) {
+        error = outOfMemory(escapeControls(path), 0);
         return false;
     } catch (const std::exception& e) {
         error = path + ": " + escapeControls(e.what());
