@@ -166,7 +166,7 @@ void writeSlides(ui::Gui& gui, ui::AppState& state, const RenderArgs& args, int 
         std::snprintf(name, sizeof name, "/%02zu.png", k + 1);
         if (!gui.saveScreenshot(args.slides + name, error)) fail(error);
     }
-    std::cout << "wrote " << stops << " slides to " << args.slides << "\n";
+    std::cout << "wrote " << stops << " slides to " << escapeControls(args.slides) << "\n";
 }
 
 // The open lesson at the stop --stop names.
@@ -257,9 +257,9 @@ void runRender(const RenderArgs& args) {
             benchChangingFrames(gui, state, args.benchFrames, ops);
     }
     if (!gui.saveScreenshot(args.output, error)) fail(error);
-    std::cout << "wrote " << args.output << " (" << width << "x" << height << ", operation "
-              << state.engine.position() << " of " << state.engine.recorded() << ", "
-              << state.engine.mesh().numTriangles() << " triangles)\n";
+    std::cout << "wrote " << escapeControls(args.output) << " (" << width << "x" << height
+              << ", operation " << state.engine.position() << " of " << state.engine.recorded()
+              << ", " << state.engine.mesh().numTriangles() << " triangles)\n";
 }
 
 }  // namespace
@@ -273,7 +273,14 @@ void addRender(CLI::App& app) {
     cmd->add_option("-o,--output", args->output,
                     "PNG file to write (not needed with --lesson L --slides DIR)");
     auto* steps = cmd->add_option("--steps,--step", args->steps,
-                                  "Operations to perform before the screenshot");
+                                  "Operations to perform before the screenshot")
+                      ->check(CLI::Validator(
+                          [](std::string& v) {
+                              return !v.empty() && v[0] == '-'
+                                         ? "--steps must be 0 or more, not " + v
+                                         : std::string();
+                          },
+                          "N >= 0"));
     cmd->add_flag("--to-end", args->toEnd, "Run to the end before the screenshot")->excludes(steps);
     cmd->add_option("--size", args->size, "Window size WIDTHxHEIGHT")->capture_default_str();
     cmd->add_option("--select", args->select, "Select this corner (inspector, highlights)")
@@ -292,7 +299,9 @@ void addRender(CLI::App& app) {
                     "Render every stop of the lesson to DIR/01.png, DIR/02.png, ... (slides with "
                     "--presentation)");
     cmd->add_option("--bench-frames", args->benchFrames,
-                    "Also time this many frames idle, running and scrolling");
+                    "Also time this many frames idle, running and scrolling (at most 1000: the "
+                    "running frames record the run's history as they go)")
+        ->check(CLI::Range(0, 1000));
     cmd->add_option("--tab", args->tab, "The side tab to show")
         ->check(CLI::IsMember({"corner-table", "vertex-table", "expressions", "predicates",
                                "idbuffer", "statistics", "trace-compare"}));

@@ -30,6 +30,11 @@ namespace dlab::ui {
 
 inline constexpr int kSessionVersion = 1;
 inline constexpr const char* kSessionFormat = "delaunay-lab session";
+// The largest session file opened. Its JSON is held whole while it is checked: a session takes
+// about kSessionMemoryPerByte times its size in memory at the peak (measured), so the largest
+// fits in well under 24 GB. Past the memory there is, opening fails with one line saying so.
+inline constexpr std::size_t kMaxSessionFileBytes = std::size_t{512} << 20;
+inline constexpr int kSessionMemoryPerByte = 20;
 
 // The session as JSON text (pretty-printed, one point per line).
 std::string sessionText(const AppState& state);
