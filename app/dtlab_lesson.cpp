@@ -266,9 +266,11 @@ void runHandout(const LessonArgs& args) {
     file << text;
     file.close();
     if (!file) fail("cannot write " + args.output);
-    std::cout << "wrote " << args.output
+    std::cout << "wrote " << escapeControls(args.output)
               << (html ? " (pictures in " +
-                             (out.parent_path() / (out.stem().string() + "_files")).string() + ")"
+                             escapeControls(
+                                 (out.parent_path() / (out.stem().string() + "_files")).string()) +
+                             ")"
                        : std::string())
               << "\n";
 }

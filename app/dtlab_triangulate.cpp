@@ -151,7 +151,8 @@ void runTriangulate(const TriangulateArgs& args) {
                      "finite super-triangle)\n";
     }
     std::cout << "  " << st.flips << " flips, " << st.inCircleTests << " in-circle tests, "
-              << st.walkSteps << " walk steps; wrote " << args.base << ".node/.ele/.neigh\n";
+              << st.walkSteps << " walk steps; wrote " << escapeControls(args.base)
+              << ".node/.ele/.neigh\n";
 }
 
 }  // namespace
