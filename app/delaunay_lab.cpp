@@ -1,6 +1,7 @@
 // delaunay-lab: the step-through GUI in a real window (GLFW + libGL). With no display it says
 // so and renders the same view headlessly to a PNG (through `dtlab render`, which uses OSMesa:
 // one GL provider per executable).
+#include "core/engine/stack_reserve.h"
 #include "core/engine/text_util.h"
 #include "ui/files/files.h"
 #include "ui/files/settings.h"
@@ -85,6 +86,7 @@ void writeTestInfo(const std::string& path, const dlab::ui::AppState& st, std::s
 }  // namespace
 
 int main(int argc, char** argv) {
+    dlab::reserveStack();  // out of memory opening a file is then a message, never a SIGSEGV
     CLI::App cli{"Delaunay Lab: step through incremental Delaunay triangulation on a corner table"};
     std::string input, screenshot, testInfo, fallbackPng = "delaunay-lab.png";
     int frames = 0;

@@ -18,7 +18,12 @@ namespace dlab::ui {
 
 namespace {
 
-using Json = nlohmann::ordered_json;
+// Read as nlohmann::json: its objects are std::maps, and a key added never moves the values
+// before it. ordered_json keeps an object in a vector of pairs whose const keys make it copy them
+// when it grows: one recursion per level of a deeply nested value, a crash at 200k levels.
+// Written as ordered_json (the fields in our order).
+using Json = nlohmann::json;
+using OrderedJson = nlohmann::ordered_json;
 
 // ============================================================================================
 // [SECTION] Writing
@@ -57,8 +62,8 @@ constexpr OverlayField kOverlayFields[] = {
     {"virtual_triangles", &Overlays::virtualTriangles},
 };
 
-Json overlaysJson(const Overlays& ov) {
-    Json j = Json::object();
+OrderedJson overlaysJson(const Overlays& ov) {
+    OrderedJson j = OrderedJson::object();
     for (const OverlayField& f : kOverlayFields) j[f.name] = ov.*f.flag;
     return j;
 }
@@ -444,7 +449,7 @@ std::uint64_t MeshFingerprint(const Mesh& m) {
 std::string sessionText(const AppState& st) {
     const Engine& e = st.engine;
     const InsertOptions& o = e.options();
-    Json j;
+    OrderedJson j;
     j["format"] = kSessionFormat;
     j["version"] = kSessionVersion;
     j["saved_by"] = "Delaunay Lab";
@@ -460,12 +465,12 @@ std::string sessionText(const AppState& st) {
     j["view"] = {{"center", {st.view.center.x, st.view.center.y}}, {"scale", st.view.scale}};
     j["selection"] = {{"corner", st.selection.corner}};
     j["overlays"] = overlaysJson(st.overlays);
-    Json bps = Json::array();
+    OrderedJson bps = OrderedJson::array();
     for (const BreakpointEntry& b : st.run.breakpoints) {
         if (b.enabled) bps.push_back(toString(b.bp));
     }
     j["breakpoints"] = bps;
-    Json watches = Json::array();
+    OrderedJson watches = OrderedJson::array();
     for (const WatchEntry& w : st.expressions.watches)
         watches.push_back({{"text", w.text}, {"enabled", w.enabled}});
     j["expressions"] = {{"live", st.expressions.live}, {"watches", watches}};
