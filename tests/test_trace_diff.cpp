@@ -723,7 +723,8 @@ TEST(TraceDiff, ATraceBeyondTheMemoryLimitIsRefusedInOneLine) {
 #if defined(__SANITIZE_ADDRESS__)
     GTEST_SKIP() << "ASan reserves terabytes of address space: no limit can be set";
 #endif
-    const fs::path dir = fs::temp_directory_path() / ("dlab_big_trace_" + std::to_string(::getpid()));
+    const fs::path dir =
+        fs::temp_directory_path() / ("dlab_big_trace_" + std::to_string(::getpid()));
     fs::create_directories(dir);
     const std::string big = (dir / "big.jsonl").string();
     {

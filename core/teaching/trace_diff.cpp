@@ -199,8 +199,11 @@ TraceFile readTraceFile(const std::string& path) {
         });
         if (!line.empty()) addLine(f, line, ++number);
     } catch (const std::bad_alloc&) {
+        const std::size_t held = f.ops.size();
+        f = TraceFile{};  // freed first: the message needs a little memory too
+        line = std::string();
         throw InputError(path, number,
-                         "not enough memory to hold the trace (" + std::to_string(f.ops.size()) +
+                         "not enough memory to hold the trace (" + std::to_string(held) +
                              " operations read, about " + std::to_string(kTraceBytesPerOp) +
                              " bytes each)");
     }

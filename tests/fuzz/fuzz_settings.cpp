@@ -31,8 +31,8 @@ std::string slurp(const fs::path& p) {
 
 const fs::path& folder() {
     static const fs::path dir = [] {
-        const fs::path d = fs::temp_directory_path() / ("dlab_fuzz_settings_" +
-                                                        std::to_string(::getpid()));
+        const fs::path d =
+            fs::temp_directory_path() / ("dlab_fuzz_settings_" + std::to_string(::getpid()));
         fs::create_directories(d);
         return d;
     }();
