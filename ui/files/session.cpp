@@ -278,21 +278,53 @@ void checkFormat(const Json& j) {
     }
 }
 
-std::vector<Vec2> parsePoints(const Json& j) {
+// The points, taken out of the JSON as the parser reads them: each [x, y] checked into `points`
+// (the first bad one kept as `error`), none left in the tree. Held as JSON a point took about a
+// hundred bytes, and a tree of millions of them needed a large buffer again to be destroyed
+// (nlohmann frees a tree through a stack of its own): out of memory, that aborted.
+struct PointsAside {
+    std::vector<Vec2> points;
+    std::optional<SessionError> error;
+};
+
+Json parseSessionJson(std::string_view text, PointsAside& aside) {
+    std::string topKey;
+    std::size_t index = 0;
+    const Json::parser_callback_t take = [&](int depth, Json::parse_event_t event, Json& parsed) {
+        if (depth == 1 && event == Json::parse_event_t::key) {
+            topKey = parsed.is_string() ? parsed.get<std::string>() : std::string();
+            if (topKey == "points") aside = {}, index = 0;  // the last "points" is the one
+            return true;
+        }
+        // An element of the points array, complete: a value, or the end of an array or object.
+        if (depth != 2 || topKey != "points" ||
+            (event != Json::parse_event_t::value && event != Json::parse_event_t::array_end &&
+             event != Json::parse_event_t::object_end))
+            return true;
+        const std::size_t k = index++;
+        if (aside.error) return false;
+        try {
+            if (k >= kMaxPoints)
+                fail("/points", "more than " + std::to_string(kMaxPoints) + " points");
+            const std::string where = "/points/" + std::to_string(k);
+            if (!parsed.is_array() || parsed.size() != 2) fail(where, "expected [x, y]");
+            aside.points.push_back(
+                {finiteNumber(parsed[0], where + "/0"), finiteNumber(parsed[1], where + "/1")});
+        } catch (const SessionError& e) {
+            aside.error = e;
+            aside.points = {};
+        }
+        return false;  // not kept in the tree
+    };
+    return Json::parse(text.begin(), text.end(), take);
+}
+
+std::vector<Vec2> parsePoints(const Json& j, PointsAside& aside) {
     const Json* pts = member(j, "points");
     if (!pts) fail("", "no \"points\"");
     if (!pts->is_array()) fail("/points", "expected an array of [x, y] pairs");
-    if (pts->size() > kMaxPoints)
-        fail("/points", "more than " + std::to_string(kMaxPoints) + " points");
-    std::vector<Vec2> points;
-    points.reserve(pts->size());
-    for (std::size_t k = 0; k < pts->size(); ++k) {
-        const Json& p = (*pts)[k];
-        const std::string where = "/points/" + std::to_string(k);
-        if (!p.is_array() || p.size() != 2) fail(where, "expected [x, y]");
-        points.push_back({finiteNumber(p[0], where + "/0"), finiteNumber(p[1], where + "/1")});
-    }
-    return points;
+    if (aside.error) throw *aside.error;
+    return std::move(aside.points);
 }
 
 // A mode named by its text (`parse` reads it); an unknown name is the error, with the known
@@ -409,11 +441,11 @@ void parseExpect(const Json& ex, Session& s) {
 }
 
 // The session's fields in the file's order of importance; the first bad one is the error.
-Session parseSession(const Json& j) {
+Session parseSession(const Json& j, PointsAside& aside) {
     Session s;
     checkFormat(j);
     if (const Json* src = member(j, "source")) s.source = text(*src, "/source");
-    s.points = parsePoints(j);
+    s.points = parsePoints(j, aside);
     if (const Json* o = member(j, "options")) parseOptions(*o, s.options);
     if (const Json* p = member(j, "position")) s.position = count(*p, "/position");
     if (const Json* view = member(j, "view")) parseView(*view, s);
@@ -545,8 +577,9 @@ namespace {
 bool readSessionText(std::string_view textIn, const std::string& name, Session& s,
                      std::string& error) {
     try {
-        const Json j = Json::parse(textIn.begin(), textIn.end());
-        s = parseSession(j);
+        PointsAside aside;
+        const Json j = parseSessionJson(textIn, aside);
+        s = parseSession(j, aside);
     } catch (const Json::parse_error& e) {
         // nlohmann says "[json.exception.parse_error.101] parse error at line 3, column 5: ...":
         // keep the part after the position, and give the line our way.
@@ -631,7 +664,10 @@ bool loadSessionText(AppState& st, std::string_view textIn, const std::string& n
     std::string why;
     const std::size_t n = s.points.size();
     if (!eng.resetAt(std::move(s.points), s.options, s.position, why)) {
-        error = name + ": cannot restart the run: " + why;
+        error = name + ": cannot restart the run: " +
+                (why == std::bad_alloc().what()
+                     ? "not enough memory to triangulate its " + std::to_string(n) + " points"
+                     : why);
         return false;
     }
     if (!previous.empty()) {
@@ -673,8 +709,9 @@ bool loadSession(AppState& st, const std::string& path, std::string& error) {
 
 bool peekSession(const std::string& path, SessionSummary& out, std::string& error) {
     try {
-        const Json j = Json::parse(readRegularFile(path, kMaxSessionFileBytes));
-        const Session s = parseSession(j);
+        PointsAside aside;
+        const Json j = parseSessionJson(readRegularFile(path, kMaxSessionFileBytes), aside);
+        const Session s = parseSession(j, aside);
         out.points = s.points.size();
         out.position = s.position;
         out.source = s.source;
