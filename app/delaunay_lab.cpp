@@ -1,6 +1,8 @@
 // delaunay-lab: the step-through GUI in a real window (GLFW + libGL). With no display it says
 // so and renders the same view headlessly to a PNG (through `dtlab render`, which uses EGL or
 // OSMesa: one GL provider per executable).
+#include "core/engine/stack_reserve.h"
+#include "core/engine/text_util.h"
 #include "ui/files/files.h"
 #include "ui/files/settings.h"
 #include "ui/gui.h"
@@ -9,6 +11,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include <signal.h>
 #include <unistd.h>
 
 #include <cstdio>
@@ -20,6 +23,19 @@
 #include <vector>
 
 namespace {
+
+// SIGTERM, SIGHUP or SIGINT (a logout, a shutdown, Ctrl+C in the terminal): the frame loop ends
+// and the exit is a clean one (settings written, the autosave removed).
+volatile sig_atomic_t g_stop = 0;
+
+void requestStop(int) { g_stop = 1; }
+
+void stopOnSignals() {
+    struct sigaction sa {};
+    sa.sa_handler = requestStop;
+    sigemptyset(&sa.sa_mask);
+    for (const int sig : {SIGTERM, SIGHUP, SIGINT}) sigaction(sig, &sa, nullptr);
+}
 
 // Runs `dtlab render` (beside this executable) on the same input; returns its exit status.
 int renderHeadless(const std::string& input, const std::string& png, const std::string& reason) {
@@ -70,6 +86,7 @@ void writeTestInfo(const std::string& path, const dlab::ui::AppState& st, std::s
 }  // namespace
 
 int main(int argc, char** argv) {
+    dlab::reserveStack();  // out of memory opening a file is then a message, never a SIGSEGV
     CLI::App cli{"Delaunay Lab: step through incremental Delaunay triangulation on a corner table"};
     std::string input, screenshot, testInfo, fallbackPng = "delaunay-lab.png";
     int frames = 0;
@@ -97,6 +114,7 @@ int main(int argc, char** argv) {
     std::string warning;
     dlab::ui::loadSettings(settingsPath, state, window, warning);
     if (!warning.empty()) state.log(dlab::ui::Message::Level::Warning, warning);
+    state.lessonPlayer.settingsPath = settingsPath;  // progress saved as it is made
 
     std::string error;
     auto platform = dlab::ui::makeGlfwPlatform(window, error);
@@ -112,8 +130,9 @@ int main(int argc, char** argv) {
     dlab::ui::offerRecovery(state, autosaveFolder);
     dlab::ui::enableAutosave(state, autosaveFolder);
     gui.captureFrames(!screenshot.empty());
+    stopOnSignals();
     std::string lastInfo;
-    for (int frame = 1;; ++frame) {
+    for (int frame = 1; !g_stop; ++frame) {
         for (const std::string& dropped : platform->takeDroppedFiles())
             dlab::ui::openFile(state, dropped);
         platform->setTitle("Delaunay Lab - " + state.source);
@@ -129,7 +148,7 @@ int main(int argc, char** argv) {
             std::cerr << "delaunay-lab: " << error << "\n";
             status = 1;
         } else {
-            std::cout << "wrote " << screenshot << "\n";
+            std::cout << "wrote " << dlab::escapeControls(screenshot) << "\n";
         }
     }
     dlab::ui::removeAutosave(state);  // a clean exit: nothing to recover

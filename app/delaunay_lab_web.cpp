@@ -247,6 +247,7 @@ EMSCRIPTEN_KEEPALIVE void dlab_web_start() {
     std::string warning, error;
     dlab::ui::loadSettings(app->settingsPath, st, window, warning);
     if (!warning.empty()) st.log(dlab::ui::Message::Level::Warning, warning);
+    st.lessonPlayer.settingsPath = app->settingsPath;  // progress saved as it is made
     app->platform = dlab::ui::makeWebPlatform(pageWidth(), pageHeight(), error);
     if (!app->platform) {
         showFatal(error.c_str());

@@ -1,6 +1,7 @@
 // dtlab and dtlab-gl: the headless command line of Delaunay Lab (triangulate, trace, bench, gen,
 // demo, ...); dtlab hands the commands that need GL to dtlab-gl (dtlab_common.h).
 #include "app/dtlab_common.h"
+#include "core/engine/stack_reserve.h"
 
 #include <CLI/CLI.hpp>
 
@@ -9,6 +10,7 @@
 #include <iostream>
 
 int main(int argc, char** argv) {
+    dlab::reserveStack();  // out of memory is then an error line, never a SIGSEGV
     dlab::cli::rememberCommandLine(argc, argv);
     CLI::App app{"dtlab: exact incremental Delaunay triangulation on a corner table (headless)"};
     app.require_subcommand(1);

@@ -7,14 +7,19 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <array>
 #include <cerrno>
+#include <charconv>
+#include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <functional>
 #include <iostream>
+#include <new>
 #include <stdexcept>
 #include <thread>
 
@@ -75,7 +80,19 @@ void EngineFlags::add(CLI::App& cmd) {
                    "finite super-triangle")
         ->check(CLI::IsMember({"exact", "super"}))
         ->capture_default_str();
-    cmd.add_option("--seed", seed, "Seed of the random and brio orders")->capture_default_str();
+    cmd.add_option("--seed", seed, "Seed of the random and brio orders (0 to 2^64-1)")
+        ->check(CLI::Validator(
+            [](std::string& v) {
+                std::uint64_t x = 0;
+                const auto [end, ec] = std::from_chars(v.data(), v.data() + v.size(), x);
+                return !v.empty() && ec == std::errc() && end == v.data() + v.size()
+                           ? std::string()
+                           : "--seed must be a whole number from 0 to 18446744073709551615 "
+                             "(2^64-1), not " +
+                                 escapeControls(v);
+            },
+            "0..2^64-1"))
+        ->capture_default_str();
     cmd.add_option("--idbuffer-size", idBufferSize, "Width and height of the ID buffer in pixels")
         ->check(CLI::Range(1, 16384))
         ->capture_default_str();
@@ -152,6 +169,7 @@ std::optional<JoinedTriangulation> triangulateOnTwoCores(std::vector<Vec2>& poin
 
 std::unique_ptr<Inserter> EngineFlags::makeInserter(std::vector<Vec2> points) const {
     const InsertOptions o = options();
+    noteSlowChoices(o, points);
     if (!needsGl(o.locator)) return std::make_unique<Inserter>(std::move(points), o);
     return makeGlInserter(std::move(points));
 }
@@ -171,6 +189,81 @@ LoadedPoints loadPoints(const std::string& path) {
     }
 }
 
+Progress::Progress(std::string what, double total)
+    : m_what(std::move(what)),
+      m_total(total),
+      m_tty(::isatty(STDERR_FILENO) == 1),
+      m_start(std::chrono::steady_clock::now()),
+      m_drawn(m_start) {}
+
+Progress::~Progress() { clear(); }
+
+void Progress::clear() {
+    if (m_tty && m_shown) std::fprintf(stderr, "\r\033[K");
+    m_shown = false;
+}
+
+std::string Progress::line(const std::string& what, double done, double total, double elapsedS,
+                           const std::string& detail) {
+    const double share = total > 0 ? std::clamp(done / total, 0.0, 1.0) : 0.0;
+    char buf[160];
+    std::snprintf(buf, sizeof buf, "%s: %.0f%%", what.c_str(), 100 * share);
+    std::string s = buf;
+    if (!detail.empty()) s += " (" + detail + ")";
+    if (share > 0 && share < 1) {
+        const double left = elapsedS * (1 - share) / share;
+        std::snprintf(
+            buf, sizeof buf, ", about %s left",
+            left < 90 ? (std::to_string(static_cast<int>(std::ceil(left))) + " s").c_str()
+                      : (std::to_string(static_cast<int>(std::ceil(left / 60))) + " min").c_str());
+        s += buf;
+    }
+    return s;
+}
+
+void Progress::advance(double work, const std::string& detail) {
+    m_done += work;
+    if (!m_tty) return;
+    const auto now = std::chrono::steady_clock::now();
+    if (m_shown && now - m_drawn < std::chrono::milliseconds(250)) return;
+    m_drawn = now;
+    m_shown = true;
+    const double elapsed = std::chrono::duration<double>(now - m_start).count();
+    std::fprintf(stderr, "\r\033[K%s",
+                 escapeControls(line(m_what, m_done, m_total, elapsed, detail)).c_str());
+    std::fflush(stderr);
+}
+
+void noteSlowChoices(const InsertOptions& o, const std::vector<Vec2>& points) {
+    const std::size_t n = points.size();
+    const auto pixels = static_cast<double>(o.locatorOptions.idBufferWidth) *
+                        static_cast<double>(o.locatorOptions.idBufferHeight);
+    if (o.locator == LocatorKind::IdBufferCpu && pixels > 4096.0 * 4096.0 && n > 10000) {
+        std::fprintf(stderr,
+                     "dtlab: note: an ID buffer of %d x %d pixels on the CPU (%.0f MiB) repaints "
+                     "large areas for every point: %zu points may take minutes; the default "
+                     "--idbuffer-size 1600 is much faster\n",
+                     o.locatorOptions.idBufferWidth, o.locatorOptions.idBufferHeight,
+                     pixels * 4 / (1 << 20), n);
+    }
+    if (!needsGl(o.locator) || n < 1000) return;
+    double lo = 0, hi = 0;
+    for (const Vec2& p : points) {
+        for (const double c : {std::fabs(p.x), std::fabs(p.y)}) {
+            if (c == 0) continue;
+            lo = lo == 0 ? c : std::min(lo, c);
+            hi = std::max(hi, c);
+        }
+    }
+    if (lo > 0 && hi / lo > 1e30) {  // float32 pixels hold about 7 digits
+        std::fprintf(stderr,
+                     "dtlab: note: coordinates from %.0e to %.0e are beyond what the GL ID "
+                     "buffer's float pixels tell apart: most points fall back to a long walk, and "
+                     "%zu points may take minutes; --locate walk is much faster\n",
+                     lo, hi, n);
+    }
+}
+
 void guarded(const std::function<void()>& body) {
     try {
         body();
@@ -182,6 +275,10 @@ void guarded(const std::function<void()>& body) {
     } catch (const std::domain_error& e) {
         std::cerr << "dtlab: error: " << e.what() << "\n";
         g_exitCode = 2;
+    } catch (const std::bad_alloc&) {  // a reader or the engine says which limit where it can
+        std::cerr << "dtlab: error: out of memory (the input is too large for the memory this "
+                     "process may use)\n";
+        g_exitCode = 1;
     } catch (const std::exception& e) {
         std::cerr << "dtlab: error: " << escapeControls(e.what()) << "\n";
         g_exitCode = 1;

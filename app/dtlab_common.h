@@ -12,11 +12,13 @@
 
 #include "core/engine/halves.h"
 #include "core/engine/inserter.h"
+#include "core/engine/text_util.h"  // escapeControls: file names in messages
 #include "ui/gl/idbuffer_gl.h"
 #include "ui/platform/platform.h"
 
 #include <CLI/CLI.hpp>
 
+#include <chrono>
 #include <functional>
 #include <memory>
 #include <optional>
@@ -97,6 +99,35 @@ struct LoadedPoints {
     int indexBase = 0;
 };
 LoadedPoints loadPoints(const std::string& path);
+
+// A progress line for work that can run past a few seconds: on a terminal (stderr), redrawn in
+// place at most four times a second with the share done and an estimate of the time left; nothing
+// at all when stderr is not a terminal (a pipe, a file, a test). Cleared when it ends.
+class Progress {
+public:
+    Progress(std::string what, double total);
+    ~Progress();
+    Progress(const Progress&) = delete;
+    Progress& operator=(const Progress&) = delete;
+    // `work` more done (in the units of `total`); `detail` says what runs now ("n = 65536").
+    void advance(double work, const std::string& detail = {});
+    // Takes the line off the terminal (before other output); the next advance draws it again.
+    void clear();
+    // The line as it would be drawn after `elapsedS` seconds with `done` of the total done.
+    static std::string line(const std::string& what, double done, double total, double elapsedS,
+                            const std::string& detail);
+
+private:
+    std::string m_what;
+    double m_total, m_done = 0;
+    bool m_tty, m_shown = false;
+    std::chrono::steady_clock::time_point m_start, m_drawn;
+};
+
+// Says on stderr, before the work, when the options make a run slow (an ID buffer of many
+// pixels on the CPU, a GL locator on coordinates float pixels cannot tell apart), and what is
+// faster. Nothing when they do not.
+void noteSlowChoices(const InsertOptions& options, const std::vector<Vec2>& points);
 
 // Thrown to leave a subcommand with a status after printing one line to stderr.
 struct Exit {

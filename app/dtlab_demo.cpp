@@ -75,7 +75,8 @@ void runDemo(const DemoArgs& args) {
         << "demo: " << result.numTriangles() << " triangles, " << total << " operations (" << tests
         << " in-circle tests, " << flips << " flips, " << ins.skipped().size()
         << " duplicate skipped); stepped back to the empty start and forward again: identical\n"
-        << "wrote " << args.outDir << "/demo.svg, demo.node/.ele/.neigh and demo.trace.jsonl\n";
+        << "wrote " << escapeControls(args.outDir)
+        << "/demo.svg, demo.node/.ele/.neigh and demo.trace.jsonl\n";
 }
 
 }  // namespace

@@ -42,7 +42,16 @@ void runDiff(const DiffArgs& args) {
     } catch (const InputError& e) {
         fail(e.what(), 2);
     }
-    const TraceDiff diff = diffTraces(ref, student, args.options);
+    TraceDiff diff;
+    try {
+        diff = diffTraces(ref, student, args.options);
+    } catch (const std::bad_alloc&) {
+        fail("not enough memory to compare " + escapeControls(args.reference) + " (" +
+                 std::to_string(ref.ops.size()) + " operations) with " +
+                 escapeControls(args.student) + " (" + std::to_string(student.ops.size()) +
+                 " operations)",
+             2);
+    }
     std::cout << formatDiff(diff, ref, student, args.options);
     std::cout.flush();
     if (!diff.equal) throw Exit{1};

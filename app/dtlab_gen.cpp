@@ -46,7 +46,7 @@ void runGen(const GenArgs& args) {
         }
     });
     std::cout << "wrote " << pts.size() << " points (" << toString(*kind) << ", seed " << args.seed
-              << ") to " << args.output << "\n";
+              << ") to " << escapeControls(args.output) << "\n";
 }
 
 }  // namespace

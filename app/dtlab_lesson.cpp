@@ -300,7 +300,8 @@ void runHandout(const LessonArgs& args) {
         fail(e.what());
     }
     writeTextFiles(files, {args.file});
-    std::cout << "wrote " << args.output << (html ? " (pictures in " + folder + ")" : std::string())
+    std::cout << "wrote " << escapeControls(args.output)
+              << (html ? " (pictures in " + escapeControls(folder) + ")" : std::string())
               << "\n";
 }
 

@@ -179,7 +179,7 @@ void writeSlides(ui::Gui& gui, ui::AppState& state, const RenderArgs& args, int 
                          }});
     }
     writeTextFiles(files);
-    std::cout << "wrote " << stops << " slides to " << args.slides << "\n";
+    std::cout << "wrote " << stops << " slides to " << escapeControls(args.slides) << "\n";
 }
 
 // The open lesson at the stop --stop names.
@@ -279,9 +279,9 @@ void runRender(const RenderArgs& args) {
             benchChangingFrames(gui, state, args.benchFrames, ops);
     }
     if (!gui.saveScreenshot(args.output, error)) fail(error);
-    std::cout << "wrote " << args.output << " (" << width << "x" << height << ", operation "
-              << state.engine.position() << " of " << state.engine.recorded() << ", "
-              << state.engine.mesh().numTriangles() << " triangles)\n";
+    std::cout << "wrote " << escapeControls(args.output) << " (" << width << "x" << height
+              << ", operation " << state.engine.position() << " of " << state.engine.recorded()
+              << ", " << state.engine.mesh().numTriangles() << " triangles)\n";
 }
 
 }  // namespace
@@ -310,7 +310,14 @@ void addRender(CLI::App& app) {
     cmd->add_option("-o,--output", args->output,
                     "PNG file to write (not needed with --lesson L --slides DIR)");
     auto* steps = cmd->add_option("--steps,--step", args->steps,
-                                  "Operations to perform before the screenshot");
+                                  "Operations to perform before the screenshot")
+                      ->check(CLI::Validator(
+                          [](std::string& v) {
+                              return !v.empty() && v[0] == '-'
+                                         ? "--steps must be 0 or more, not " + v
+                                         : std::string();
+                          },
+                          "N >= 0"));
     cmd->add_flag("--to-end", args->toEnd, "Run to the end before the screenshot")->excludes(steps);
     cmd->add_option("--size", args->size, "Window size WIDTHxHEIGHT")->capture_default_str();
     cmd->add_option("--select", args->select, "Select this corner (inspector, highlights)")
@@ -332,7 +339,9 @@ void addRender(CLI::App& app) {
                   "With --lesson: print the text drawn on each stop's slide (1280x720, "
                   "presentation), as `lesson check` reads it");
     cmd->add_option("--bench-frames", args->benchFrames,
-                    "Also time this many frames idle, running and scrolling");
+                    "Also time this many frames idle, running and scrolling (at most 1000: the "
+                    "running frames record the run's history as they go)")
+        ->check(CLI::Range(0, 1000));
     cmd->add_option("--tab", args->tab, "The side tab to show")
         ->check(CLI::IsMember({"corner-table", "vertex-table", "expressions", "predicates",
                                "idbuffer", "statistics", "trace-compare"}));

@@ -462,12 +462,16 @@ void printTableRow(std::size_t n, const std::array<double, kNumMethods>& row) {
 
 // Every method on n points, `repeat` times, interleaved (load changes hit every method alike);
 // appends the medians and the median runs to t.
-void timeSize(const Table1Args& args, std::size_t n, const MethodSet& on, Timings& t) {
+void timeSize(const Table1Args& args, std::size_t n, const MethodSet& on, Timings& t,
+              Progress& progress) {
     const std::vector<Vec2> points = generatePoints(Generator::Uniform, n, args.seed);
     std::array<std::vector<Run>, kNumMethods> runs;
     for (int r = 0; r < args.repeat; ++r) {
         for (int m = 0; m < kNumMethods; ++m) {
-            if (on[m]) runs[m].push_back(runOnce(points, kMethods[m], args, args.batch));
+            if (!on[m]) continue;
+            progress.advance(0, "n = " + std::to_string(n) + ", " + kMethods[m].name);
+            runs[m].push_back(runOnce(points, kMethods[m], args, args.batch));
+            progress.advance(static_cast<double>(n));
         }
     }
     std::array<double, kNumMethods> row{};
@@ -673,7 +677,7 @@ void writeFigure(const Table1Args& args, const std::vector<std::size_t>& sizes, 
               "uniform random points in the 1600 x 1600 box; ours: median of " +
                   std::to_string(args.repeat) + (args.repeat == 1 ? " run" : " runs") +
                   "; dashed: the paper's numbers (2008)\nours on " + whereItRan());
-    std::printf("wrote %s\n", args.png.c_str());
+    std::printf("wrote %s\n", escapeControls(args.png).c_str());
 }
 
 void runTable1(const Table1Args& args) {
@@ -688,9 +692,17 @@ void runTable1(const Table1Args& args) {
     }
     printTableHeader(args);
     Timings t;
-    for (const std::size_t n : sizes) {
-        timeSize(args, n, on, t);
-        printTableRow(n, t.table.back());
+    double work = 0;  // points inserted in all: about proportional to the time
+    for (const std::size_t n : sizes)
+        work += static_cast<double>(n) * args.repeat *
+                static_cast<double>(std::count(on.begin(), on.end(), true));
+    {
+        Progress progress("table1", work);
+        for (const std::size_t n : sizes) {
+            timeSize(args, n, on, t, progress);
+            progress.clear();  // the row on a line of its own; the progress comes back after it
+            printTableRow(n, t.table.back());
+        }
     }
     printLocatorStats(sizes, on, t);
     printSpeedup(sizes, on, t);

@@ -3,12 +3,20 @@
 
 #include "core/engine/io_write.h"
 #include "core/teaching/trace.h"
+#include "core/teaching/trace_diff.h"
 
 #include <iostream>
 
 namespace dlab::cli {
 
 namespace {
+
+// What shortens a run's history: the brio order walks far less, unless it is the order already.
+std::string shorterRun(const Inserter& ins) {
+    return ins.options().order == OrderKind::Brio ? "use --limit or fewer points"
+                                                  : "use --limit, fewer points, or the brio order "
+                                                    "(it walks far less)";
+}
 
 struct TraceArgs {
     std::string input;
@@ -29,19 +37,29 @@ void runTrace(const TraceArgs& args) {
     Inserter& ins = *made;
     Journal journal(ins);
     long long count = 0;
+    std::size_t bytes = 0;
     writeTextFile(args.output, [&](std::ostream& out) {
         while ((args.limit < 0 || count < args.limit) && journal.forward()) {
-            out << toJsonLine(traceRecord(journal, journal.position() - 1, ins.mesh())) << '\n';
+            const std::string line =
+                toJsonLine(traceRecord(journal, journal.position() - 1, ins.mesh())) + '\n';
+            bytes += line.size();
             ++count;
+            // A trace that diff-trace would refuse is not written either.
+            if (bytes > kMaxTraceFileBytes || static_cast<std::size_t>(count) > kMaxTraceOps) {
+                fail("the trace passes what diff-trace reads (" +
+                     std::to_string(kMaxTraceFileBytes >> 20) + " MiB, " +
+                     std::to_string(kMaxTraceOps) + " operations) at operation " +
+                     std::to_string(count) + ": nothing written; " + shorterRun(ins));
+            }
+            out << line;
         }
         if (journal.budgetReached()) {  // no file rather than a trace cut short silently
             fail("the run passes the history's memory budget (" +
                  std::to_string(journal.budget() >> 20) + " MiB) after " + std::to_string(count) +
-                 " operations: nothing written; use --limit, or the brio order (it walks far "
-                 "less)");
+                 " operations: nothing written; " + shorterRun(ins));
         }
     });
-    std::cout << "wrote " << count << " operations to " << args.output
+    std::cout << "wrote " << count << " operations to " << escapeControls(args.output)
               << (ins.done() ? "" : " (stopped at --limit before the end)") << "\n";
 }
 

@@ -290,7 +290,8 @@ void printSummary(const TriangulateArgs& args, const Triangulated& result, int b
                      "finite super-triangle)\n";
     }
     std::cout << "  " << st.flips << " flips, " << st.inCircleTests << " in-circle tests, "
-              << st.walkSteps << " walk steps; wrote " << args.base << ".node/.ele/.neigh\n";
+              << st.walkSteps << " walk steps; wrote " << escapeControls(args.base)
+              << ".node/.ele/.neigh\n";
 }
 
 void runTriangulate(const TriangulateArgs& args) {

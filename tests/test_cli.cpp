@@ -491,6 +491,14 @@ TEST(Cli, UsageErrorsExitWithTwoAndSayWhatIsWrong) {
          "--select"},
         {"bench " + none, "no points"},
         {"triangulate " + huge + " -o " + (dir / "h").string() + " --boundary super", "super mode"},
+        // Out of range, not clamped or wrapped; negative steps refused.
+        {"triangulate " + in + " -o " + (dir / "s").string() + " --seed 18446744073709551616",
+         "--seed must be a whole number from 0 to 18446744073709551615"},
+        {"triangulate " + in + " -o " + (dir / "s").string() + " --seed -1", "--seed must be"},
+        {"render " + in + " -o " + (dir / "s.png").string() + " --steps -5",
+         "--steps must be 0 or more, not -5"},
+        {"render " + in + " -o " + (dir / "s.png").string() + " --bench-frames 100000",
+         "--bench-frames"},
     };
     for (const Case& c : cases) {
         SCOPED_TRACE(c.args);
@@ -499,6 +507,26 @@ TEST(Cli, UsageErrorsExitWithTwoAndSayWhatIsWrong) {
         EXPECT_NE(r.out.find(c.expect), std::string::npos) << r.out;
     }
     EXPECT_FALSE(fs::exists(dir / "g.csv"));
+    EXPECT_FALSE(fs::exists(dir / "s.node"));
+    // The largest seed itself is taken.
+    EXPECT_EQ(dtlab("triangulate " + in + " -o " + (dir / "s").string() +
+                    " --seed 18446744073709551615 --order random")
+                  .status,
+              0);
+}
+
+TEST(Cli, SuccessLinesEscapeControlCharactersOfFileNames) {
+    const fs::path dir = tempDir();
+    const std::string in = writeFile(dir / "p.csv", "0,0\n1,0\n0,1\n1,1\n");
+    const std::string base = (dir / "a\tb\x1b[31m").string();
+    const Result r = dtlab("triangulate " + in + " -o '" + base + "'");
+    ASSERT_EQ(r.status, 0) << r.out;
+    EXPECT_EQ(r.out.find('\t'), std::string::npos) << r.out;
+    EXPECT_EQ(r.out.find('\x1b'), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("a\\tb\\x1b[31m.node/.ele/.neigh"), std::string::npos) << r.out;
+    const Result t = dtlab("trace " + in + " -o '" + base + ".jsonl'");
+    ASSERT_EQ(t.status, 0) << t.out;
+    EXPECT_NE(t.out.find("a\\tb\\x1b[31m.jsonl"), std::string::npos) << t.out;
 }
 
 TEST(Cli, NumbersWithAGluedHashAndUnguessableFilesAreExplained) {

@@ -4,6 +4,7 @@
 #include "core/teaching/corner_expr.h"
 #include "core/teaching/lesson.h"
 #include "core/teaching/trace.h"
+#include "core/teaching/trace_diff.h"
 
 #include <gtest/gtest.h>
 
@@ -157,6 +158,25 @@ TEST(Regression, TraceIntegersBeyondInt32AreRefusedNotTruncated) {
     ASSERT_EQ(r.changes.size(), 1u);
     EXPECT_EQ(r.changes[0].corner(), 536870912);
     EXPECT_EQ(r.changes[0].after, 2147483647);
+}
+
+// A value nested 200000 deep where an integer belongs: the error names it by its kind (quoting
+// it whole would recurse once per level), in both trace readers.
+TEST(Regression, TraceErrorsQuoteADeeplyNestedValueByItsKind) {
+    const std::string deep = std::string(200000, '[') + std::string(200000, ']');
+    const InputError e = traceError("{\"i\":0,\"op\":\"Flip\",\"a\":" + deep + "}");
+    EXPECT_NE(e.message().find("a must be an integer, found an array of 1 values"),
+              std::string::npos)
+        << e.what();
+    std::istringstream in("{\"op\":\"Flip\",\"changes\":[" + deep + "]}\n");
+    try {
+        parseTraceText(in, "s.jsonl");
+        FAIL() << "read a change nested 200000 deep";
+    } catch (const InputError& e2) {
+        EXPECT_EQ(std::string(e2.what()),
+                  "s.jsonl:1: a change is [\"V\" or \"O\", corner, before, after], not an array "
+                  "of 1 values");
+    }
 }
 
 TEST(Regression, TraceErrorQuotingAnOpNameWithANewlineStaysOneLine) {

@@ -349,7 +349,6 @@ TEST(ReadXY, Errors) {
     xyError("x;y\n1,5;2,5\n", 2, "decimal commas are not supported");
     // A first line of numbers gone wrong is bad data, not a header to skip silently.
     xyError("1.2.3,4.5.6\n7,8\n", 1, "trailing junk '.3'");
-    xyError("\"1\",\"2\"\n\"3\",\"4\"\n", 1, "malformed number '\"1\"'");
     xyError("-.5e,2\n3,4\n", 1, "trailing junk 'e'");
     // Rows must match the header.
     xyError("id,x,y\n1,2,3\n4,5\n", 3,
@@ -459,5 +458,55 @@ TEST(ReadFile, ErrorsAndSniffing) {
     const PointSet xy = readPointsFile(writeBytes(dir, "p", "1 2\n3 4\n"));
     EXPECT_EQ(xy.points, (std::vector<Vec2>{{1, 2}, {3, 4}}));
     EXPECT_NE(xy.warnings[0].find("XY"), std::string::npos);
+    std::filesystem::remove_all(dir);
+}
+
+//-----------------------------------------------------------------------------------------------
+// Quoted numbers, UTF-16 text, NUL bytes in any file read
+//-----------------------------------------------------------------------------------------------
+
+TEST(ReadXY, QuotedNumbersReadLikeAQuotedHeader) {
+    const PointSet header = parseXY("\"x\",\"y\"\n\"0\",\"1.5\"\n'2', ' -3 '\n", "q.csv");
+    ASSERT_EQ(header.points.size(), 2u);
+    EXPECT_EQ(header.points[0], (Vec2{0, 1.5}));
+    EXPECT_EQ(header.points[1], (Vec2{2, -3}));
+    const PointSet bare = parseXY("\"1\",\"2\"\n\"3\",\"4\"\n", "q.csv");
+    ASSERT_EQ(bare.points.size(), 2u);
+    EXPECT_EQ(bare.points[1], (Vec2{3, 4}));
+    // A quote left open is still a malformed number.
+    xyError("\"1,2\n3,4\n", 1, "malformed number '\"1'");
+}
+
+TEST(ReadFile, Utf16TextIsNamedAsSuch) {
+    const auto dir = scratchDir();
+    auto utf16le = [](const std::string& s) {
+        std::string out;
+        for (char c : s) out += std::string{c, '\0'};
+        return out;
+    };
+    const std::string bom = writeBytes(dir, "bom.csv", "\xff\xfe" + utf16le("x,y\r\n0,0\r\n"));
+    expectError([&] { readPointsFile(bom); }, bom, 0, "the file is UTF-16 text (little-endian)");
+    const std::string bare = writeBytes(dir, "bare.xy", utf16le("0 0\n1 0\n0 1\n"));
+    expectError([&] { readPointsFile(bare); }, bare, 0, "save it as UTF-8");
+    const std::string big = writeBytes(dir, "big.json", "\xfe\xff" + std::string("\0{", 2));
+    expectError([&] { readRegularFile(big, 1 << 20); }, big, 0, "UTF-16 text (big-endian)");
+    // In memory too (the parsers' own check).
+    xyError(utf16le("0,0\n1,1\n"), 0, "UTF-16");
+    std::filesystem::remove_all(dir);
+}
+
+TEST(ReadFile, ANulStopsTheReadingAtItsChunk) {
+    // A sparse file: four bytes of text, then 256 MiB of holes (NULs on reading). Every reader
+    // refuses it at the first chunk instead of reading it whole.
+    const auto dir = scratchDir();
+    const std::string sparse = writeBytes(dir, "sparse.json", "{}\n ");
+    std::filesystem::resize_file(sparse, std::uintmax_t{256} << 20);
+    std::size_t chunks = 0;
+    expectError(
+        [&] { readRegularFileChunks(sparse, std::size_t{1} << 30, [&](auto) { ++chunks; }); },
+        sparse, 0, "binary file (NUL byte at offset 4)");
+    EXPECT_EQ(chunks, 1u);
+    expectError([&] { readRegularFile(sparse, std::size_t{1} << 30); }, sparse, 0,
+                "binary file (NUL byte at offset 4)");
     std::filesystem::remove_all(dir);
 }

@@ -225,6 +225,13 @@ TEST(LessonErrors, StructureAndNames) {
         {kHead + "[[stop]]\ntext = \"\"\"\nfine\n**not closed\n\"\"\"\n", 4, 1,
          "line 2 of the text: unclosed **"},
         {kHead + "[[stop]]\ntext = \"a `b\"\n", 4, 1, "unclosed `"},
+        // A rect with inf is named for its value, not taken for a wrong order of corners.
+        {kHead + "[[stop]]\ntext = \"y\"\nview = { rect = [0, 0, inf, 1] }\n", 5, 1,
+         "view: rect's x1 is not a finite number"},
+        {kHead + "[[stop]]\ntext = \"y\"\nview = { rect = [0, nan, 1, 1] }\n", 5, 1,
+         "view: rect's y0 is not a finite number"},
+        {kHead + "[[stop]]\ntext = \"y\"\nview = { rect = [1, 0, 0, 1] }\n", 5, 1,
+         "x0 < x1 and y0 < y1"},
         {kHead + "kind = \"quiz\"\n" + stop, 3, 0, "kind must be"},
         {kHead + "stop = 3\n", 3, 0, "[[stop]] tables"},
     };
@@ -246,6 +253,9 @@ TEST(LessonErrors, StopsThatCannotBeReachedOrAnswered) {
          "not a corner of the mesh (0..11)"},
         {kHead + "[[stop]]\nrun_to = \"end\"\nselect = \"V[0]\"\ntext = \"y\"\n", 3, 1,
          "not a corner"},
+        // Before Start the table is empty: no range "(0..-1)" to offer.
+        {kHead + "[[stop]]\nrun_to = \"op:0\"\nselect = \"0\"\ntext = \"y\"\n", 3, 1,
+         "is 0, not a corner of the mesh (it has no triangles at this stop)"},
         {kHead + "[[stop]]\nrun_to = \"end\"\nquestion = \"q\"\nanswer = \"O[c]\"\n", 6, 1,
          "no corner is selected"},
         {kHead + "[[stop]]\nrun_to = \"op:1\"\nquestion = \"q\"\nanswer = \"flipped_edge\"\n", 6, 1,

@@ -703,3 +703,41 @@ TEST(AssignmentChecker, PointNotInsertedIsNamed) {
     EXPECT_EQ(p.diff.insertion, 7) << p.report;
     EXPECT_NE(p.diff.what.find("point 6 was not inserted"), std::string::npos) << p.report;
 }
+
+TEST(TraceDiff, AStudentTraceWithoutAStepSaysWhatOursDoesNext) {
+    // Only walk lines: no step at all. Ours goes on with Start, which inserts no point.
+    const TraceFile ref = ourTrace({{0, 0}, {4, 0}, {0, 4}, {3, 3}});
+    std::istringstream in("{\"op\": \"LocateStep\"}\n");
+    const TraceFile student = parseTraceText(in, "s.jsonl");
+    const TraceDiff d = diffTraces(ref, student);
+    EXPECT_FALSE(d.equal);
+    const std::string report = formatDiff(d, ref, student);
+    EXPECT_NE(report.find("ours goes on with Start (ref.jsonl:1)"), std::string::npos) << report;
+    EXPECT_EQ(report.find("point -1"), std::string::npos) << report;
+}
+
+// A trace larger than the memory the process may use: one line naming the file and the limit,
+// exit status 2, never an abort. 2 million short lines (98 MB) each side, 600 MB of address
+// space: the operations do not fit.
+TEST(TraceDiff, ATraceBeyondTheMemoryLimitIsRefusedInOneLine) {
+#if defined(__SANITIZE_ADDRESS__)
+    GTEST_SKIP() << "ASan reserves terabytes of address space: no limit can be set";
+#endif
+    const fs::path dir =
+        fs::temp_directory_path() / ("dlab_big_trace_" + std::to_string(::getpid()));
+    fs::create_directories(dir);
+    const std::string big = (dir / "big.jsonl").string();
+    {
+        std::ofstream out(big, std::ios::binary);
+        const std::string line = "{\"op\":\"Flip\",\"triangles\":[[0,1,2,3],[1,2,3,4]]}\n";
+        std::string block;
+        for (int i = 0; i < 1000; ++i) block += line;
+        for (int i = 0; i < 2000; ++i) out << block;
+    }
+    const auto r = testutil::runDtlab("diff-trace " + big + " " + big, "ulimit -v 600000; ");
+    fs::remove_all(dir);
+    EXPECT_EQ(r.status, 2) << r.out;
+    EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '\n'), 1) << r.out;
+    EXPECT_NE(r.out.find(big + ":"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("not enough memory to hold the trace"), std::string::npos) << r.out;
+}

@@ -2,6 +2,7 @@
 // scales), duality of buildVoronoi with the corner table, cells by swinging, Liang–Barsky clipping.
 #include "core/engine/generators.h"
 #include "core/engine/inserter.h"
+#include "core/engine/io_write.h"
 #include "core/engine/mesh_build.h"
 #include "core/engine/voronoi.h"
 
@@ -14,6 +15,7 @@
 #include <limits>
 #include <random>
 #include <set>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -231,6 +233,29 @@ TEST(Voronoi, EdgeNormalPointsOutOfItsTriangle) {
     EXPECT_EQ(edgeNormal(m, 0), (Vec2{3, 4}));
     EXPECT_EQ(edgeNormal(m, 1), (Vec2{-3, 0}));  // edge 2 -> 0: d = (0, -3)
     EXPECT_EQ(edgeNormal(m, 2), (Vec2{0, -4}));  // edge 0 -> 1: d = (4, 0)
+}
+
+TEST(Voronoi, ARayOfAHullEdgeLongerThanDblMaxHasAFiniteDirection) {
+    // The edge (-1.5e308, 0) -> (1.5e308, 0) is 3e308 long: past DBL_MAX. Its ray points straight
+    // down, written with finite numbers (a ray's direction has no length).
+    Mesh m;
+    m.G = {{-1.5e308, 0}, {1.5e308, 0}, {0, 1e308}};
+    m.V = {0, 1, 2};
+    computeOpposites(m);
+    const Vec2 d = edgeNormal(m, 2);
+    EXPECT_EQ(d, (Vec2{0, -0.75e308}));
+    EXPECT_FALSE(std::signbit(d.x));
+    const VoronoiDiagram diagram = buildVoronoi(m);
+    std::ostringstream out;
+    writeVoronoiEdge(out, diagram);
+    EXPECT_EQ(out.str().find("inf"), std::string::npos) << out.str();
+    EXPECT_EQ(out.str().find("nan"), std::string::npos) << out.str();
+    EXPECT_EQ(out.str().find("-0 "), std::string::npos) << out.str();
+    for (const VoronoiDiagram::Edge& e : diagram.edges) {
+        if (!e.isRay()) continue;
+        EXPECT_TRUE(std::isfinite(e.direction.x) && std::isfinite(e.direction.y));
+        EXPECT_TRUE(e.direction.x != 0 || e.direction.y != 0);
+    }
 }
 
 TEST(Voronoi, BuildIsTheDualOfTheMesh) {

@@ -1,7 +1,8 @@
 // The per-frame work and canvas drawing of the debugging panels, which must happen whichever side
-// tab is open: watches, validate(), frame times and autosave; the expression path and the
-// violations over the canvas.
+// tab is open: watches, validate(), frame times, autosave and lesson progress; the expression
+// path and the violations over the canvas.
 #include "ui/files/files.h"
+#include "ui/files/settings.h"
 #include "ui/panels/panels.h"
 
 namespace dlab::ui {
@@ -10,6 +11,7 @@ void updateDebugPanels(AppState& state) {
     checkWatches(state);
     updateStatistics(state);
     saveAutosave(state);
+    saveLessonProgressIfChanged(state);
 }
 
 void DrawDebugOverlays(AppState& state) {

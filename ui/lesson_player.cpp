@@ -62,7 +62,11 @@ void applyView(AppState& st, const LessonStop& stop) {
 
 void saveProgress(AppState& st) {
     LessonState& L = st.lessonPlayer;
-    if (L.lesson) L.saved[L.progress.lesson] = L.progress;
+    if (!L.lesson) return;
+    LessonProgress& kept = L.saved[L.progress.lesson];
+    if (kept == L.progress) return;
+    kept = L.progress;
+    ++L.changes;
 }
 
 }  // namespace

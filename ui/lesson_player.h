@@ -34,6 +34,10 @@ struct LessonState {
     float slideTextHeight = 0;      // and the height the stop's text needed
     // Progress of every lesson opened, by path (persisted with the settings).
     std::map<std::string, LessonProgress> saved;
+    // Where the progress is written as it changes (saveLessonProgressIfChanged); empty: only
+    // with the settings at exit, if at all.
+    std::string settingsPath;
+    std::uint64_t changes = 0, changesSaved = 0;  // of `saved`: counted, and as last written
 };
 
 // Loads, checks and plans the lesson, then shows its first stop (or where the student was).

@@ -23,6 +23,7 @@
 #include <cstring>
 #include <filesystem>
 #include <memory>
+#include <new>
 #include <system_error>
 #include <utility>
 #include <vector>
@@ -151,9 +152,34 @@ std::size_t countNonTextBytes(std::string_view s) {
     return bad;
 }
 
+// Text in UTF-16 (Windows' "Unicode"): a byte-order mark, or ASCII with a NUL beside every
+// character. Named as such, with what to do, instead of "binary file".
+void checkNotUtf16(std::string_view head, const std::string& name) {
+    const char* order = nullptr;
+    if (head.size() >= 2 && head[0] == '\xff' && head[1] == '\xfe') {
+        order = "little-endian";
+    } else if (head.size() >= 2 && head[0] == '\xfe' && head[1] == '\xff') {
+        order = "big-endian";
+    } else if (head.size() >= 4) {
+        const std::size_t n = std::min<std::size_t>(head.size() & ~std::size_t{1}, 64);
+        bool le = true, be = true;
+        for (std::size_t i = 0; i < n; i += 2) {
+            le = le && head[i] != 0 && head[i + 1] == 0;
+            be = be && head[i] == 0 && head[i + 1] != 0;
+        }
+        order = le ? "little-endian" : be ? "big-endian" : nullptr;
+    }
+    if (order) {
+        fail(name, 0,
+             std::string("the file is UTF-16 text (") + order +
+                 "); save it as UTF-8 or plain ASCII text");
+    }
+}
+
 // Refuses binary content before any parsing: a NUL anywhere, or more than 10% non-text bytes in
 // the first 64 KiB (a few Latin-1 accents in comments stay well below that).
 void checkNotBinary(std::string_view text, const std::string& name) {
+    checkNotUtf16(text, name);
     if (const void* nul = std::memchr(text.data(), 0, text.size())) {
         const auto offset = static_cast<std::size_t>(static_cast<const char*>(nul) - text.data());
         fail(name, lineOfOffset(text, offset),
@@ -755,9 +781,12 @@ PointSet parseXY(std::string_view text, const std::string& name) {
             fail(name, line.number,
                  "more than " + std::to_string(kMaxPoints) + " points (kMaxPoints)");
         }
+        // Quoted numbers ("0","1.5"), as spreadsheets write CSV, read like a quoted header does.
         Vec2 p;
-        p.x = parseReal(f[c.x], name, line.number, "x coordinate", ValueKind::Coordinate, c.sep);
-        p.y = parseReal(f[c.y], name, line.number, "y coordinate", ValueKind::Coordinate, c.sep);
+        p.x = parseReal(unquote(f[c.x]), name, line.number, "x coordinate", ValueKind::Coordinate,
+                        c.sep);
+        p.y = parseReal(unquote(f[c.y]), name, line.number, "y coordinate", ValueKind::Coordinate,
+                        c.sep);
         ps.points.push_back(p);
     } while (reader.next(line));
     return ps;
@@ -862,8 +891,13 @@ struct FdCloser {
 
 }  // namespace
 
-std::string readRegularFile(const std::string& path, std::size_t maxBytes,
-                            const std::function<void(std::string_view)>& firstChunk) {
+namespace {
+
+// The file's chunks in order, after the checks of readRegularFile; onSize sees the size stat()
+// gave before the first read.
+void readChunks(const std::string& path, std::size_t maxBytes,
+                const std::function<void(std::uintmax_t)>& onSize,
+                const std::function<void(std::string_view)>& onChunk) {
     // O_NONBLOCK: opening a FIFO without a writer returns at once (and is refused below).
     const FdCloser file{::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC | O_NOCTTY)};
     if (file.fd < 0) fail(path, 0, "cannot open file: " + errnoText(errno));
@@ -876,20 +910,54 @@ std::string readRegularFile(const std::string& path, std::size_t maxBytes,
     const auto size = static_cast<std::uintmax_t>(st.st_size);
     const std::string tooLarge = " bytes; the maximum is " + std::to_string(maxBytes);
     if (size > maxBytes) fail(path, 0, "file is " + std::to_string(size) + tooLarge);
-    std::string text;
-    text.reserve(static_cast<std::size_t>(size));
+    if (onSize) onSize(size);
     std::vector<char> chunk(kBinarySniffBytes);
-    for (bool first = true;;) {
+    std::size_t total = 0;
+    for (;;) {
         const ssize_t got = ::read(file.fd, chunk.data(), chunk.size());
         if (got < 0 && errno == EINTR) continue;
         if (got < 0) fail(path, 0, "cannot read the file: " + errnoText(errno));
         if (got == 0) break;
         const auto n = static_cast<std::size_t>(got);
-        if (text.size() + n > maxBytes)  // the file grew while it was read
+        if (total + n > maxBytes)  // the file grew while it was read
             fail(path, 0, "file is more than " + std::to_string(maxBytes) + " bytes long");
-        text.append(chunk.data(), n);
-        if (first && firstChunk) firstChunk(text);
-        first = false;
+        const std::string_view piece(chunk.data(), n);
+        if (total == 0) checkNotUtf16(piece, path);
+        onChunk(piece);
+        // No text file of ours holds a NUL: a sparse or binary file stops at the first chunk
+        // that has one, not after the whole file.
+        if (const void* nul = std::memchr(piece.data(), 0, n)) {
+            const std::size_t at =
+                total + static_cast<std::size_t>(static_cast<const char*>(nul) - piece.data());
+            fail(path, 0, "binary file (NUL byte at offset " + std::to_string(at) + ")");
+        }
+        total += n;
+    }
+}
+
+}  // namespace
+
+void readRegularFileChunks(const std::string& path, std::size_t maxBytes,
+                           const std::function<void(std::string_view)>& chunkFn) {
+    readChunks(path, maxBytes, {}, chunkFn);
+}
+
+std::string readRegularFile(const std::string& path, std::size_t maxBytes,
+                            const std::function<void(std::string_view)>& firstChunk) {
+    std::string text;
+    try {
+        readChunks(
+            path, maxBytes,
+            [&](std::uintmax_t size) { text.reserve(static_cast<std::size_t>(size)); },
+            [&](std::string_view piece) {
+                const bool first = text.empty();
+                text.append(piece);
+                if (first && firstChunk) firstChunk(text);
+            });
+    } catch (const std::bad_alloc&) {
+        fail(path, 0,
+             "not enough memory to read the file (" + std::to_string(text.size()) +
+                 " bytes read; the largest accepted is " + std::to_string(maxBytes) + " bytes)");
     }
     return text;
 }

@@ -84,8 +84,16 @@ inline constexpr std::size_t kMaxFileBytes = std::size_t{1} << 31;
 // and again while reading, so /dev/zero behind a link or a growing file cannot exhaust memory.
 // firstChunk, when given, sees the first chunk read (up to 64 KiB) and may throw, e.g. to refuse
 // binary content early. Throws InputError(path, 0, ...).
+// Every file it reads is text: UTF-16 text is refused as such ("the file is UTF-16 text
+// (little-endian); save it as UTF-8 ..."), and a NUL byte stops the reading at the chunk that holds
+// it ("binary file (NUL byte at offset N)"), so a sparse file is not read whole first. Running out
+// of memory for the text is one more InputError, naming the limit.
 std::string readRegularFile(const std::string& path, std::size_t maxBytes,
                             const std::function<void(std::string_view)>& firstChunk = {});
+// The same reading and checks, the file handed over chunk by chunk (up to 64 KiB each) instead
+// of held whole: for readers that keep less than the text (traces, line by line).
+void readRegularFileChunks(const std::string& path, std::size_t maxBytes,
+                           const std::function<void(std::string_view)>& chunkFn);
 
 // Reads a file and dispatches on its extension (case-insensitive): .node, .pts,
 // .csv/.xy/.txt/.dat; anything else is sniffed. Refuses unreadable, empty, oversized and binary

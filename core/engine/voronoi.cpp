@@ -255,8 +255,14 @@ Vec2 circumcenter(Vec2 a, Vec2 b, Vec2 c) {
 Vec2 edgeNormal(const Mesh& m, std::int32_t c) {
     const Vec2 p = m.G[m.V[next(c)]];
     const Vec2 q = m.G[m.V[prev(c)]];
-    const double dx = q.x - p.x, dy = q.y - p.y;
-    return {dy, -dx};
+    double dx = q.x - p.x, dy = q.y - p.y;
+    if (!std::isfinite(dx) || !std::isfinite(dy)) {
+        // An edge longer than DBL_MAX (ends near +-DBL_MAX): the same direction at a quarter of
+        // the length, which is finite (a ray's direction has no length).
+        dx = q.x * 0.25 - p.x * 0.25;
+        dy = q.y * 0.25 - p.y * 0.25;
+    }
+    return {dy + 0.0, -dx + 0.0};  // + 0.0: no -0 written
 }
 
 VoronoiDiagram buildVoronoi(const Mesh& m) {

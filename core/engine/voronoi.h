@@ -37,7 +37,8 @@ struct VoronoiDiagram {
         std::int32_t b = kNone;  // the other Voronoi vertex (= t(o(corner))), kNone for a ray
         // The normal of the dual mesh edge V[n(c)] -> V[p(c)] turned to the right,
         // (dy, -dx): it points from a's side of the mesh edge to b's side (outward for a ray).
-        // Not normalized, so it is exact up to the rounding of dx and dy. For a ray it is the
+        // Not normalized, so it is exact up to the rounding of dx and dy (an edge longer than
+        // DBL_MAX gives it at a quarter of its length: finite). For a ray it is the
         // ray's direction; for a finite edge of a Delaunay mesh vertices[b] - vertices[a] is a
         // non-negative multiple of it.
         Vec2 direction;

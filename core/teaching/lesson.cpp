@@ -34,6 +34,9 @@ namespace fs = std::filesystem;
 
 namespace {
 
+// The corners of a view rect, as a message names them.
+constexpr const char* kRectNames[] = {"x0", "y0", "x1", "y1"};
+
 std::string composeMessage(const std::string& file, int line, int stop,
                            const std::string& message) {
     std::string s = file;
@@ -1257,13 +1260,18 @@ public:
         }
         if (rect) {
             std::array<double, 4> r{};
-            bool ok = rect->size() == 4;
-            for (std::size_t k = 0; ok && k < 4; ++k) {
+            if (rect->size() != 4)
+                fail(lineOf(*n), "view: rect is [x0, y0, x1, y1] with x0 < x1 and y0 < y1");
+            for (std::size_t k = 0; k < 4; ++k) {
                 const auto x = (*rect)[k].value<double>();
-                ok = x && std::isfinite(*x);
-                if (ok) r[k] = *x;
+                if (!x) fail(lineOf(*n), "view: rect holds numbers only ([x0, y0, x1, y1])");
+                if (!std::isfinite(*x)) {
+                    fail(lineOf(*n), "view: rect's " + std::string(kRectNames[k]) +
+                                         " is not a finite number (inf and nan have no place)");
+                }
+                r[k] = *x;
             }
-            if (!ok || !(r[0] < r[2]) || !(r[1] < r[3]))
+            if (!(r[0] < r[2]) || !(r[1] < r[3]))
                 fail(lineOf(*n), "view: rect is [x0, y0, x1, y1] with x0 < x1 and y0 < y1");
             s.view.rect = r;
         }
@@ -1532,12 +1540,12 @@ void checkExpectations(const Lesson& lesson, std::size_t k, Inserter& ins, Journ
 }  // namespace
 
 // Why a stop cannot be reached: the history is full (target 0: the stop's breakpoint).
-static std::string historyFull(const Journal& journal, std::size_t target) {
+static std::string historyFull(const Journal& journal, std::size_t target, OrderKind order) {
     return "this stop" + (target ? " (op " + std::to_string(target) + ")" : std::string()) +
            " lies past the step-by-step history's memory budget of " +
            std::to_string(journal.budget() >> 20) + " MiB, reached after " +
-           std::to_string(journal.recorded()) +
-           " operations; stop earlier, or use fewer points or the brio order (it walks far less)";
+           std::to_string(journal.recorded()) + " operations; stop earlier, or use fewer points" +
+           (order == OrderKind::Brio ? "" : " or the brio order (it walks far less)");
 }
 
 namespace {
@@ -1556,7 +1564,8 @@ void runToOp(const Lesson& lesson, std::size_t k, Journal& journal, std::size_t 
                       std::to_string(journal.position()) + ")");
     }
     journal.seek(target);
-    if (journal.budgetReached()) stopError(lesson, k, line, historyFull(journal, target));
+    if (journal.budgetReached())
+        stopError(lesson, k, line, historyFull(journal, target, lesson.options.order));
     if (journal.position() != target) {
         stopError(lesson, k, line,
                   "run_to op:" + std::to_string(target) + " is past the end of the run (" +
@@ -1571,7 +1580,8 @@ void runToBreakpoint(const Lesson& lesson, std::size_t k, Journal& journal, Inse
     for (int i = 0; i < s.count; ++i) {
         const RunResult r =
             runUntil(journal, ins, std::span(&bp, 1), std::numeric_limits<std::size_t>::max());
-        if (journal.budgetReached()) stopError(lesson, k, s.line, historyFull(journal, 0));
+        if (journal.budgetReached())
+            stopError(lesson, k, s.line, historyFull(journal, 0, lesson.options.order));
         if (r.reason != StopReason::Hit) {
             stopError(
                 lesson, k, s.line,
@@ -1598,10 +1608,12 @@ std::int32_t selectAtStop(const Lesson& lesson, std::size_t k, Inserter& ins,
     const ExprValue& v = *r.value;
     if ((v.kind != ValueKind::Corner && v.kind != ValueKind::Number) || v.i < 0 ||
         v.i >= ins.mesh().numCorners()) {
+        const std::int32_t corners = ins.mesh().numCorners();
         stopError(lesson, k, s.line,
                   "select \"" + s.select + "\" is " + formatValue(v) +
-                      ", not a corner of the mesh (0.." +
-                      std::to_string(ins.mesh().numCorners() - 1) + ")");
+                      ", not a corner of the mesh " +
+                      (corners == 0 ? std::string("(it has no triangles at this stop)")
+                                    : "(0.." + std::to_string(corners - 1) + ")"));
     }
     return static_cast<std::int32_t>(v.i);
 }

@@ -301,6 +301,7 @@ struct LessonProgress {
     std::size_t stop = 0;               // the stop shown
     std::size_t furthest = 0;           // the furthest stop reached
     std::vector<std::uint8_t> answers;  // per stop: 0 not answered, 1 tried and wrong, 2 right
+    bool operator==(const LessonProgress&) const = default;
 };
 
 }  // namespace dlab

@@ -1,5 +1,6 @@
 // JSON Lines trace of the inserter's operations (nlohmann_json, header-only).
 #include "core/teaching/trace.h"
+#include "core/teaching/json_quote.h"
 
 #include <nlohmann/json.hpp>
 
@@ -97,7 +98,7 @@ namespace {
 std::int64_t integerField(const nlohmann::json& v, const std::string& what, std::int64_t lo,
                           std::int64_t hi,
                           const std::function<InputError(const std::string&)>& fail) {
-    if (!v.is_number_integer()) throw fail(what + " must be an integer, found " + v.dump());
+    if (!v.is_number_integer()) throw fail(what + " must be an integer, found " + quoteJson(v));
     if (v.is_number_unsigned()) {
         const auto u = v.get<std::uint64_t>();
         if (u > static_cast<std::uint64_t>(hi))
@@ -133,7 +134,7 @@ TraceRecord parseTraceLine(const std::string& line, const std::string& name, int
         r.index = static_cast<std::size_t>(
             integerField(j["i"], "i", 0, std::numeric_limits<std::int64_t>::max(), fail));
         const auto type = parseOpType(j.at("op").get<std::string>());
-        if (!type) throw fail("unknown op " + j.at("op").dump());
+        if (!type) throw fail("unknown op " + quoteJson(j.at("op")));
         r.type = *type;
         r.vertex = int32Field(j, "vertex", kNone);
         r.a = int32Field(j, "a", kNone);
@@ -146,12 +147,18 @@ TraceRecord parseTraceLine(const std::string& line, const std::string& name, int
         r.trianglesBefore =
             j.contains("triangles_before") ? int32Field(j, "triangles_before", 0) : 0;
         r.trianglesAfter = j.contains("triangles_after") ? int32Field(j, "triangles_after", 0) : 0;
-        for (const auto& c : j.value("changes", nlohmann::json::array())) {
+        // By reference: value() would copy the field, one recursion per level of its nesting.
+        static const nlohmann::json kNoList = nlohmann::json::array();
+        const auto listOf = [&](const char* key) -> const nlohmann::json& {
+            const auto it = j.find(key);
+            return it == j.end() ? kNoList : *it;
+        };
+        for (const auto& c : listOf("changes")) {
             if (!c.is_array() || c.size() != 4)
                 throw fail("a change must be [\"V\"|\"O\", corner, before, after]");
             const std::string table = c[0].get<std::string>();
             if (table != "V" && table != "O")
-                throw fail("a change names table V or O, not " + c[0].dump());
+                throw fail("a change names table V or O, not " + quoteJson(c[0]));
             const auto corner =
                 static_cast<std::int32_t>(integerField(c[1], "corner", 0, 1 << 29, fail));
             r.changes.push_back(
@@ -159,7 +166,7 @@ TraceRecord parseTraceLine(const std::string& line, const std::string& name, int
                  static_cast<std::int32_t>(integerField(c[2], "before", kNone, kMaxI32, fail)),
                  static_cast<std::int32_t>(integerField(c[3], "after", kNone, kMaxI32, fail))});
         }
-        for (const auto& t : j.value("triangles", nlohmann::json::array())) {
+        for (const auto& t : listOf("triangles")) {
             if (!t.is_array() || t.size() != 4) throw fail("a triangle must be [t, v0, v1, v2]");
             std::int32_t v[4];
             for (int k = 0; k < 4; ++k)

@@ -5,6 +5,7 @@
 
 #include "core/engine/io_read.h"
 #include "core/engine/text_util.h"
+#include "core/teaching/json_quote.h"
 #include "core/teaching/mesh_check.h"
 #include "core/teaching/trace.h"
 
@@ -40,7 +41,7 @@ std::optional<OpType> opTypeLenient(const std::string& name) {
 std::int64_t integer(const nlohmann::json& v, const std::string& what, std::int64_t lo,
                      std::int64_t hi, const std::string& name, int line) {
     if (!v.is_number_integer())
-        throw InputError(name, line, what + " must be an integer, not " + v.dump());
+        throw InputError(name, line, what + " must be an integer, not " + quoteJson(v));
     std::int64_t x;
     if (v.is_number_unsigned()) {
         const auto u = v.get<std::uint64_t>();
@@ -69,7 +70,7 @@ TraceOp parseLine(const std::string& text, const std::string& name, int line) {
     if (!j.contains("op")) throw InputError(name, line, "missing \"op\" (e.g. \"op\": \"Flip\")");
     if (!j["op"].is_string()) throw InputError(name, line, "\"op\" must be a string");
     const auto type = opTypeLenient(j["op"].get<std::string>());
-    if (!type) throw InputError(name, line, "unknown op " + j["op"].dump());
+    if (!type) throw InputError(name, line, "unknown op " + quoteJson(j["op"]));
     op.type = *type;
     auto id = [&](const char* key) -> std::optional<std::int32_t> {
         if (!j.contains(key) || j[key].is_null()) return std::nullopt;
@@ -86,12 +87,13 @@ TraceOp parseLine(const std::string& text, const std::string& name, int line) {
     if (j.contains("changes")) {
         if (!j["changes"].is_array()) throw InputError(name, line, "\"changes\" must be a list");
         op.hasChanges = true;
+        op.changes.reserve(j["changes"].size());
         for (const auto& c : j["changes"]) {
             if (!c.is_array() || c.size() != 4 || !c[0].is_string() ||
                 (c[0] != "V" && c[0] != "O")) {
                 throw InputError(
                     name, line,
-                    "a change is [\"V\" or \"O\", corner, before, after], not " + c.dump());
+                    "a change is [\"V\" or \"O\", corner, before, after], not " + quoteJson(c));
             }
             const auto corner = static_cast<std::int32_t>(
                 integer(c[1], "a corner", 0, kMaxCorners - 1, name, line));
@@ -106,11 +108,12 @@ TraceOp parseLine(const std::string& text, const std::string& name, int line) {
         if (!j["triangles"].is_array())
             throw InputError(name, line, "\"triangles\" must be a list of [t, v0, v1, v2]");
         op.hasTriangles = true;
+        op.triangles.reserve(j["triangles"].size());
         for (const auto& t : j["triangles"]) {
             if (!t.is_array() || t.size() != 4) {
                 throw InputError(
                     name, line,
-                    "a triangle is [t, v0, v1, v2] (t: your triangle number), not " + t.dump());
+                    "a triangle is [t, v0, v1, v2] (t: your triangle number), not " + quoteJson(t));
             }
             std::array<std::int32_t, 4> v{};
             v[0] = static_cast<std::int32_t>(
@@ -140,24 +143,72 @@ bool TraceOp::changesMesh() const {
     }
 }
 
+namespace {
+
+// One line of a trace into f (blank lines skipped).
+void addLine(TraceFile& f, std::string& line, int number) {
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    if (line.find_first_not_of(" \t") == std::string::npos) return;
+    if (f.ops.size() >= kMaxTraceOps) {
+        throw InputError(f.name, number,
+                         "more than " + std::to_string(kMaxTraceOps) +
+                             " operations, the most a trace compared may hold (the memory "
+                             "limit of traces): compare a shorter run");
+    }
+    f.ops.push_back(parseLine(line, f.name, number));
+}
+
+void checkNotEmpty(const TraceFile& f) {
+    if (f.ops.empty()) throw InputError(f.name, 0, "no operations: the trace is empty");
+}
+
+}  // namespace
+
 TraceFile parseTraceText(std::istream& in, const std::string& name) {
     TraceFile f;
     f.name = name;
     std::string line;
     int number = 0;
-    while (std::getline(in, line)) {
-        ++number;
-        if (!line.empty() && line.back() == '\r') line.pop_back();
-        if (line.find_first_not_of(" \t") == std::string::npos) continue;
-        f.ops.push_back(parseLine(line, name, number));
-    }
-    if (f.ops.empty()) throw InputError(name, 0, "no operations: the trace is empty");
+    while (std::getline(in, line)) addLine(f, line, ++number);
+    checkNotEmpty(f);
     return f;
 }
 
 TraceFile readTraceFile(const std::string& path) {
-    std::istringstream in(readRegularFile(path, kMaxTraceFileBytes));
-    return parseTraceText(in, path);
+    // Line by line as the chunks come: the file's text is never held whole, only the operations.
+    TraceFile f;
+    f.name = path;
+    std::string line;
+    int number = 0;
+    try {
+        readRegularFileChunks(path, kMaxTraceFileBytes, [&](std::string_view piece) {
+            for (std::size_t at = 0; at < piece.size();) {
+                const std::size_t end = piece.find('\n', at);
+                line.append(piece.substr(at, end == std::string_view::npos ? end : end - at));
+                if (line.size() > kMaxTraceLineBytes) {
+                    throw InputError(path, number + 1,
+                                     "line longer than " +
+                                         std::to_string(kMaxTraceLineBytes >> 20) +
+                                         " MiB: not a trace line");
+                }
+                if (end == std::string_view::npos) break;
+                addLine(f, line, ++number);
+                line.clear();
+                at = end + 1;
+            }
+        });
+        if (!line.empty()) addLine(f, line, ++number);
+    } catch (const std::bad_alloc&) {
+        const std::size_t held = f.ops.size();
+        f = TraceFile{};  // freed first: the message needs a little memory too
+        line = std::string();
+        throw InputError(path, number,
+                         "not enough memory to hold the trace (" + std::to_string(held) +
+                             " operations read, about " + std::to_string(kTraceBytesPerOp) +
+                             " bytes each)");
+    }
+    checkNotEmpty(f);
+    return f;
 }
 
 TraceFile traceOfRun(Inserter& ins, const std::string& name) {
@@ -165,20 +216,27 @@ TraceFile traceOfRun(Inserter& ins, const std::string& name) {
     MeshGeometry geometry;
     geometry.numInput = ins.numInput();
     geometry.ghost = ins.options().boundary == Boundary::Exact;
-    std::stringstream text;
+    // Each line read as a file's would be, as it is made: the text is never held whole.
+    TraceFile f;
+    f.name = name;
+    int number = 0;
     while (journal.forward()) {
         // The virtual vertices' positions exist from Start until Finalize.
         if (ins.mesh().G.size() > geometry.points.size()) geometry.points = ins.mesh().G;
-        text << toJsonLine(traceRecord(journal, journal.position() - 1, ins.mesh())) << '\n';
+        std::string line = toJsonLine(traceRecord(journal, journal.position() - 1, ins.mesh()));
+        addLine(f, line, ++number);
     }
     if (journal.budgetReached()) {
         throw InputError(name, 0,
                          "the reference run passes the history's memory budget (" +
                              std::to_string(journal.budget() >> 20) + " MiB) after " +
                              std::to_string(journal.recorded()) +
-                             " operations: compare a smaller or a brio-order run");
+                             " operations: compare a smaller run" +
+                             (ins.options().order == OrderKind::Brio
+                                  ? std::string()
+                                  : " or a brio-order one (it walks far less)"));
     }
-    TraceFile f = parseTraceText(text, name);
+    checkNotEmpty(f);
     f.geometry = std::move(geometry);
     return f;
 }
@@ -443,7 +501,7 @@ std::size_t lastChange(const TraceFile& f, const Step& step) {
 }
 
 std::string stepName(const TraceOp& lead, int insertion, int insertions) {
-    const std::string v = lead.vertex ? std::to_string(*lead.vertex) : "?";
+    const std::string v = lead.vertex && *lead.vertex >= 0 ? std::to_string(*lead.vertex) : "?";
     switch (lead.type) {
         case OpType::Start: return "after the start (the first triangles)";
         case OpType::SkipDuplicate:
@@ -472,8 +530,9 @@ std::string stepEndMismatch(const TraceFile& ref, const TraceFile& student,
     if (k >= ss.size()) {
         const TraceOp& next = ref.ops[rs[k].lead];
         return "your trace ends early: ours goes on with " + std::string(toString(next.type)) +
-               (next.vertex ? " of point " + std::to_string(*next.vertex) : "") + " (" + ref.name +
-               ":" + std::to_string(next.line) + ")";
+               (next.vertex && *next.vertex >= 0 ? " of point " + std::to_string(*next.vertex)
+                                                 : "") +
+               " (" + ref.name + ":" + std::to_string(next.line) + ")";
     }
     return "your trace goes on after ours has ended, with " +
            std::string(toString(student.ops[ss[k].lead].type)) + " (" + student.name + ":" +

@@ -24,6 +24,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <deque>
 #include <iosfwd>
 #include <map>
 #include <optional>
@@ -49,12 +50,21 @@ struct TraceOp {
 
 struct TraceFile {
     std::string name;
-    std::vector<TraceOp> ops;
+    // A deque: it grows a block at a time, never holding an old and a new copy of every op at
+    // once as a vector's doubling does (the peak of reading a large trace).
+    std::deque<TraceOp> ops;
     MeshGeometry geometry;  // known for our own runs (traceOfRun), not for a file
 };
 
 // The largest trace file read: 1 GiB (about 5 million operations of a few hundred bytes each).
+// The file is read line by line; what is held is its operations, about kTraceBytesPerOp each
+// (measured on dtlab trace's output), at most kMaxTraceOps of them: two traces of the most
+// operations (diff-trace) hold about 2 x 2^23 x 200 B = 3.4 GB.
 inline constexpr std::size_t kMaxTraceFileBytes = std::size_t{1} << 30;
+inline constexpr std::size_t kMaxTraceOps = std::size_t{1} << 23;
+inline constexpr std::size_t kTraceBytesPerOp = 200;
+// The longest line: a Finalize that lists every final triangle of a large run fits.
+inline constexpr std::size_t kMaxTraceLineBytes = std::size_t{64} << 20;
 
 // Reads a trace leniently (only "op" is required on each line; blank lines are skipped).
 // Throws InputError ("NAME:LINE: what") on anything that is not such a trace.

@@ -193,6 +193,37 @@ def engine_seeds():
     return seeds
 
 
+# settings: the GUI's settings.json; a good one, and damaged ones (kept aside when read).
+SETTINGS = {
+    "good.json": '{"window": {"x": 10, "y": 20, "width": 1280, "height": 720}, "presentation": false,\n'
+                 ' "lessons": {"lessons/05_flips.toml": {"title": "Flips", "stop": 3, "furthest": 5,'
+                 ' "answers": [0, 2, 1, 0, 0, 0]}}}\n',
+    "typo.json": '{"presentation": tru, "lessons": {}}\n',
+    "not_object.json": '[1, 2, 3]\n',
+    "wrong_types.json": '{"window": "big", "lessons": {"a.toml": {"stop": "x", "answers": [9, -1]}}}\n',
+    "truncated.json": '{"lessons": {"a.toml": {"title": "A", "furthest"',
+    "empty.json": "",
+}
+
+
+# Deep nesting beside a bad field: the reader's error path (which finds the line, quotes the
+# value) must hold whatever its parser held. 200000 levels overflow any recursion.
+DEEP = 200000
+DEEP_BAD = {
+    "session": ("deep_nesting_bad_points.json",
+                '{"format": "delaunay-lab session", "version": 1,\n "deep": ' + "[" * DEEP + "]" * DEEP
+                + ',\n "points": "bad"}\n'),
+    "trace": ("deep_nesting_bad_integer.jsonl",
+              '{"i":0,"op":"Flip","a":' + "[" * DEEP + "]" * DEEP + "}\n"),
+    "trace_diff": ("deep_nesting_bad_change",
+                   '\x00{"op":"Flip","changes":[' + "[" * DEEP + "]" * DEEP + "]}\n"),
+    "settings": ("deep_nesting_bad_lessons.json",
+                 '{"deep": ' + "[" * DEEP + "]" * DEEP + ', "lessons": 7, "presentation": tru}\n'),
+    "lesson": ("deep_nesting_bad_points.toml",
+               'title = "t"\ndeep = ' + "[" * DEEP + "]" * DEEP + '\npoints = "bad"\n'),
+}
+
+
 def write(target, name, content):
     d = os.path.join(CORPUS, target)
     os.makedirs(d, exist_ok=True)
@@ -245,6 +276,10 @@ def main():
         if os.path.exists(ours):
             with open(ours, "rb") as f:
                 write("trace_diff", "ours_" + name, bytes([2]) + f.read())
+    for name, text in SETTINGS.items():
+        write("settings", name, text)
+    for target, (name, text) in DEEP_BAD.items():
+        write(target, name, text)
     for name, data in engine_seeds().items():
         write("engine", name, data)
     if args.dtlab:

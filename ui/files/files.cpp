@@ -9,6 +9,8 @@
 //   [SECTION] Autosave and recovery
 #include "ui/files/files.h"
 
+#include "core/engine/text_util.h"
+
 #include "core/engine/io_write.h"
 #include "core/engine/mesh_build.h"
 #include "core/teaching/describe.h"
@@ -415,7 +417,7 @@ void writeViewSvg(std::ostream& os, const AppState& st) {
 
 bool exportViewSvg(AppState& st, const std::string& path) {
     const bool ok = writeFile(st, path, [&](std::ostream& os) { writeViewSvg(os, st); });
-    if (ok) st.log(Message::Level::Info, "wrote the view to " + path);
+    if (ok) st.log(Message::Level::Info, "wrote the view to " + escapeControls(path));
     return ok;
 }
 
@@ -463,9 +465,10 @@ void serviceCaptures(Gui& gui) {
         if (frames == 0)
             fileError(st, error);
         else
-            st.log(Message::Level::Info, "wrote " + req.path + ": " + std::to_string(frames) +
-                                             " frames, operations " + std::to_string(req.from) +
-                                             " to " + std::to_string(req.to));
+            st.log(Message::Level::Info, "wrote " + escapeControls(req.path) + ": " +
+                                             std::to_string(frames) + " frames, operations " +
+                                             std::to_string(req.from) + " to " +
+                                             std::to_string(req.to));
     }
 }
 

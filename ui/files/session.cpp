@@ -11,13 +11,19 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <new>
 #include <sstream>
 
 namespace dlab::ui {
 
 namespace {
 
-using Json = nlohmann::ordered_json;
+// Read as nlohmann::json: its objects are std::maps, and a key added never moves the values
+// before it. ordered_json keeps an object in a vector of pairs whose const keys make it copy them
+// when it grows: one recursion per level of a deeply nested value, a crash at 200k levels.
+// Written as ordered_json (the fields in our order).
+using Json = nlohmann::json;
+using OrderedJson = nlohmann::ordered_json;
 
 // ============================================================================================
 // [SECTION] Writing
@@ -56,8 +62,8 @@ constexpr OverlayField kOverlayFields[] = {
     {"virtual_triangles", &Overlays::virtualTriangles},
 };
 
-Json overlaysJson(const Overlays& ov) {
-    Json j = Json::object();
+OrderedJson overlaysJson(const Overlays& ov) {
+    OrderedJson j = OrderedJson::object();
     for (const OverlayField& f : kOverlayFields) j[f.name] = ov.*f.flag;
     return j;
 }
@@ -127,40 +133,35 @@ private:
         ++m_p;
         return out;
     }
+    // Past one value, however deeply nested: a count of open brackets, not a recursion (the
+    // error path holds any file the parser held).
     void skip() {
         ws();
         if (m_p >= m_s.size()) return;
-        const char c = m_s[m_p];
-        if (c == '"') {
+        const char first = m_s[m_p];
+        if (first == '"') {
             string();
-        } else if (c == '{' || c == '[') {
-            const char close = c == '{' ? '}' : ']';
-            ++m_p;
-            ws();
-            if (m_p < m_s.size() && m_s[m_p] == close) {
-                ++m_p;
-                return;
-            }
-            while (m_p < m_s.size()) {
-                if (c == '{') {
-                    ws();
-                    string();
-                    ws();
-                    ++m_p;  // ':'
-                }
-                skip();
-                ws();
-                if (m_p < m_s.size() && m_s[m_p] == ',') {
-                    ++m_p;
-                    continue;
-                }
-                ++m_p;  // close
-                return;
-            }
-        } else {
+            return;
+        }
+        if (first != '{' && first != '[') {
             while (m_p < m_s.size() &&
                    std::string_view(",]} \n\r\t").find(m_s[m_p]) == std::string_view::npos)
                 ++m_p;
+            return;
+        }
+        std::size_t depth = 0;
+        while (m_p < m_s.size()) {
+            const char c = m_s[m_p];
+            if (c == '"') {
+                string();
+                continue;
+            }
+            ++m_p;
+            if (c == '{' || c == '[') {
+                ++depth;
+            } else if ((c == '}' || c == ']') && --depth == 0) {
+                return;
+            }
         }
     }
     bool find(const std::vector<std::string>& tokens, std::size_t depth) {
@@ -277,21 +278,53 @@ void checkFormat(const Json& j) {
     }
 }
 
-std::vector<Vec2> parsePoints(const Json& j) {
+// The points, taken out of the JSON as the parser reads them: each [x, y] checked into `points`
+// (the first bad one kept as `error`), none left in the tree. Held as JSON a point took about a
+// hundred bytes, and a tree of millions of them needed a large buffer again to be destroyed
+// (nlohmann frees a tree through a stack of its own): out of memory, that aborted.
+struct PointsAside {
+    std::vector<Vec2> points;
+    std::optional<SessionError> error;
+};
+
+Json parseSessionJson(std::string_view text, PointsAside& aside) {
+    std::string topKey;
+    std::size_t index = 0;
+    const Json::parser_callback_t take = [&](int depth, Json::parse_event_t event, Json& parsed) {
+        if (depth == 1 && event == Json::parse_event_t::key) {
+            topKey = parsed.is_string() ? parsed.get<std::string>() : std::string();
+            if (topKey == "points") aside = {}, index = 0;  // the last "points" is the one
+            return true;
+        }
+        // An element of the points array, complete: a value, or the end of an array or object.
+        if (depth != 2 || topKey != "points" ||
+            (event != Json::parse_event_t::value && event != Json::parse_event_t::array_end &&
+             event != Json::parse_event_t::object_end))
+            return true;
+        const std::size_t k = index++;
+        if (aside.error) return false;
+        try {
+            if (k >= kMaxPoints)
+                fail("/points", "more than " + std::to_string(kMaxPoints) + " points");
+            const std::string where = "/points/" + std::to_string(k);
+            if (!parsed.is_array() || parsed.size() != 2) fail(where, "expected [x, y]");
+            aside.points.push_back(
+                {finiteNumber(parsed[0], where + "/0"), finiteNumber(parsed[1], where + "/1")});
+        } catch (const SessionError& e) {
+            aside.error = e;
+            aside.points = {};
+        }
+        return false;  // not kept in the tree
+    };
+    return Json::parse(text.begin(), text.end(), take);
+}
+
+std::vector<Vec2> parsePoints(const Json& j, PointsAside& aside) {
     const Json* pts = member(j, "points");
     if (!pts) fail("", "no \"points\"");
     if (!pts->is_array()) fail("/points", "expected an array of [x, y] pairs");
-    if (pts->size() > kMaxPoints)
-        fail("/points", "more than " + std::to_string(kMaxPoints) + " points");
-    std::vector<Vec2> points;
-    points.reserve(pts->size());
-    for (std::size_t k = 0; k < pts->size(); ++k) {
-        const Json& p = (*pts)[k];
-        const std::string where = "/points/" + std::to_string(k);
-        if (!p.is_array() || p.size() != 2) fail(where, "expected [x, y]");
-        points.push_back({finiteNumber(p[0], where + "/0"), finiteNumber(p[1], where + "/1")});
-    }
-    return points;
+    if (aside.error) throw *aside.error;
+    return std::move(aside.points);
 }
 
 // A mode named by its text (`parse` reads it); an unknown name is the error, with the known
@@ -408,11 +441,11 @@ void parseExpect(const Json& ex, Session& s) {
 }
 
 // The session's fields in the file's order of importance; the first bad one is the error.
-Session parseSession(const Json& j) {
+Session parseSession(const Json& j, PointsAside& aside) {
     Session s;
     checkFormat(j);
     if (const Json* src = member(j, "source")) s.source = text(*src, "/source");
-    s.points = parsePoints(j);
+    s.points = parsePoints(j, aside);
     if (const Json* o = member(j, "options")) parseOptions(*o, s.options);
     if (const Json* p = member(j, "position")) s.position = count(*p, "/position");
     if (const Json* view = member(j, "view")) parseView(*view, s);
@@ -448,7 +481,7 @@ std::uint64_t MeshFingerprint(const Mesh& m) {
 std::string sessionText(const AppState& st) {
     const Engine& e = st.engine;
     const InsertOptions& o = e.options();
-    Json j;
+    OrderedJson j;
     j["format"] = kSessionFormat;
     j["version"] = kSessionVersion;
     j["saved_by"] = "Delaunay Lab";
@@ -464,12 +497,12 @@ std::string sessionText(const AppState& st) {
     j["view"] = {{"center", {st.view.center.x, st.view.center.y}}, {"scale", st.view.scale}};
     j["selection"] = {{"corner", st.selection.corner}};
     j["overlays"] = overlaysJson(st.overlays);
-    Json bps = Json::array();
+    OrderedJson bps = OrderedJson::array();
     for (const BreakpointEntry& b : st.run.breakpoints) {
         if (b.enabled) bps.push_back(toString(b.bp));
     }
     j["breakpoints"] = bps;
-    Json watches = Json::array();
+    OrderedJson watches = OrderedJson::array();
     for (const WatchEntry& w : st.expressions.watches)
         watches.push_back({{"text", w.text}, {"enabled", w.enabled}});
     j["expressions"] = {{"live", st.expressions.live}, {"watches", watches}};
@@ -526,6 +559,17 @@ static std::string numberTooLarge(std::string_view text, const std::string& name
            escapeControls(number) + " is too large (a coordinate must be a finite double)";
 }
 
+// Out of memory while a session of `bytes` bytes was read or checked: which limit, in one line.
+static std::string outOfMemory(const std::string& name, std::size_t bytes) {
+    const std::string need = bytes == 0
+                                 ? std::string()
+                                 : std::to_string(bytes >> 20) + " MiB of JSON needs about " +
+                                       std::to_string((bytes >> 20) * kSessionMemoryPerByte) +
+                                       " MiB while it is checked; ";
+    return name + ": not enough memory to open the session (" + need + "sessions up to " +
+           std::to_string(kMaxSessionFileBytes >> 20) + " MiB are accepted)";
+}
+
 namespace {
 
 // The file's text parsed and checked; a problem is one line naming the file, its line and
@@ -533,8 +577,9 @@ namespace {
 bool readSessionText(std::string_view textIn, const std::string& name, Session& s,
                      std::string& error) {
     try {
-        const Json j = Json::parse(textIn.begin(), textIn.end());
-        s = parseSession(j);
+        PointsAside aside;
+        const Json j = parseSessionJson(textIn, aside);
+        s = parseSession(j, aside);
     } catch (const Json::parse_error& e) {
         // nlohmann says "[json.exception.parse_error.101] parse error at line 3, column 5: ...":
         // keep the part after the position, and give the line our way.
@@ -548,6 +593,9 @@ bool readSessionText(std::string_view textIn, const std::string& name, Session& 
         return false;
     } catch (const Json::out_of_range& e) {
         error = numberTooLarge(textIn, name, e.what());
+        return false;
+    } catch (const std::bad_alloc&) {
+        error = outOfMemory(name, textIn.size());
         return false;
     } catch (const SessionError& e) {
         LineFinder finder(textIn);
@@ -616,7 +664,10 @@ bool loadSessionText(AppState& st, std::string_view textIn, const std::string& n
     std::string why;
     const std::size_t n = s.points.size();
     if (!eng.resetAt(std::move(s.points), s.options, s.position, why)) {
-        error = name + ": cannot restart the run: " + why;
+        error = name + ": cannot restart the run: " +
+                (why == std::bad_alloc().what()
+                     ? "not enough memory to triangulate its " + std::to_string(n) + " points"
+                     : why);
         return false;
     }
     if (!previous.empty()) {
@@ -646,18 +697,21 @@ bool loadSessionText(AppState& st, std::string_view textIn, const std::string& n
 bool loadSession(AppState& st, const std::string& path, std::string& error) {
     std::string body;
     try {
-        body = readRegularFile(path, kMaxFileBytes);
+        body = readRegularFile(path, kMaxSessionFileBytes);
+        return loadSessionText(st, body, path, error);
     } catch (const InputError& e) {
         error = escapeControls(e.what());
-        return false;
+    } catch (const std::bad_alloc&) {  // applying it (the run restarted at the saved step)
+        error = outOfMemory(escapeControls(path), body.size());
     }
-    return loadSessionText(st, body, path, error);
+    return false;
 }
 
 bool peekSession(const std::string& path, SessionSummary& out, std::string& error) {
     try {
-        const Json j = Json::parse(readRegularFile(path, kMaxFileBytes));
-        const Session s = parseSession(j);
+        PointsAside aside;
+        const Json j = parseSessionJson(readRegularFile(path, kMaxSessionFileBytes), aside);
+        const Session s = parseSession(j, aside);
         out.points = s.points.size();
         out.position = s.position;
         out.source = s.source;
@@ -667,6 +721,9 @@ bool peekSession(const std::string& path, SessionSummary& out, std::string& erro
     } catch (const SessionError& e) {
         error = path + (e.pointer.empty() ? "" : ": " + readablePath(e.pointer)) + ": " +
                 escapeControls(e.message);
+        return false;
+    } catch (const std::bad_alloc&) {
+        error = outOfMemory(escapeControls(path), 0);
         return false;
     } catch (const std::exception& e) {
         error = path + ": " + escapeControls(e.what());

@@ -17,6 +17,7 @@
 #include <imgui.h>
 
 #include <signal.h>
+#include <sys/resource.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -133,6 +134,19 @@ TEST(Files, ASessionNumberBeyondDoubleNamesItsLine) {
     ASSERT_FALSE(dlab::ui::loadSessionText(st, text, "big.json", error));
     EXPECT_EQ(error.rfind("big.json:2: the number 1e400 is too large", 0), 0u) << error;
     EXPECT_EQ(error.find("json.exception"), std::string::npos) << error;
+}
+
+// The error path finds the bad field's line past a value nested 200000 deep: as far as the
+// parser itself reads, without a recursion per level.
+TEST(Files, ASessionWithDeepNestingAndABadFieldNamesTheFieldAndItsLine) {
+    constexpr int kDepth = 200000;
+    const std::string text = "{\"format\": \"delaunay-lab session\", \"version\": 1,\n \"deep\": " +
+                             std::string(kDepth, '[') + std::string(kDepth, ']') +
+                             ",\n \"more\": [[\"]\"], {\"k\": \"[\"}],\n \"points\": \"bad\"}\n";
+    dlab::ui::AppState st;
+    std::string error;
+    ASSERT_FALSE(dlab::ui::loadSessionText(st, text, "deep.json", error));
+    EXPECT_EQ(error, "deep.json:4: points: expected an array of [x, y] pairs");
 }
 
 TEST(Files, ViewSvgEscapesControlCharactersInItsTitle) {
@@ -486,4 +500,62 @@ TEST(Files, DiscardingTheRecoveryDeletesTheAutosave) {
     h.clickItem("discard-recovery");
     EXPECT_FALSE(fs::exists(autosave));
     EXPECT_TRUE(st.files.recoveryPath.empty());
+}
+
+// ============================================================================================
+// A session larger than the memory the process may use
+// ============================================================================================
+
+// The child of Files.ASessionBeyondTheMemoryLimitFailsInOneLine: loads the session the
+// environment names and prints the error (or "loaded").
+TEST(Files, DISABLED_LoadSessionNamedByTheEnvironment) {
+    const char* path = std::getenv("DLAB_SESSION");
+    ASSERT_NE(path, nullptr);
+    dlab::ui::AppState st;
+    std::string error;
+    const bool ok = dlab::ui::loadSession(st, path, error);
+    std::printf("%s\n", ok ? "loaded" : error.c_str());
+}
+
+TEST(Files, ASessionBeyondTheMemoryLimitFailsInOneLine) {
+#if defined(__SANITIZE_ADDRESS__)
+    GTEST_SKIP() << "ASan reserves terabytes of address space: no limit can be set";
+#endif
+    TempDir dir("big_session");
+    const std::string path = dir / "big.json";
+    {
+        // 3 million points, 78 MB: the text, the points and the run take about 290 MB (measured),
+        // more than the 160 MB the child may map with its code.
+        std::ofstream out(path, std::ios::binary);
+        out << "{\"format\": \"delaunay-lab session\", \"version\": 1, \"points\": [";
+        std::string block;
+        for (int i = 0; i < 1000; ++i) block += "[123.456789, 987.654321],\n";
+        for (int i = 0; i < 3000; ++i) out << (i ? "," : "") << block.substr(0, block.size() - 2);
+        out << "]}\n";
+    }
+    const std::string log = dir / "child.txt";
+    ::setenv("DLAB_SESSION", path.c_str(), 1);
+    const pid_t child = ::fork();
+    if (child == 0) {
+        const rlimit limit{std::size_t{160} << 20, std::size_t{160} << 20};
+        ::setrlimit(RLIMIT_AS, &limit);
+        if (!std::freopen(log.c_str(), "w", stdout)) ::_exit(126);
+        ::execl("/proc/self/exe", "dlab_ui_logic_tests", "--gtest_also_run_disabled_tests",
+                "--gtest_filter=Files.DISABLED_LoadSessionNamedByTheEnvironment",
+                static_cast<char*>(nullptr));
+        ::_exit(127);
+    }
+    ::unsetenv("DLAB_SESSION");
+    ASSERT_GT(child, 0);
+    int status = 0;
+    ::waitpid(child, &status, 0);
+    ASSERT_TRUE(WIFEXITED(status)) << "the child died of signal " << WTERMSIG(status);
+    const std::string out = slurp(log);
+    // Out of memory reading the JSON ("... sessions up to 512 MiB are accepted)") or running its
+    // points ("cannot restart the run: not enough memory to triangulate its 3000000 points").
+    const auto at = out.find(path + ": ");
+    ASSERT_NE(at, std::string::npos) << out;
+    const std::string line = out.substr(at, out.find('\n', at) - at);
+    EXPECT_NE(line.find("not enough memory to"), std::string::npos) << out;
+    EXPECT_EQ(line.find("bad_alloc"), std::string::npos) << out;
 }
