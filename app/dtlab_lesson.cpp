@@ -301,8 +301,7 @@ void runHandout(const LessonArgs& args) {
     }
     writeTextFiles(files, {args.file});
     std::cout << "wrote " << escapeControls(args.output)
-              << (html ? " (pictures in " + escapeControls(folder) + ")" : std::string())
-              << "\n";
+              << (html ? " (pictures in " + escapeControls(folder) + ")" : std::string()) << "\n";
 }
 
 }  // namespace

@@ -195,3 +195,15 @@ TEST(Halves, APilotOfAHalfOnOneLineDoesNotPay) {
     EXPECT_FALSE(pilot.joined);
     EXPECT_FALSE(pilot.pays());
 }
+
+TEST(Halves, TwoNeedlesJoinWithMoreSeamTrianglesThanCorners) {
+    // Each half is one needle triangle, their tops 1e-274 apart: the seam zigzags through six
+    // triangles, more than the halves have corners.
+    const std::vector<Vec2> pts = {{1.3939306136085695e-308, 5.7879437653027852e-275},
+                                   {3, -4398046511112},
+                                   {-1.90625, -4398046511106},
+                                   {-1.875, -4398046511106},
+                                   {7.415058735927868e-305, 1.1179707971429261e-308},
+                                   {2, -4398046511112}};
+    expectJoinedDelaunay(pts, "two needles", false, 2);
+}

@@ -309,7 +309,13 @@ private:
         const std::int32_t l1 = vertex(m_left, upper.l), r1 = vertex(m_right, upper.r);
         Spoke sl{next(m_left[lower.l]), false};                 // l's first neighbour
         Spoke sr{prev(m_right[pred(m_right, lower.r)]), true};  // r's last neighbour
-        for (std::size_t guard = m_mesh.V.size(); guard > 0; --guard) {
+        // Each seam triangle has a side edge from a half, and an edge is a side edge at most
+        // twice (a seam on both sides): the seam has at most as many triangles as the halves
+        // have edge sides, 3 a triangle plus 1 a hull edge, and one more pass finds the top.
+        // (Corners alone are too few where the halves are single needles: 6 points, 2
+        // triangles, 6 seam triangles.)
+        const std::size_t most = m_mesh.V.size() + m_left.size() + m_right.size() + 1;
+        for (std::size_t guard = most; guard > 0; --guard) {
             const bool lValid = orient(l, r, tip(sl)) > 0;
             if (lValid) sl = settle<true>(l, r, sl, stats);
             const bool rValid = orient(l, r, tip(sr)) > 0;
