@@ -6,6 +6,8 @@
 
 #include "ui/gl/gl_api.h"
 
+#include <unistd.h>
+
 #include <cstdlib>
 #include <iostream>
 
@@ -45,8 +47,12 @@ std::unique_ptr<ui::Platform> headlessPlatform(int width, int height) {
         const char* renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
         const char* version = reinterpret_cast<const char*>(glGetString(GL_VERSION));
         g_info = {headlessApi(*platform), renderer ? renderer : "?", version ? version : "?"};
-        std::cerr << "dtlab: GL: " << g_info.renderer << ", OpenGL " << g_info.version << ", on "
-                  << g_info.api << " (--gl " << glFlag() << ")\n";
+        // On a terminal only: piped, stderr holds the one line of an error and nothing else
+        // (Table 1 names the renderer in its header, CSV and figure).
+        if (isatty(STDERR_FILENO)) {
+            std::cerr << "dtlab: GL: " << g_info.renderer << ", OpenGL " << g_info.version
+                      << ", on " << g_info.api << " (--gl " << glFlag() << ")\n";
+        }
     }
     return platform;
 }
