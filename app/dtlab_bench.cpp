@@ -69,7 +69,8 @@ BenchResult timeRuns(const BenchArgs& args, const std::vector<Vec2>& points) {
                 continue;
             }
         }
-        const auto made = args.engine.makeInserter(std::move(pts));  // GL locators need a context
+        // GL locators need a context; with --threads 2 the order's sorts use both cores
+        const auto made = args.engine.makeInserter(std::move(pts), args.threads);
         Inserter& ins = *made;
         ins.run();
         const auto t1 = std::chrono::steady_clock::now();

@@ -167,8 +167,9 @@ std::optional<JoinedTriangulation> triangulateOnTwoCores(std::vector<Vec2>& poin
     return joined;
 }
 
-std::unique_ptr<Inserter> EngineFlags::makeInserter(std::vector<Vec2> points) const {
-    const InsertOptions o = options();
+std::unique_ptr<Inserter> EngineFlags::makeInserter(std::vector<Vec2> points, int threads) const {
+    InsertOptions o = options();
+    o.threads = threads;
     noteSlowChoices(o, points);
     if (!needsGl(o.locator)) return std::make_unique<Inserter>(std::move(points), o);
     return makeGlInserter(std::move(points));

@@ -41,7 +41,8 @@ struct EngineFlags {
     ui::IdBufferGlOptions glOptions() const;
     // An Inserter for these flags. The GL locators (--locate idbuffer-gl[-batched]) need a GL
     // context, which core cannot make: they are built on the headless GL context (--gl).
-    std::unique_ptr<Inserter> makeInserter(std::vector<Vec2> points) const;
+    // `threads`: what the insertion order's sorts may use (the run itself is one inserter's).
+    std::unique_ptr<Inserter> makeInserter(std::vector<Vec2> points, int threads = 1) const;
     std::unique_ptr<Inserter> makeGlInserter(std::vector<Vec2> points) const;  // dtlab-gl only
 };
 

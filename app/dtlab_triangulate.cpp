@@ -54,7 +54,8 @@ Triangulated triangulate(const TriangulateArgs& args, std::vector<Vec2> points) 
         if (auto joined = triangulateOnTwoCores(points, args.engine.options(), &why))
             return {std::move(joined->mesh), std::move(joined->skipped), joined->stats, 2, {}};
     }
-    const auto made = args.engine.makeInserter(std::move(points));  // GL locators need a context
+    // GL locators need a context; with --threads 2 the order's sorts use both cores
+    const auto made = args.engine.makeInserter(std::move(points), args.threads);
     made->run();
     Triangulated out{made->takeMesh(), made->skipped(), made->stats(), 1, std::move(why)};
     return out;

@@ -69,6 +69,30 @@ TEST(Order, TheSameSeedGivesTheSameOrder) {
     }
 }
 
+TEST(Order, TwoThreadsSortToTheOneThreadOrder) {
+    // Large enough for the second thread; every generator, so that crowded cells (lattices,
+    // near-duplicates, clusters) and cells cut near the middle of the records are met.
+    for (Generator g : allGenerators()) {
+        for (std::size_t n : {std::size_t{1} << 16, std::size_t{200003}}) {
+            SCOPED_TRACE(std::string(toString(g)) + " " + std::to_string(n));
+            const auto pts = generatePoints(g, n, 4);
+            EXPECT_EQ(insertionOrder(pts, OrderKind::Brio, 9, 2),
+                      insertionOrder(pts, OrderKind::Brio, 9, 1));
+        }
+    }
+    // All points equal: one cell holds them all and the middle cannot fall inside it.
+    const std::vector<Vec2> same(100000, Vec2{0.5, -3});
+    EXPECT_EQ(insertionOrder(same, OrderKind::Brio, 1, 2),
+              insertionOrder(same, OrderKind::Brio, 1));
+}
+
+TEST(Order, SplitMixSkipsAsManyNumbersAsItIsAskedTo) {
+    SplitMix64 a(42), b(42);
+    for (int i = 0; i < 1000; ++i) a.next();
+    b.discard(1000);
+    EXPECT_EQ(a.next(), b.next());
+}
+
 TEST(Order, HilbertIndexFollowsTheCurveOneLevelAtATime) {
     EXPECT_EQ(hilbertIndex(0, 0, 1), 0u);
     EXPECT_EQ(hilbertIndex(0, 1, 1), 1u);

@@ -136,7 +136,7 @@ Inserter::Inserter(std::vector<Vec2> points, const InsertOptions& options,
     m_numInput = static_cast<std::int32_t>(points.size());
     m_bounds = Bounds::of(points);
     m_mesh.G = std::move(points);
-    m_order = insertionOrder(m_mesh.G, options.order, options.seed);
+    m_order = insertionOrder(m_mesh.G, options.order, options.seed, options.threads);
     const auto& G = m_mesh.G;
 
     if (options.boundary == Boundary::Exact) {

@@ -118,6 +118,7 @@ struct InsertOptions {
     OrderKind order = OrderKind::Brio;
     std::uint64_t seed = 1;
     LocatorOptions locatorOptions;
+    int threads = 1;  // the insertion order's sorts may use two (the same order; the run is one)
 };
 
 // Whether two option sets make the same run, op for op (the ID buffer's size only changes how

@@ -10,6 +10,7 @@
 #include <cmath>
 #include <limits>
 #include <numeric>
+#include <thread>
 
 namespace dlab {
 
@@ -141,7 +142,7 @@ constexpr std::int32_t indexOf(Record r) { return static_cast<std::int32_t>(r & 
 
 // Stable LSD radix sort of records by their upper 32 bits, in three passes of 11, 11 and 10
 // bits. Three passes over 2048 buckets beat two over 65536: those scatter into more open cache
-// lines than the L2 holds. count[pass] must hold the digit histograms of rec.
+// lines than the L2 holds.
 constexpr int kRadixBits = 11;
 constexpr std::uint32_t kRadixMask = (1u << kRadixBits) - 1;
 using RadixCounts = std::array<std::array<std::uint32_t, 1u << kRadixBits>, 3>;
@@ -154,20 +155,52 @@ void countDigits(Record r, RadixCounts& count) {
     for (int pass = 0; pass < 3; ++pass) ++count[pass][radixDigit(r, pass)];
 }
 
-void radixSort(std::vector<Record>& rec, RadixCounts& count) {
-    for (auto& c : count) {  // exclusive prefix sums: each bucket's first slot
-        std::uint32_t sum = 0;
-        for (std::uint32_t& x : c) {
-            const std::uint32_t k = x;
-            x = sum;
-            sum += k;
-        }
+// The work of a pass over n items cut into `chunks` (1 or 2) consecutive ranges: work(c, begin,
+// end) for each, the second range on a thread of its own.
+template <class Work>
+void forChunks(int chunks, std::size_t n, const Work& work) {
+    if (chunks < 2) {
+        work(0, std::size_t{0}, n);
+        return;
     }
+    std::thread second([&] { work(1, n / 2, n); });
+    work(0, std::size_t{0}, n / 2);
+    second.join();
+}
+
+// count[c] holds the digit histograms of chunk c of rec, of all three passes when there is one
+// chunk (a pass only moves records within the array), of the first pass otherwise (the others
+// are counted before their pass). Chunk c's records go after chunk c - 1's in each bucket, so the
+// result is the one-chunk sort's.
+void radixSort(std::vector<Record>& rec, std::array<RadixCounts, 2>& count, int chunks) {
     std::vector<Record> tmp(rec.size());
-    for (Record r : rec) tmp[count[0][radixDigit(r, 0)]++] = r;
-    for (Record r : tmp) rec[count[1][radixDigit(r, 1)]++] = r;
-    for (Record r : rec) tmp[count[2][radixDigit(r, 2)]++] = r;
-    rec.swap(tmp);
+    std::vector<Record>* from = &rec;
+    std::vector<Record>* to = &tmp;
+    for (int pass = 0; pass < 3; ++pass) {
+        if (pass > 0 && chunks > 1) {
+            forChunks(chunks, rec.size(), [&](int c, std::size_t b, std::size_t e) {
+                count[c][pass].fill(0);
+                for (std::size_t i = b; i < e; ++i) ++count[c][pass][radixDigit((*from)[i], pass)];
+            });
+        }
+        std::uint32_t sum = 0;  // each chunk's first slot in each bucket
+        for (std::uint32_t d = 0; d <= kRadixMask; ++d) {
+            for (int c = 0; c < chunks; ++c) {
+                const std::uint32_t k = count[c][pass][d];
+                count[c][pass][d] = sum;
+                sum += k;
+            }
+        }
+        forChunks(chunks, rec.size(), [&](int c, std::size_t b, std::size_t e) {
+            auto& next = count[c][pass];
+            for (std::size_t i = b; i < e; ++i) {
+                const Record r = (*from)[i];
+                (*to)[next[radixDigit(r, pass)]++] = r;
+            }
+        });
+        std::swap(from, to);
+    }
+    if (from != &rec) rec.swap(tmp);
 }
 
 // A box mapped onto a 2^32 x 2^32 grid, each axis on its own (a flat set still fills the grid).
@@ -353,40 +386,58 @@ private:
 // wherever that grid parts the points. fine[i] gets point i's cell on the grid inside its cell.
 constexpr int kRoundGrowthBits = 3;  // each round 2^3 times the one before
 std::vector<Record> sortByRoundAndCell(const std::vector<Vec2>& points, SplitMix64& rng,
-                                       std::vector<std::uint32_t>& fine) {
+                                       std::vector<std::uint32_t>& fine, int chunks) {
     const std::size_t n = points.size();
-    const CellGrid grid = CellGrid::around(
-        points, [](std::size_t i) { return i; }, n);
-    std::vector<Record> rec(n);
-    RadixCounts count{};
-    for (std::size_t i = 0; i < n; ++i) {
-        const std::uint64_t r = rng.next();
-        const int zeros = r == 0 ? 64 : std::countr_zero(r);
-        const std::uint32_t round =
-            15u - static_cast<std::uint32_t>(std::min(zeros / kRoundGrowthBits, 15));
-        const CellGrid::Cell cell = grid.cellOf(points[i]);
-        fine[i] = fineCell(cell);
-        rec[i] = Record{(round << 28) | topKey(cell)} << 32 | static_cast<std::uint32_t>(i);
-        countDigits(rec[i], count);
+    std::array<std::pair<Vec2, Vec2>, 2> box;  // each chunk's bounding box
+    forChunks(chunks, n, [&](int c, std::size_t b, std::size_t e) {
+        Vec2 l = points[b], h = l;
+        for (std::size_t i = b + 1; i < e; ++i) {
+            l = {std::min(l.x, points[i].x), std::min(l.y, points[i].y)};
+            h = {std::max(h.x, points[i].x), std::max(h.y, points[i].y)};
+        }
+        box[c] = {l, h};
+    });
+    Vec2 lo = box[0].first, hi = box[0].second;
+    for (int c = 1; c < chunks; ++c) {
+        lo = {std::min(lo.x, box[c].first.x), std::min(lo.y, box[c].first.y)};
+        hi = {std::max(hi.x, box[c].second.x), std::max(hi.y, box[c].second.y)};
     }
-    radixSort(rec, count);
+    const CellGrid grid(lo, hi);
+    std::vector<Record> rec(n);
+    std::array<RadixCounts, 2> count{};
+    forChunks(chunks, n, [&](int c, std::size_t b, std::size_t e) {
+        SplitMix64 draws = rng;  // point i draws the generator's i-th number, in every chunk
+        draws.discard(b);
+        for (std::size_t i = b; i < e; ++i) {
+            const std::uint64_t r = draws.next();
+            const int zeros = r == 0 ? 64 : std::countr_zero(r);
+            const std::uint32_t round =
+                15u - static_cast<std::uint32_t>(std::min(zeros / kRoundGrowthBits, 15));
+            const CellGrid::Cell cell = grid.cellOf(points[i]);
+            fine[i] = fineCell(cell);
+            rec[i] = Record{(round << 28) | topKey(cell)} << 32 | static_cast<std::uint32_t>(i);
+            countDigits(rec[i], count[c]);
+        }
+    });
+    rng.discard(n);
+    radixSort(rec, count, chunks);
     return rec;
 }
 
 // Points that share a cell of the first grid (in one round) are keyed again on the fine grid
-// inside it and sorted there. The reads of fine[] are random: the loop reads ahead across cells.
+// inside it and sorted there, rec[begin, end) holding whole cells. The reads of fine[] are
+// random: the loop reads ahead across cells.
 void sortSharedCells(const std::vector<Vec2>& points, const std::vector<std::uint32_t>& fine,
-                     std::vector<Record>& rec) {
-    const std::size_t n = rec.size();
+                     std::vector<Record>& rec, std::size_t begin, std::size_t end) {
     CellRefiner refiner(points);
-    for (std::size_t i = 0, j = 0; i < n; i = j) {
+    for (std::size_t i = begin, j = begin; i < end; i = j) {
         const std::uint32_t key = keyOf(rec[i]);
-        for (j = i + 1; j < n && keyOf(rec[j]) == key; ++j) {}
+        for (j = i + 1; j < end && keyOf(rec[j]) == key; ++j) {}
         if (j - i == 1) continue;
         // (the round's bits above the cell's do not change the curve's state)
         const std::uint32_t state = stateAfter(0, key & 0x0FFFFFFFu, kTopLevels);
         for (std::size_t k = i; k < j; ++k) {
-            if (k + kAhead < n) __builtin_prefetch(&fine[indexOf(rec[k + kAhead])]);
+            if (k + kAhead < end) __builtin_prefetch(&fine[indexOf(rec[k + kAhead])]);
             const std::int32_t id = indexOf(rec[k]);
             const std::uint32_t f = fine[id];
             rec[k] = Record{hilbertIndex16(f >> 16, f & 0xFFFFu, state)} << 32 |
@@ -396,7 +447,12 @@ void sortSharedCells(const std::vector<Vec2>& points, const std::vector<std::uin
     }
 }
 
-std::vector<std::int32_t> brio(const std::vector<Vec2>& points, SplitMix64& rng) {
+// Below this many points a second thread costs more than it saves.
+constexpr std::size_t kTwoThreadsFrom = std::size_t{1} << 16;
+
+// With two threads each pass is cut in two, the refinement at a cell boundary near the middle:
+// the same order as one thread's.
+std::vector<std::int32_t> brio(const std::vector<Vec2>& points, SplitMix64& rng, int threads) {
     const std::size_t n = points.size();
     std::vector<std::int32_t> order(n);
     if (n < 64) {
@@ -404,17 +460,23 @@ std::vector<std::int32_t> brio(const std::vector<Vec2>& points, SplitMix64& rng)
         shuffle(order, rng);
         return order;
     }
+    const int chunks = threads > 1 && n >= kTwoThreadsFrom ? 2 : 1;
     std::vector<std::uint32_t> fine(n);
-    std::vector<Record> rec = sortByRoundAndCell(points, rng, fine);
-    sortSharedCells(points, fine, rec);
-    for (std::size_t i = 0; i < n; ++i) order[i] = indexOf(rec[i]);
+    std::vector<Record> rec = sortByRoundAndCell(points, rng, fine, chunks);
+    std::size_t middle = chunks > 1 ? n / 2 : n;
+    while (middle < n && keyOf(rec[middle]) == keyOf(rec[middle - 1])) ++middle;
+    const std::array<std::size_t, 3> cut{0, middle, n};
+    forChunks(chunks, n, [&](int c, std::size_t, std::size_t) {
+        sortSharedCells(points, fine, rec, cut[c], cut[c + 1]);
+        for (std::size_t i = cut[c]; i < cut[c + 1]; ++i) order[i] = indexOf(rec[i]);
+    });
     return order;
 }
 
 }  // namespace
 
 std::vector<std::int32_t> insertionOrder(const std::vector<Vec2>& points, OrderKind kind,
-                                         std::uint64_t seed) {
+                                         std::uint64_t seed, int threads) {
     SplitMix64 rng(seed);
     switch (kind) {
         case OrderKind::Input: {
@@ -428,7 +490,7 @@ std::vector<std::int32_t> insertionOrder(const std::vector<Vec2>& points, OrderK
             shuffle(order, rng);
             return order;
         }
-        case OrderKind::Brio: return brio(points, rng);
+        case OrderKind::Brio: return brio(points, rng, threads);
     }
     return {};
 }

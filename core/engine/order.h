@@ -17,9 +17,10 @@ const char* toString(OrderKind kind);
 std::optional<OrderKind> parseOrderKind(std::string_view name);
 
 // A permutation of [0, points.size()). Deterministic for a given seed on every platform
-// (our own generator and shuffle: std::shuffle's result is implementation-defined).
+// (our own generator and shuffle: std::shuffle's result is implementation-defined). BRIO's
+// sorts may use two threads (`threads` > 1, large sets): the order is the same.
 std::vector<std::int32_t> insertionOrder(const std::vector<Vec2>& points, OrderKind kind,
-                                         std::uint64_t seed);
+                                         std::uint64_t seed, int threads = 1);
 
 // Position of (x, y) along a Hilbert curve filling a 2^bits x 2^bits grid (bits <= 16), one
 // level at a time.
@@ -37,7 +38,7 @@ class SplitMix64 {
 public:
     explicit SplitMix64(std::uint64_t seed) : m_state(seed) {}
     std::uint64_t next() {
-        std::uint64_t z = (m_state += 0x9E3779B97F4A7C15ull);
+        std::uint64_t z = (m_state += kGamma);
         z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
         z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
         return z ^ (z >> 31);
@@ -47,8 +48,11 @@ public:
         return static_cast<std::uint32_t>(((next() >> 32) * bound) >> 32);
     }
     double uniform01() { return static_cast<double>(next() >> 11) * 0x1.0p-53; }
+    // Skips the next k numbers (the state only counts).
+    void discard(std::uint64_t k) { m_state += k * kGamma; }
 
 private:
+    static constexpr std::uint64_t kGamma = 0x9E3779B97F4A7C15ull;
     std::uint64_t m_state;
 };
 
