@@ -794,9 +794,14 @@ void Inserter::doFinalize(Rec& rec, Op& op) {
     }
     // Kept triangles at or past the new end move, in increasing order, into the slots below it
     // that virtual triangles leave, in increasing order; their neighbours follow them.
+    // (Both walk `gone` in increasing order: with every point on the hull it holds about n.)
     auto hole = gone.begin();
+    auto next = std::lower_bound(gone.begin(), gone.end(), kept);
     for (std::int32_t s = kept; s < nt; ++s) {
-        if (std::binary_search(gone.begin(), gone.end(), s)) continue;
+        if (next != gone.end() && *next == s) {
+            ++next;
+            continue;
+        }
         const std::int32_t t = *hole++;
         for (int k = 0; k < 3; ++k) {
             const std::int32_t o = O[3 * s + k];
