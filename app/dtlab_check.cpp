@@ -4,6 +4,7 @@
 #include "app/dtlab_common.h"
 
 #include "core/engine/io_write.h"
+#include "core/engine/mesh_diff.h"
 #include "core/engine/mesh_read.h"
 #include "core/engine/text_util.h"
 #include "core/engine/triangulation_check.h"
@@ -12,6 +13,7 @@
 
 #include <fstream>
 #include <iostream>
+#include <optional>
 
 namespace dlab::cli {
 
@@ -22,6 +24,7 @@ struct CheckArgs {
     std::string points;
     bool json = false;
     bool all = false;
+    bool diff = false;
 };
 
 struct RepairArgs {
@@ -55,7 +58,16 @@ nlohmann::json ids(const std::vector<std::int32_t>& v, int base) {
     return out;
 }
 
-void printJson(const CheckReport& r, const ImportedMesh& im, bool all) {
+nlohmann::json edgeList(const std::vector<MeshEdge>& edges, int base, bool all) {
+    nlohmann::json out = nlohmann::json::array();
+    for (const MeshEdge& e : edges) {
+        if (!all && out.size() == 20) break;
+        out.push_back({std::int64_t{e.first} + base, std::int64_t{e.second} + base});
+    }
+    return out;
+}
+
+void printJson(const CheckReport& r, const ImportedMesh& im, bool all, const DelaunayDiff* diff) {
     nlohmann::json j;
     j["summary"] = r.summary();
     j["format"] = im.format;
@@ -79,6 +91,14 @@ void printJson(const CheckReport& r, const ImportedMesh& im, bool all) {
                         {"corners", ids(p.corners, 0)}});
     }
     j["problems"] = list;
+    if (diff) {
+        j["diff"] = {{"shared_edges", diff->sharedEdges},
+                     {"only_in_mesh", diff->onlyGiven.size()},
+                     {"only_in_delaunay", diff->onlyDelaunay.size()},
+                     {"cocircular", diff->cocircular},
+                     {"edges_only_in_mesh", edgeList(diff->onlyGiven, im.indexBase, all)},
+                     {"edges_only_in_delaunay", edgeList(diff->onlyDelaunay, im.indexBase, all)}};
+    }
     std::cout << j.dump(2) << "\n";
 }
 
@@ -94,11 +114,44 @@ void printList(const std::vector<const MeshProblem*>& list, bool all, std::ostre
     }
 }
 
+void printEdges(const char* label, const std::vector<MeshEdge>& edges, int base, bool all) {
+    std::size_t shown = 0;
+    for (const MeshEdge& e : edges) {
+        if (!all && shown == 20) {
+            std::cout << "  ... " << edges.size() - shown << " more (--all lists every one)\n";
+            break;
+        }
+        std::cout << "  " << label << ": " << e.first + base << "-" << e.second + base << "\n";
+        ++shown;
+    }
+}
+
+void printDiff(const DelaunayDiff& d, const ImportedMesh& im, bool all) {
+    if (d.same()) {
+        std::cout << "the same edges as the Delaunay triangulation of these points ("
+                  << d.sharedEdges << ")\n";
+        return;
+    }
+    auto edges = [](std::size_t k) { return std::to_string(k) + (k == 1 ? " edge" : " edges"); };
+    std::cout << "against the Delaunay triangulation of these points: " << edges(d.onlyGiven.size())
+              << " only in this mesh, " << d.onlyDelaunay.size()
+              << " only in the Delaunay triangulation, " << d.sharedEdges << " shared";
+    if (d.cocircular > 0) {
+        std::cout << "; " << d.cocircular << " of the Delaunay triangulation's have their four "
+                  << "points on one circle, where either diagonal is Delaunay";
+    }
+    std::cout << "\n";
+    printEdges("only in this mesh", d.onlyGiven, im.indexBase, all);
+    printEdges("only in the Delaunay triangulation", d.onlyDelaunay, im.indexBase, all);
+}
+
 void runCheck(const CheckArgs& args) {
     const ImportedMesh im = loadMesh(args.mesh, args.points);
     const CheckReport r = checkImported(im);
+    std::optional<DelaunayDiff> diff;
+    if (args.diff && r.isTriangulation()) diff = diffWithDelaunay(im.mesh);
     if (args.json) {
-        printJson(r, im, args.all);
+        printJson(r, im, args.all, diff ? &*diff : nullptr);
     } else {
         std::cout << escapeControls(args.mesh) << " (" << im.format << "): " << r.summary() << "\n";
         std::vector<const MeshProblem*> list;
@@ -107,6 +160,10 @@ void runCheck(const CheckArgs& args) {
         if (r.overlapSearchCut)
             std::cout << "  (the search for overlapping pairs stopped early: the list of "
                          "overlaps may be incomplete)\n";
+        if (diff) printDiff(*diff, im, args.all);
+        if (args.diff && !diff)
+            std::cout << "no comparison with the Delaunay triangulation: this is not a valid "
+                         "triangulation of its points\n";
     }
     std::cout.flush();
     if (!r.isDelaunay()) throw Exit{1};
@@ -177,6 +234,8 @@ void addCheck(CLI::App& app) {
                     "The points from this file (an .ele's instead of the .node beside it)");
     cmd->add_flag("--json", args->json, "The report as JSON");
     cmd->add_flag("--all", args->all, "List every problem (the first 20 by default)");
+    cmd->add_flag("--diff", args->diff,
+                  "Compare the edges with the Delaunay triangulation of the same points");
     cmd->callback([args] { guarded([&] { runCheck(*args); }); });
 
     auto rep = std::make_shared<RepairArgs>();

@@ -4,6 +4,7 @@
 #include "core/engine/inserter.h"
 #include "core/engine/io_read.h"
 #include "core/engine/io_write.h"
+#include "core/engine/mesh_diff.h"
 #include "core/engine/mesh_read.h"
 #include "core/engine/predicates.h"
 #include "core/engine/triangulation_check.h"
@@ -532,6 +533,57 @@ TEST(TriangulationCheck, RepairByFlipsEndsExactlyDelaunayWithTheNumberingKept) {
     }
 }
 
+TEST(TriangulationCheck, TheDiffWithDelaunayNamesTheEdgesThatDiffer) {
+    const Mesh base = delaunayMesh(200, 7);
+    const DelaunayDiff same = diffWithDelaunay(base);
+    EXPECT_EQ(same.onlyGiven.size(), 0u);
+    EXPECT_EQ(same.onlyDelaunay.size(), same.onlyGiven.size());
+    EXPECT_GT(same.sharedEdges, 500);
+    // One edge flipped where the four points are not cocircular: exactly that pair differs.
+    Mesh m = base;
+    std::int32_t flipped = kNone;
+    for (std::int32_t c = 0; c < static_cast<std::int32_t>(m.V.size()) && flipped == kNone; ++c) {
+        const std::int32_t d = m.O[c];
+        if (d == kNone) continue;
+        const Vec2 P = m.point(c), A = m.point(next(c)), B = m.point(prev(c)), D = m.point(d);
+        if (orient2d(P, A, D) > 0 && orient2d(D, B, P) > 0 && incircle(P, A, B, D) != 0)
+            flipped = c;
+    }
+    ASSERT_NE(flipped, kNone);
+    const MeshEdge before = std::minmax(m.V[next(flipped)], m.V[prev(flipped)]);
+    const MeshEdge after = std::minmax(m.V[flipped], m.V[m.O[flipped]]);
+    flip(m, flipped);
+    const DelaunayDiff d = diffWithDelaunay(m);
+    ASSERT_EQ(d.onlyGiven.size(), 1u);
+    ASSERT_EQ(d.onlyDelaunay.size(), 1u);
+    EXPECT_EQ(d.onlyGiven[0], after);
+    EXPECT_EQ(d.onlyDelaunay[0], before);
+    EXPECT_EQ(d.cocircular, 0);
+    EXPECT_EQ(d.sharedEdges, same.sharedEdges - 1);
+}
+
+TEST(TriangulationCheck, TheDiffTellsCocircularChoicesAndDuplicatesApart) {
+    // A square: either diagonal is Delaunay. Ours takes one; the other differs, cocircular.
+    Mesh sq;
+    sq.G = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+    std::size_t differing = 0;
+    for (const auto& diagonal : {std::array{0, 1, 2, 0, 2, 3}, std::array{0, 1, 3, 1, 2, 3}}) {
+        sq.V.assign(diagonal.begin(), diagonal.end());
+        const DelaunayDiff d = diffWithDelaunay(sq);
+        EXPECT_EQ(d.onlyGiven.size(), d.onlyDelaunay.size());
+        EXPECT_EQ(d.cocircular, static_cast<std::int64_t>(d.onlyDelaunay.size()));
+        differing += d.onlyDelaunay.size();
+    }
+    EXPECT_EQ(differing, 1u);
+    // A mesh that uses the second copy of a point: the same triangulation.
+    Mesh dup;
+    dup.G = {{0, 0}, {4, 0}, {0, 3}, {0, 0}};
+    dup.V = {3, 1, 2};
+    const DelaunayDiff d = diffWithDelaunay(dup);
+    EXPECT_TRUE(d.same());
+    EXPECT_EQ(d.sharedEdges, 3);
+}
+
 TEST(TriangulationCheck, RepairRefusesAnInvalidMeshNamingWhy) {
     Mesh m = delaunayMesh(30, 9);
     std::swap(m.V[0], m.V[1]);
@@ -576,6 +628,12 @@ TEST(TriangulationCheck, DtlabCheckAndRepairEndToEnd) {
     auto nd = testutil::runDtlab("check " + bad + ".ele --json");
     EXPECT_EQ(nd.status, 1) << nd.out;
     EXPECT_NE(nd.out.find("\"not-delaunay\": "), std::string::npos) << nd.out;
+    auto diff = testutil::runDtlab("check " + bad + ".ele --diff");
+    EXPECT_EQ(diff.status, 1) << diff.out;
+    EXPECT_NE(diff.out.find("1 edge only in this mesh, 1 only in the Delaunay triangulation"),
+              std::string::npos)
+        << diff.out;
+    EXPECT_EQ(testutil::runDtlab("check " + base + ".ele --diff").status, 0);
     const std::string trace = (dir / "flips.jsonl").string();
     auto rep = testutil::runDtlab("repair " + bad + ".ele -o " + (dir / "fixed").string() +
                                   " --trace " + trace);
