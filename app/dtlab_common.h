@@ -112,6 +112,7 @@ public:
     Progress& operator=(const Progress&) = delete;
     // `work` more done (in the units of `total`); `detail` says what runs now ("n = 65536").
     void advance(double work, const std::string& detail = {});
+    double done() const { return m_done; }
     // Takes the line off the terminal (before other output); the next advance draws it again.
     void clear();
     // The line as it would be drawn after `elapsedS` seconds with `done` of the total done.

@@ -56,7 +56,15 @@ Triangulated triangulate(const TriangulateArgs& args, std::vector<Vec2> points) 
     }
     // GL locators need a context; with --threads 2 the order's sorts use both cores
     const auto made = args.engine.makeInserter(std::move(points), args.threads);
-    made->run();
+    {
+        // On a terminal, a line with the share done and the time left (quiet when piped).
+        Progress progress("triangulate", made->numInput());
+        made->setProgress([&](std::int32_t taken) {
+            progress.advance(taken - progress.done(), std::to_string(taken) + " points");
+        });
+        made->run();
+        made->setProgress({});
+    }
     Triangulated out{made->takeMesh(), made->skipped(), made->stats(), 1, std::move(why)};
     return out;
 }

@@ -154,6 +154,22 @@ TEST(Cli, TwoHalvesJoinedGiveTheTrianglesOfOneRun) {
     EXPECT_EQ(triangles(a), triangles(b));
 }
 
+TEST(Cli, TriangulateShowsItsProgressOnATerminalOnly) {
+    const fs::path dir = tempDir();
+    const std::string in = (dir / "progress_in.node").string();
+    ASSERT_EQ(dtlab("gen uniform 40000 --seed 6 -o " + in).status, 0);
+    const std::string args = "triangulate " + in + " -o " + (dir / "progress_out").string() +
+                             " --threads 1 --order input";
+    const Result piped = dtlab(args);
+    ASSERT_EQ(piped.status, 0) << piped.out;
+    EXPECT_EQ(piped.out.find("triangulate: "), std::string::npos) << piped.out;
+    // script(1) gives the command a terminal: the line is drawn there, then erased.
+    const Result tty = dlab::testutil::runDtlab(args + "' /dev/null", "script -qec '");
+    ASSERT_EQ(tty.status, 0) << tty.out;
+    EXPECT_NE(tty.out.find("triangulate: 41% (16384 points)"), std::string::npos) << tty.out;
+    EXPECT_NE(tty.out.find("\r\033[K"), std::string::npos) << tty.out;
+}
+
 TEST(Cli, CommandsThatNeedGlRunInDtlabGl) {
     const fs::path dir = tempDir();
     const std::string in = (dir / "gl.node").string();

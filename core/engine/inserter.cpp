@@ -1007,6 +1007,7 @@ void Inserter::run() {
         reserveTriangles(maxTriangles(static_cast<std::size_t>(n)));
         m_stack.reserve(64);
         for (; m_ctl.cursor < n; ++m_ctl.cursor) {
+            if (m_ctl.cursor % kProgressEvery == 0 && m_progress) m_progress(m_ctl.cursor);
             beginLocate();
             while (true) {
                 walk(false);

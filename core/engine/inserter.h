@@ -23,6 +23,7 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -165,6 +166,11 @@ public:
     Op step(Journal* journal = nullptr);
     // Batch: run to the end with recording compiled out.
     void run();
+    // Called by run() with the number of points taken so far, every kProgressEvery of them.
+    static constexpr std::int32_t kProgressEvery = 1 << 14;
+    void setProgress(std::function<void(std::int32_t taken)> progress) {
+        m_progress = std::move(progress);
+    }
     // run() for a caller that needs only the topology: the points in input order are not kept
     // aside while the batch works in insertion order (n * 16 bytes less at the peak), and G is
     // empty afterwards. V, O and skipped() are run()'s, with input point i called names[i] when
@@ -266,6 +272,7 @@ private:
     void permuteForBatch(std::vector<std::int32_t> names);
     void unpermute();
 
+    std::function<void(std::int32_t)> m_progress;  // run()'s ticks (setProgress)
     InsertOptions m_options;
     Mesh m_mesh;
     std::int32_t m_numInput = 0;
