@@ -164,9 +164,14 @@ bool AppState::moveSelection(char op) {
         return false;
     }
     selection.corner = to;
-    selection.lastMove = {c, op, to};
+    selection.lastMove = {c, op, to, engine.version()};
     selection.jumpToCorner = to;
     return true;
+}
+
+const CornerMove* AppState::currentMove() const {
+    const CornerMove& mv = selection.lastMove;
+    return mv.op && mv.version == engine.version() ? &mv : nullptr;
 }
 
 }  // namespace dlab::ui

@@ -66,6 +66,7 @@ struct CornerMove {
     std::int32_t from = kNone;
     char op = 0;
     std::int32_t to = kNone;
+    std::uint64_t version = 0;  // the mesh it was made on (Engine::version())
 };
 
 struct Selection {
@@ -331,6 +332,9 @@ struct AppState {
     void select(std::int32_t corner);
     // Applies a corner operator to the selection; logs when it cannot (boundary, no selection).
     bool moveSelection(char op);
+    // The last move while the mesh is the one it was made on; null once an operation changed it
+    // (its corners may name other triangles now).
+    const CornerMove* currentMove() const;
 };
 
 // The built-in demo: the demo points with options chosen for teaching (input order).

@@ -693,12 +693,12 @@ void DrawSelection(const Scene& s) {
     for (std::int32_t c : {sel.hoveredRow, sel.hoveredCorner}) {
         if (c != kNone && s.anchor(c, a)) s.dl->AddCircle(a, 13, s.pal.hovered, 0, 2.5f);
     }
-    const CornerMove& mv = sel.lastMove;
+    const CornerMove* mv = s.st.currentMove();
     ImVec2 from, to;
-    if (mv.op && s.anchor(mv.from, from) && s.anchor(mv.to, to)) {
+    if (mv && s.anchor(mv->from, from) && s.anchor(mv->to, to)) {
         Arrow(s.dl, from, to, s.pal.arrow, w);
         char buf[8];
-        std::snprintf(buf, sizeof buf, "%c", mv.op);
+        std::snprintf(buf, sizeof buf, "%c", mv->op);
         LabelBox(s.dl, fonts().ui, ImGui::GetFontSize(),
                  ImVec2((from.x + to.x) / 2, (from.y + to.y) / 2 - 12),
                  IM_COL32(255, 255, 255, 255), s.pal.arrow, buf);

@@ -105,8 +105,8 @@ void ShowInspector(AppState& st) {
         ImGui::TextDisabled("vertex %d is the ghost vertex: it has no coordinates", m.V[c]);
     else
         ImGui::TextDisabled("G[%d] = (%.17g, %.17g)", m.V[c], g.x, g.y);
-    if (const CornerMove& mv = st.selection.lastMove; mv.op) {
-        ImGui::Text("last move: %d.%c = %d", mv.from, mv.op, mv.to);
+    if (const CornerMove* mv = st.currentMove()) {
+        ImGui::Text("last move: %d.%c = %d", mv->from, mv->op, mv->to);
     }
 }
 

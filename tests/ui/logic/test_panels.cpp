@@ -38,6 +38,33 @@ TEST(Panels, TheDrawnPathFollowsEveryStep) {
     EXPECT_EQ(st.expressions.path[0].to, dlab::next(c));
 }
 
+TEST(Panels, TheOperatorArrowIsDroppedOnceAnOperationChangesTheMesh) {
+    UiHarness h;
+    auto& st = h.state();
+    st.engine.seek(40);
+    h.frames(2);
+    std::int32_t c = kNone;
+    for (std::int32_t k = 0; k < st.engine.mesh().numCorners() && c == kNone; ++k) {
+        if (st.engine.mesh().O[k] != kNone) c = k;
+    }
+    ASSERT_NE(c, kNone);
+    st.select(c);
+    ASSERT_TRUE(st.moveSelection('o'));
+    h.frames(1);
+    ASSERT_NE(st.currentMove(), nullptr);
+    EXPECT_EQ(st.currentMove()->from, c);
+    EXPECT_EQ(st.currentMove()->to, st.engine.mesh().O[c]);
+    const std::uint64_t version = st.engine.version();
+    for (int i = 0; i < 20 && st.engine.version() == version; ++i) {
+        h.press(key::kRight);
+        h.frames(1);
+    }
+    ASSERT_NE(st.engine.version(), version) << "twenty steps left the mesh as it was";
+    EXPECT_EQ(st.currentMove(), nullptr);
+    ASSERT_TRUE(st.moveSelection('n'));  // a new move on the new mesh is drawn again
+    EXPECT_NE(st.currentMove(), nullptr);
+}
+
 TEST(Panels, AWatchPausesTheRunAtTheFirstOperationThatBreaksIt) {
     UiHarness h;
     auto& st = h.state();
