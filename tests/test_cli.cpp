@@ -127,6 +127,25 @@ TEST(Cli, TriangulatePeaksNearTheCornerTableFloor) {
     }
 }
 
+TEST(Cli, RenderedFramesDoNotGrowTheMemory) {
+    // Headless, each frame's orphaned vertex buffers are let go once the frame is flushed: 120
+    // more frames must not cost more memory (unflushed they cost ~0.6 MB a frame here).
+#if defined(__SANITIZE_ADDRESS__)
+    GTEST_SKIP() << "AddressSanitizer's quarantine keeps freed memory on purpose";
+#endif
+    const fs::path dir = tempDir();
+    const std::string in = (dir / "frames.node").string();
+    ASSERT_EQ(dtlab("gen uniform 2000 --seed 3 -o " + in).status, 0);
+    auto peak = [&](const char* frames) {
+        return peakKibOfDtlab({"render", in, "--to-end", "--bench-frames", frames, "--size",
+                               "800x500", "-o", (dir / "frames.png").string()});
+    };
+    const long few = peak("4"), many = peak("24");  // each --bench-frames N draws 6 N frames
+    ASSERT_GT(few, 0);
+    ASSERT_GT(many, 0);
+    EXPECT_LT(many - few, 16 * 1024) << few << " KiB after 24 frames, " << many << " after 144";
+}
+
 TEST(Cli, TwoHalvesJoinedGiveTheTrianglesOfOneRun) {
     // Uniform points (no four cocircular): one Delaunay triangulation, whichever path makes it.
     const fs::path dir = tempDir();
