@@ -61,6 +61,26 @@ void stepBoth(AppState& st, int dir) {
     st.run.running = false;
 }
 
+// A trace made on other points (or around a super-triangle where this run has the ghost vertex)
+// names vertices this run does not have: what to load first, in one line; "" when it fits.
+std::string wrongRunFor(const AppState& st, const TraceFile& student) {
+    const auto n = static_cast<std::int32_t>(st.engine.points().size());
+    const bool super = st.engine.options().boundary == Boundary::Super;
+    const std::int32_t most = largestVertex(student);
+    if (most < n + (super ? 3 : 1)) return "";
+    const std::string uses = student.name + " uses vertices up to " + std::to_string(most);
+    if (!super && most < n + 3) {
+        return uses + ", the super-triangle's after the " + std::to_string(n) +
+               " points: choose boundary \"super\" in the toolbar (or open the assignment it "
+               "belongs to), then open the trace again (nothing was changed)";
+    }
+    return uses + ", but " +
+           (n == 0 ? std::string("no points are loaded")
+                   : "the points loaded here (" + st.source + ") are " + std::to_string(n)) +
+           ": open the points or the assignment (.toml) the trace belongs to first, then the "
+           "trace (nothing was changed)";
+}
+
 void goToDifference(AppState& st) {
     auto& tc = st.traceCompare;
     st.run.running = false;
@@ -86,6 +106,10 @@ bool openStudentTrace(AppState& st, const std::string& path) {
     std::shared_ptr<TraceFile> student, ours;
     try {
         student = std::make_shared<TraceFile>(readTraceFile(path));
+        if (const std::string wrong = wrongRunFor(st, *student); !wrong.empty()) {
+            fileError(st, wrong);
+            return false;
+        }
         Inserter ins(st.engine.points(), st.engine.options());
         ours = std::make_shared<TraceFile>(traceOfRun(ins, "ours"));
     } catch (const std::exception& e) {
@@ -125,7 +149,7 @@ void ShowTraceCompare(AppState& st) {
             "per "
             "operation, at least \"op\" and \"triangles\") with File > Open or drop it on the "
             "window. "
-            "Load the student's points and options first.");
+            "Open the assignment (or the student's points and options) first.");
         ImGui::TextDisabled(
             "The same comparison on the command line: dtlab diff-trace REF STUDENT");
         return;
