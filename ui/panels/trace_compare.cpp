@@ -81,6 +81,33 @@ std::string wrongRunFor(const AppState& st, const TraceFile& student) {
            "trace (nothing was changed)";
 }
 
+// The point a trace inserts first: its first split's "vertex", or the one vertex all the
+// triangles of that split share; kNone when unknown.
+std::int32_t firstInserted(const TraceFile& f) {
+    for (const TraceOp& op : f.ops) {
+        if (op.type != OpType::Split && op.type != OpType::SplitEdge) continue;
+        if (op.vertex && *op.vertex >= 0) return *op.vertex;
+        if (op.triangles.empty()) return kNone;
+        std::vector<std::int32_t> common(op.triangles[0].begin() + 1, op.triangles[0].end());
+        for (const auto& t : op.triangles) {
+            std::erase_if(
+                common, [&](std::int32_t v) { return std::count(t.begin() + 1, t.end(), v) == 0; });
+        }
+        return common.size() == 1 ? common[0] : kNone;
+    }
+    return kNone;
+}
+
+// When the two runs start with different points, the likely cause: another insertion order.
+std::string orderHint(const AppState& st, const TraceFile& ours, const TraceFile& student) {
+    const std::int32_t a = firstInserted(ours), b = firstInserted(student);
+    if (a == kNone || b == kNone || a == b) return "";
+    return "; the trace inserts point " + std::to_string(b) + " first, this run point " +
+           std::to_string(a) + " (order " + toString(st.engine.options().order) +
+           "): choose the order the trace was made in (the assignment's is input), or open the "
+           "assignment";
+}
+
 void goToDifference(AppState& st) {
     auto& tc = st.traceCompare;
     st.run.running = false;
@@ -131,8 +158,9 @@ bool openStudentTrace(AppState& st, const std::string& path) {
                                          std::to_string(tc.diff.compared) + " steps compared)");
     } else {
         goToDifference(st);
-        st.log(Message::Level::Warning,
-               path + ": " + tc.diff.what + " (" + summarize(*tc.student, tc.diff.studentOp) + ")");
+        st.log(Message::Level::Warning, path + ": " + tc.diff.what + " (" +
+                                            summarize(*tc.student, tc.diff.studentOp) + ")" +
+                                            orderHint(st, *tc.ours, *tc.student));
     }
     return true;
 }

@@ -166,6 +166,18 @@ TEST(StudentTraceInTheGui, ATraceOfOtherPointsSaysWhatToLoadFirst) {
     EXPECT_FALSE(dlab::ui::openFile(st, trace));
     EXPECT_NE(st.messages.back().text.find("choose boundary \"super\""), std::string::npos)
         << st.messages.back().text;
+    // Its options but BRIO order (the user's): the trace opens, and the order is named.
+    dlab::InsertOptions brio;
+    brio.boundary = dlab::Boundary::Super;
+    ASSERT_TRUE(st.setUserOptions(brio));
+    ASSERT_TRUE(dlab::ui::openFile(st, trace));
+    EXPECT_FALSE(st.traceCompare.diff.equal);
+    EXPECT_NE(st.messages.back().text.find("; the trace inserts point 0 first, this run point "),
+              std::string::npos)
+        << st.messages.back().text;
+    EXPECT_NE(st.messages.back().text.find("(order brio): choose the order the trace was made in"),
+              std::string::npos)
+        << st.messages.back().text;
     // The assignment itself: the trace opens and is ours.
     ASSERT_TRUE(dlab::ui::openFile(st, kAssignment));
     ASSERT_TRUE(dlab::ui::openFile(st, trace)) << st.messages.back().text;
