@@ -75,11 +75,12 @@ void addDiffTrace(CLI::App& app) {
                   "Compare operation by operation (each split and flip, in our order), not only "
                   "the triangles after each insertion");
     cmd->add_flag("--all-ops", args->options.allOps,
-                  "With --by-op: compare every operation one to one (walk steps and tests too), "
-                  "not only those that change the mesh");
+                  "Compare every operation one to one, walk steps (LocateStep, Located) and "
+                  "in-circle tests too, not only those that change the mesh; implies --by-op. A "
+                  "trace written to the assignment has no such lines: it cannot pass");
     cmd->add_flag("--corners", args->options.corners,
-                  "With --by-op: the student follows the paper's corner-reuse convention (see the "
-                  "assignment's text): compare V (and O) corner by corner");
+                  "The student follows the paper's corner-reuse convention (see the assignment's "
+                  "text): compare V (and O) corner by corner; implies --by-op");
     cmd->add_option("--context", args->options.context,
                     "Operations of context shown before the difference")
         ->check(CLI::Range(0, 100))

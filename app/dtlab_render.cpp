@@ -257,7 +257,7 @@ void runRender(const RenderArgs& args) {
     auto platform = headlessPlatform(width, height);
     ui::Gui gui(*platform, state);
     state.presentation = args.presentation;
-    state.setOptions(args.engine.options());  // the defaults its help states (order brio)
+    state.setUserOptions(args.engine.options());  // the defaults its help states (order brio)
     if (!args.lesson.empty()) {
         if (!ui::openLesson(state, args.lesson)) fail(state.messages.back().text, 2);
         if (!args.slides.empty()) {

@@ -379,15 +379,31 @@ TEST(TraceDiff, DtlabDiffTraceExitCodes) {
 
 namespace {
 
-enum class Bug { None, MissingFlip, FlipDelaunayEdge, ForgottenPush, OnEdgeOneSide, SkipPoint };
+enum class Bug {
+    None,
+    MissingFlip,
+    FlipDelaunayEdge,
+    ForgottenPush,
+    OnEdgeOneSide,
+    SkipPoint,
+    WrongInCircleSign
+};
+
+// The first flip the WrongInCircleSign bug made: edge a-b between (v, a, b) and (b, a, d).
+struct WrongFlip {
+    int v = -1, a = -1, b = -1, d = -1;
+    bool convex = false;  // the quadrilateral v a d b was convex (no clockwise triangle came of it)
+};
 
 class StudentTriangulator {
 public:
-    StudentTriangulator(std::vector<Vec2> points, Bug bug, int bugFrom)
+    // fifo: the edges to test wait in a queue (first pushed, first tested), not on a stack.
+    StudentTriangulator(std::vector<Vec2> points, Bug bug, int bugFrom, bool fifo = false)
         : m_p(std::move(points)),
           m_n(static_cast<int>(m_p.size())),
           m_bug(bug),
-          m_bugFrom(bugFrom) {
+          m_bugFrom(bugFrom),
+          m_fifo(fifo) {
         // The super-triangle from the text, stored after the input points.
         m_p.push_back({-1650, -1089});
         m_p.push_back({1710, -1089});
@@ -397,9 +413,14 @@ public:
     }
 
     void run() {
-        for (int i = 0; i < m_n; ++i) insert(i);
+        for (int i = 0; i < m_n; ++i) {
+            insert(i);
+            // A wrong in-circle sign may leave a mesh the brute-force walk cannot go on with.
+            if (m_bug == Bug::WrongInCircleSign && i + 1 == m_bugFrom) break;
+        }
         m_out << "{\"op\": \"Finalize\", \"triangles\": []}\n";
     }
+    const WrongFlip& wrongFlip() const { return m_wrongFlip; }
     std::string trace() const { return m_out.str(); }
     // The 1-based insertion at which the planted bug first acted (0: never).
     int bugAt() const { return m_bugAt; }
@@ -529,16 +550,29 @@ private:
         return -1;
     }
 
-    // The edges opposite v wait on the stack; the last pushed is tested first.
+    // The edges opposite v wait on the stack; the last pushed is tested first (or, fifo, the
+    // first pushed).
     void legalize(int v, int insertion) {
         while (!m_stack.empty()) {
-            const auto [a, b] = m_stack.back();
-            m_stack.pop_back();
+            const auto [a, b] = m_fifo ? m_stack.front() : m_stack.back();
+            if (m_fifo)
+                m_stack.erase(m_stack.begin());
+            else
+                m_stack.pop_back();
             const auto across = m_edge.find({b, a});
             if (across == m_edge.end()) continue;  // the super-triangle's edge
             const int t = m_edge.at({a, b}), u = across->second;
             const int d = third(m_t[u], a, b);
             bool flip = incircle(m_p[a], m_p[b], m_p[v], m_p[d]) > 0;
+            if (m_bug == Bug::WrongInCircleSign && insertion == m_bugFrom) {  // this one only
+                flip = incircle(m_p[a], m_p[b], m_p[v], m_p[d]) < 0;
+                if (flip && m_bugAt == 0) {
+                    acted(insertion);
+                    m_wrongFlip = {v, a, b, d,
+                                   orient2d(m_p[v], m_p[a], m_p[d]) > 0 &&
+                                       orient2d(m_p[v], m_p[d], m_p[b]) > 0};
+                }
+            }
             if (flip && m_bug == Bug::MissingFlip && bugOn(insertion) && m_bugAt == 0) {
                 acted(insertion);
                 continue;
@@ -566,7 +600,9 @@ private:
     int m_n;
     Bug m_bug;
     int m_bugFrom;
+    bool m_fifo;
     int m_bugAt = 0;
+    WrongFlip m_wrongFlip;
     std::vector<Tri> m_t;
     std::map<std::pair<int, int>, int> m_edge;  // directed edge -> the triangle on its left
     std::vector<std::pair<int, int>> m_stack;
@@ -670,7 +706,9 @@ TEST(AssignmentChecker, FlipOfADelaunayEdgeIsNamed) {
     ASSERT_GT(p.bugAt, 0);
     ASSERT_FALSE(p.diff.equal);
     EXPECT_EQ(p.diff.insertion, p.bugAt) << p.report;
-    EXPECT_NE(p.diff.what.find("which is Delaunay (it should stay)"), std::string::npos)
+    EXPECT_NE(p.diff.what.find("which was Delaunay (it should stay): point " +
+                               std::to_string(p.bugAt - 1) + " is "),
+              std::string::npos)
         << p.report;
 }
 
@@ -702,6 +740,209 @@ TEST(AssignmentChecker, PointNotInsertedIsNamed) {
     ASSERT_FALSE(p.diff.equal);
     EXPECT_EQ(p.diff.insertion, 7) << p.report;
     EXPECT_NE(p.diff.what.find("point 6 was not inserted"), std::string::npos) << p.report;
+}
+
+// An in-circle test with the wrong sign flips an edge whose opposite vertex is outside the
+// circle; where the quadrilateral is not convex a triangle turns clockwise, but the cause is the
+// flip, and that is what the checker names (edge, triangles, point), insertion by insertion.
+TEST(AssignmentChecker, WrongInCircleSignIsNamedAsTheFlipNotTheClockwiseTriangle) {
+    const TraceFile ref = assignmentReference();
+    StudentTriangulator good(assignmentPoints(), Bug::None, 0);
+    good.run();
+    int tried = 0;
+    for (int from = 2; from <= 38; ++from) {
+        StudentTriangulator bad(assignmentPoints(), Bug::WrongInCircleSign, from);
+        bad.run();
+        const WrongFlip& w = bad.wrongFlip();
+        if (bad.bugAt() != from || w.convex) continue;
+        // The reported case: judged by the mesh alone, the first problem is a clockwise triangle.
+        const std::size_t k = static_cast<std::size_t>(from);
+        ASSERT_LE(k, bad.history().size());
+        const MeshVerdict byMesh =
+            checkStudentMesh(bad.history()[k - 1], good.history()[k - 1], ref.geometry, w.v, {});
+        if (byMesh.reason.find("is clockwise") == std::string::npos) continue;
+        ++tried;
+        const TraceFile student = parse(bad.trace());
+        const TraceDiff d = diffTraces(ref, student);
+        ASSERT_FALSE(d.equal);
+        EXPECT_EQ(d.insertion, from) << formatDiff(d, ref, student);
+        const std::string expected =
+            "flip of edge " + edgeName(w.a, w.b) + ", which was Delaunay (it should stay): point " +
+            std::to_string(w.v) + " is outside the circle of triangle " +
+            tripleText(canonical(w.b, w.a, w.d)) + ", across the edge from triangle " +
+            tripleText(canonical(w.v, w.a, w.b));
+        EXPECT_NE(d.what.find(expected), std::string::npos) << d.what << "\nexpected: " << expected;
+        EXPECT_EQ(d.what.find("clockwise"), std::string::npos) << d.what;
+        const std::string report = formatDiff(d, ref, student);
+        EXPECT_NE(report.find("check the sign of your in-circle test"), std::string::npos)
+            << report;
+    }
+    EXPECT_GT(tried, 0) << "no insertion of the assignment where the wrong sign turns a triangle";
+}
+
+// Op by op (a student in our order, who flips an edge our test kept): the student's flip is
+// named, not the order.
+TEST(AssignmentChecker, AFlipOfADelaunayEdgeIsNamedOpByOp) {
+    const std::vector<Vec2> pts = testPoints();
+    const TraceFile ref = ourTrace(pts);
+    const auto n = static_cast<std::int32_t>(pts.size());
+    TraceReplay replay;
+    std::size_t at = 0, meshOps = 0;
+    std::int32_t P = -1, A = -1, B = -1, D = -1;
+    for (std::size_t i = 0; i < ref.ops.size() && at == 0; ++i) {
+        const TraceOp& op = ref.ops[i];
+        if (i > 30 && op.type == OpType::InCircleTest && op.sign == -1 && op.b >= 0) {
+            // Corner a holds the new point P in (P, A, B); corner b holds D in (D, B, A).
+            const auto& V = replay.V();
+            P = V[*op.a], A = V[next(*op.a)], B = V[prev(*op.a)], D = V[*op.b];
+            if (std::max({P, A, B, D}) < n) at = i;
+        }
+        replay.apply(op);
+        meshOps += op.changesMesh() && at == 0;
+    }
+    ASSERT_GT(at, 0u);
+    std::string text =
+        minimalText(ref, [&](std::size_t m, nlohmann::json&) { return m < meshOps; });
+    nlohmann::json flip;
+    flip["op"] = "Flip";
+    flip["triangles"] = {{*ref.ops[at].a / 3, P, A, D}, {*ref.ops[at].b / 3, D, B, P}};
+    text += flip.dump() + "\n";
+    const TraceFile student = parse(text);
+    DiffOptions byOp;
+    byOp.byOp = true;
+    const TraceDiff d = diffTraces(ref, student, byOp);
+    ASSERT_FALSE(d.equal);
+    EXPECT_NE(
+        d.what.find("the student's flip of edge " + edgeName(A, B) +
+                    ", which was Delaunay (it should stay): point " + std::to_string(P) + " is "),
+        std::string::npos)
+        << formatDiff(d, ref, student, byOp);
+    EXPECT_EQ(d.what.find("order"), std::string::npos) << d.what;
+}
+
+// A flip decided exactly: four cocircular points are "on" the circle, a point just outside it
+// is "outside", a point inside is a right flip.
+TEST(AssignmentChecker, AFlipIsJudgedByTheExactInCircleTest) {
+    MeshGeometry g;
+    g.points = {{0, 0}, {2, 0}, {2, 2}, {0, 2}, {1, 1.5}, {2.5, 2.5}};
+    g.numInput = 6;
+    // Edge 0-2 between (0, 2, 3) and (2, 0, 1), flipped to 1-3.
+    const FlipMade cocircular{{0, 2}, {1, 3}};
+    const auto on = checkFlipMade(cocircular, g, 3);
+    ASSERT_TRUE(on);
+    EXPECT_NE(on->reason.find("point 3 is on the circle of triangle (0, 1, 2)"), std::string::npos)
+        << on->reason;
+    EXPECT_NE(on->details.front().find("four points on one circle"), std::string::npos);
+    // Point 5 far outside the circle of (0, 1, 2): not convex either.
+    const auto outside = checkFlipMade({{0, 2}, {1, 5}}, g, 5);
+    ASSERT_TRUE(outside);
+    EXPECT_NE(outside->reason.find("point 5 is outside the circle of triangle (0, 1, 2)"),
+              std::string::npos)
+        << outside->reason;
+    // Point 4 inside the circle of (0, 1, 2): a right flip.
+    EXPECT_FALSE(checkFlipMade({{0, 2}, {1, 4}}, g, 4));
+    // The ghost vertex has no position: nothing is judged.
+    g.ghost = true;
+    g.numInput = 5;
+    EXPECT_FALSE(checkFlipMade({{0, 2}, {1, 5}}, g, 5));
+}
+
+// Another order of the edges to test (a queue, not a stack): the same triangles after every
+// insertion. Op by op the runs differ, and the checker says it is the order, not a bug.
+TEST(AssignmentChecker, AnotherFlipOrderIsNamedAsTheOrderOpByOp) {
+    StudentTriangulator fifo(assignmentPoints(), Bug::None, 0, /*fifo=*/true);
+    fifo.run();
+    const TraceFile ref = assignmentReference(), student = parse(fifo.trace());
+    const TraceDiff steps = diffTraces(ref, student);
+    ASSERT_TRUE(steps.equal) << formatDiff(steps, ref, student);
+    DiffOptions byOp;
+    byOp.byOp = true;
+    const TraceDiff d = diffTraces(ref, student, byOp);
+    ASSERT_FALSE(d.equal) << "the queue changes the order of the flips";
+    EXPECT_EQ(d.what.rfind("only the order differs: ", 0), 0u) << d.what;
+    const std::string report = formatDiff(d, ref, student, byOp);
+    EXPECT_NE(report.find("the same Delaunay triangulation"), std::string::npos) << report;
+    EXPECT_NE(report.find("That is no bug"), std::string::npos) << report;
+    // A real mistake later (this student pushes a split's edges in another order than ours
+    // too): the order is named where it differs, and the insertion that is wrong after it.
+    StudentTriangulator missed(assignmentPoints(), Bug::MissingFlip, 10);
+    missed.run();
+    const TraceFile wrong = parse(missed.trace());
+    const TraceDiff m = diffTraces(ref, wrong, byOp);
+    ASSERT_FALSE(m.equal);
+    EXPECT_EQ(m.what.rfind("only the order differs at this insertion: ", 0), 0u) << m.what;
+    const std::string said = formatDiff(m, ref, wrong, byOp);
+    EXPECT_NE(said.find("the first one that does not: after inserting point 9 (insertion 10 of "
+                        "38): not Delaunay at edge"),
+              std::string::npos)
+        << said;
+    EXPECT_EQ(said.find("That is no bug"), std::string::npos) << said;
+}
+
+// A trace without its last line: named as such, never as "Finalize of point -1".
+TEST(AssignmentChecker, ATraceWithoutFinalizeSaysSo) {
+    StudentTriangulator student(assignmentPoints(), Bug::None, 0);
+    student.run();
+    std::string text = student.trace();
+    text.erase(text.rfind("{\"op\": \"Finalize\""));
+    const TraceFile ref = assignmentReference();
+    // Op by op, a trace in our order (the independent student tests its edges in another).
+    std::string ours = minimalText(ref);
+    ours.erase(ours.rfind("{\"op\":\"Finalize\""));
+    for (int mode = 0; mode < 3; ++mode) {
+        DiffOptions o;
+        o.byOp = mode == 1;
+        o.corners = mode == 2;
+        const TraceFile cut = parse(mode == 0 ? text : ours);
+        const TraceDiff d = diffTraces(ref, cut, o);
+        ASSERT_FALSE(d.equal);
+        EXPECT_NE(d.what.find("trace ends before Finalize: end it with {\"op\": \"Finalize\"}"),
+                  std::string::npos)
+            << d.what;
+        const std::string report = formatDiff(d, ref, cut, o);
+        EXPECT_EQ(report.find("point -1"), std::string::npos) << report;
+        EXPECT_EQ(report.find("vertex -1"), std::string::npos) << report;
+        EXPECT_EQ(report.find("ends early"), std::string::npos) << report;
+    }
+}
+
+// --all-ops and --corners compare op by op, and say so; --all-ops says why a trace written to
+// the assignment (no walk or test lines) cannot pass.
+TEST(AssignmentChecker, OptionsThatCannotPassOrImplyByOpSaySo) {
+    StudentTriangulator student(assignmentPoints(), Bug::None, 0);
+    student.run();
+    const fs::path file = scratch() / "student_all_ops.jsonl";
+    std::ofstream(file) << student.trace();
+    Result r = dtlab("diff-trace --all-ops " + kAssignment + " " + file.string());
+    EXPECT_EQ(r.status, 1) << r.out;
+    EXPECT_EQ(r.out.rfind("note: --all-ops compares operation by operation: as with --by-op\n", 0),
+              0u)
+        << r.out;
+    EXPECT_NE(r.out.find("note: --all-ops compares the walk steps and in-circle tests too, but " +
+                         file.string() +
+                         " has no LocateStep, Located or InCircleTest line (the assignment asks "
+                         "only for the operations that change the mesh), so it cannot pass"),
+              std::string::npos)
+        << r.out;
+    r = dtlab("diff-trace --by-op --all-ops " + kAssignment + " " + file.string());
+    EXPECT_EQ(r.out.find("as with --by-op"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("so it cannot pass"), std::string::npos) << r.out;
+    r = dtlab("diff-trace --corners " + kAssignment + " " + file.string());
+    EXPECT_EQ(r.out.rfind("note: --corners compares operation by operation: as with --by-op\n", 0),
+              0u)
+        << r.out;
+    EXPECT_EQ(r.out.find("cannot pass"), std::string::npos) << r.out;
+    // Our own trace has every line: --all-ops passes it, with no note but the first.
+    const TraceFile ref = assignmentReference();
+    DiffOptions all;
+    all.allOps = true;
+    const TraceDiff d = diffTraces(ref, ref, all);
+    EXPECT_TRUE(d.equal);
+    ASSERT_EQ(d.notes.size(), 1u);
+    r = dtlab("diff-trace " + kAssignment + " " + file.string());
+    EXPECT_EQ(r.out.find("note:"), std::string::npos) << r.out;
+    r = dtlab("diff-trace --help");
+    EXPECT_NE(r.out.find("implies --by-op"), std::string::npos) << r.out;
 }
 
 TEST(TraceDiff, AStudentTraceWithoutAStepSaysWhatOursDoesNext) {

@@ -44,7 +44,7 @@ float Splitter(const char* id, bool vertical, float thickness, float length) {
 constexpr float kBar = 6.0f;  // the splitters' thickness
 
 // What happens before the frame is drawn: shortcuts, the run's animation, the debug panels'
-// checks, and a notice from the engine (which stops the run).
+// checks, and a notice from the engine (which stops the run, and shows over the canvas).
 void UpdateBeforeDrawing(AppState& state) {
     handleShortcuts(state);
     advanceRun(state, ImGui::GetIO().DeltaTime);
@@ -52,6 +52,7 @@ void UpdateBeforeDrawing(AppState& state) {
     if (std::string notice = state.engine.takeNotice(); !notice.empty()) {
         state.run.running = false;
         state.log(Message::Level::Warning, notice);
+        state.files.notice = notice;
     }
 }
 
@@ -195,6 +196,7 @@ void ShowApplication(AppState& state) {
         ShowSlide(state);
         ImGui::End();
         if (state.showHelp) ShowHelp(state);
+        ShowHistoryOffer(state);
         ShowFileDialogs(state);
         return;
     }
@@ -213,6 +215,7 @@ void ShowApplication(AppState& state) {
     ImGui::End();
 
     if (state.showHelp) ShowHelp(state);
+    ShowHistoryOffer(state);
     ShowFileDialogs(state);
 }
 

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 namespace dlab::ui {
 
@@ -57,10 +58,20 @@ void AppState::log(Message::Level level, std::string text) {
 }
 
 bool AppState::loadPoints(std::vector<Vec2> points, std::string sourceName) {
+    return loadPointsWith(std::move(points), std::move(sourceName), engine.options());
+}
+
+bool AppState::loadUserPoints(std::vector<Vec2> points, std::string sourceName) {
+    return loadPointsWith(std::move(points), std::move(sourceName), userOptions);
+}
+
+bool AppState::loadPointsWith(std::vector<Vec2> points, std::string sourceName,
+                              const InsertOptions& options) {
     std::string error;
     const std::size_t n = points.size();
     std::vector<Vec2> previous = engine.points();
-    if (!engine.reset(std::move(points), engine.options(), error)) {
+    const bool newOptions = !sameRun(options, engine.options());
+    if (!engine.reset(std::move(points), options, error)) {
         log(Message::Level::Error, sourceName + ": " + error + " (nothing was changed)");
         return false;
     }
@@ -72,8 +83,10 @@ bool AppState::loadPoints(std::vector<Vec2> points, std::string sourceName) {
     selection = {};
     run.running = false;
     fitPending = true;
-    log(Message::Level::Info, source + ": " + std::to_string(n) + " points");
+    log(Message::Level::Info, source + ": " + std::to_string(n) + " points" +
+                                  (newOptions ? std::string(", ") + optionsText(options) : ""));
     if (engine.batch()) log(Message::Level::Warning, engine.batchReason());
+    checkHistory();
     return true;
 }
 
@@ -126,10 +139,71 @@ bool AppState::setOptions(const InsertOptions& options) {
     }
     selection = {};
     run.running = false;
-    log(Message::Level::Info, std::string("restarted: boundary ") + toString(options.boundary) +
-                                  ", locate " + toString(options.locator) + ", order " +
-                                  toString(options.order));
+    log(Message::Level::Info, "restarted: " + optionsText(options));
+    checkHistory();
     return true;
+}
+
+bool AppState::setUserOptions(const InsertOptions& options) {
+    if (!setOptions(options)) return false;
+    if (!lessonPlayer.lesson) userOptions = options;
+    return true;
+}
+
+std::string groupedCount(std::size_t n) {
+    std::string digits = std::to_string(n), out;
+    for (std::size_t k = 0; k < digits.size(); ++k) {
+        if (k > 0 && (digits.size() - k) % 3 == 0) out += ',';
+        out += digits[k];
+    }
+    return out;
+}
+
+std::string approximateCount(std::size_t n) {
+    if (n >= 1000000) {
+        const double m = static_cast<double>(n) / 1e6;
+        char buf[32];
+        std::snprintf(buf, sizeof buf, "%.*f million", m < 10 ? 1 : 0, m);
+        return buf;
+    }
+    std::size_t unit = 1;  // two significant digits
+    while (n / unit >= 100) unit *= 10;
+    return groupedCount((n + unit / 2) / unit * unit);
+}
+
+std::string historyOfferText(const AppState& st) {
+    const Engine& e = st.engine;
+    std::string s = groupedCount(e.points().size()) + " points in " + toString(e.options().order) +
+                    " order make about " + approximateCount(e.estimatedOps()) +
+                    " operations, more than the history holds (" + approximateCount(e.opLimit()) +
+                    "): stepping would stop there and the rest run in one batch.";
+    if (st.historyOffer.brioOps > 0)
+        s += " In BRIO order they make about " + approximateCount(st.historyOffer.brioOps) + ".";
+    return s;
+}
+
+void AppState::checkHistory() {
+    HistoryOffer& h = historyOffer;
+    if (!engine.historyWillOverflow()) {
+        h = {};
+        return;
+    }
+    if (h.open && h.run == engine.run()) return;
+    h.open = true;
+    h.run = engine.run();
+    h.brioOps = 0;
+    if (engine.options().order != OrderKind::Brio) {
+        InsertOptions brio = engine.options();
+        brio.order = OrderKind::Brio;
+        const std::size_t ops = estimateRunOps(engine.points(), brio);
+        if (ops > 0 && ops <= engine.opLimit()) h.brioOps = ops;
+    }
+    log(Message::Level::Warning, historyOfferText(*this));
+}
+
+std::string optionsText(const InsertOptions& o) {
+    return std::string("boundary ") + toString(o.boundary) + ", locate " + toString(o.locator) +
+           ", order " + toString(o.order);
 }
 
 void AppState::select(std::int32_t corner) {

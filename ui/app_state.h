@@ -317,6 +317,17 @@ struct AppState {
     } traceCompare;
     // A side tab to bring to the front at the next frame, by its id ("predicates", ...); "" none.
     std::string pendingTab;
+    // The user's own options (the toolbar's choices; BRIO order until they choose): what a file
+    // they open or generate runs with. The demo and lessons run with their own (a closed lesson
+    // gives back the options from before it: lesson_player.h).
+    InsertOptions userOptions;
+    // A run whose history would pass the engine's op limit (found when the points or options
+    // change): shown over the canvas with its choices (history.cpp).
+    struct HistoryOffer {
+        bool open = false;
+        std::uint64_t run = 0;    // the engine run it is about
+        std::size_t brioOps = 0;  // the same points in BRIO order (0: not offered)
+    } historyOffer;
 
     // ---- Actions (every change of points or options goes through these) ---------------------
     void log(Message::Level level, std::string text);
@@ -327,15 +338,35 @@ struct AppState {
     bool editPoints(std::vector<Vec2> points);
     bool undoEdit();
     bool redoEdit();
+    // A point set the user opens or generates: runs with the user's options.
+    bool loadUserPoints(std::vector<Vec2> points, std::string sourceName);
     // New boundary / locator / order / seed: restarts with the same points at operation 0.
     bool setOptions(const InsertOptions& options);
+    // The user's choice of options (toolbar): as setOptions, and they become the user's own
+    // unless a lesson is open (its run takes them until it closes).
+    bool setUserOptions(const InsertOptions& options);
+    // Opens historyOffer when the run now would pass the op limit (logs it once per run).
+    void checkHistory();
     void select(std::int32_t corner);
     // Applies a corner operator to the selection; logs when it cannot (boundary, no selection).
     bool moveSelection(char op);
     // The last move while the mesh is the one it was made on; null once an operation changed it
     // (its corners may name other triangles now).
     const CornerMove* currentMove() const;
+
+private:
+    bool loadPointsWith(std::vector<Vec2> points, std::string sourceName,
+                        const InsertOptions& options);
 };
+
+// "boundary exact, locate walk, order brio": the options as the message log names them.
+std::string optionsText(const InsertOptions& options);
+// "12,345": a count with its thousands marked.
+std::string groupedCount(std::size_t n);
+// "530,000" (two digits) below a million, "9.4 million" from there: a count said roughly.
+std::string approximateCount(std::size_t n);
+// Why historyOffer is open, in one sentence (the offer and the message log).
+std::string historyOfferText(const AppState& state);
 
 // The built-in demo: the demo points with options chosen for teaching (input order).
 InsertOptions demoOptions();

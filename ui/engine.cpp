@@ -4,9 +4,67 @@
 #include "ui/render/renderer.h"
 
 #include <algorithm>
+#include <cmath>
 #include <exception>
 
 namespace dlab::ui {
+
+namespace {
+
+// A batch run of the first m points of the order, in that order, on a CPU locator.
+InsertStats pilotRun(const std::vector<Vec2>& points, const std::vector<std::int32_t>& order,
+                     InsertOptions options, std::size_t m) {
+    std::vector<Vec2> prefix(m);
+    for (std::size_t k = 0; k < m; ++k) prefix[k] = points[static_cast<std::size_t>(order[k])];
+    options.order = OrderKind::Input;
+    if (needsGl(options.locator)) options.locator = LocatorKind::IdBufferCpu;
+    Inserter ins(std::move(prefix), options);
+    ins.run();
+    return ins.stats();
+}
+
+// The ops of a run besides its walk steps: Start and Finalize; Located, a split and Inserted per
+// point placed by a walk (exact mode's Start places three without one); Located and
+// SkipDuplicate per duplicate; the in-circle tests and flips.
+double opsBesidesWalk(const InsertStats& s, const InsertOptions& options) {
+    const std::int64_t started = options.boundary == Boundary::Exact ? 3 : 0;
+    const std::int64_t placed = std::max<std::int64_t>(s.inserted - started, 0);
+    return 2.0 + 3.0 * static_cast<double>(placed) + 2.0 * static_cast<double>(s.duplicates) +
+           static_cast<double>(s.inCircleTests + s.flips);
+}
+
+}  // namespace
+
+std::size_t estimateRunOps(const std::vector<Vec2>& points, const std::vector<std::int32_t>& order,
+                           const InsertOptions& options) {
+    const std::size_t n = std::min(points.size(), order.size());
+    const std::size_t m = std::min(n, kPilotPoints);
+    try {
+        const InsertStats all = pilotRun(points, order, options, m);
+        const double walk = static_cast<double>(all.walkSteps);
+        if (m == n) return static_cast<std::size_t>(opsBesidesWalk(all, options) + walk);
+        // Walks of the second half against the first: how the walk grows (n^a a point).
+        const InsertStats half = pilotRun(points, order, options, m / 2);
+        const double first = std::max(1.0, static_cast<double>(half.walkSteps));
+        const double a = std::clamp(std::log2(std::max(1.0, walk) / first) - 1.0, 0.0, 0.5);
+        const double scale = static_cast<double>(n) / static_cast<double>(m);
+        return static_cast<std::size_t>(opsBesidesWalk(all, options) * scale +
+                                        walk * std::pow(scale, 1.0 + a));
+    } catch (const std::exception&) {
+        return 0;  // points the inserter refuses: the run itself says why
+    }
+}
+
+std::size_t estimateRunOps(const std::vector<Vec2>& points, const InsertOptions& options) {
+    InsertOptions cpu = options;
+    if (needsGl(cpu.locator)) cpu.locator = LocatorKind::IdBufferCpu;
+    try {
+        const Inserter ins(points, cpu);
+        return estimateRunOps(points, ins.order(), cpu);
+    } catch (const std::exception&) {
+        return 0;
+    }
+}
 
 Engine::Engine() {
     std::string error;
@@ -57,6 +115,7 @@ bool Engine::resetAt(std::vector<Vec2> points, const InsertOptions& options, std
     m_points = std::move(points);
     m_options = options;
     m_batchReason.clear();
+    m_estimatedOps = 0;
     if (m_points.size() > kHistoryLimit) {
         m_ins->run();
         m_batchReason = "more than " + std::to_string(kHistoryLimit) +
@@ -68,6 +127,9 @@ bool Engine::resetAt(std::vector<Vec2> points, const InsertOptions& options, std
             std::make_unique<Journal>(*m_ins, std::min(m_opLimit, 20 * n + 64), 44 * n + 64);
         if (n <= kPrerecordLimit) m_journal->seek(std::min(kPrerecordOps, m_opLimit));
         seek(position);
+        const auto& ops = m_journal->ops();
+        const bool whole = !ops.empty() && ops.back().type == OpType::Finalize;
+        m_estimatedOps = whole ? ops.size() : estimateRunOps(m_points, m_ins->order(), m_options);
     }
     m_rank.assign(m_points.size(), 0);
     const auto& order = m_ins->order();
@@ -87,6 +149,17 @@ void Engine::capHistory() {
                     " operations: the run was finished in one batch and stepping is off (BRIO "
                     "order walks far less)";
     m_notice = m_batchReason;
+    bump();
+}
+
+void Engine::runWithoutHistory() {
+    if (!m_journal) return;
+    m_ins->run();
+    m_journal.reset();
+    m_estimatedOps = 0;
+    m_batchReason =
+        "run without a history, as asked: stepping is off (a new order or new points "
+        "record again)";
     bump();
 }
 

@@ -39,6 +39,14 @@ public:
     static constexpr std::size_t kOpLimit = 4000000;
     // The op limit of the runs reset from now on (tests use a small one).
     void setOpLimit(std::size_t ops) { m_opLimit = std::max<std::size_t>(ops, 1); }
+    std::size_t opLimit() const { return m_opLimit; }
+    // The operations this run will record to its end (estimateRunOps), 0 in batch mode.
+    std::size_t estimatedOps() const { return m_estimatedOps; }
+    // Whether recording this run to its end would pass the op limit (stepping would stop there).
+    bool historyWillOverflow() const { return m_journal && m_estimatedOps > m_opLimit; }
+    // Finishes the run in one batch from where it stands, without a history (stepping off
+    // until the next reset), as the user asked.
+    void runWithoutHistory();
 
     Engine();
     ~Engine();
@@ -132,6 +140,17 @@ private:
     std::string m_notice;
     std::string m_batchReason;
     std::size_t m_opLimit = kOpLimit;
+    std::size_t m_estimatedOps = 0;
 };
+
+// The operations a recorded run of these points in this order (input ids in insertion order)
+// makes, from Start to Finalize: counted on batch runs of the first points of the order (exact
+// up to kPilotPoints points), the walk extrapolated as it grows with the number of points
+// (input and random order walk ~sqrt(n) triangles a point, BRIO a few). A few milliseconds.
+std::size_t estimateRunOps(const std::vector<Vec2>& points, const std::vector<std::int32_t>& order,
+                           const InsertOptions& options);
+// The same in the order the options give.
+std::size_t estimateRunOps(const std::vector<Vec2>& points, const InsertOptions& options);
+inline constexpr std::size_t kPilotPoints = 8192;
 
 }  // namespace dlab::ui

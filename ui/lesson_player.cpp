@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <utility>
 
 namespace dlab::ui {
 
@@ -85,11 +86,13 @@ bool openLesson(AppState& st, const std::string& path) {
         return false;
     }
     saveProgress(st);
+    const InsertOptions before = st.engine.options();
     if (!st.setOptions(lesson->options) || !st.loadPoints(lesson->points, lesson->title))
         return false;
     LessonState& L = st.lessonPlayer;
     if (!L.userOverlays) {  // a lesson opened over another keeps the user's from before both
         L.userOverlays = std::make_shared<const Overlays>(st.overlays);
+        L.optionsBefore = before;
     }
     L.lesson = lesson;
     L.plan = std::move(plan);
@@ -119,6 +122,12 @@ void closeLesson(AppState& st) {
     if (L.userOverlays) st.overlays = *L.userOverlays;
     L.userOverlays.reset();
     st.fitPending = true;  // a stop's zoom is the lesson's too
+    // The lesson's options were the lesson's: the user's from before it come back (on its
+    // points; Ctrl+Z brings the user's points back).
+    const std::optional<InsertOptions> before = std::exchange(L.optionsBefore, std::nullopt);
+    if (before && !sameRun(st.engine.options(), *before) && st.setOptions(*before))
+        st.log(Message::Level::Info,
+               "lesson closed: your options are back (" + optionsText(*before) + ")");
 }
 
 const Overlays& userOverlays(const AppState& st) {

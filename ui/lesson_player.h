@@ -30,6 +30,8 @@ struct LessonState {
     // The user's overlays from before the lesson opened: back when it closes (and what the
     // settings save while a lesson is open).
     std::shared_ptr<const Overlays> userOverlays;
+    // The run's options from before the lesson opened: back when it closes.
+    std::optional<InsertOptions> optionsBefore;
     float slideQuestionHeight = 0;  // the slide's question block, as laid out last frame
     float slideTextHeight = 0;      // and the height the stop's text needed
     // Progress of every lesson opened, by path (persisted with the settings).

@@ -249,11 +249,43 @@ std::vector<Triple> minus(const std::vector<Triple>& a, const std::vector<Triple
 
 }  // namespace
 
+std::optional<MeshVerdict> checkFlipMade(const FlipMade& f, const MeshGeometry& g,
+                                         std::int32_t newVertex) {
+    const std::int32_t a = f.removed[0], b = f.removed[1];
+    // q is the point tested against the circle of (a, b, p), the triangle across the edge.
+    std::int32_t p = f.added[0], q = f.added[1];
+    if (p == newVertex) std::swap(p, q);
+    for (std::int32_t v : {a, b, p, q}) {
+        if (!g.known() || v < 0 || static_cast<std::size_t>(v) >= g.points.size() || g.isGhost(v))
+            return std::nullopt;
+    }
+    const int o = orient2d(g.points[a], g.points[b], g.points[p]);
+    if (o == 0) return std::nullopt;
+    const Triple across = o > 0 ? canonical(a, b, p) : canonical(b, a, p);
+    const Triple near = o > 0 ? canonical(b, a, q) : canonical(a, b, q);
+    const int s =
+        incircle(g.points[across[0]], g.points[across[1]], g.points[across[2]], g.points[q]);
+    if (s > 0) return std::nullopt;
+    MeshVerdict v = verdict(
+        "flip of edge " + edgeName(a, b) + ", which was Delaunay (it should stay): point " +
+        std::to_string(q) + " is " + (s < 0 ? "outside" : "on") + " the circle of triangle " +
+        tripleText(across) + ", across the edge from triangle " + tripleText(near));
+    v.details.push_back(
+        "the flip replaced edge " + edgeName(a, b) + " by " + edgeName(p, q) +
+        (s < 0 ? ": flip only when the point is strictly inside the circle (check the sign of "
+                 "your in-circle test)"
+               : ": with four points on one circle, flip only when the point is strictly "
+                 "inside"));
+    return v;
+}
+
 MeshVerdict checkStudentMesh(const std::vector<Triple>& student, const std::vector<Triple>& ours,
                              const MeshGeometry& g, std::int32_t newVertex,
-                             const std::vector<FlipMade>& flips) {
+                             const std::vector<FlipMade>& flips,
+                             const std::optional<MeshVerdict>& wrongFlip) {
     if (student == ours) return {};
     Problem p = checkVertices(student, ours, g, newVertex);
+    if (!p && wrongFlip) p = *wrongFlip;
     if (!p && g.known()) p = checkOrientation(student, g, newVertex);
     const Edges mine = edgesOf(student), theirs = edgesOf(ours);
     if (!p && mine.overlap) p = *mine.overlap;

@@ -8,6 +8,7 @@
 
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -41,12 +42,22 @@ struct MeshVerdict {
     std::vector<std::string> details;  // more evidence, one line each
 };
 
+// A flip that should not have been made: the edge it removed was Delaunay, the point across it
+// outside (or on) the circle of the triangle on the other side, decided by the exact in-circle
+// test. The point is `newVertex` when the flip made an edge to it. nullopt when the flip was
+// right or cannot be judged (a ghost or unknown vertex, a flat triangle before the flip).
+std::optional<MeshVerdict> checkFlipMade(const FlipMade& flip, const MeshGeometry& geometry,
+                                         std::int32_t newVertex);
+
 // Judges the student's triangles (canonical, sorted) against ours after the same insertion.
 // `newVertex` is the point this insertion put in (-1 when none), `flips` the flips the student
-// made during it. ok only when the two meshes are the same.
+// made during it, `wrongFlip` the first of them that checkFlipMade refused (the reason, after
+// the vertices are checked, when it came before any other mistake of the insertion). ok only
+// when the two meshes are the same.
 MeshVerdict checkStudentMesh(const std::vector<Triple>& student, const std::vector<Triple>& ours,
                              const MeshGeometry& geometry, std::int32_t newVertex,
-                             const std::vector<FlipMade>& flips);
+                             const std::vector<FlipMade>& flips,
+                             const std::optional<MeshVerdict>& wrongFlip = std::nullopt);
 
 // "1–2": an undirected edge, smaller vertex first.
 std::string edgeName(std::int32_t a, std::int32_t b);

@@ -4,6 +4,7 @@
 #include "core/teaching/trace_diff.h"
 
 #include "core/engine/io_read.h"
+#include "core/engine/predicates.h"
 #include "core/engine/text_util.h"
 #include "core/teaching/json_quote.h"
 #include "core/teaching/mesh_check.h"
@@ -239,6 +240,18 @@ TraceFile traceOfRun(Inserter& ins, const std::string& name) {
     checkNotEmpty(f);
     f.geometry = std::move(geometry);
     return f;
+}
+
+std::int32_t largestVertex(const TraceFile& f) {
+    std::int32_t most = kNone;
+    for (const TraceOp& op : f.ops) {
+        if (op.vertex) most = std::max(most, *op.vertex);
+        for (const auto& t : op.triangles) most = std::max({most, t[1], t[2], t[3]});
+        for (const CellChange& c : op.changes) {
+            if (!c.isO()) most = std::max(most, c.after);
+        }
+    }
+    return most;
 }
 
 // ============================================================================================
@@ -523,12 +536,20 @@ int countInsertions(const TraceFile& ref, const std::vector<Step>& steps) {
     return insertions;
 }
 
+// A trace whose every step but Finalize was there: the last line is missing.
+std::string endsBeforeFinalize(const std::string& who, const TraceFile& ref, const TraceOp& fin) {
+    return who + " ends before Finalize: end it with {\"op\": \"Finalize\"}, which drops the " +
+           "triangles that touch the super-triangle or the ghost vertex (ours: " + ref.name + ":" +
+           std::to_string(fin.line) + ")";
+}
+
 // Step k exists in one trace only: which one ended, and what the other does next.
 std::string stepEndMismatch(const TraceFile& ref, const TraceFile& student,
                             const std::vector<Step>& rs, const std::vector<Step>& ss,
                             std::size_t k) {
     if (k >= ss.size()) {
         const TraceOp& next = ref.ops[rs[k].lead];
+        if (next.type == OpType::Finalize) return endsBeforeFinalize("your trace", ref, next);
         return "your trace ends early: ours goes on with " + std::string(toString(next.type)) +
                (next.vertex && *next.vertex >= 0 ? " of point " + std::to_string(*next.vertex)
                                                  : "") +
@@ -539,15 +560,41 @@ std::string stepEndMismatch(const TraceFile& ref, const TraceFile& student,
            std::to_string(student.ops[ss[k].lead].line) + ")";
 }
 
-// Replays the student's step; the flips it made, in order.
-std::vector<FlipMade> replayStep(Tracked& s, const TraceFile& student, const Step& step) {
+// Whether every triangle an op left is counter-clockwise (true when that cannot be decided).
+bool turnsLeft(const std::vector<Triple>& touched, const MeshGeometry& g) {
+    for (const Triple& t : touched) {
+        bool known = true;
+        for (std::int32_t v : t)
+            known =
+                known && v >= 0 && static_cast<std::size_t>(v) < g.points.size() && !g.isGhost(v);
+        if (known && orient2d(g.points[t[0]], g.points[t[1]], g.points[t[2]]) <= 0) return false;
+    }
+    return true;
+}
+
+// What the student's step did: its flips in order, and the first flip of an edge that was
+// Delaunay when no op before it in the step had left a clockwise or flat triangle.
+struct StudentStep {
     std::vector<FlipMade> flips;
+    std::optional<MeshVerdict> wrongFlip;
+};
+
+// Replays the student's step (`newVertex`: the point ours inserts in it, -1 when none).
+StudentStep replayStep(Tracked& s, const TraceFile& student, const Step& step,
+                       const MeshGeometry& g, std::int32_t newVertex) {
+    StudentStep out;
+    bool judged = !g.known();  // a mistake was found (or nothing can be judged): stop looking
     for (std::size_t j = step.begin; j < step.end; ++j) {
         s.apply(student.ops[j]);
-        if (student.ops[j].type != OpType::Flip) continue;
-        if (auto f = flipOf(s.replay().touched())) flips.push_back(*f);
+        const bool flip = student.ops[j].type == OpType::Flip;
+        const std::optional<FlipMade> f =
+            flip ? flipOf(s.replay().touched()) : std::optional<FlipMade>();
+        if (f) out.flips.push_back(*f);
+        if (judged) continue;
+        if (f && (out.wrongFlip = checkFlipMade(*f, g, newVertex))) judged = true;
+        if (!turnsLeft(s.replay().touched(), g)) judged = true;
     }
-    return flips;
+    return out;
 }
 
 // Replays both traces step by step (the start, each insertion, Finalize) and stops at the first
@@ -573,14 +620,14 @@ TraceDiff diffInsertions(const TraceFile& ref, const TraceFile& student) {
                     : lead.type == OpType::Finalize ? insertions + 1
                                                     : insertion + 1;
         for (std::size_t i = rs[k].begin; i < rs[k].end; ++i) r.apply(ref.ops[i]);
-        const std::vector<FlipMade> flips = replayStep(s, student, ss[k]);
+        const bool inserts = lead.type == OpType::Split || lead.type == OpType::SplitEdge;
+        const std::int32_t v = inserts && lead.vertex ? *lead.vertex : -1;
+        const StudentStep done = replayStep(s, student, ss[k], ref.geometry, v);
         if (bareFinalize(student.ops[ss[k].lead])) s.dropOutside(realVertices);
         ++d.compared;
         if (balance.equal()) continue;
-        const bool inserts = lead.type == OpType::Split || lead.type == OpType::SplitEdge;
-        const std::int32_t v = inserts && lead.vertex ? *lead.vertex : -1;
         const MeshVerdict verdict = checkStudentMesh(s.replay().triangles(), r.replay().triangles(),
-                                                     ref.geometry, v, flips);
+                                                     ref.geometry, v, done.flips, done.wrongFlip);
         d.equal = false;
         d.insertion = insertion;
         d.vertex = lead.vertex && lead.type != OpType::Finalize ? *lead.vertex : -1;
@@ -608,12 +655,15 @@ TraceDiff diffInsertions(const TraceFile& ref, const TraceFile& student) {
 struct Mismatch {
     std::string what;
     std::vector<std::string> details;
+    bool order = false;  // a difference the order of the ops may explain (not corners, walks)
 };
 
 // One trace has ended (i or j past its end) while the other goes on.
 std::string endMismatch(const TraceFile& ref, const TraceFile& student, std::size_t i,
                         std::size_t j) {
     if (j == student.ops.size()) {
+        if (ref.ops[i].type == OpType::Finalize)
+            return endsBeforeFinalize("the student's trace", ref, ref.ops[i]);
         return "the student's trace ends early: the reference goes on with " +
                std::string(toString(ref.ops[i].type)) + " (" + ref.name + ":" +
                std::to_string(ref.ops[i].line) + ")";
@@ -691,6 +741,59 @@ std::optional<Mismatch> cornerMismatch(const TraceOp& a, const Tracked& r, const
                     {}};
 }
 
+// The step of a run (stepsOf) that op i belongs to.
+std::size_t stepIndex(const std::vector<Step>& steps, std::size_t i) {
+    std::size_t k = 0;
+    while (k + 1 < steps.size() && steps[k + 1].lead <= i) ++k;
+    return k;
+}
+
+// An op-by-op difference in a run whose insertions end with our triangles is one of order: say
+// so, and where the first insertion that does not comes.
+void explainOrder(TraceDiff& d, const TraceFile& ref, const TraceFile& student) {
+    const TraceDiff steps = diffInsertions(ref, student);
+    if (steps.equal) {
+        d.what = "only the order differs: " + d.what;
+        d.details.push_back(
+            "after every insertion the student's triangles are ours: the same Delaunay "
+            "triangulation, reached in another order (of flips: another order of popping the "
+            "edges to test). That is no bug; --by-op asks for our order (the edge pushed last is "
+            "tested first), and without --by-op the runs agree");
+        return;
+    }
+    const std::vector<Step> rs = stepsOf(ref);
+    if (stepIndex(rs, steps.refOp) > stepIndex(rs, d.refOp)) {
+        d.what = "only the order differs at this insertion: " + d.what;
+        d.details.push_back(
+            "this insertion ends with our triangles; the first one that does not: " + steps.what);
+    }
+}
+
+// The student's op b is a flip of an edge that was Delaunay (s has just applied it).
+std::optional<MeshVerdict> wrongFlipOf(const TraceOp& b, const Tracked& s, const TraceFile& ref,
+                                       std::int32_t newVertex) {
+    if (b.type != OpType::Flip) return std::nullopt;
+    const std::optional<FlipMade> f = flipOf(s.replay().touched());
+    return f ? checkFlipMade(*f, ref.geometry, newVertex) : std::nullopt;
+}
+
+// The first difference of ops a (ours) and b (the student's), replayed in r and s; nullopt when
+// they agree. `newVertex`: the point ours is inserting.
+std::optional<Mismatch> compareOp(const TraceOp& a, const TraceOp& b, Tracked& r, Tracked& s,
+                                  const TraceFile& ref, const DiffOptions& options,
+                                  std::int32_t newVertex) {
+    const bool maybeOrder = !options.allOps;  // walks and tests differ for other reasons
+    if (auto what = opMismatch(a, b, options)) {
+        s.apply(b);  // to name a wrong flip: the comparison stops here
+        if (auto wrong = wrongFlipOf(b, s, ref, newVertex))
+            return Mismatch{*what + "; the student's " + wrong->reason, wrong->details, false};
+        return Mismatch{std::move(*what), {}, maybeOrder};
+    }
+    r.apply(a);
+    s.apply(b);
+    return std::nullopt;
+}
+
 // Replays both traces op by op (only the compared ops, unless options.allOps) and stops at the
 // first op where the ops or the meshes they leave differ.
 TraceDiff diffByOp(const TraceFile& ref, const TraceFile& student, const DiffOptions& options) {
@@ -700,12 +803,14 @@ TraceDiff diffByOp(const TraceFile& ref, const TraceFile& student, const DiffOpt
     auto compared = [&](const TraceOp& op) { return options.allOps || op.changesMesh(); };
     const std::vector<bool> realVertices = finalVertices(ref);
     std::size_t i = 0, j = 0;
+    std::int32_t inserting = kNone;
     auto fail = [&](Mismatch m) {
         d.equal = false;
         d.what = std::move(m.what);
         d.details = std::move(m.details);
         d.refOp = i;
         d.studentOp = j;
+        if (m.order) explainOrder(d, ref, student);
         return d;
     };
     while (true) {
@@ -714,15 +819,23 @@ TraceDiff diffByOp(const TraceFile& ref, const TraceFile& student, const DiffOpt
         while (j < student.ops.size() && !compared(student.ops[j])) s.apply(student.ops[j++]);
         const bool refDone = i == ref.ops.size(), stuDone = j == student.ops.size();
         if (refDone && stuDone) break;
-        if (refDone || stuDone) return fail({endMismatch(ref, student, i, j), {}});
+        if (refDone || stuDone) return fail({endMismatch(ref, student, i, j), {}, false});
         const TraceOp& a = ref.ops[i];
         const TraceOp& b = student.ops[j];
-        if (auto what = opMismatch(a, b, options)) return fail({std::move(*what), {}});
-        r.apply(a);
-        s.apply(b);
+        if (a.vertex && *a.vertex >= 0 && a.type != OpType::Finalize) inserting = *a.vertex;
+        if (auto m = compareOp(a, b, r, s, ref, options, inserting)) return fail(std::move(*m));
         if (bareFinalize(b)) s.dropOutside(realVertices);
         ++d.compared;
-        if (!balance.equal()) return fail(triangleMismatch(a, r, s));
+        if (!balance.equal()) {
+            Mismatch m = triangleMismatch(a, r, s);
+            m.order = !options.allOps;
+            if (auto wrong = wrongFlipOf(b, s, ref, inserting)) {
+                m.what = "the student's " + wrong->reason;
+                m.details.insert(m.details.begin(), wrong->details.begin(), wrong->details.end());
+                m.order = false;
+            }
+            return fail(std::move(m));
+        }
         if (options.corners && !bareFinalize(b)) {
             if (auto m = cornerMismatch(a, r, s)) return fail(std::move(*m));
         }
@@ -736,11 +849,42 @@ TraceDiff diffByOp(const TraceFile& ref, const TraceFile& student, const DiffOpt
     return d;
 }
 
+bool hasWalkOrTests(const TraceFile& f) {
+    return std::any_of(f.ops.begin(), f.ops.end(), [](const TraceOp& op) {
+        return op.type == OpType::LocateStep || op.type == OpType::Located ||
+               op.type == OpType::InCircleTest;
+    });
+}
+
+// What the options do that a user may not expect, one line each.
+std::vector<std::string> optionNotes(const TraceFile& ref, const TraceFile& student,
+                                     const DiffOptions& o) {
+    std::vector<std::string> notes;
+    if (!o.byOp && (o.allOps || o.corners)) {
+        notes.push_back(std::string("note: ") +
+                        (o.allOps && o.corners ? "--all-ops and --corners compare"
+                         : o.allOps            ? "--all-ops compares"
+                                               : "--corners compares") +
+                        " operation by operation: as with --by-op");
+    }
+    if (o.allOps && hasWalkOrTests(ref) && !hasWalkOrTests(student)) {
+        notes.push_back("note: --all-ops compares the walk steps and in-circle tests too, but " +
+                        student.name +
+                        " has no LocateStep, Located or InCircleTest line (the assignment asks "
+                        "only for the operations that change the mesh), so it cannot pass: "
+                        "leave out --all-ops");
+    }
+    return notes;
+}
+
 }  // namespace
 
 TraceDiff diffTraces(const TraceFile& ref, const TraceFile& student, const DiffOptions& options) {
-    if (options.byOp || options.corners || options.allOps) return diffByOp(ref, student, options);
-    return diffInsertions(ref, student);
+    TraceDiff d = options.byOp || options.corners || options.allOps
+                      ? diffByOp(ref, student, options)
+                      : diffInsertions(ref, student);
+    d.notes = optionNotes(ref, student, options);
+    return d;
 }
 
 std::string summarize(const TraceFile& f, std::size_t k) {
@@ -765,6 +909,7 @@ std::string summarize(const TraceFile& f, std::size_t k) {
 std::string formatDiff(const TraceDiff& d, const TraceFile& ref, const TraceFile& student,
                        const DiffOptions& options) {
     std::ostringstream out;
+    for (const std::string& note : d.notes) out << note << "\n";
     if (d.equal) {
         out << d.what << "\n";
         return out.str();

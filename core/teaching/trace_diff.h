@@ -72,6 +72,8 @@ TraceFile readTraceFile(const std::string& path);
 TraceFile parseTraceText(std::istream& in, const std::string& name);
 // Our own run as a trace (what dtlab trace writes), without going through a file.
 TraceFile traceOfRun(Inserter& ins, const std::string& name);
+// The largest vertex id a trace names (in "vertex", "triangles" and V changes); -1 when none.
+std::int32_t largestVertex(const TraceFile& f);
 
 // The mesh a trace describes, op by op: V and O from "changes", or triangle t -> triple from
 // "triangles".
@@ -95,6 +97,7 @@ private:
     std::vector<Triple> m_touched;
 };
 
+// allOps and corners compare op by op, as byOp does (they mean nothing insertion by insertion).
 struct DiffOptions {
     bool byOp = false;     // compare op by op (each flip), not insertion by insertion
     bool allOps = false;   // compare every op one to one (types, vertices), not only mesh changes
@@ -113,6 +116,9 @@ struct TraceDiff {
     std::int32_t vertex = -1;
     std::string what;                  // one line: "the triangles differ after Flip"
     std::vector<std::string> details;  // the evidence, one line each
+    // What the options do that the user may not expect ("--corners compares operation by
+    // operation"), one line each, printed first.
+    std::vector<std::string> notes;
 };
 
 TraceDiff diffTraces(const TraceFile& ref, const TraceFile& student,

@@ -1,14 +1,20 @@
 // A student's trace in the GUI: opened like any file, it is compared with our run on
 // the same points and options; the view goes to the first difference, and both runs step side by
-// side from there.
+// side from there. The Open dialog, the notice for a trace of other points and the history offer
+// at 1280x720 and 1600x1000.
+#include "core/engine/generators.h"
 #include "core/engine/inserter.h"
 #include "core/teaching/trace.h"
 #include "tests/ui/ui_harness.h"
 #include "ui/files/files.h"
 #include "ui/panels/panels.h"
+#include "ui/platform/keys.h"
 
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -122,4 +128,74 @@ TEST(TraceCompare, ABadTraceChangesNothingAndNamesTheFileAndLine) {
     EXPECT_NE(st.messages.back().text.find("dlab_student_bad.jsonl:2"), std::string::npos)
         << st.messages.back().text;
     EXPECT_EQ(st.messages.back().level, dlab::ui::Message::Level::Error);
+}
+
+// What a user sees at the two common window sizes: the Open dialog listing a student's trace,
+// the one-line notice when the trace belongs to other points, and the history offer for 30,000
+// points in input order: each on the screen whole (inside the window) and drawn in its colours.
+// DLAB_UI_SHOTS=FOLDER keeps the screenshots there.
+TEST(TraceCompare, TheDialogTheNoticeAndTheHistoryOfferAtTwoWindowSizes) {
+    const fs::path dir =
+        fs::temp_directory_path() / ("dlab_trace_shots_" + std::to_string(::getpid()));
+    fs::create_directories(dir);
+    const char* keep = std::getenv("DLAB_UI_SHOTS");
+    for (const auto& [w, hgt] : {std::pair{1280, 720}, std::pair{1600, 1000}}) {
+        UiHarness h(w, hgt);
+        auto& st = h.state();
+        const std::string size = std::to_string(w) + "x" + std::to_string(hgt);
+        // A trace of 41 vertices (the assignment's), opened on the demo's 12 points.
+        std::vector<std::string> lines{
+            "{\"op\":\"Start\",\"triangles\":[[0,38,39,40]]}",
+            "{\"op\":\"Split\",\"triangles\":[[0,0,38,39],[1,0,39,40],[2,0,40,38]]}"};
+        const std::string trace = writeLines("dlab_shot_student.jsonl", lines);
+        fs::copy_file(trace, dir / "student.jsonl", fs::copy_options::overwrite_existing);
+        std::ofstream(dir / "points.csv") << "0,0\n1,0\n0,1\n";
+        h.press(dlab::ui::key::letter('O'), false, /*ctrl=*/true);
+        st.files.dialogPath = (dir / "x").string();
+        h.frames(3);
+        const auto row = h.rect("dialog-file:student.jsonl");
+        EXPECT_TRUE(row[0] >= 0 && row[2] <= w && row[1] >= 0 && row[3] <= hgt) << size;
+        const std::string dialogShot = (dir / ("open_dialog_" + size + ".png")).string();
+        ASSERT_TRUE(dlab::ui::saveScreenshotFile(h.gui(), dialogShot));
+        // Opened from the dialog: the notice says what to load; the dialog stays for another.
+        h.clickItem("dialog-file:student.jsonl");
+        h.clickItem("dialog-ok");
+        h.frames(3);
+        EXPECT_FALSE(st.traceCompare.student);
+        EXPECT_NE(st.files.notice.find("student.jsonl uses vertices up to 40, but the points "
+                                       "loaded here (built-in demo) are 12"),
+                  std::string::npos)
+            << st.files.notice;
+        const auto notice = h.rect("file-notice");
+        EXPECT_TRUE(notice[0] >= 0 && notice[2] <= w && notice[3] <= hgt) << size;
+        EXPECT_GT(h.countColour(notice, {191, 20, 26}), 1000) << "the notice's red, " << size;
+        const std::string noticeShot = (dir / ("trace_notice_" + size + ".png")).string();
+        ASSERT_TRUE(dlab::ui::saveScreenshotFile(h.gui(), noticeShot));
+        h.clickItem("dialog-cancel");
+        h.clickItem("notice-dismiss");
+        EXPECT_TRUE(st.files.notice.empty());
+        dlab::InsertOptions input;
+        input.order = dlab::OrderKind::Input;
+        ASSERT_TRUE(st.setUserOptions(input));
+        ASSERT_TRUE(st.loadUserPoints(dlab::generatePoints(dlab::Generator::Uniform, 30000, 2),
+                                      "uniform 30000"));
+        h.frames(3);
+        ASSERT_TRUE(st.historyOffer.open) << size;
+        const auto offer = h.rect("history-offer"), canvas = h.rect("canvas");
+        EXPECT_TRUE(offer[0] >= canvas[0] && offer[2] <= canvas[2] && offer[1] >= canvas[1] &&
+                    offer[3] <= canvas[3])
+            << size;
+        for (const char* b : {"history-brio", "history-batch", "history-keep"}) {
+            const auto r = h.rect(b);
+            EXPECT_TRUE(r[0] >= offer[0] && r[2] <= offer[2] && r[3] <= offer[3]) << b << size;
+        }
+        const std::string offerShot = (dir / ("history_offer_" + size + ".png")).string();
+        ASSERT_TRUE(dlab::ui::saveScreenshotFile(h.gui(), offerShot));
+        if (keep) {
+            for (const std::string& s : {dialogShot, noticeShot, offerShot})
+                fs::copy_file(s, fs::path(keep) / fs::path(s).filename(),
+                              fs::copy_options::overwrite_existing);
+        }
+    }
+    fs::remove_all(dir);
 }

@@ -27,9 +27,9 @@ struct DialogInfo {
 const std::vector<DialogInfo>& dialogs() {
     static const std::vector<DialogInfo> kDialogs = {
         {FileState::Dialog::OpenFile,
-         "Open a point file or a session",
+         "Open points, a session, a lesson or a student trace",
          "",
-         {".node", ".csv", ".xy", ".txt", ".pts", ".json"},
+         {".node", ".csv", ".xy", ".txt", ".pts", ".json", ".toml", ".jsonl"},
          "Open"},
         {FileState::Dialog::SavePoints,
          "Save the points",
@@ -235,6 +235,7 @@ void ShowFileDialogs(AppState& st) {
         RecordItem(st, "dialog-ok");
         ImGui::SameLine();
         const bool cancel = ImGui::Button("Cancel");
+        RecordItem(st, "dialog-cancel");
         if (cancel || (ok && runDialog(st, d))) ImGui::CloseCurrentPopup();
         ImGui::EndPopup();
     }

@@ -216,7 +216,7 @@ void OfferLocator(AppState& st, const char* label, LocatorKind kind, const char*
     if (ImGui::Button(label)) {
         InsertOptions o = st.engine.options();
         o.locator = kind;
-        st.setOptions(o);
+        st.setUserOptions(o);
     }
     RecordItem(st, item);
     if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", tip);

@@ -53,7 +53,7 @@ bool loadPointFile(AppState& st, const std::string& path) {
     try {
         PointSet set = readPointsFile(path);
         for (const std::string& w : set.warnings) st.log(Message::Level::Warning, w);
-        return st.loadPoints(std::move(set.points), path);
+        return st.loadUserPoints(std::move(set.points), path);
     } catch (const InputError& e) {
         st.log(Message::Level::Error, std::string(e.what()) + " (nothing was changed)");
     } catch (const std::exception& e) {
@@ -66,11 +66,9 @@ namespace {
 
 void ShowFileMenu(AppState& st) {
     if (!ImGui::BeginMenu("File")) return;
-    if (ImGui::MenuItem("Open points or a session...", "Ctrl+O"))
+    if (ImGui::MenuItem("Open points, a session, a lesson or a trace...", "Ctrl+O"))
         st.files.dialog = FileState::Dialog::OpenFile;
-    if (ImGui::MenuItem("Built-in demo")) {
-        st.loadPoints(demoPoints(), "built-in demo");
-    }
+    if (ImGui::MenuItem("Built-in demo")) loadDemo(st);
     ImGui::Separator();
     if (ImGui::MenuItem("Save points as .node / .csv..."))
         st.files.dialog = FileState::Dialog::SavePoints;
@@ -137,10 +135,10 @@ void ShowGenerateMenu(AppState& st) {
         counts[i] = std::clamp(counts[i], 1, 5000000);
         ImGui::SameLine();
         if (ImGui::MenuItem(g.label)) {
-            st.loadPoints(generatePoints(g.kind, static_cast<std::size_t>(counts[i]),
-                                         static_cast<std::uint64_t>(std::max(0, seed))),
-                          std::string(toString(g.kind)) + " (" + std::to_string(counts[i]) +
-                              " points, seed " + std::to_string(seed) + ")");
+            st.loadUserPoints(generatePoints(g.kind, static_cast<std::size_t>(counts[i]),
+                                             static_cast<std::uint64_t>(std::max(0, seed))),
+                              std::string(toString(g.kind)) + " (" + std::to_string(counts[i]) +
+                                  " points, seed " + std::to_string(seed) + ")");
         }
         ImGui::PopID();
     }

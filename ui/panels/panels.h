@@ -88,6 +88,9 @@ bool studentTraceSelectTab(AppState& state);
 // The student's triangles that are not ours, over the canvas.
 void DrawTraceCompareOverlay(AppState& state);
 void ShowFileDialogs(AppState& state);  // files.cpp: save/export/GIF dialogs, recovery, notices
+// history.cpp: over the canvas, when the run's history would pass the op limit: BRIO order, a
+// run without a history, or step anyway.
+void ShowHistoryOffer(AppState& state);
 
 // Per-frame work of those panels whichever tab is open: watches (pausing a run that breaks
 // one), validate(), frame times, autosave (debug_hooks.cpp; ShowApplication calls it).

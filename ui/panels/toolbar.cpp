@@ -66,6 +66,7 @@ bool EnumCombo(AppState& state, const char* label, Enum& value, std::initializer
                 changed = v != value;
                 value = v;
             }
+            RecordItem(state, (std::string(label) + ":" + toString(v)).c_str());
         }
         ImGui::EndCombo();
     }
@@ -279,7 +280,7 @@ void ShowModes(AppState& state) {
         }
         RecordItem(state, "seed");
     }
-    if (changed) state.setOptions(o);
+    if (changed) state.setUserOptions(o);
 }
 
 }  // namespace

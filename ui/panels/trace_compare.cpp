@@ -61,6 +61,53 @@ void stepBoth(AppState& st, int dir) {
     st.run.running = false;
 }
 
+// A trace made on other points (or around a super-triangle where this run has the ghost vertex)
+// names vertices this run does not have: what to load first, in one line; "" when it fits.
+std::string wrongRunFor(const AppState& st, const TraceFile& student) {
+    const auto n = static_cast<std::int32_t>(st.engine.points().size());
+    const bool super = st.engine.options().boundary == Boundary::Super;
+    const std::int32_t most = largestVertex(student);
+    if (most < n + (super ? 3 : 1)) return "";
+    const std::string uses = student.name + " uses vertices up to " + std::to_string(most);
+    if (!super && most < n + 3) {
+        return uses + ", the super-triangle's after the " + std::to_string(n) +
+               " points: choose boundary \"super\" in the toolbar (or open the assignment it "
+               "belongs to), then open the trace again (nothing was changed)";
+    }
+    return uses + ", but " +
+           (n == 0 ? std::string("no points are loaded")
+                   : "the points loaded here (" + st.source + ") are " + std::to_string(n)) +
+           ": open the points or the assignment (.toml) the trace belongs to first, then the "
+           "trace (nothing was changed)";
+}
+
+// The point a trace inserts first: its first split's "vertex", or the one vertex all the
+// triangles of that split share; kNone when unknown.
+std::int32_t firstInserted(const TraceFile& f) {
+    for (const TraceOp& op : f.ops) {
+        if (op.type != OpType::Split && op.type != OpType::SplitEdge) continue;
+        if (op.vertex && *op.vertex >= 0) return *op.vertex;
+        if (op.triangles.empty()) return kNone;
+        std::vector<std::int32_t> common(op.triangles[0].begin() + 1, op.triangles[0].end());
+        for (const auto& t : op.triangles) {
+            std::erase_if(
+                common, [&](std::int32_t v) { return std::count(t.begin() + 1, t.end(), v) == 0; });
+        }
+        return common.size() == 1 ? common[0] : kNone;
+    }
+    return kNone;
+}
+
+// When the two runs start with different points, the likely cause: another insertion order.
+std::string orderHint(const AppState& st, const TraceFile& ours, const TraceFile& student) {
+    const std::int32_t a = firstInserted(ours), b = firstInserted(student);
+    if (a == kNone || b == kNone || a == b) return "";
+    return "; the trace inserts point " + std::to_string(b) + " first, this run point " +
+           std::to_string(a) + " (order " + toString(st.engine.options().order) +
+           "): choose the order the trace was made in (the assignment's is input), or open the "
+           "assignment";
+}
+
 void goToDifference(AppState& st) {
     auto& tc = st.traceCompare;
     st.run.running = false;
@@ -86,6 +133,10 @@ bool openStudentTrace(AppState& st, const std::string& path) {
     std::shared_ptr<TraceFile> student, ours;
     try {
         student = std::make_shared<TraceFile>(readTraceFile(path));
+        if (const std::string wrong = wrongRunFor(st, *student); !wrong.empty()) {
+            fileError(st, wrong);
+            return false;
+        }
         Inserter ins(st.engine.points(), st.engine.options());
         ours = std::make_shared<TraceFile>(traceOfRun(ins, "ours"));
     } catch (const std::exception& e) {
@@ -107,8 +158,9 @@ bool openStudentTrace(AppState& st, const std::string& path) {
                                          std::to_string(tc.diff.compared) + " steps compared)");
     } else {
         goToDifference(st);
-        st.log(Message::Level::Warning,
-               path + ": " + tc.diff.what + " (" + summarize(*tc.student, tc.diff.studentOp) + ")");
+        st.log(Message::Level::Warning, path + ": " + tc.diff.what + " (" +
+                                            summarize(*tc.student, tc.diff.studentOp) + ")" +
+                                            orderHint(st, *tc.ours, *tc.student));
     }
     return true;
 }
@@ -125,7 +177,7 @@ void ShowTraceCompare(AppState& st) {
             "per "
             "operation, at least \"op\" and \"triangles\") with File > Open or drop it on the "
             "window. "
-            "Load the student's points and options first.");
+            "Open the assignment (or the student's points and options) first.");
         ImGui::TextDisabled(
             "The same comparison on the command line: dtlab diff-trace REF STUDENT");
         return;
