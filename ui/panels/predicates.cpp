@@ -207,6 +207,26 @@ void ShowPredicatesTitle() {
     }
 }
 
+// One line per call, all of them in view before the details: "2. orient2d(v4, v0, p = v5) = -1",
+// in red where plain floating point gives another sign.
+void ShowCallList(const std::vector<PredicateCall>& calls) {
+    ImGui::PushFont(fonts().mono);
+    for (std::size_t i = 0; i < calls.size(); ++i) {
+        const PredicateCall& c = calls[i];
+        std::string args;
+        for (int k = 0; k < (c.inCircle ? 4 : 3); ++k) {
+            if (k > 0) args += ", ";
+            args += c.v[k] == kNone ? std::string("q") : "v" + std::to_string(c.v[k]);
+        }
+        const bool wrong = c.report.naiveSign != c.report.exactSign;
+        if (wrong) ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(0.8f, 0.1f, 0.1f, 1));
+        ImGui::Text("%zu. %s(%s) = %s%s", i + 1, c.inCircle ? "incircle" : "orient2d", args.c_str(),
+                    signText(c.engineSign), wrong ? "  (float: wrong sign)" : "");
+        if (wrong) ImGui::PopStyleColor();
+    }
+    ImGui::PopFont();
+}
+
 // The current operation's predicate calls, and buttons to step to the next op that makes one.
 void ShowCurrentCalls(AppState& st) {
     Engine& e = st.engine;
@@ -235,8 +255,11 @@ void ShowCurrentCalls(AppState& st) {
                    e.current()->type != OpType::Located) {}
         }
     }
+    ShowCallList(calls);
     for (std::size_t i = 0; i < calls.size(); ++i) {
         ImGui::Separator();
+        ImGui::TextDisabled("%zu.", i + 1);
+        ImGui::SameLine();
         ShowCall(st, calls[i], static_cast<int>(i));
     }
 }
