@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cassert>
 #include <cmath>
+#include <cstring>
 #include <stdexcept>
 #include <string>
 
@@ -55,23 +56,140 @@ const char* toString(Where w) {
     return "?";
 }
 
+const char* toString(PredicateAsk ask) {
+    switch (ask) {
+        case PredicateAsk::FirstTriangle: return "first-triangle";
+        case PredicateAsk::StartCentroid: return "start-centroid";
+        case PredicateAsk::LineSide: return "line-side";
+        case PredicateAsk::ExitEdge: return "exit-edge";
+        case PredicateAsk::VisibilityEdge: return "visibility-edge";
+        case PredicateAsk::HullEdge: return "hull-edge";
+        case PredicateAsk::ClassifyEdge: return "classify-edge";
+        case PredicateAsk::ClassifyHull: return "classify-hull";
+        case PredicateAsk::InCircle: return "incircle";
+        case PredicateAsk::GhostCircle: return "ghost-circle";
+    }
+    return "?";
+}
+
+bool RecordedPredicateCall::operator==(const RecordedPredicateCall& o) const {
+    // Coordinates bit for bit (-0 is not 0 here).
+    for (int k = 0; k < 4; ++k) {
+        if (std::memcmp(&p[k], &o.p[k], sizeof(Vec2)) != 0) return false;
+    }
+    return ask == o.ask && sign == o.sign && v == o.v && corner == o.corner;
+}
+
+std::string describe(const RecordedPredicateCall& call) {
+    // Appended, not "v" + to_string: GCC 12 gives a false -Wrestrict warning for that form.
+    auto named = [](char letter, std::int32_t id) {
+        std::string s(1, letter);
+        s += std::to_string(id);
+        return s;
+    };
+    auto n = [&](int k) { return call.v[k] == kNone ? std::string("q") : named('v', call.v[k]); };
+    const std::string t = call.corner == kNone ? "" : named('t', tri(call.corner));
+    const std::string edge = n(0) + " -> " + n(1);
+    switch (call.ask) {
+        case PredicateAsk::FirstTriangle:
+            return "Start: are the first three points " + n(0) + ", " + n(1) + ", " + n(2) +
+                   " counter-clockwise? (-1: the first triangle turns them round; 0: all points "
+                   "are collinear, there is no triangle)";
+        case PredicateAsk::StartCentroid:
+            return "Walk start in " + t + ": is its centroid q left of the edge " + edge +
+                   "? (the line walk starts from q only when q is strictly inside " + t + ")";
+        case PredicateAsk::LineSide:
+            return "Is " + n(2) + " left of the line L from q to p = " + n(1) + "? (L leaves " + t +
+                   " on the far side of " + n(2) + "; on L counts as left)";
+        case PredicateAsk::ExitEdge:
+            return "Is p = " + n(2) + " inside the edge " + edge + " that L leaves " + t +
+                   " through? (-1: beyond it, the walk crosses it; else p is in " + t + ")";
+        case PredicateAsk::VisibilityEdge:
+            return "Visibility walk in " + t + ": is p = " + n(2) + " left of the edge " + edge +
+                   "? (-1: beyond it, the walk crosses it)";
+        case PredicateAsk::HullEdge:
+            return "Ghost triangle " + t + ": is p = " + n(2) + " beyond the hull edge " + edge +
+                   "? (+1, or 0 on the edge itself: p is placed here; else the walk goes back "
+                   "inside)";
+        case PredicateAsk::ClassifyEdge:
+            return "Where in " + t + " is p = " + n(2) + ": left of the edge " + edge +
+                   " (+1), on it (0) or right of it (-1)?";
+        case PredicateAsk::ClassifyHull:
+            return "Where is p = " + n(2) + " against the hull edge " + edge +
+                   " of ghost triangle " + t + ": beyond it (+1) or on it (0)?";
+        case PredicateAsk::InCircle:
+            return "In-circle: is P = " + n(3) + " inside the circle through " + n(0) + ", " +
+                   n(1) + ", " + n(2) + "? (+1: the edge " + n(2) + " - " + n(1) +
+                   " is not Delaunay, flip it)";
+        case PredicateAsk::GhostCircle:
+            return "Ghost triangle beyond the hull edge " + edge + ": is P = " + n(2) +
+                   " beyond that edge? (the ghost's circle is the half-plane there; +1: flip)";
+    }
+    return "?";
+}
+
 // ============================================================================================
 // [SECTION] Recorders: the batch path's recorder does nothing and compiles away
 // ============================================================================================
 
 namespace {
 
+// Every orient2d and incircle call of the walk, the classification, the first triangle and the
+// in-circle test goes through the recorder: with the arguments' vertex ids and the tested corner,
+// which only a recorder that keeps calls reads (for the others they are dead loads).
+using Ids3 = std::array<std::int32_t, 3>;
+using Ids4 = std::array<std::int32_t, 4>;
+
+// The batch path's: no cells, no calls. kReplay: the op is made again, not for the first time.
 struct NullRec {
     static constexpr bool kOn = false;
+    static constexpr bool kReplay = false;
     void cell(std::int32_t, std::int32_t, std::int32_t) {}
+    [[gnu::always_inline]] int orient(PredicateAsk, Vec2 a, Vec2 b, Vec2 c, Ids3, std::int32_t) {
+        return orient2d(a, b, c);
+    }
+    [[gnu::always_inline]] int inCircle(PredicateAsk, Vec2 a, Vec2 b, Vec2 c, Vec2 d, Ids4,
+                                        std::int32_t) {
+        return incircle(a, b, c, d);
+    }
 };
 
-struct JournalRec {
+// Appends each call to `calls` when it is set.
+struct CallRec {
+    std::vector<RecordedPredicateCall>* calls = nullptr;
+    int orient(PredicateAsk ask, Vec2 a, Vec2 b, Vec2 c, Ids3 v, std::int32_t corner) {
+        const int s = orient2d(a, b, c);
+        if (calls) {
+            calls->push_back({ask,
+                              static_cast<std::int8_t>(s),
+                              {a, b, c, Vec2{}},
+                              {v[0], v[1], v[2], kNone},
+                              corner});
+        }
+        return s;
+    }
+    int inCircle(PredicateAsk ask, Vec2 a, Vec2 b, Vec2 c, Vec2 d, Ids4 v, std::int32_t corner) {
+        const int s = incircle(a, b, c, d);
+        if (calls) calls->push_back({ask, static_cast<std::int8_t>(s), {a, b, c, d}, v, corner});
+        return s;
+    }
+};
+
+// The stepping path's: cell changes into the journal, calls where asked for.
+struct JournalRec : CallRec {
     static constexpr bool kOn = true;
-    Journal* journal;
+    static constexpr bool kReplay = false;
+    Journal* journal = nullptr;
     void cell(std::int32_t slot, std::int32_t before, std::int32_t after) {
         if (journal) journal->record({slot, before, after});
     }
+};
+
+// predicateCallsOf: an op made again for its calls; it changes no cell.
+struct ReplayRec : CallRec {
+    static constexpr bool kOn = false;
+    static constexpr bool kReplay = true;
+    void cell(std::int32_t, std::int32_t, std::int32_t) {}
 };
 
 // Within one triangle: the index of next(c) and prev(c) for c = 3t + k.
@@ -195,11 +313,6 @@ Inserter::Inserter(std::vector<Vec2> points, const InsertOptions& options,
 }
 
 Inserter::~Inserter() = default;
-
-bool Inserter::isVirtualTriangle(std::int32_t t) const {
-    const auto& V = m_mesh.V;
-    return isVirtual(V[3 * t]) || isVirtual(V[3 * t + 1]) || isVirtual(V[3 * t + 2]);
-}
 
 std::int32_t Inserter::currentVertex() const {
     switch (m_ctl.phase) {
@@ -421,7 +534,8 @@ bool Inserter::onOpenSegment(Vec2 a, Vec2 b, Vec2 p) const {
 // Sign of "the new vertex V[c] lies inside the circle of the triangle across the edge opposite
 // c": +1 flip, 0 cocircular (no flip), -1 Delaunay (also for a boundary edge).
 // Inlined: the flip loop runs it nine times per point.
-[[gnu::always_inline]] inline int Inserter::inCircleSign(std::int32_t c) const {
+template <class Rec>
+[[gnu::always_inline]] inline int Inserter::inCircleSign(Rec& rec, std::int32_t c) const {
     const std::int32_t d = m_mesh.O[c];
     if (d == kNone) return -1;
     const auto& G = m_mesh.G;
@@ -429,7 +543,7 @@ bool Inserter::onOpenSegment(Vec2 a, Vec2 b, Vec2 p) const {
     std::int32_t D = m_mesh.V[d], B = m_mesh.V[next(d)], A = m_mesh.V[prev(d)];
     const bool ghostMode = m_options.boundary == Boundary::Exact;
     if (!ghostMode || (!isVirtual(D) && !isVirtual(B) && !isVirtual(A))) {
-        return incircle(G[D], G[B], G[A], G[P]);
+        return rec.inCircle(PredicateAsk::InCircle, G[D], G[B], G[A], G[P], Ids4{D, B, A, P}, c);
     }
     // Ghost triangle (u, w, g): its circle is the open half-plane left of w->u... i.e. the side
     // of the hull edge away from the mesh, plus the open segment u-w itself.
@@ -444,7 +558,7 @@ bool Inserter::onOpenSegment(Vec2 a, Vec2 b, Vec2 p) const {
         u = D;
         w = B;
     }
-    const int s = orient2d(G[u], G[w], G[P]);
+    const int s = rec.orient(PredicateAsk::GhostCircle, G[u], G[w], G[P], Ids3{u, w, P}, c);
     // P on the open hull edge u-w cannot happen: the walk finds a point on a hull edge (from the
     // triangle inside with a zero side, or from the ghost outside with orient2d 0 on the open
     // segment) and splits that edge, so the edge no longer exists when P's flips test it, and
@@ -471,73 +585,93 @@ Inserter::HullEdge Inserter::hullEdgeOf(std::int32_t c0) const {
 void Inserter::beginLocate() {
     std::int32_t t = m_locator->hint(currentPoint(), m_ctl.lastTri);
     if (t < 0 || t >= m_mesh.numTriangles()) t = 0;
-    m_ctl.walk = {t, kNone, 0, true, m_ctl.walk.origin};
+    m_ctl.walk = walkFrom(t, m_ctl.walk);
     m_ctl.where = Where::None;
     m_ctl.whereCorner = kNone;
+}
+
+Inserter::Query Inserter::currentQuery() const {
+    const std::int32_t v = vertexAt(m_ctl.cursor);
+    return {v, m_mesh.G[v]};
 }
 
 // The start triangle of the line walk: L runs from q, the centroid, to p. When q is strictly
 // inside t, L leaves t through one edge (its start right of L, its end left) and p on L not
 // beyond that edge lies in the closed triangle, so one test of p decides. Returns false when q
 // is not strictly inside (a needle): then the visibility walk takes over, with L's origin kept.
-[[gnu::always_inline]] inline Inserter::StartStep Inserter::walkStart(WalkState& w, Vec2 p) {
+template <class Rec>
+[[gnu::always_inline]] inline Inserter::StartStep Inserter::walkStart(Rec& rec, WalkState& w,
+                                                                      Query p,
+                                                                      KnownSides& known) const {
     const auto& G = m_mesh.G;
     const auto& V = m_mesh.V;
     const std::int32_t c0 = 3 * w.tri;
-    const Vec2 v[3] = {G[V[c0]], G[V[c0 + 1]], G[V[c0 + 2]]};
+    const Ids3 id = {V[c0], V[c0 + 1], V[c0 + 2]};
+    const Vec2 v[3] = {G[id[0]], G[id[1]], G[id[2]]};
     const Vec2 q{v[0].x / 3 + v[1].x / 3 + v[2].x / 3, v[0].y / 3 + v[1].y / 3 + v[2].y / 3};
-    if (!(orient2d(v[0], v[1], q) > 0 && orient2d(v[1], v[2], q) > 0 &&
-          orient2d(v[2], v[0], q) > 0)) {
+    constexpr PredicateAsk kCentroid = PredicateAsk::StartCentroid;
+    if (!(rec.orient(kCentroid, v[0], v[1], q, Ids3{id[0], id[1], kNone}, c0 + 2) > 0 &&
+          rec.orient(kCentroid, v[1], v[2], q, Ids3{id[1], id[2], kNone}, c0) > 0 &&
+          rec.orient(kCentroid, v[2], v[0], q, Ids3{id[2], id[0], kNone}, c0 + 1) > 0)) {
         return StartStep::Undecided;
     }
     // Only one edge goes from right of L to left of L (three vertices in a cycle): when v0 is
     // right and v1 left it is v0->v1 (opposite corner 2), and v2 needs no test.
-    const bool left0 = orient2d(q, p, v[0]) >= 0, left1 = orient2d(q, p, v[1]) >= 0;
+    // (Written out, not a lambda: GCC does not inline a lambda into the batch loop.)
+    constexpr PredicateAsk kLine = PredicateAsk::LineSide;
+    const bool left0 = rec.orient(kLine, q, p.p, v[0], Ids3{kNone, p.v, id[0]}, c0) >= 0;
+    const bool left1 = rec.orient(kLine, q, p.p, v[1], Ids3{kNone, p.v, id[1]}, c0 + 1) >= 0;
     int k = 2;
     if (left0 || !left1) {
-        const bool left[3] = {left0, left1, orient2d(q, p, v[2]) >= 0};
+        const bool left[3] = {
+            left0, left1, rec.orient(kLine, q, p.p, v[2], Ids3{kNone, p.v, id[2]}, c0 + 2) >= 0};
         for (k = 0; k < 3 && !(!left[kNext[k]] && left[kPrev[k]]); ++k) {}
         // No exit edge: p == q (both sides of L hold a vertex of a triangle around q
         // otherwise), strictly inside t; the side tests say so.
         if (k == 3) return StartStep::Undecided;
     }
-    const int s = orient2d(v[kNext[k]], v[kPrev[k]], p);
+    const int s = rec.orient(PredicateAsk::ExitEdge, v[kNext[k]], v[kPrev[k]], p.p,
+                             Ids3{id[kNext[k]], id[kPrev[k]], p.v}, c0 + k);
     if (s >= 0) {
-        walkFound(w.tri, c0 + k, s, kNone, 0);
+        walkFound(known, w.tri, c0 + k, s, kNone, 0);
         return StartStep::Found;
     }
     w.origin = q;
-    walkMove(w, c0 + k, true);
+    walkMove<Rec>(w, c0 + k, true);
     return StartStep::Moved;
 }
 
-[[gnu::always_inline]] inline bool Inserter::walkFound(std::int32_t t, std::int32_t c1, int s1,
-                                                       std::int32_t c2, int s2) {
-    m_known = {t, {kUnknownSide, kUnknownSide, kUnknownSide}};
-    if (c1 != kNone) m_known.side[c1 - 3 * t] = static_cast<std::int8_t>(s1);
-    if (c2 != kNone) m_known.side[c2 - 3 * t] = static_cast<std::int8_t>(s2);
+[[gnu::always_inline]] inline bool Inserter::walkFound(KnownSides& known, std::int32_t t,
+                                                       std::int32_t c1, int s1, std::int32_t c2,
+                                                       int s2) {
+    known = {t, {kUnknownSide, kUnknownSide, kUnknownSide}};
+    if (c1 != kNone) known.side[c1 - 3 * t] = static_cast<std::int8_t>(s1);
+    if (c2 != kNone) known.side[c2 - 3 * t] = static_cast<std::int8_t>(s2);
     return true;
 }
 
+template <class Rec>
 [[gnu::always_inline]] inline bool Inserter::walkMove(WalkState& w, std::int32_t corner,
-                                                      bool keepEntry) {
+                                                      bool keepEntry) const {
     const std::int32_t o = m_mesh.O[corner];
     DLAB_ASSERT(o != kNone, "the walk leaves the mesh");
 #if DLAB_CHECKS_ON
     // A straight walk crosses each triangle at most once (its line meets a triangle in one
     // segment): a revisit means inconsistent orientation decisions. The list restarts with every
     // line (the start triangle, or inside again after a ghost) and with another point or inserter.
+    // A step made again for its predicate calls is no step of the walk.
     static thread_local struct {
         const Inserter* owner = nullptr;
         std::int32_t cursor = kNone;
         std::vector<std::int32_t> tris;
     } visited;
-    if (visited.owner != this || visited.cursor != m_ctl.cursor || w.entry == kNone) {
+    if (!Rec::kReplay &&
+        (visited.owner != this || visited.cursor != m_ctl.cursor || w.entry == kNone)) {
         visited.owner = this;
         visited.cursor = m_ctl.cursor;
         visited.tris.assign(1, w.tri);
     }
-    if (w.straight && keepEntry) {
+    if (!Rec::kReplay && w.straight && keepEntry) {
         DLAB_ASSERT(
             std::find(visited.tris.begin(), visited.tris.end(), tri(o)) == visited.tris.end(),
             "the straight walk enters a triangle it has left");
@@ -558,24 +692,27 @@ void Inserter::beginLocate() {
 // the same as moving L an infinitesimal amount to the right, so every decision stays consistent.
 // A step in the line walk costs two orientation tests: the edge it entered through is never
 // tested again (p is strictly beyond it, seen from the triangle before).
-[[gnu::always_inline]] inline bool Inserter::walkOnce(WalkState& w, Vec2 p) {
+template <class Rec>
+[[gnu::always_inline]] inline bool Inserter::walkOnce(Rec& rec, WalkState& w, Query p,
+                                                      KnownSides& known) const {
     const auto& G = m_mesh.G;
     const auto& V = m_mesh.V;
     const std::int32_t t = w.tri;
     const std::int32_t c0 = 3 * t;
-    m_known.tri = kNone;
+    known.tri = kNone;
 
     // Corners are c0 + k; the edge opposite c0 + k runs from c0 + kNext[k] to c0 + kPrev[k]
     // (index arithmetic instead of next()/prev(), whose % 3 costs more than the rest of a step).
     if (m_options.boundary == Boundary::Exact && isVirtualTriangle(t)) {
         const auto [k, x, y] = hullEdgeOf(c0);
         const std::int32_t g = c0 + k;
-        const int s = orient2d(x, y, p);
-        if (s > 0 || (s == 0 && (onOpenSegment(x, y, p) || p == x || p == y))) {
-            return walkFound(t, g, s, kNone, 0);
+        const int s = rec.orient(PredicateAsk::HullEdge, x, y, p.p,
+                                 Ids3{V[c0 + kNext[k]], V[c0 + kPrev[k]], p.v}, g);
+        if (s > 0 || (s == 0 && (onOpenSegment(x, y, p.p) || p.p == x || p.p == y))) {
+            return walkFound(known, t, g, s, kNone, 0);
         }
         // Not beyond this hull edge: restart the walk inside the mesh, across the edge.
-        return walkMove(w, g, false);
+        return walkMove<Rec>(w, g, false);
     }
 
     // We entered t across the edge opposite w.entry because p is strictly beyond it: seen
@@ -583,17 +720,20 @@ void Inserter::beginLocate() {
     const std::int32_t entry = w.entry;
     if (w.straight && entry != kNone) {
         const int k = entry - c0;
-        const Vec2 a = G[V[entry]], b = G[V[c0 + kNext[k]]], c = G[V[c0 + kPrev[k]]];
-        const bool left = orient2d(w.origin, p, a) >= 0;
+        const Ids3 id = {V[entry], V[c0 + kNext[k]], V[c0 + kPrev[k]]};
+        const Vec2 a = G[id[0]], b = G[id[1]], c = G[id[2]];
+        const bool left = rec.orient(PredicateAsk::LineSide, w.origin, p.p, a,
+                                     Ids3{kNone, p.v, id[0]}, entry) >= 0;
         // Left: L leaves through the edge p(e)->e (opposite n(e)); right: e->n(e) (opposite p(e)).
         const std::int32_t exitCorner = c0 + (left ? kNext[k] : kPrev[k]);
         const Vec2 from = left ? c : a, to = left ? a : b;
-        const int s = orient2d(from, to, p);
-        if (s < 0) return walkMove(w, exitCorner, true);
-        return walkFound(t, entry, 1, exitCorner, s);
+        const Ids3 edge = {left ? id[2] : id[0], left ? id[0] : id[1], p.v};
+        const int s = rec.orient(PredicateAsk::ExitEdge, from, to, p.p, edge, exitCorner);
+        if (s < 0) return walkMove<Rec>(w, exitCorner, true);
+        return walkFound(known, t, entry, 1, exitCorner, s);
     }
     if (w.straight) {
-        const StartStep start = walkStart(w, p);
+        const StartStep start = walkStart(rec, w, p, known);
         if (start != StartStep::Undecided) return start == StartStep::Found;
     }
 
@@ -601,78 +741,65 @@ void Inserter::beginLocate() {
     // one we came through.
     int side[3];
     for (int k = 0; k < 3; ++k) {
-        const std::int32_t c = c0 + k;
-        side[k] = c == entry ? 1 : orient2d(G[V[c0 + kNext[k]]], G[V[c0 + kPrev[k]]], p);
+        const std::int32_t c = c0 + k, a = V[c0 + kNext[k]], b = V[c0 + kPrev[k]];
+        side[k] = c == entry ? 1
+                             : rec.orient(PredicateAsk::VisibilityEdge, G[a], G[b], p.p,
+                                          Ids3{a, b, p.v}, c);
     }
     if (side[0] >= 0 && side[1] >= 0 && side[2] >= 0) {
-        m_known = {t,
-                   {static_cast<std::int8_t>(side[0]), static_cast<std::int8_t>(side[1]),
-                    static_cast<std::int8_t>(side[2])}};
+        known = {t,
+                 {static_cast<std::int8_t>(side[0]), static_cast<std::int8_t>(side[1]),
+                  static_cast<std::int8_t>(side[2])}};
         return true;
     }
     w.straight = false;  // needle triangle or a degenerate case: walk by visibility
     for (int k = 0; k < 3; ++k) {
-        if (side[k] < 0) return walkMove(w, c0 + k, true);
+        if (side[k] < 0) return walkMove<Rec>(w, c0 + k, true);
     }
     return true;
 }
 
-bool Inserter::walk(bool oneStep) {
-    const Vec2 p = currentPoint();
+template <class Rec>
+bool Inserter::walk(Rec& rec, bool oneStep, KnownSides& known) {
+    const Query p = currentQuery();
     WalkState w = m_ctl.walk;  // a local copy: the batch path keeps it in registers
-    bool found = walkOnce(w, p);
-    while (!found && !oneStep) found = walkOnce(w, p);
+    bool found = walkOnce(rec, w, p, known);
+    while (!found && !oneStep) found = walkOnce(rec, w, p, known);
     m_ctl.walk = w;
     return found;
 }
 
-void Inserter::classify() {
+template <class Rec>
+Inserter::Placement Inserter::classify(Rec& rec, std::int32_t t, Query p,
+                                       const KnownSides& known) const {
     const auto& G = m_mesh.G;
     const auto& V = m_mesh.V;
-    const Vec2 p = currentPoint();
-    const std::int32_t t = m_ctl.walk.tri, c0 = 3 * t;
+    const std::int32_t c0 = 3 * t;
     // The side of p for the edge opposite c0 + k: from the walk when it knows it.
-    const bool known = m_known.tri == t;
-    m_known.tri = kNone;
-    auto sideOf = [&](int k, Vec2 a, Vec2 b) {
-        return known && m_known.side[k] != kUnknownSide ? int{m_known.side[k]} : orient2d(a, b, p);
+    auto sideOf = [&](PredicateAsk ask, int k) {
+        const std::int32_t a = V[c0 + kNext[k]], b = V[c0 + kPrev[k]];
+        return known.tri == t && known.side[k] != kUnknownSide
+                   ? int{known.side[k]}
+                   : rec.orient(ask, G[a], G[b], p.p, Ids3{a, b, p.v}, c0 + k);
     };
-    m_ctl.where = Where::None;
     if (m_options.boundary == Boundary::Exact && isVirtualTriangle(t)) {
         const auto [k, x, y] = hullEdgeOf(c0);
-        const std::int32_t g = c0 + k;
-        const int s = sideOf(k, x, y);
-        if (s > 0) {
-            m_ctl.where = Where::Outside;
-            m_ctl.whereCorner = g;
-        } else if (s == 0 && p == x) {
-            m_ctl.where = Where::OnVertex;
-            m_ctl.whereCorner = c0 + kNext[k];
-        } else if (s == 0 && p == y) {
-            m_ctl.where = Where::OnVertex;
-            m_ctl.whereCorner = c0 + kPrev[k];
-        } else if (s == 0 && onOpenSegment(x, y, p)) {
-            m_ctl.where = Where::OnEdge;
-            m_ctl.whereCorner = g;
-        }
-        return;
+        const int s = sideOf(PredicateAsk::ClassifyHull, k);
+        if (s > 0) return {Where::Outside, c0 + k};
+        if (s == 0 && p.p == x) return {Where::OnVertex, c0 + kNext[k]};
+        if (s == 0 && p.p == y) return {Where::OnVertex, c0 + kPrev[k]};
+        if (s == 0 && onOpenSegment(x, y, p.p)) return {Where::OnEdge, c0 + k};
+        return {};
     }
     int side[3], zeros = 0;
     for (int k = 0; k < 3; ++k) {
-        side[k] = sideOf(k, G[V[c0 + kNext[k]]], G[V[c0 + kPrev[k]]]);
-        if (side[k] < 0) return;
+        side[k] = sideOf(PredicateAsk::ClassifyEdge, k);
+        if (side[k] < 0) return {};
         zeros += side[k] == 0;
     }
-    if (zeros == 0) {
-        m_ctl.where = Where::InTriangle;
-        m_ctl.whereCorner = c0;
-    } else if (zeros == 1) {
-        m_ctl.where = Where::OnEdge;
-        m_ctl.whereCorner = c0 + (side[0] == 0 ? 0 : side[1] == 0 ? 1 : 2);
-    } else {
-        m_ctl.where = Where::OnVertex;
-        m_ctl.whereCorner = c0 + (side[0] != 0 ? 0 : side[1] != 0 ? 1 : 2);
-    }
+    if (zeros == 0) return {Where::InTriangle, c0};
+    if (zeros == 1) return {Where::OnEdge, c0 + (side[0] == 0 ? 0 : side[1] == 0 ? 1 : 2)};
+    return {Where::OnVertex, c0 + (side[0] != 0 ? 0 : side[1] != 0 ? 1 : 2)};
 }
 
 // ============================================================================================
@@ -689,8 +816,8 @@ void Inserter::doStart(Rec& rec, Op& op) {
         setV(rec, 2, n + 2);
         m_ctl.cursor = 0;
     } else {
-        const auto& G = m_mesh.G;
-        if (n < 3 || orient2d(G[vertexAt(0)], G[vertexAt(1)], G[vertexAt(2)]) == 0) {
+        const int sign = firstTriangleSign(rec);
+        if (sign == 0) {
             // Fewer than three points, or all collinear: there is no triangle to make. Equal
             // points are still reported, as the triangulating path would.
             collectDuplicatesWithoutMesh();
@@ -700,7 +827,7 @@ void Inserter::doStart(Rec& rec, Op& op) {
             return;
         }
         std::int32_t a = vertexAt(0), b = vertexAt(1), c = vertexAt(2);
-        if (orient2d(G[a], G[b], G[c]) < 0) std::swap(b, c);
+        if (sign < 0) std::swap(b, c);
         const std::int32_t g = n;
         appendTriangles(rec, 4);
         // t0 = (a, b, c); ghosts t1 = (b, a, g), t2 = (c, b, g), t3 = (a, c, g).
@@ -722,6 +849,14 @@ void Inserter::doStart(Rec& rec, Op& op) {
     m_locatorWantsChanges = m_locator->wantsChanges();
     m_ctl.lastTri = 0;
     m_ctl.phase = m_ctl.cursor < n ? Phase::Locate : Phase::Finalize;
+}
+
+template <class Rec>
+int Inserter::firstTriangleSign(Rec& rec) const {
+    if (m_numInput < 3) return 0;
+    const auto& G = m_mesh.G;
+    const std::int32_t a = vertexAt(0), b = vertexAt(1), c = vertexAt(2);
+    return rec.orient(PredicateAsk::FirstTriangle, G[a], G[b], G[c], Ids3{a, b, c}, kNone);
 }
 
 void Inserter::collectDuplicatesWithoutMesh() {
@@ -829,17 +964,21 @@ void Inserter::doFinalize(Rec& rec, Op& op) {
 }
 
 // Locate: one step of the walk, or the verdict once the walk stands on the point's triangle.
-void Inserter::doLocate(Op& op) {
+template <class Rec>
+void Inserter::doLocate(Rec& rec, Op& op) {
     if (m_ctl.walk.tri == kNone) beginLocate();
     const std::int32_t from = m_ctl.walk.tri;
     op.a = from;
-    if (!walk(true)) {
+    KnownSides known;
+    if (!walk(rec, true, known)) {
         op.type = OpType::LocateStep;
         op.b = m_ctl.walk.tri;
         ++m_stats.walkSteps;
         return;
     }
-    classify();
+    const Placement at = classify(rec, m_ctl.walk.tri, currentQuery(), known);
+    m_ctl.where = at.where;
+    m_ctl.whereCorner = at.corner;
     if (m_ctl.where == Where::None) {  // cannot happen with exact predicates; stay safe
         m_ctl.walk.straight = false;
         op.type = OpType::LocateStep;
@@ -854,13 +993,14 @@ void Inserter::doLocate(Op& op) {
 }
 
 // Test: the in-circle test of the edge on top of the flip stack; a positive sign flips it next.
-void Inserter::doTest(Op& op) {
+template <class Rec>
+void Inserter::doTest(Rec& rec, Op& op) {
     const std::int32_t c = m_stack.back();
     m_stack.pop_back();
     op.type = OpType::InCircleTest;
     op.a = c;
     op.b = m_mesh.O[c];
-    op.sign = static_cast<std::int8_t>(inCircleSign(c));
+    op.sign = static_cast<std::int8_t>(inCircleSign(rec, c));
     ++m_stats.inCircleTests;
     if (op.sign > 0) {
         m_ctl.flipCorner = c;
@@ -897,9 +1037,9 @@ Op Inserter::stepImpl(Rec& rec) {
             op.type = OpType::Start;
             doStart(rec, op);
             break;
-        case Phase::Locate: doLocate(op); break;
+        case Phase::Locate: doLocate(rec, op); break;
         case Phase::Place: doPlace(rec, op); break;
-        case Phase::Test: doTest(op); break;
+        case Phase::Test: doTest(rec, op); break;
         case Phase::Flip:
             op.type = OpType::Flip;
             op.a = m_ctl.flipCorner;
@@ -921,8 +1061,10 @@ Op Inserter::stepImpl(Rec& rec) {
     return op;
 }
 
-Op Inserter::step(Journal* journal) {
-    JournalRec rec{journal};
+Op Inserter::step(Journal* journal, std::vector<RecordedPredicateCall>* calls) {
+    JournalRec rec;
+    rec.journal = journal;
+    rec.calls = calls;
     const std::uint32_t first = journal ? journal->changeCount() : 0;
     const Control before = m_ctl;
     Op op = stepImpl(rec);
@@ -932,6 +1074,32 @@ Op Inserter::step(Journal* journal) {
         journal->push(op, before);
     }
     return op;
+}
+
+std::vector<RecordedPredicateCall> Inserter::predicateCallsOf(const Op& op,
+                                                              const Control& before) const {
+    std::vector<RecordedPredicateCall> calls;
+    ReplayRec rec;
+    rec.calls = &calls;
+    switch (op.type) {
+        case OpType::Start:
+            if (m_options.boundary == Boundary::Exact) firstTriangleSign(rec);
+            break;
+        case OpType::LocateStep:
+        case OpType::Located: {
+            // As doLocate: one walk step from where the walk stood (or from the hint, which is
+            // the op's start triangle) and, where it stops, the classification.
+            WalkState w = before.walk.tri == kNone ? walkFrom(op.a, before.walk) : before.walk;
+            const std::int32_t v = vertexAt(before.cursor);
+            const Query p{v, m_mesh.G[v]};
+            KnownSides known;
+            if (walkOnce(rec, w, p, known)) classify(rec, w.tri, p, known);
+            break;
+        }
+        case OpType::InCircleTest: inCircleSign(rec, op.a); break;
+        default: break;
+    }
+    return calls;
 }
 
 // ============================================================================================
@@ -1010,8 +1178,11 @@ void Inserter::run() {
             if (m_ctl.cursor % kProgressEvery == 0 && m_progress) m_progress(m_ctl.cursor);
             beginLocate();
             while (true) {
-                walk(false);
-                classify();
+                KnownSides known;
+                walk(rec, false, known);
+                const Placement at = classify(rec, m_ctl.walk.tri, currentQuery(), known);
+                m_ctl.where = at.where;
+                m_ctl.whereCorner = at.corner;
                 if (m_ctl.where != Where::None) break;
                 m_ctl.walk.straight = false;
             }
@@ -1036,7 +1207,7 @@ void Inserter::run() {
                 const std::int32_t e = m_stack.back();
                 m_stack.pop_back();
                 ++m_stats.inCircleTests;
-                if (inCircleSign(e) > 0) {
+                if (inCircleSign(rec, e) > 0) {
                     flip(rec, e);
                     ++m_stats.flips;
                 }
@@ -1218,6 +1389,14 @@ Control Journal::controlBefore(std::size_t i) const {
     c.phase = phaseBefore(op.type);
     c.flipCorner = op.type == OpType::Flip ? op.a : kNone;
     return c;
+}
+
+std::vector<RecordedPredicateCall> Journal::predicateCallsOf(std::size_t i) const {
+    if (i >= m_ops.size() || (i + 1 != m_pos && i != m_pos)) {
+        throw std::out_of_range("Journal::predicateCallsOf: op " + std::to_string(i) +
+                                " is neither the current op nor the next one");
+    }
+    return m_ins->predicateCallsOf(m_ops[i], controlBefore(i));
 }
 
 const Op* Journal::forward() {

@@ -113,6 +113,44 @@ inline bool hasControlSnapshot(OpType t) {
     return t != OpType::InCircleTest && t != OpType::Flip && t != OpType::Inserted;
 }
 
+// What one predicate call of the inserter asks: the first triangle's orientation, the walk's
+// tests (start, line side, exit edge, visibility, hull edge), the classification of the point in
+// the triangle the walk stopped in, and the in-circle test of an edge at the new vertex.
+enum class PredicateAsk : std::uint8_t {
+    FirstTriangle,   // orient2d(a, b, c): the first three points in order (exact mode's start)
+    StartCentroid,   // orient2d(a, b, q): is the start triangle's centroid q left of edge a->b?
+    LineSide,        // orient2d(q, p, v): is vertex v left of the walk's line L from q to p?
+    ExitEdge,        // orient2d(a, b, p): is p inside the edge a->b that L leaves through?
+    VisibilityEdge,  // orient2d(a, b, p): the visibility walk: is p left of the edge a->b?
+    HullEdge,        // orient2d(a, b, p): in a ghost triangle: is p beyond the hull edge a->b?
+    ClassifyEdge,    // orient2d(a, b, p): p against an edge of its triangle the walk left open
+    ClassifyHull,    // orient2d(a, b, p): the same against a ghost triangle's hull edge
+    InCircle,        // incircle(a, b, c, d): is the new vertex d inside the circle of a, b, c?
+    GhostCircle,     // orient2d(a, b, d): across a hull edge a->b: is the new vertex d beyond it?
+};
+const char* toString(PredicateAsk ask);
+
+// One orient2d or incircle call as the inserter made it: its arguments in order, their vertex
+// ids, and the sign it used.
+struct RecordedPredicateCall {
+    PredicateAsk ask = PredicateAsk::FirstTriangle;
+    std::int8_t sign = 0;     // the exact sign, the one the inserter acted on
+    std::array<Vec2, 4> p{};  // the arguments (three for orient2d)
+    // Their vertex ids; kNone for the walk's origin q (a point of no vertex). Vertices from
+    // firstVirtual() on are the super-triangle's (the ghost vertex has no coordinates and is
+    // never an argument: its triangles are tested through their hull edge).
+    std::array<std::int32_t, 4> v{kNone, kNone, kNone, kNone};
+    // The corner whose opposite edge is tested (the vertex's corner for LineSide; the corner at
+    // the new vertex for InCircle / GhostCircle); kNone for FirstTriangle.
+    std::int32_t corner = kNone;
+    bool inCircle() const { return ask == PredicateAsk::InCircle; }
+    int numArgs() const { return inCircle() ? 4 : 3; }
+    bool operator==(const RecordedPredicateCall& o) const;
+};
+// One line: what the call asks in the inserter's terms, e.g. "is p = v7 left of the edge
+// v2 -> v5 of t3?".
+std::string describe(const RecordedPredicateCall& call);
+
 struct InsertOptions {
     Boundary boundary = Boundary::Exact;
     LocatorKind locator = LocatorKind::Walk;
@@ -162,8 +200,16 @@ public:
     Inserter(const Inserter&) = delete;
     Inserter& operator=(const Inserter&) = delete;
 
-    // One recorded operation (journal may be null: then nothing is kept for undo).
-    Op step(Journal* journal = nullptr);
+    // One recorded operation (journal may be null: then nothing is kept for undo). With `calls`,
+    // every predicate call the operation makes is appended there as it is made.
+    Op step(Journal* journal = nullptr, std::vector<RecordedPredicateCall>* calls = nullptr);
+    // The predicate calls of `op`, made again by the same code from `before`, the control state
+    // before it (Journal::controlBefore), with the locator's hint read from the op (its start
+    // triangle): every orient2d and incircle call is the one the op made, in order. Only Start
+    // (exact mode: the first triangle's orientation), the locate ops and the in-circle tests make
+    // calls; the latter change neither V nor O, so the mesh must be the one before or after op
+    // (Start's call reads only the points).
+    std::vector<RecordedPredicateCall> predicateCallsOf(const Op& op, const Control& before) const;
     // Batch: run to the end with recording compiled out.
     void run();
     // Called by run() with the number of points taken so far, every kProgressEvery of them.
@@ -191,7 +237,10 @@ public:
     // Vertices >= firstVirtual() are the ghost vertex or the super-triangle's (until Finalize).
     std::int32_t firstVirtual() const { return m_numInput; }
     bool isVirtual(std::int32_t v) const { return v >= m_numInput; }
-    bool isVirtualTriangle(std::int32_t t) const;
+    bool isVirtualTriangle(std::int32_t t) const {
+        const auto& V = m_mesh.V;
+        return isVirtual(V[3 * t]) || isVirtual(V[3 * t + 1]) || isVirtual(V[3 * t + 2]);
+    }
     const Control& control() const { return m_ctl; }
     const std::vector<std::int32_t>& flipStack() const { return m_stack; }
     const InsertStats& stats() const { return m_stats; }
@@ -219,9 +268,15 @@ private:
     template <class Rec>
     void doFinalize(Rec& rec, Op& op);
     void notifyReplayed(const Op& op, const std::vector<CellChange>& changes);
-    void doLocate(Op& op);
-    void doTest(Op& op);
+    template <class Rec>
+    void doLocate(Rec& rec, Op& op);
+    template <class Rec>
+    void doTest(Rec& rec, Op& op);
     void doFinish(Op& op);
+    // Exact mode's first triangle: the sign of the first three points in order (0: collinear, or
+    // fewer than three points: no triangle).
+    template <class Rec>
+    int firstTriangleSign(Rec& rec) const;
 
     template <class Rec>
     void setV(Rec& rec, std::int32_t c, std::int32_t v);
@@ -248,17 +303,50 @@ private:
         Vec2 x, y;  // the hull edge opposite it
     };
     HullEdge hullEdgeOf(std::int32_t c0) const;
+    // Signs of orient2d(edge opposite corner 3*tri+k, p) that the walk computed (or derived
+    // exactly) when it stopped in tri, so that classify() does not evaluate them again.
+    static constexpr std::int8_t kUnknownSide = 2;
+    struct KnownSides {
+        std::int32_t tri = kNone;
+        std::array<std::int8_t, 3> side{};
+    };
+    // Where the point lies in the triangle the walk stopped in (None: nowhere, a walk error).
+    struct Placement {
+        Where where = Where::None;
+        std::int32_t corner = kNone;  // see Control::whereCorner
+    };
+    // The point being inserted: its id and where it is.
+    struct Query {
+        std::int32_t v;
+        Vec2 p;
+    };
+    Query currentQuery() const;
     // The walk: one step (the recorded path) or every step until found (the batch path); true
-    // when m_ctl.walk.tri contains the current point.
-    bool walk(bool oneStep);
-    bool walkOnce(WalkState& w, Vec2 p);  // one step; true when w.tri contains p
+    // when m_ctl.walk.tri contains the current point, with the sides it knows in `known`.
+    // Its parts are inlined into the batch loop: the attribute is on these declarations, since a
+    // member template takes its attributes from its first declaration.
+    template <class Rec>
+    bool walk(Rec& rec, bool oneStep, KnownSides& known);
+    template <class Rec>  // one step; true when w.tri contains p
+    [[gnu::always_inline]] bool walkOnce(Rec& rec, WalkState& w, Query p, KnownSides& known) const;
     enum class StartStep : std::uint8_t { Found, Moved, Undecided };
-    StartStep walkStart(WalkState& w, Vec2 p);  // the first step of the line walk
+    template <class Rec>  // the first step of the line walk
+    [[gnu::always_inline]] StartStep walkStart(Rec& rec, WalkState& w, Query p,
+                                               KnownSides& known) const;
     // The walk stops in t: the sides of p it knows (corner, sign; kNone for none) for classify().
-    bool walkFound(std::int32_t t, std::int32_t c1, int s1, std::int32_t c2, int s2);
-    bool walkMove(WalkState& w, std::int32_t corner, bool keepEntry);  // across that edge
-    void classify();                         // sets where / whereCorner for m_ctl.walk.tri
-    int inCircleSign(std::int32_t c) const;  // is V[c] inside the circle across the edge?
+    [[gnu::always_inline]] static bool walkFound(KnownSides& known, std::int32_t t, std::int32_t c1,
+                                                 int s1, std::int32_t c2, int s2);
+    template <class Rec>  // across that edge
+    [[gnu::always_inline]] bool walkMove(WalkState& w, std::int32_t corner, bool keepEntry) const;
+    // The walk's start in triangle t (the locator's hint), L's origin kept from `from`.
+    static WalkState walkFrom(std::int32_t t, const WalkState& from) {
+        return {t, kNone, 0, true, from.origin};
+    }
+    // Where p lies in triangle t, given the sides the walk knows.
+    template <class Rec>
+    Placement classify(Rec& rec, std::int32_t t, Query p, const KnownSides& known) const;
+    template <class Rec>  // is V[c] inside the circle across the edge? (inlined: the flip loop's)
+    [[gnu::always_inline]] int inCircleSign(Rec& rec, std::int32_t c) const;
     bool onOpenSegment(Vec2 a, Vec2 b, Vec2 p) const;
     void notifyChanged(const std::int32_t* tris, int count);
     // While run() works on points stored in insertion order, vertex ids are insertion ranks.
@@ -286,15 +374,6 @@ private:
     bool m_bulk = false;
     Bounds m_bounds{};
     Control m_ctl;
-    // Signs of orient2d(edge opposite corner 3*tri+k, p) that the walk computed (or derived
-    // exactly) when it stopped in tri, so that classify() does not evaluate them again. Valid
-    // only between a walk that returns true and the classify() right after it.
-    static constexpr std::int8_t kUnknownSide = 2;
-    struct KnownSides {
-        std::int32_t tri = kNone;
-        std::array<std::int8_t, 3> side{};
-    };
-    KnownSides m_known;
     std::vector<std::int32_t> m_stack;  // flip work-list: corners at the new vertex
     std::vector<std::int32_t> m_skipped;
     InsertStats m_stats;
@@ -329,6 +408,11 @@ public:
     const Op* current() const { return m_pos > 0 ? &m_ops[m_pos - 1] : nullptr; }
     // The inserter's control state before recorded op i (i < recorded()).
     Control controlBefore(std::size_t i) const;
+    // The predicate calls recorded op i made, made again by the inserter from the control state
+    // before it (Inserter::predicateCallsOf). Op i must be the op just done or the next one
+    // (i + 1 == position() or i == position() < recorded()), whose mesh the inserter holds;
+    // throws std::out_of_range for any other.
+    std::vector<RecordedPredicateCall> predicateCallsOf(std::size_t i) const;
     // Memory the record holds: ops, control snapshots and cell changes (sizes, not capacities).
     std::size_t bytesUsed() const {
         return m_ops.size() * sizeof(Op) + m_controls.size() * sizeof(Control) +

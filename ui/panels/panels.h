@@ -108,14 +108,20 @@ bool addWatch(AppState& state, const std::string& text);
 void checkWatches(AppState& state);
 void DrawExpressionOverlay(AppState& state);
 
-// Predicate inspector (predicates.cpp): the predicate calls the current operation made.
+// Predicate inspector (predicates.cpp): the predicate calls the current operation made, as the
+// engine made them (Journal::predicateCallsOf), or the user's typed points.
 struct PredicateCall {
-    bool inCircle = false;  // incircle(a, b, c, d); else orient2d(a, b, c)
-    std::string what;       // one line: what is being asked
+    bool inCircle = false;    // incircle(a, b, c, d); else orient2d(a, b, c)
+    bool fromEngine = false;  // a call of the run (else typed)
+    std::string what;         // one line: what is being asked
     std::array<Vec2, 4> p{};
-    std::array<std::int32_t, 4> v{kNone, kNone, kNone, kNone};  // their vertex ids (kNone: typed)
+    // Their vertex ids (kNone: typed, or the walk's origin q) and row labels ("v7", "q").
+    std::array<std::int32_t, 4> v{kNone, kNone, kNone, kNone};
+    std::array<std::string, 4> labels;
+    int engineSign = 0;  // the sign the engine acted on (fromEngine)
     PredicateReport report;
 };
+// The current operation's calls, in the order the engine made them; none in batch mode.
 std::vector<PredicateCall> currentPredicateCalls(const Engine& engine);
 // "x, y" (or "(x, y)", "x y"): two finite decimal numbers, read exactly.
 bool parsePointText(std::string_view text, Vec2& out);

@@ -1,7 +1,8 @@
-// The predicate inspector: the current in-circle test (or the orientation tests of the current
-// locate step) with its points, the floating-point determinant, the filter's error bound, the
-// naive and the exact sign and the tier that decided; a loud warning where plain floating point
-// would have answered wrong. The user can also type four points and test them.
+// The predicate inspector: the orient2d and incircle calls the current operation made, as the
+// engine recorded them (its walk step, classification or in-circle test), each with its points,
+// the floating-point determinant, the filter's error bound, the naive and the exact sign and the
+// tier that decided; a loud warning where plain floating point would have answered wrong. The
+// user can also type four points and test them.
 #include "core/engine/io_write.h"
 #include "ui/gui.h"
 #include "ui/panels/panels.h"
@@ -46,10 +47,6 @@ std::string shortest(double x) {
     std::string s;
     appendShortest(s, x);
     return s;
-}
-
-std::string vertexName(std::int32_t v, const char* fallback) {
-    return v == kNone ? std::string(fallback) : "v" + std::to_string(v);
 }
 
 // A red box that cannot be missed; recorded as "predicate-warning" for the tests.
@@ -106,8 +103,8 @@ void ShowCall(AppState& st, const PredicateCall& call, int index, bool verdict =
             if (col.w > 0) ImGui::PopStyleColor();
         };
         for (int k = 0; k < n; ++k) {
-            row(std::string(kNames[k]) + " " + vertexName(call.v[k], ""),
-                "(" + shortest(call.p[k].x) + ", " + shortest(call.p[k].y) + ")");
+            const std::string name = call.labels[k].empty() ? "" : " " + call.labels[k];
+            row(kNames[k] + name, "(" + shortest(call.p[k].x) + ", " + shortest(call.p[k].y) + ")");
         }
         char buf[96];
         std::snprintf(buf, sizeof buf, "%.17g", r.approx);
@@ -134,7 +131,7 @@ void ShowCall(AppState& st, const PredicateCall& call, int index, bool verdict =
         ImGui::EndTable();
     }
     ImGui::PopFont();
-    if (call.v[0] != kNone && ImGui::SmallButton("Copy these points below")) {
+    if (call.fromEngine && ImGui::SmallButton("Copy these points below")) {
         for (int k = 0; k < 4; ++k) {
             const Vec2 p = k < n ? call.p[k] : call.p[0];
             st.predicates.points[k] = shortest(p.x) + ", " + shortest(p.y);
@@ -143,21 +140,10 @@ void ShowCall(AppState& st, const PredicateCall& call, int index, bool verdict =
     ImGui::PopID();
 }
 
-PredicateCall makeCall(const Mesh& m, bool inCircle, std::string what,
-                       std::initializer_list<std::int32_t> vs, Vec2 extra, bool extraIsLast) {
-    PredicateCall call;
-    call.inCircle = inCircle;
-    call.what = std::move(what);
-    int k = 0;
-    for (std::int32_t v : vs) {
-        call.v[k] = v;
-        call.p[k] = m.G[v];
-        ++k;
-    }
-    if (extraIsLast) call.p[k] = extra;
-    call.report = inCircle ? incircleReport(call.p[0], call.p[1], call.p[2], call.p[3])
-                           : orient2dReport(call.p[0], call.p[1], call.p[2]);
-    return call;
+// An argument's name: its vertex id, the walk's origin q, or a super-triangle vertex.
+std::string argumentLabel(const Inserter& ins, std::int32_t v) {
+    if (v == kNone) return "q";
+    return "v" + std::to_string(v) + (ins.isVirtual(v) ? " (super-triangle)" : "");
 }
 
 }  // namespace
@@ -186,55 +172,21 @@ bool parsePointText(std::string_view text, Vec2& out) {
 
 std::vector<PredicateCall> currentPredicateCalls(const Engine& e) {
     std::vector<PredicateCall> calls;
-    const Op* op = e.current();
-    if (!op) return calls;
-    const Mesh& m = e.mesh();
+    const Journal* journal = e.journal();
+    if (!journal || journal->position() == 0) return calls;
     const Inserter& ins = e.inserter();
-    const bool ghostMode = e.options().boundary == Boundary::Exact && !ins.done();
-    auto isGhost = [&](std::int32_t v) { return ghostMode && ins.isVirtual(v); };
-    if (op->type == OpType::InCircleTest) {
-        const std::int32_t c = op->a, d = op->b;
-        if (c < 0 || c >= m.numCorners() || d < 0 || d >= m.numCorners()) return calls;
-        const std::int32_t P = m.V[c], D = m.V[d], B = m.V[next(d)], A = m.V[prev(d)];
-        if (isGhost(D) || isGhost(B) || isGhost(A)) {
-            // A ghost triangle's circle is the open half-plane beyond its hull edge u-w.
-            std::int32_t u, w;
-            if (isGhost(D)) {
-                u = B;
-                w = A;
-            } else if (isGhost(B)) {
-                u = A;
-                w = D;
-            } else {
-                u = D;
-                w = B;
-            }
-            calls.push_back(makeCall(m, false,
-                                     "Ghost triangle: is P = v" + std::to_string(P) +
-                                         " beyond the hull edge v" + std::to_string(u) + " - v" +
-                                         std::to_string(w) + "? (orient2d(a, b, c) > 0: flip)",
-                                     {u, w, P}, {}, false));
-        } else {
-            calls.push_back(makeCall(
-                m, true,
-                "In-circle: is P = v" + std::to_string(P) + " inside the circle through v" +
-                    std::to_string(D) + ", v" + std::to_string(B) + ", v" + std::to_string(A) + "?",
-                {D, B, A, P}, {}, false));
-        }
-    } else if (op->type == OpType::LocateStep || op->type == OpType::Located) {
-        const std::int32_t t = op->a, v = op->vertex;
-        if (t < 0 || t >= m.numTriangles() || v < 0 || v >= m.numVertices()) return calls;
-        for (int k = 0; k < 3; ++k) {
-            const std::int32_t c = 3 * t + k, from = m.V[next(c)], to = m.V[prev(c)];
-            if (isGhost(from) || isGhost(to)) continue;
-            calls.push_back(makeCall(
-                m, false,
-                "Locate in t" + std::to_string(t) + ": P = v" + std::to_string(v) +
-                    " against the edge v" + std::to_string(from) + " -> v" + std::to_string(to) +
-                    " (opposite corner " + std::to_string(c) + "; -1 means P lies beyond it)",
-                {from, to}, m.G[v], true));
-            calls.back().v[2] = v;
-        }
+    for (const RecordedPredicateCall& r : journal->predicateCallsOf(journal->position() - 1)) {
+        PredicateCall call;
+        call.fromEngine = true;
+        call.inCircle = r.inCircle();
+        call.what = describe(r);
+        call.p = r.p;
+        call.v = r.v;
+        call.engineSign = r.sign;
+        for (int k = 0; k < r.numArgs(); ++k) call.labels[k] = argumentLabel(ins, r.v[k]);
+        call.report = call.inCircle ? incircleReport(r.p[0], r.p[1], r.p[2], r.p[3])
+                                    : orient2dReport(r.p[0], r.p[1], r.p[2]);
+        calls.push_back(std::move(call));
     }
     return calls;
 }
@@ -255,6 +207,26 @@ void ShowPredicatesTitle() {
     }
 }
 
+// One line per call, all of them in view before the details: "2. orient2d(v4, v0, p = v5) = -1",
+// in red where plain floating point gives another sign.
+void ShowCallList(const std::vector<PredicateCall>& calls) {
+    ImGui::PushFont(fonts().mono);
+    for (std::size_t i = 0; i < calls.size(); ++i) {
+        const PredicateCall& c = calls[i];
+        std::string args;
+        for (int k = 0; k < (c.inCircle ? 4 : 3); ++k) {
+            if (k > 0) args += ", ";
+            args += c.v[k] == kNone ? std::string("q") : "v" + std::to_string(c.v[k]);
+        }
+        const bool wrong = c.report.naiveSign != c.report.exactSign;
+        if (wrong) ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(0.8f, 0.1f, 0.1f, 1));
+        ImGui::Text("%zu. %s(%s) = %s%s", i + 1, c.inCircle ? "incircle" : "orient2d", args.c_str(),
+                    signText(c.engineSign), wrong ? "  (float: wrong sign)" : "");
+        if (wrong) ImGui::PopStyleColor();
+    }
+    ImGui::PopFont();
+}
+
 // The current operation's predicate calls, and buttons to step to the next op that makes one.
 void ShowCurrentCalls(AppState& st) {
     Engine& e = st.engine;
@@ -262,10 +234,14 @@ void ShowCurrentCalls(AppState& st) {
     if (calls.empty()) {
         ImGui::TextWrapped(
             "%s", e.current()
-                      ? "This operation makes no predicate call. Step to an in-circle test or a "
+                      ? "This operation made no predicate call. Step to an in-circle test or a "
                         "locate step."
                       : "Nothing has happened yet. Step to an in-circle test or a locate step.");
+    } else {
+        ImGui::TextWrapped("%s made %zu predicate call%s, in this order:",
+                           toString(e.current()->type), calls.size(), calls.size() == 1 ? "" : "s");
     }
+    RecordItem(st, "predicate-calls");
     if (!e.batch() && !e.atEnd()) {
         if (ImGui::Button("Next in-circle test")) {
             st.run.running = false;
@@ -279,8 +255,11 @@ void ShowCurrentCalls(AppState& st) {
                    e.current()->type != OpType::Located) {}
         }
     }
+    ShowCallList(calls);
     for (std::size_t i = 0; i < calls.size(); ++i) {
         ImGui::Separator();
+        ImGui::TextDisabled("%zu.", i + 1);
+        ImGui::SameLine();
         ShowCall(st, calls[i], static_cast<int>(i));
     }
 }
