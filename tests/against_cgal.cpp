@@ -8,6 +8,7 @@
 #include "core/engine/inserter.h"
 #include "core/engine/predicates.h"
 #include "core/engine/remover.h"
+#include "tests/distinct_points.h"
 
 #include <CGAL/Constrained_Delaunay_triangulation_2.h>
 #include <CGAL/Delaunay_triangulation_2.h>
@@ -23,6 +24,7 @@
 #include <vector>
 
 using namespace dlab;
+using dlab::testutil::distinct;
 
 namespace {
 
@@ -78,15 +80,6 @@ std::string compare(const Mesh& m, std::int32_t n, const EdgeSet& theirs,
                " only CGAL's";
     }
     return "";
-}
-
-std::vector<Vec2> distinct(const std::vector<Vec2>& pts) {
-    std::vector<Vec2> out;
-    std::set<std::pair<double, double>> seen;
-    for (const Vec2 p : pts) {
-        if (seen.insert({p.x, p.y}).second) out.push_back(p);
-    }
-    return out;
 }
 
 // The inserter's mesh before Finalize: the exact mode's ghost triangles still in.

@@ -5,6 +5,7 @@
 #include "core/engine/generators.h"
 #include "core/engine/inserter.h"
 #include "core/engine/remover.h"
+#include "tests/distinct_points.h"
 #include "tests/exact_check.h"
 
 #include <gtest/gtest.h>
@@ -15,6 +16,7 @@
 #include <string>
 
 using namespace dlab;
+using dlab::testutil::distinct;
 
 namespace {
 
@@ -58,16 +60,6 @@ std::string checkConstrainedDelaunay(const Mesh& m, const Constrainer& con, std:
             return "edge opposite corner " + std::to_string(c) + " is not Delaunay";
     }
     return "";
-}
-
-// Distinct points only: every id is a vertex.
-std::vector<Vec2> distinct(const std::vector<Vec2>& pts) {
-    std::vector<Vec2> out;
-    std::set<std::pair<double, double>> seen;
-    for (const Vec2 p : pts) {
-        if (seen.insert({p.x, p.y}).second) out.push_back(p);
-    }
-    return out;
 }
 
 void insertRandomSegments(const std::vector<Vec2>& input, int count, std::uint64_t seed,

@@ -4,6 +4,7 @@
 #include "core/engine/inserter.h"
 #include "core/engine/predicates.h"
 #include "core/engine/remover.h"
+#include "tests/distinct_points.h"
 #include "tests/exact_check.h"
 
 #include <gtest/gtest.h>
@@ -16,6 +17,7 @@
 #include <utility>
 
 using namespace dlab;
+using dlab::testutil::distinct;
 
 namespace {
 
@@ -30,16 +32,6 @@ EdgeSet edgesOf(const Mesh& m, const std::vector<std::int32_t>* names = nullptr)
             b = (*names)[b];
         }
         out.insert({std::min(a, b), std::max(a, b)});
-    }
-    return out;
-}
-
-// Distinct points only: a removed vertex then leaves no equal point behind.
-std::vector<Vec2> distinct(std::vector<Vec2> pts) {
-    std::vector<Vec2> out;
-    std::set<std::pair<double, double>> seen;
-    for (const Vec2 p : pts) {
-        if (seen.insert({p.x, p.y}).second) out.push_back(p);
     }
     return out;
 }
