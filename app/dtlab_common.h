@@ -112,7 +112,8 @@ public:
     Progress& operator=(const Progress&) = delete;
     // `work` more done (in the units of `total`); `detail` says what runs now ("n = 65536").
     void advance(double work, const std::string& detail = {});
-    double done() const { return m_done; }
+    // `done` of the total done in all (for work that counts its own progress).
+    void set(double done, const std::string& detail = {}) { advance(done - m_done, detail); }
     // Takes the line off the terminal (before other output); the next advance draws it again.
     void clear();
     // The line as it would be drawn after `elapsedS` seconds with `done` of the total done.

@@ -59,9 +59,8 @@ Triangulated triangulate(const TriangulateArgs& args, std::vector<Vec2> points) 
     {
         // On a terminal, a line with the share done and the time left (quiet when piped).
         Progress progress("triangulate", made->numInput());
-        made->setProgress([&](std::int32_t taken) {
-            progress.advance(taken - progress.done(), std::to_string(taken) + " points");
-        });
+        made->setProgress(
+            [&](std::int32_t taken) { progress.set(taken, std::to_string(taken) + " points"); });
         made->run();
         made->setProgress({});
     }
