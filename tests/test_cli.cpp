@@ -474,6 +474,7 @@ TEST(Cli, OutputsFollowLinksKeepTheUsersTmpFilesAndAreAllOrNone) {
     // A pipe is not replaced by a file (nobody reads it: refused).
     const std::string fifo = (dir / "out.off").string();
     fs::remove(fifo);
+    for (const char* ext : {".node", ".ele", ".neigh"}) fs::remove(dir / ("p" + std::string(ext)));
     ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
     const Result r =
         dtlabWithin(20, "triangulate " + in + " -o " + (dir / "p").string() + " --off " + fifo);
