@@ -62,23 +62,21 @@ void addGlFlag(CLI::App& cmd) {
 const std::string& glFlag() { return g_gl; }
 
 void EngineFlags::add(CLI::App& cmd) {
-    cmd.add_option(
-           "--locate", locate,
-           "Point location: naive | walk | grid | idbuffer-cpu | idbuffer-gl | idbuffer-gl-batched "
-           "(the GL ones on a headless GL context: --gl)")
-        ->check(CLI::IsMember(
-            {"naive", "walk", "grid", "idbuffer-cpu", "idbuffer-gl", "idbuffer-gl-batched"}))
+    cmd.add_option("--locate", locate,
+                   "Point location: " + joinedNames(kLocatorNames) +
+                       " (the GL ones on a headless GL context: --gl)")
+        ->check(CLI::IsMember(namesIn(kLocatorNames)))
         ->each([](const std::string& value) {
             if (needsGl(*parseLocatorKind(value))) needGl();
         })
         ->capture_default_str();
-    cmd.add_option("--order", order, "Insertion order: input | random | brio")
-        ->check(CLI::IsMember({"input", "random", "brio"}))
+    cmd.add_option("--order", order, "Insertion order: " + joinedNames(kOrderNames))
+        ->check(CLI::IsMember(namesIn(kOrderNames)))
         ->capture_default_str();
     cmd.add_option("--boundary", boundary,
                    "exact: true Delaunay with convex hull (ghost vertex); super: the paper's "
                    "finite super-triangle")
-        ->check(CLI::IsMember({"exact", "super"}))
+        ->check(CLI::IsMember(namesIn(kBoundaryNames)))
         ->capture_default_str();
     cmd.add_option("--seed", seed, "Seed of the random and brio orders (0 to 2^64-1)")
         ->check(CLI::Validator(

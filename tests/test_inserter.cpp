@@ -493,6 +493,51 @@ TEST(Journal, EveryOpRecordsTheCellsItChanged) {
     EXPECT_EQ(seen[OpType::Finalize], 1);
 }
 
+// The flip-stack pushes of every op are in the record, in order, and are exactly what the op
+// put on the stack: a split's three new edges, an edge split's two or four, a flip's two. Undo
+// and redo move the stack by them (ForwardToEndAndBack... checks the stacks after seeks).
+TEST(Journal, EveryOpRecordsTheFlipStackPushesItMade) {
+    for (Generator g : {Generator::Uniform, Generator::Grid, Generator::Collinear}) {
+        for (Boundary b : {Boundary::Exact, Boundary::Super}) {
+            InsertOptions opt;
+            opt.boundary = b;
+            Inserter ins(generatePoints(g, 300, 6), opt);
+            Journal journal(ins);
+            std::map<int, int> edgeSplitPushes;
+            std::size_t at = 0;
+            std::vector<std::int32_t> before = ins.flipStack();
+            while (const Op* op = journal.forward()) {
+                std::vector<std::int32_t> expected = before;
+                if (op->type == OpType::InCircleTest) {
+                    ASSERT_EQ(expected.back(), op->a);
+                    expected.pop_back();
+                }
+                const auto& pushes = journal.pushes();
+                ASSERT_LE(at + op->pushes, pushes.size());
+                expected.insert(expected.end(), pushes.begin() + static_cast<std::ptrdiff_t>(at),
+                                pushes.begin() + static_cast<std::ptrdiff_t>(at + op->pushes));
+                at += op->pushes;
+                ASSERT_EQ(expected, ins.flipStack())
+                    << toString(op->type) << " at " << journal.position();
+                switch (op->type) {
+                    case OpType::Split: ASSERT_EQ(op->pushes, 3); break;
+                    case OpType::SplitEdge: ++edgeSplitPushes[op->pushes]; break;
+                    case OpType::Flip: ASSERT_EQ(op->pushes, 2); break;
+                    default: ASSERT_EQ(op->pushes, 0) << toString(op->type);
+                }
+                before = ins.flipStack();
+            }
+            EXPECT_EQ(at, journal.pushes().size());
+            for (const auto& [count, times] : edgeSplitPushes) {
+                EXPECT_TRUE(count == 2 || count == 4) << count;
+            }
+            if (g == Generator::Grid) {
+                EXPECT_GT(edgeSplitPushes[4], 0);
+            }
+        }
+    }
+}
+
 TEST(Journal, PointOnEdgeSplitsTwoIntoFour) {
     // (0.5, 0.5) lies on the diagonal of the square; (1, 0.5) on its hull edge.
     const std::vector<Vec2> pts{{0, 0}, {1, 0}, {1, 1}, {0, 1}, {0.5, 0.5}, {1, 0.5}};

@@ -22,12 +22,10 @@ namespace dlab {
 // [SECTION] Names
 // ============================================================================================
 
-const char* toString(Boundary b) { return b == Boundary::Exact ? "exact" : "super"; }
+const char* toString(Boundary b) { return nameIn(kBoundaryNames, b).data(); }
 
 std::optional<Boundary> parseBoundary(std::string_view name) {
-    if (name == "exact") return Boundary::Exact;
-    if (name == "super") return Boundary::Super;
-    return std::nullopt;
+    return parseIn(kBoundaryNames, name);
 }
 
 namespace {
@@ -141,10 +139,25 @@ using Ids3 = std::array<std::int32_t, 3>;
 using Ids4 = std::array<std::int32_t, 4>;
 
 // The batch path's: no cells, no calls. kReplay: the op is made again, not for the first time.
+// The counters one op moves: the step path adds them, undo takes them back, redo adds them again
+// (Start's, which depend on the points, are its own).
+void countOp(InsertStats& s, const Op& op, int dir) {
+    switch (op.type) {
+        case OpType::LocateStep: s.walkSteps += dir; break;
+        case OpType::SplitEdge: s.edgeSplits += dir; break;
+        case OpType::InCircleTest: s.inCircleTests += dir; break;
+        case OpType::Flip: s.flips += dir; break;
+        case OpType::SkipDuplicate: s.duplicates += dir; break;
+        case OpType::Inserted: s.inserted += dir; break;
+        default: break;
+    }
+}
+
 struct NullRec {
     static constexpr bool kOn = false;
     static constexpr bool kReplay = false;
     void cell(std::int32_t, std::int32_t, std::int32_t) {}
+    void push(std::int32_t) {}
     [[gnu::always_inline]] int orient(PredicateAsk, Vec2 a, Vec2 b, Vec2 c, Ids3, std::int32_t) {
         return orient2d(a, b, c);
     }
@@ -183,6 +196,9 @@ struct JournalRec : CallRec {
     void cell(std::int32_t slot, std::int32_t before, std::int32_t after) {
         if (journal) journal->record({slot, before, after});
     }
+    void push(std::int32_t corner) {
+        if (journal) journal->recordPush(corner);
+    }
 };
 
 // predicateCallsOf: an op made again for its calls; it changes no cell.
@@ -190,6 +206,7 @@ struct ReplayRec : CallRec {
     static constexpr bool kOn = false;
     static constexpr bool kReplay = true;
     void cell(std::int32_t, std::int32_t, std::int32_t) {}
+    void push(std::int32_t) {}
 };
 
 // Within one triangle: the index of next(c) and prev(c) for c = 3t + k.
@@ -357,6 +374,12 @@ std::int32_t Inserter::appendTriangles(Rec&, int count) {
     return t;
 }
 
+template <class Rec>
+void Inserter::pushTest(Rec& rec, std::int32_t c) {
+    if constexpr (Rec::kOn) rec.push(c);
+    m_stack.push_back(c);
+}
+
 void Inserter::notifyChanged(const std::int32_t* tris, int count) {
     if (m_locatorWantsChanges && !m_bulk) m_locator->trianglesChanged(tris, count);
 }
@@ -401,9 +424,9 @@ void Inserter::split(Rec& rec, std::int32_t t, std::int32_t v) {
     link(rec, d0, e0 + 1);  // edge c-v
     link(rec, d0 + 2, oa);  // old edge b->c
     link(rec, e0 + 2, ob);  // old edge c->a
-    m_stack.push_back(c2);
-    m_stack.push_back(d0 + 2);
-    m_stack.push_back(e0 + 2);
+    pushTest(rec, c2);
+    pushTest(rec, d0 + 2);
+    pushTest(rec, e0 + 2);
     const std::int32_t tris[3] = {t, t1, t2};
     notifyChanged(tris, 3);
 }
@@ -432,8 +455,8 @@ void Inserter::splitEdge(Rec& rec, std::int32_t c, std::int32_t v) {
     if (d == kNone) {
         setO(rec, c, kNone);
         setO(rec, x, kNone);
-        m_stack.push_back(cp);
-        m_stack.push_back(x + 1);
+        pushTest(rec, cp);
+        pushTest(rec, x + 1);
         const std::int32_t tris[2] = {tri(c), tp};
         notifyChanged(tris, 2);
         return;
@@ -450,10 +473,10 @@ void Inserter::splitEdge(Rec& rec, std::int32_t c, std::int32_t v) {
     link(rec, x, d);        // edge v-B
     link(rec, dn, y + 2);   // edge v-D
     link(rec, y + 1, odn);  // old edge A->D
-    m_stack.push_back(cp);
-    m_stack.push_back(x + 1);
-    m_stack.push_back(dp);
-    m_stack.push_back(y + 1);
+    pushTest(rec, cp);
+    pushTest(rec, x + 1);
+    pushTest(rec, dp);
+    pushTest(rec, y + 1);
     const std::int32_t tris[4] = {tri(c), tp, tri(d), tp + 1};
     notifyChanged(tris, 4);
 }
@@ -480,8 +503,8 @@ void Inserter::flip(Rec& rec, std::int32_t c) {
     link(rec, c, odn);
     link(rec, d, ocn);
     link(rec, cn, dn);
-    m_stack.push_back(c);
-    m_stack.push_back(dp);
+    pushTest(rec, c);
+    pushTest(rec, dp);
     const std::int32_t tris[2] = {tri(c), tri(d)};
     notifyChanged(tris, 2);
 }
@@ -893,14 +916,12 @@ void Inserter::doPlace(Rec& rec, Op& op) {
             op.a = c;
             op.b = m_mesh.O[c];
             splitEdge(rec, c, v);
-            ++m_stats.edgeSplits;
             break;
         default:
             op.type = OpType::SkipDuplicate;
             op.a = c;
             op.b = m_mesh.V[c];
             keepFirstOccurrence(rec, c, v);
-            ++m_stats.duplicates;
             ++m_ctl.cursor;
             m_ctl.walk.tri = kNone;
             m_ctl.phase = m_ctl.cursor < m_numInput ? Phase::Locate : Phase::Finalize;
@@ -973,7 +994,6 @@ void Inserter::doLocate(Rec& rec, Op& op) {
     if (!walk(rec, true, known)) {
         op.type = OpType::LocateStep;
         op.b = m_ctl.walk.tri;
-        ++m_stats.walkSteps;
         return;
     }
     const Placement at = classify(rec, m_ctl.walk.tri, currentQuery(), known);
@@ -1001,7 +1021,6 @@ void Inserter::doTest(Rec& rec, Op& op) {
     op.a = c;
     op.b = m_mesh.O[c];
     op.sign = static_cast<std::int8_t>(inCircleSign(rec, c));
-    ++m_stats.inCircleTests;
     if (op.sign > 0) {
         m_ctl.flipCorner = c;
         m_ctl.phase = Phase::Flip;
@@ -1020,7 +1039,6 @@ void Inserter::doFinish(Op& op) {
         if (m_mesh.V[c] == op.vertex) op.a = c;
     }
     m_ctl.lastTri = t;
-    ++m_stats.inserted;
     ++m_ctl.cursor;
     m_ctl.walk.tri = kNone;
     m_ctl.phase = m_ctl.cursor < m_numInput ? Phase::Locate : Phase::Finalize;
@@ -1045,7 +1063,6 @@ Op Inserter::stepImpl(Rec& rec) {
             op.a = m_ctl.flipCorner;
             op.b = m_mesh.O[op.a];
             flip(rec, op.a);
-            ++m_stats.flips;
             m_ctl.flipCorner = kNone;
             m_ctl.phase = Phase::Test;
             break;
@@ -1058,6 +1075,7 @@ Op Inserter::stepImpl(Rec& rec) {
     }
     op.trianglesAfter = m_mesh.numTriangles();
     op.verticesAfter = m_mesh.numVertices();
+    countOp(m_stats, op, +1);
     return op;
 }
 
@@ -1066,11 +1084,13 @@ Op Inserter::step(Journal* journal, std::vector<RecordedPredicateCall>* calls) {
     rec.journal = journal;
     rec.calls = calls;
     const std::uint32_t first = journal ? journal->changeCount() : 0;
+    const std::size_t firstPush = journal ? journal->pushCount() : 0;
     const Control before = m_ctl;
     Op op = stepImpl(rec);
     if (journal) {
         op.firstChange = first;
         op.numChanges = journal->changeCount() - first;
+        op.pushes = static_cast<std::uint8_t>(journal->pushCount() - firstPush);
         journal->push(op, before);
     }
     return op;
@@ -1229,21 +1249,8 @@ void Inserter::run() {
 // [SECTION] Undo / redo of recorded ops
 // ============================================================================================
 
-namespace {
-
-// How an op moved the flip stack: pushes are the corners at the new vertex facing new edges.
-int pushesOf(const Op& op) {
-    switch (op.type) {
-        case OpType::Split: return 3;
-        case OpType::SplitEdge: return op.b == kNone ? 2 : 4;
-        case OpType::Flip: return 2;
-        default: return 0;
-    }
-}
-
-}  // namespace
-
-void Inserter::undo(const Op& op, const std::vector<CellChange>& changes, const Control& before) {
+void Inserter::undo(const Op& op, const std::vector<CellChange>& changes,
+                    std::span<const std::int32_t> pushes, const Control& before) {
     const std::size_t big =
         3 * static_cast<std::size_t>(std::max(op.trianglesBefore, op.trianglesAfter));
     m_mesh.V.resize(big, kNone);
@@ -1257,24 +1264,17 @@ void Inserter::undo(const Op& op, const std::vector<CellChange>& changes, const 
     if (op.verticesBefore > m_mesh.numVertices()) {
         m_mesh.G.insert(m_mesh.G.end(), m_virtualPoints.begin(), m_virtualPoints.end());
     }
-    m_stack.resize(m_stack.size() - pushesOf(op));
-    if (op.type == OpType::InCircleTest) m_stack.push_back(op.a);
-    switch (op.type) {
-        case OpType::Start:
-            m_stats = {};
-            m_skipped.clear();
-            break;
-        case OpType::LocateStep: --m_stats.walkSteps; break;
-        case OpType::SplitEdge: --m_stats.edgeSplits; break;
-        case OpType::InCircleTest: --m_stats.inCircleTests; break;
-        case OpType::Flip: --m_stats.flips; break;
-        case OpType::SkipDuplicate:
-            --m_stats.duplicates;
-            m_skipped.pop_back();
-            break;
-        case OpType::Inserted: --m_stats.inserted; break;
-        default: break;
+    DLAB_ASSERT(pushes.size() == op.pushes && m_stack.size() >= pushes.size() &&
+                    std::equal(pushes.begin(), pushes.end(), m_stack.end() - pushes.size()),
+                "undo of an op whose flip-stack pushes are not on top of the stack");
+    m_stack.resize(m_stack.size() - pushes.size());
+    if (op.type == OpType::InCircleTest) m_stack.push_back(op.a);  // the test popped it
+    countOp(m_stats, op, -1);
+    if (op.type == OpType::Start) {
+        m_stats = {};
+        m_skipped.clear();
     }
+    if (op.type == OpType::SkipDuplicate) m_skipped.pop_back();
     m_ctl = before;
     notifyReplayed(op, changes);
 }
@@ -1295,7 +1295,8 @@ void Inserter::notifyReplayed(const Op& op, const std::vector<CellChange>& chang
     notifyChanged(tris.data(), static_cast<int>(tris.size()));
 }
 
-void Inserter::redo(const Op& op, const std::vector<CellChange>& changes, const Control& after) {
+void Inserter::redo(const Op& op, const std::vector<CellChange>& changes,
+                    std::span<const std::int32_t> pushes, const Control& after) {
     const std::size_t big =
         3 * static_cast<std::size_t>(std::max(op.trianglesBefore, op.trianglesAfter));
     m_mesh.V.resize(big, kNone);
@@ -1307,46 +1308,19 @@ void Inserter::redo(const Op& op, const std::vector<CellChange>& changes, const 
     m_mesh.V.resize(3 * static_cast<std::size_t>(op.trianglesAfter));
     m_mesh.O.resize(3 * static_cast<std::size_t>(op.trianglesAfter));
     if (op.verticesAfter < m_mesh.numVertices()) m_mesh.G.resize(op.verticesAfter);
-    if (op.type == OpType::InCircleTest) m_stack.pop_back();
-    // Re-derive the pushes exactly as the forward op made them.
-    switch (op.type) {
-        case OpType::Split: {
-            const std::int32_t t1 = op.trianglesBefore;
-            m_stack.insert(m_stack.end(), {3 * op.a + 2, 3 * t1 + 2, 3 * t1 + 5});
-            break;
-        }
-        case OpType::SplitEdge: {
-            const std::int32_t x = 3 * op.trianglesBefore;
-            m_stack.push_back(prev(op.a));
-            m_stack.push_back(x + 1);
-            if (op.b != kNone) {
-                m_stack.push_back(prev(op.b));
-                m_stack.push_back(x + 4);
-            }
-            break;
-        }
-        case OpType::Flip:
-            m_stack.push_back(op.a);
-            m_stack.push_back(prev(op.b));
-            break;
-        default: break;
+    if (op.type == OpType::InCircleTest) {
+        DLAB_ASSERT(!m_stack.empty() && m_stack.back() == op.a,
+                    "redo of an in-circle test whose edge is not on top of the flip stack");
+        m_stack.pop_back();
     }
-    switch (op.type) {
-        case OpType::Start:
-            if (m_options.boundary == Boundary::Exact && op.a != kNone) m_stats.inserted += 3;
-            if (op.a == kNone) collectDuplicatesWithoutMesh();
-            break;
-        case OpType::LocateStep: ++m_stats.walkSteps; break;
-        case OpType::SplitEdge: ++m_stats.edgeSplits; break;
-        case OpType::InCircleTest: ++m_stats.inCircleTests; break;
-        case OpType::Flip: ++m_stats.flips; break;
-        case OpType::SkipDuplicate:
-            ++m_stats.duplicates;
-            m_skipped.push_back(std::max(op.vertex, op.b));
-            break;
-        case OpType::Inserted: ++m_stats.inserted; break;
-        default: break;
+    DLAB_ASSERT(pushes.size() == op.pushes, "redo with another op's flip-stack pushes");
+    m_stack.insert(m_stack.end(), pushes.begin(), pushes.end());
+    countOp(m_stats, op, +1);
+    if (op.type == OpType::Start) {
+        if (m_options.boundary == Boundary::Exact && op.a != kNone) m_stats.inserted += 3;
+        if (op.a == kNone) collectDuplicatesWithoutMesh();
     }
+    if (op.type == OpType::SkipDuplicate) m_skipped.push_back(std::max(op.vertex, op.b));
     m_ctl = after;
     notifyReplayed(op, changes);
 }
@@ -1367,6 +1341,7 @@ void Journal::push(Op op, const Control& before) {
     }
     m_ops.push_back(op);
     ++m_pos;
+    m_pushEnd = m_pushes.size();
 }
 
 namespace {
@@ -1403,7 +1378,8 @@ const Op* Journal::forward() {
     if (m_pos < m_ops.size()) {
         const Op& op = m_ops[m_pos];
         const Control after = m_pos + 1 < m_ops.size() ? controlBefore(m_pos + 1) : m_tip;
-        m_ins->redo(op, m_changes, after);
+        m_ins->redo(op, m_changes, {m_pushes.data() + m_pushEnd, op.pushes}, after);
+        m_pushEnd += op.pushes;
         ++m_pos;
         return &op;
     }
@@ -1426,14 +1402,19 @@ bool Journal::fitsBudget() const {
     const std::size_t ops = grown(m_ops.size(), m_ops.capacity(), 1);
     const std::size_t controls = grown(m_controls.size(), m_controls.capacity(), 1);
     const std::size_t changes = grown(m_changes.size(), m_changes.capacity(), kChangesPerOpAtMost);
-    return ops * sizeof(Op) + controls * sizeof(Control) + changes * sizeof(CellChange) <= m_budget;
+    const std::size_t pushes = grown(m_pushes.size(), m_pushes.capacity(), 4);
+    return ops * sizeof(Op) + controls * sizeof(Control) + changes * sizeof(CellChange) +
+               pushes * sizeof(std::int32_t) <=
+           m_budget;
 }
 
 const Op* Journal::back() {
     if (m_pos == 0) return nullptr;
     if (m_pos == m_ops.size()) m_tip = m_ins->control();
     --m_pos;
-    m_ins->undo(m_ops[m_pos], m_changes, controlBefore(m_pos));
+    const Op& op = m_ops[m_pos];
+    m_pushEnd -= op.pushes;
+    m_ins->undo(op, m_changes, {m_pushes.data() + m_pushEnd, op.pushes}, controlBefore(m_pos));
     return &m_ops[m_pos];
 }
 

@@ -16,6 +16,7 @@
 //     non-Delaunay: that is the paper's flaw, kept on purpose for the lesson that shows it.
 #pragma once
 
+#include "core/engine/enum_names.h"
 #include "core/engine/geometry.h"
 #include "core/engine/locator.h"
 #include "core/engine/mesh.h"
@@ -26,6 +27,7 @@
 #include <functional>
 #include <memory>
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -34,6 +36,8 @@
 namespace dlab {
 
 enum class Boundary : std::uint8_t { Exact, Super };
+inline constexpr std::array<EnumName<Boundary>, 2> kBoundaryNames{
+    {{Boundary::Exact, "exact"}, {Boundary::Super, "super"}}};
 const char* toString(Boundary b);
 std::optional<Boundary> parseBoundary(std::string_view name);
 
@@ -90,7 +94,10 @@ struct Control {
 struct Op {
     OpType type = OpType::Start;
     Where where = Where::None;
-    std::int8_t sign = 0;         // InCircleTest: +1 flip, 0 cocircular, -1 Delaunay
+    std::int8_t sign = 0;  // InCircleTest: +1 flip, 0 cocircular, -1 Delaunay
+    // Corners the op put on the flip stack (Split 3, SplitEdge 2 or 4, Flip 2), kept in order in
+    // Journal::pushes() after those of the ops before it: undo and redo read them from there.
+    std::uint8_t pushes = 0;
     std::int32_t vertex = kNone;  // input index of the point being inserted
     std::int32_t a = kNone;       // see OpType
     std::int32_t b = kNone;
@@ -252,11 +259,14 @@ public:
 
     // Journal support: revert / re-apply one recorded op; `before` and `after` are the control
     // states around it.
-    void undo(const Op& op, const std::vector<CellChange>& changes, const Control& before);
+    // `pushes` are the op's own flip-stack pushes as recorded (Op::pushes of them).
+    void undo(const Op& op, const std::vector<CellChange>& changes,
+              std::span<const std::int32_t> pushes, const Control& before);
     // Bulk mode (long seeks): undo/redo stop notifying the locator; leaving it rebuilds the
     // locator's index once from the current mesh.
     void setBulk(bool on);
-    void redo(const Op& op, const std::vector<CellChange>& changes, const Control& after);
+    void redo(const Op& op, const std::vector<CellChange>& changes,
+              std::span<const std::int32_t> pushes, const Control& after);
 
 private:
     template <class Rec>
@@ -286,6 +296,9 @@ private:
     void link(Rec& rec, std::int32_t c, std::int32_t d);  // O[c]=d, O[d]=c
     template <class Rec>
     std::int32_t appendTriangles(Rec& rec, int count);
+    // Puts the edge opposite corner c on the flip stack, through the recorder.
+    template <class Rec>
+    void pushTest(Rec& rec, std::int32_t c);
     template <class Rec>
     void split(Rec& rec, std::int32_t t, std::int32_t v);
     template <class Rec>
@@ -394,6 +407,7 @@ public:
         : m_ins(&inserter) {
         m_ops.reserve(expectedOps);
         m_changes.reserve(expectedChanges);
+        m_pushes.reserve(expectedOps / 2);  // BRIO: ~9 pushes a point in ~18 ops
     }
     // Forward one op: replays a recorded op after an undo, else asks the inserter for a new one.
     // Returns nullptr at the end.
@@ -416,7 +430,7 @@ public:
     // Memory the record holds: ops, control snapshots and cell changes (sizes, not capacities).
     std::size_t bytesUsed() const {
         return m_ops.size() * sizeof(Op) + m_controls.size() * sizeof(Control) +
-               m_changes.size() * sizeof(CellChange);
+               m_changes.size() * sizeof(CellChange) + m_pushes.size() * sizeof(std::int32_t);
     }
     std::size_t controlSnapshots() const { return m_controls.size(); }
     // The history's memory budget (bytes of reserved ops, control snapshots and cell changes),
@@ -426,13 +440,18 @@ public:
     std::size_t budget() const { return m_budget; }
     std::size_t memoryBytes() const {
         return m_ops.capacity() * sizeof(Op) + m_controls.capacity() * sizeof(Control) +
-               m_changes.capacity() * sizeof(CellChange);
+               m_changes.capacity() * sizeof(CellChange) +
+               m_pushes.capacity() * sizeof(std::int32_t);
     }
     bool budgetReached() const { return m_budgetReached; }
 
     // Used by the inserter while recording.
     void record(const CellChange& c) { m_changes.push_back(c); }
     std::uint32_t changeCount() const { return static_cast<std::uint32_t>(m_changes.size()); }
+    void recordPush(std::int32_t corner) { m_pushes.push_back(corner); }
+    std::size_t pushCount() const { return m_pushes.size(); }
+    // Every op's flip-stack pushes in op order (Op::pushes each).
+    const std::vector<std::int32_t>& pushes() const { return m_pushes; }
     void push(Op op, const Control& before);
 
 private:
@@ -440,8 +459,10 @@ private:
     std::vector<Op> m_ops;
     std::vector<Control> m_controls;  // snapshots, see Op::control
     std::vector<CellChange> m_changes;
+    std::vector<std::int32_t> m_pushes;
     std::size_t m_pos = 0;
-    Control m_tip;  // the inserter's control state after the last recorded op
+    std::size_t m_pushEnd = 0;  // pushes of the ops before m_pos
+    Control m_tip;              // the inserter's control state after the last recorded op
     std::size_t m_budget = kHistoryBudgetBytes;
     bool m_budgetReached = false;
     bool fitsBudget() const;  // room for one more op without passing the budget

@@ -9,26 +9,10 @@
 
 namespace dlab {
 
-const char* toString(LocatorKind kind) {
-    switch (kind) {
-        case LocatorKind::Naive: return "naive";
-        case LocatorKind::Walk: return "walk";
-        case LocatorKind::Grid: return "grid";
-        case LocatorKind::IdBufferCpu: return "idbuffer-cpu";
-        case LocatorKind::IdBufferGl: return "idbuffer-gl";
-        case LocatorKind::IdBufferGlBatched: return "idbuffer-gl-batched";
-    }
-    return "?";
-}
+const char* toString(LocatorKind kind) { return nameIn(kLocatorNames, kind).data(); }
 
 std::optional<LocatorKind> parseLocatorKind(std::string_view name) {
-    if (name == "naive") return LocatorKind::Naive;
-    if (name == "walk") return LocatorKind::Walk;
-    if (name == "grid") return LocatorKind::Grid;
-    if (name == "idbuffer-cpu") return LocatorKind::IdBufferCpu;
-    if (name == "idbuffer-gl") return LocatorKind::IdBufferGl;
-    if (name == "idbuffer-gl-batched") return LocatorKind::IdBufferGlBatched;
-    return std::nullopt;
+    return parseIn(kLocatorNames, name);
 }
 
 bool needsGl(LocatorKind kind) {

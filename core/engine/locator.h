@@ -2,9 +2,11 @@
 // walks from it with exact predicates, so a wrong or stale hint costs steps, never correctness.
 #pragma once
 
+#include "core/engine/enum_names.h"
 #include "core/engine/geometry.h"
 #include "core/engine/mesh.h"
 
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -25,6 +27,15 @@ enum class LocatorKind : std::uint8_t {
     IdBufferGlBatched
 };
 
+// In the order menus and help list them. toString reads this table.
+inline constexpr std::array<EnumName<LocatorKind>, 6> kLocatorNames{{
+    {LocatorKind::Walk, "walk"},
+    {LocatorKind::Naive, "naive"},
+    {LocatorKind::Grid, "grid"},
+    {LocatorKind::IdBufferCpu, "idbuffer-cpu"},
+    {LocatorKind::IdBufferGl, "idbuffer-gl"},
+    {LocatorKind::IdBufferGlBatched, "idbuffer-gl-batched"},
+}};
 const char* toString(LocatorKind kind);
 std::optional<LocatorKind> parseLocatorKind(std::string_view name);
 

@@ -14,20 +14,10 @@
 
 namespace dlab {
 
-const char* toString(OrderKind kind) {
-    switch (kind) {
-        case OrderKind::Input: return "input";
-        case OrderKind::Random: return "random";
-        case OrderKind::Brio: return "brio";
-    }
-    return "?";
-}
+const char* toString(OrderKind kind) { return nameIn(kOrderNames, kind).data(); }
 
 std::optional<OrderKind> parseOrderKind(std::string_view name) {
-    if (name == "input") return OrderKind::Input;
-    if (name == "random") return OrderKind::Random;
-    if (name == "brio") return OrderKind::Brio;
-    return std::nullopt;
+    return parseIn(kOrderNames, name);
 }
 
 namespace {

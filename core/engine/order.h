@@ -2,8 +2,10 @@
 // Hilbert sort inside each round that refines the grid wherever points crowd.
 #pragma once
 
+#include "core/engine/enum_names.h"
 #include "core/engine/geometry.h"
 
+#include <array>
 #include <cstdint>
 #include <optional>
 #include <string_view>
@@ -13,6 +15,8 @@ namespace dlab {
 
 enum class OrderKind : std::uint8_t { Input, Random, Brio };
 
+inline constexpr std::array<EnumName<OrderKind>, 3> kOrderNames{
+    {{OrderKind::Input, "input"}, {OrderKind::Random, "random"}, {OrderKind::Brio, "brio"}}};
 const char* toString(OrderKind kind);
 std::optional<OrderKind> parseOrderKind(std::string_view name);
 

@@ -14,6 +14,7 @@
 #include <cstdio>
 #include <cstring>
 #include <string>
+#include <vector>
 
 namespace dlab::ui {
 
@@ -48,7 +49,7 @@ bool ToolButton(AppState& state, const char* label, const char* tip, bool enable
 
 // "Label [combo]": the label first, so that the row reads "Boundary: exact  Locate: walk".
 template <class Enum>
-bool EnumCombo(AppState& state, const char* label, Enum& value, std::initializer_list<Enum> values,
+bool EnumCombo(AppState& state, const char* label, Enum& value, const std::vector<Enum>& values,
                float width, float spacing = -1.0f) {
     const float w = Scaled(width);
     SameLineOrWrap(ImGui::CalcTextSize(label).x + ImGui::GetStyle().ItemInnerSpacing.x + w,
@@ -247,26 +248,17 @@ void ShowStepControls(AppState& state) {
 void ShowModes(AppState& state) {
     const Engine& e = state.engine;
     InsertOptions o = e.options();
-    bool changed =
-        EnumCombo(state, "Boundary", o.boundary, {Boundary::Exact, Boundary::Super}, 80, 24);
+    bool changed = EnumCombo(state, "Boundary", o.boundary, valuesIn(kBoundaryNames), 80, 24);
     if (ImGui::IsItemHovered())
         ImGui::SetTooltip(
             "exact: a ghost vertex, the true Delaunay triangulation with its convex hull\nsuper: "
             "the paper's finite super-triangle (can lose hull triangles)");
-    if (e.hasGl()) {  // the GL ID buffer draws on this window's context
-        changed |= EnumCombo(
-            state, "Locate", o.locator,
-            {LocatorKind::Walk, LocatorKind::Naive, LocatorKind::Grid, LocatorKind::IdBufferCpu,
-             LocatorKind::IdBufferGl, LocatorKind::IdBufferGlBatched},
-            175);
-    } else {
-        changed |= EnumCombo(
-            state, "Locate", o.locator,
-            {LocatorKind::Walk, LocatorKind::Naive, LocatorKind::Grid, LocatorKind::IdBufferCpu},
-            120);
-    }
-    changed |= EnumCombo(state, "Order", o.order,
-                         {OrderKind::Input, OrderKind::Random, OrderKind::Brio}, 80);
+    // The GL ID buffer draws on this window's context: without one its locators are not offered.
+    std::vector<LocatorKind> locators;
+    for (const auto& l : kLocatorNames)
+        if (e.hasGl() || !needsGl(l.value)) locators.push_back(l.value);
+    changed |= EnumCombo(state, "Locate", o.locator, locators, e.hasGl() ? 175 : 120);
+    changed |= EnumCombo(state, "Order", o.order, valuesIn(kOrderNames), 80);
     if (o.order != OrderKind::Input) {
         SameLineOrWrap(ImGui::CalcTextSize("Seed").x + Scaled(110));
         ImGui::AlignTextToFramePadding();
