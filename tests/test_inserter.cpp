@@ -513,10 +513,10 @@ TEST(Journal, EveryOpRecordsTheFlipStackPushesItMade) {
                     expected.pop_back();
                 }
                 const auto& pushes = journal.pushes();
-                ASSERT_LE(at + op->pushes, pushes.size());
+                ASSERT_LE(at + pushCount(*op), pushes.size());
                 expected.insert(expected.end(), pushes.begin() + static_cast<std::ptrdiff_t>(at),
-                                pushes.begin() + static_cast<std::ptrdiff_t>(at + op->pushes));
-                at += op->pushes;
+                                pushes.begin() + static_cast<std::ptrdiff_t>(at + pushCount(*op)));
+                at += pushCount(*op);
                 ASSERT_EQ(expected, ins.flipStack())
                     << toString(op->type) << " at " << journal.position();
                 switch (op->type) {

@@ -533,6 +533,77 @@ TEST(TriangulationCheck, RepairByFlipsEndsExactlyDelaunayWithTheNumberingKept) {
     }
 }
 
+// The flip algorithm stepped like insertion: the inserter's repair run makes the flips that
+// repairByFlips makes, in the same order; its end is exactly Delaunay; stepping back restores
+// the imported mesh after Start bit for bit and the empty table at 0.
+TEST(TriangulationCheck, TheSteppedRepairFlipsAsTheBatchRepairAndStepsBack) {
+    for (const unsigned seed : {7u, 8u}) {
+        Mesh m = delaunayMesh(150, seed);
+        std::mt19937 rng(seed);
+        for (int i = 0; i < 300; ++i) {
+            const std::int32_t c = static_cast<std::int32_t>(rng() % m.V.size());
+            const std::int32_t d = m.O[c];
+            if (d == kNone) continue;
+            const Vec2 P = m.point(c), A = m.point(next(c)), B = m.point(prev(c)), D = m.point(d);
+            if (orient2d(P, A, D) <= 0 || orient2d(D, B, P) <= 0) continue;
+            flip(m, c);
+        }
+        const CheckReport report = checkMesh(m);
+        ASSERT_TRUE(report.isTriangulation()) << listed(report);
+        ASSERT_GT(report.count(Kind::NotDelaunay), 0u);
+        const RepairResult batch = repairByFlips(m, report);
+
+        Inserter ins(m.G, Inserter::StartMesh{m.V, report.opposites});
+        ASSERT_TRUE(ins.repairs());
+        Journal journal(ins);
+        ASSERT_NE(journal.forward(), nullptr);  // Start
+        ASSERT_EQ(ins.mesh().V, m.V);
+        ASSERT_EQ(ins.mesh().O, report.opposites);
+        std::vector<std::int32_t> flips;
+        std::size_t tests = 0;
+        while (const Op* op = journal.forward()) {
+            if (op->type == OpType::Flip) flips.push_back(op->a);
+            if (op->type == OpType::InCircleTest) ++tests;
+            EXPECT_EQ(op->vertex, kNone);
+        }
+        ASSERT_TRUE(ins.done());
+        std::vector<std::int32_t> batchFlips;
+        for (const FlipRecord& f : batch.flips) batchFlips.push_back(f.corner);
+        EXPECT_EQ(flips, batchFlips);
+        EXPECT_GE(tests, flips.size());
+        EXPECT_EQ(ins.stats().flips, static_cast<std::int64_t>(flips.size()));
+        EXPECT_EQ(ins.mesh().V, batch.mesh.V);
+        EXPECT_EQ(ins.mesh().O, batch.mesh.O);
+        EXPECT_EQ(ins.mesh().G, m.G);
+        EXPECT_EQ(checkDelaunayExact(ins.mesh()), "");
+        EXPECT_TRUE(ins.flipStack().empty());
+
+        journal.seek(1);  // just after Start: the imported mesh again
+        EXPECT_EQ(ins.mesh().V, m.V);
+        EXPECT_EQ(ins.mesh().O, report.opposites);
+        journal.seek(0);
+        EXPECT_EQ(ins.mesh().numTriangles(), 0);
+        EXPECT_TRUE(ins.flipStack().empty());
+        journal.seek(journal.recorded());
+        EXPECT_EQ(ins.mesh().V, batch.mesh.V);
+
+        // The batch path of the same run ends in the same mesh.
+        Inserter once(m.G, Inserter::StartMesh{m.V, report.opposites});
+        once.run();
+        EXPECT_EQ(once.mesh().V, batch.mesh.V);
+        EXPECT_EQ(once.stats().flips, static_cast<std::int64_t>(flips.size()));
+    }
+}
+
+TEST(TriangulationCheck, AStartMeshWithAWrongOppositeIsRefused) {
+    const std::vector<Vec2> pts{{0, 0}, {1, 0}, {0, 1}, {1, 1}};
+    EXPECT_THROW(Inserter(pts, Inserter::StartMesh{{0, 1, 2}, {1, kNone, kNone}}),
+                 std::invalid_argument);
+    EXPECT_THROW(Inserter(pts, Inserter::StartMesh{{0, 1, 7}, {kNone, kNone, kNone}}),
+                 std::invalid_argument);
+    EXPECT_NO_THROW(Inserter(pts, Inserter::StartMesh{{0, 1, 2}, {kNone, kNone, kNone}}));
+}
+
 TEST(TriangulationCheck, TheDiffWithDelaunayNamesTheEdgesThatDiffer) {
     const Mesh base = delaunayMesh(200, 7);
     const DelaunayDiff same = diffWithDelaunay(base);

@@ -329,9 +329,34 @@ Inserter::Inserter(std::vector<Vec2> points, const InsertOptions& options,
     m_mesh.G.insert(m_mesh.G.end(), m_virtualPoints.begin(), m_virtualPoints.end());
 }
 
+Inserter::Inserter(std::vector<Vec2> points, StartMesh start, const InsertOptions& options)
+    : Inserter(std::move(points), [&] {
+          InsertOptions o = options;
+          o.boundary = Boundary::Exact;
+          o.locator = LocatorKind::Walk;
+          return o;
+      }()) {
+    const std::size_t corners = start.V.size();
+    if (corners % 3 != 0 || start.O.size() != corners || corners / 3 > 2 * kMaxPoints)
+        throw std::invalid_argument("a start mesh needs three corners a triangle and O for each");
+    for (std::size_t c = 0; c < corners; ++c) {
+        if (start.V[c] < 0 || start.V[c] >= m_numInput)
+            throw std::invalid_argument("corner " + std::to_string(c) + " names vertex " +
+                                        std::to_string(start.V[c]) + ", which does not exist");
+        const std::int32_t o = start.O[c];
+        if (o != kNone && (o < 0 || static_cast<std::size_t>(o) >= corners ||
+                           start.O[o] != static_cast<std::int32_t>(c)))
+            throw std::invalid_argument("O of corner " + std::to_string(c) +
+                                        " is not an opposite corner");
+    }
+    m_repair = true;
+    m_start = std::move(start);
+}
+
 Inserter::~Inserter() = default;
 
 std::int32_t Inserter::currentVertex() const {
+    if (m_repair) return kNone;
     switch (m_ctl.phase) {
         case Phase::Locate:
         case Phase::Place:
@@ -503,10 +528,31 @@ void Inserter::flip(Rec& rec, std::int32_t c) {
     link(rec, c, odn);
     link(rec, d, ocn);
     link(rec, cn, dn);
-    pushTest(rec, c);
-    pushTest(rec, dp);
+    if (m_repair) {
+        // Lawson: the four edges around the new one may have stopped being Delaunay.
+        for (const std::int32_t e : {c, cp, d, dp})
+            if (m_mesh.O[e] != kNone) pushTest(rec, e);
+    } else {
+        pushTest(rec, c);  // the two edges facing the new vertex
+        pushTest(rec, dp);
+    }
     const std::int32_t tris[2] = {tri(c), tri(d)};
     notifyChanged(tris, 2);
+}
+
+// The flip algorithm's start: the given triangles, and every interior edge on the stack. Only
+// the phase of the control state changes (so the tests and flips that follow recover it from
+// the snapshot before Start, as they do from a Place op's).
+template <class Rec>
+void Inserter::doStartRepair(Rec& rec, Op& op) {
+    const std::int32_t corners = static_cast<std::int32_t>(m_start.V.size());
+    appendTriangles(rec, corners / 3);
+    for (std::int32_t c = 0; c < corners; ++c) setV(rec, c, m_start.V[c]);
+    for (std::int32_t c = 0; c < corners; ++c) setO(rec, c, m_start.O[c]);
+    for (std::int32_t c = 0; c < corners; ++c)
+        if (m_start.flip && m_start.O[c] > c) pushTest(rec, c);
+    op.a = corners / 3;
+    m_ctl.phase = m_stack.empty() ? Phase::Finalize : Phase::Test;
 }
 
 // The lower input index of two equal points stays the vertex: rename it around its star.
@@ -1025,7 +1071,7 @@ void Inserter::doTest(Rec& rec, Op& op) {
         m_ctl.flipCorner = c;
         m_ctl.phase = Phase::Flip;
     } else {
-        m_ctl.phase = m_stack.empty() ? Phase::Finish : Phase::Test;
+        m_ctl.phase = !m_stack.empty() ? Phase::Test : m_repair ? Phase::Finalize : Phase::Finish;
     }
 }
 
@@ -1053,7 +1099,11 @@ Op Inserter::stepImpl(Rec& rec) {
     switch (m_ctl.phase) {
         case Phase::Start:
             op.type = OpType::Start;
-            doStart(rec, op);
+            if (m_repair) {
+                doStartRepair(rec, op);
+            } else {
+                doStart(rec, op);
+            }
             break;
         case Phase::Locate: doLocate(rec, op); break;
         case Phase::Place: doPlace(rec, op); break;
@@ -1064,12 +1114,18 @@ Op Inserter::stepImpl(Rec& rec) {
             op.b = m_mesh.O[op.a];
             flip(rec, op.a);
             m_ctl.flipCorner = kNone;
-            m_ctl.phase = Phase::Test;
+            m_ctl.phase = !m_stack.empty() ? Phase::Test : Phase::Finalize;
             break;
         case Phase::Finish: doFinish(op); break;
         case Phase::Finalize:
             op.type = OpType::Finalize;
-            doFinalize(rec, op);
+            if (m_repair) {  // no virtual triangle: only the ghost vertex's placeholder goes
+                op.a = 0;
+                m_mesh.G.resize(m_numInput);
+                m_ctl.phase = Phase::Done;
+            } else {
+                doFinalize(rec, op);
+            }
             break;
         case Phase::Done: throw std::logic_error("Inserter::step called after the end");
     }
@@ -1090,7 +1146,15 @@ Op Inserter::step(Journal* journal, std::vector<RecordedPredicateCall>* calls) {
     if (journal) {
         op.firstChange = first;
         op.numChanges = journal->changeCount() - first;
-        op.pushes = static_cast<std::uint8_t>(journal->pushCount() - firstPush);
+        const std::size_t pushed = journal->pushCount() - firstPush;
+        if (pushed < kPushesInB) {
+            op.pushes = static_cast<std::uint8_t>(pushed);
+        } else {
+            DLAB_ASSERT(op.type == OpType::Start && op.b == kNone,
+                        "only the flip algorithm's Start queues that many edges");
+            op.pushes = kPushesInB;
+            op.b = static_cast<std::int32_t>(pushed);
+        }
         journal->push(op, before);
     }
     return op;
@@ -1103,7 +1167,7 @@ std::vector<RecordedPredicateCall> Inserter::predicateCallsOf(const Op& op,
     rec.calls = &calls;
     switch (op.type) {
         case OpType::Start:
-            if (m_options.boundary == Boundary::Exact) firstTriangleSign(rec);
+            if (m_options.boundary == Boundary::Exact && !m_repair) firstTriangleSign(rec);
             break;
         case OpType::LocateStep:
         case OpType::Located: {
@@ -1183,6 +1247,10 @@ void Inserter::runForTopology(std::vector<std::int32_t> names) {
 
 void Inserter::run() {
     NullRec rec;
+    if (m_repair) {
+        while (m_ctl.phase != Phase::Done) stepImpl(rec);
+        return;
+    }
     if (m_ctl.phase == Phase::Start && !m_permuted) permuteForBatch({});
     // Finish whatever the state machine was in the middle of.
     while (m_ctl.phase != Phase::Done &&
@@ -1264,7 +1332,7 @@ void Inserter::undo(const Op& op, const std::vector<CellChange>& changes,
     if (op.verticesBefore > m_mesh.numVertices()) {
         m_mesh.G.insert(m_mesh.G.end(), m_virtualPoints.begin(), m_virtualPoints.end());
     }
-    DLAB_ASSERT(pushes.size() == op.pushes && m_stack.size() >= pushes.size() &&
+    DLAB_ASSERT(pushes.size() == pushCount(op) && m_stack.size() >= pushes.size() &&
                     std::equal(pushes.begin(), pushes.end(), m_stack.end() - pushes.size()),
                 "undo of an op whose flip-stack pushes are not on top of the stack");
     m_stack.resize(m_stack.size() - pushes.size());
@@ -1313,10 +1381,10 @@ void Inserter::redo(const Op& op, const std::vector<CellChange>& changes,
                     "redo of an in-circle test whose edge is not on top of the flip stack");
         m_stack.pop_back();
     }
-    DLAB_ASSERT(pushes.size() == op.pushes, "redo with another op's flip-stack pushes");
+    DLAB_ASSERT(pushes.size() == pushCount(op), "redo with another op's flip-stack pushes");
     m_stack.insert(m_stack.end(), pushes.begin(), pushes.end());
     countOp(m_stats, op, +1);
-    if (op.type == OpType::Start) {
+    if (op.type == OpType::Start && !m_repair) {
         if (m_options.boundary == Boundary::Exact && op.a != kNone) m_stats.inserted += 3;
         if (op.a == kNone) collectDuplicatesWithoutMesh();
     }
@@ -1378,8 +1446,8 @@ const Op* Journal::forward() {
     if (m_pos < m_ops.size()) {
         const Op& op = m_ops[m_pos];
         const Control after = m_pos + 1 < m_ops.size() ? controlBefore(m_pos + 1) : m_tip;
-        m_ins->redo(op, m_changes, {m_pushes.data() + m_pushEnd, op.pushes}, after);
-        m_pushEnd += op.pushes;
+        m_ins->redo(op, m_changes, {m_pushes.data() + m_pushEnd, pushCount(op)}, after);
+        m_pushEnd += pushCount(op);
         ++m_pos;
         return &op;
     }
@@ -1413,8 +1481,8 @@ const Op* Journal::back() {
     if (m_pos == m_ops.size()) m_tip = m_ins->control();
     --m_pos;
     const Op& op = m_ops[m_pos];
-    m_pushEnd -= op.pushes;
-    m_ins->undo(op, m_changes, {m_pushes.data() + m_pushEnd, op.pushes}, controlBefore(m_pos));
+    m_pushEnd -= pushCount(op);
+    m_ins->undo(op, m_changes, {m_pushes.data() + m_pushEnd, pushCount(op)}, controlBefore(m_pos));
     return &m_ops[m_pos];
 }
 

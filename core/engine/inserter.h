@@ -95,8 +95,10 @@ struct Op {
     OpType type = OpType::Start;
     Where where = Where::None;
     std::int8_t sign = 0;  // InCircleTest: +1 flip, 0 cocircular, -1 Delaunay
-    // Corners the op put on the flip stack (Split 3, SplitEdge 2 or 4, Flip 2), kept in order in
-    // Journal::pushes() after those of the ops before it: undo and redo read them from there.
+    // How many corners the op put on the flip stack (Split 3, SplitEdge 2 or 4, Flip 2 or, in
+    // the flip algorithm, up to 4), kept in order in Journal::pushes() after those of the ops
+    // before it: undo and redo read them from there. kPushesInB: more than fit here (the flip
+    // algorithm's Start queues every edge), the count is in b. Read it with pushCount(op).
     std::uint8_t pushes = 0;
     std::int32_t vertex = kNone;  // input index of the point being inserted
     std::int32_t a = kNone;       // see OpType
@@ -114,6 +116,11 @@ struct Op {
     // ops back that Place op is.
     std::uint32_t control = 0;
 };
+
+inline constexpr std::uint8_t kPushesInB = 255;
+inline std::size_t pushCount(const Op& op) {
+    return op.pushes == kPushesInB ? static_cast<std::size_t>(op.b) : op.pushes;
+}
 
 // Ops whose control state before cannot be derived from an earlier op's (see Op::control).
 inline bool hasControlSnapshot(OpType t) {
@@ -203,6 +210,21 @@ public:
     // std::domain_error when super mode cannot build a finite super-triangle.
     Inserter(std::vector<Vec2> points, const InsertOptions& options = {},
              std::unique_ptr<Locator> locator = nullptr);
+    // Lawson's flip algorithm from a given triangulation instead of insertion: Start puts the
+    // triangles `V` with their opposites `O` (a valid triangulation of `points`, as checkMesh
+    // finds it: counter-clockwise, O its own) in the corner table and every interior edge on the
+    // flip stack, one corner each in increasing order; each InCircleTest pops one, each Flip
+    // puts the four edges around the flipped one back (those inside the mesh), and Finalize
+    // ends the run once the stack is empty. Every op is stepped, recorded and undone as in
+    // insertion; no point is located or inserted. The boundary mode is exact (no virtual
+    // triangle is made: the triangulation's outline is its own).
+    struct StartMesh {
+        std::vector<std::int32_t> V, O;
+        bool flip = true;  // false: Start queues no edge (a mesh to show, not to repair)
+    };
+    Inserter(std::vector<Vec2> points, StartMesh start, const InsertOptions& options = {});
+    // True for a run of the flip algorithm from a given mesh.
+    bool repairs() const { return m_repair; }
     ~Inserter();
     Inserter(const Inserter&) = delete;
     Inserter& operator=(const Inserter&) = delete;
@@ -306,6 +328,8 @@ private:
     template <class Rec>
     void flip(Rec& rec, std::int32_t c);
     template <class Rec>
+    void doStartRepair(Rec& rec, Op& op);
+    template <class Rec>
     void keepFirstOccurrence(Rec& rec, std::int32_t existing, std::int32_t v);
 
     void collectDuplicatesWithoutMesh();  // all points collinear: report equal points anyway
@@ -379,6 +403,8 @@ private:
     std::int32_t m_numInput = 0;
     std::vector<std::int32_t> m_order;
     std::vector<Vec2> m_virtualPoints;  // super-triangle vertices or the ghost placeholder
+    bool m_repair = false;              // the flip algorithm from m_start (repairs())
+    StartMesh m_start;
     std::unique_ptr<Locator> m_locator;
     bool m_locatorWantsChanges = false;
     bool m_permuted = false;
