@@ -24,6 +24,7 @@ const SideTab kSideTabs[] = {
     {"ID buffer", ShowIdBuffer, "idbuffer", "ID buffer"},
     {"Statistics", ShowStatistics, "statistics", "Statistics"},
     {"Trace", ShowTraceCompare, "trace-compare", "Student trace"},
+    {"Check", ShowCheck, "check", "Check the mesh"},
 };
 
 // A draggable bar; returns the drag delta in pixels along its axis.

@@ -5,6 +5,8 @@
 #pragma once
 
 #include "core/engine/locator.h"
+#include "core/engine/mesh_diff.h"
+#include "core/engine/triangulation_check.h"
 #include "core/teaching/corner_expr.h"
 #include "core/teaching/trace_diff.h"
 #include "ui/engine.h"
@@ -315,6 +317,26 @@ struct AppState {
         std::size_t studentTrianglesAt = static_cast<std::size_t>(-1);
         std::uint64_t ourTrianglesVersion = ~std::uint64_t{0};
     } traceCompare;
+    // A mesh made elsewhere, opened and checked exactly (check.cpp): its report, and the
+    // problem the user picked. The engine runs Lawson's flip algorithm on it when it is a
+    // triangulation, and only shows it when it is not.
+    struct MeshCheck {
+        bool open = false;
+        std::string path, format;
+        std::vector<std::string> warnings;
+        CheckReport report;  // of the mesh as opened (ids in messages in its numbering)
+        int indexBase = 0;
+        std::uint64_t run = 0;              // the engine run that shows it
+        std::int32_t picked = -1;           // index into report.problems
+        std::vector<std::int32_t> openedV;  // the triangles as opened (the problems' ids)
+        // The edges that differ from the Delaunay triangulation of the same points (at a version).
+        bool showDiff = false;
+        DelaunayDiff diff;
+        std::uint64_t diffVersion = ~std::uint64_t{0};
+        // The check of the mesh at the current step (cached per engine version).
+        CheckReport now;
+        std::uint64_t nowVersion = ~std::uint64_t{0};
+    } meshCheck;
     // A side tab to bring to the front at the next frame, by its id ("predicates", ...); "" none.
     std::string pendingTab;
     // The user's own options (the toolbar's choices; BRIO order until they choose): what a file

@@ -88,6 +88,17 @@ bool Engine::reset(std::vector<Vec2> points, const InsertOptions& options, std::
 
 bool Engine::resetAt(std::vector<Vec2> points, const InsertOptions& options, std::size_t position,
                      std::string& error) {
+    return resetWith(std::move(points), options, position, std::nullopt, error);
+}
+
+bool Engine::resetRepair(std::vector<Vec2> points, Inserter::StartMesh start, bool flips,
+                         std::string& error) {
+    start.flip = flips;
+    return resetWith(std::move(points), m_options, 1, std::move(start), error);
+}
+
+bool Engine::resetWith(std::vector<Vec2> points, const InsertOptions& options, std::size_t position,
+                       std::optional<Inserter::StartMesh> start, std::string& error) {
     std::unique_ptr<Inserter> ins;
     GpuIdBuffer* gl = nullptr;
     try {
@@ -102,7 +113,8 @@ bool Engine::resetAt(std::vector<Vec2> points, const InsertOptions& options, std
             gl = made.get();
             locator = std::move(made);
         }
-        ins = std::make_unique<Inserter>(points, options, std::move(locator));
+        ins = start ? std::make_unique<Inserter>(points, std::move(*start), options)
+                    : std::make_unique<Inserter>(points, options, std::move(locator));
         if (gl) gl->followOrder(*ins);  // before any step: the batched readback reads ahead
     } catch (const std::exception& e) {
         error = e.what();
@@ -129,7 +141,9 @@ bool Engine::resetAt(std::vector<Vec2> points, const InsertOptions& options, std
         seek(position);
         const auto& ops = m_journal->ops();
         const bool whole = !ops.empty() && ops.back().type == OpType::Finalize;
-        m_estimatedOps = whole ? ops.size() : estimateRunOps(m_points, m_ins->order(), m_options);
+        m_estimatedOps = whole              ? ops.size()
+                         : m_ins->repairs() ? 0
+                                            : estimateRunOps(m_points, m_ins->order(), m_options);
     }
     m_rank.assign(m_points.size(), 0);
     const auto& order = m_ins->order();
@@ -253,14 +267,18 @@ std::vector<VertexEdge> Engine::flippedEdges() const {
     const auto& changes = m_journal->changes();
     for (const Op& op : currentInsertion()) {
         if (op.type != OpType::Flip) continue;
-        // The flip writes V[p(a)] = D first (see Inserter::flip): the new edge is P-D.
-        for (std::uint32_t i = 0; i < op.numChanges; ++i) {
+        // The flip writes V[p(a)] = D, then V[p(O[a])] = P (see Inserter::flip): the new edge
+        // is P-D.
+        std::int32_t after[2] = {kNone, kNone};
+        int k = 0;
+        for (std::uint32_t i = 0; i < op.numChanges && k < 2; ++i) {
             const CellChange& ch = changes[op.firstChange + i];
-            if (!ch.isO()) {
-                edges.push_back({op.vertex, ch.after});
-                break;
-            }
+            if (!ch.isO()) after[k++] = ch.after;
         }
+        // The flip algorithm may flip an edge made earlier away again: only its last flip's
+        // edge is sure to be in the mesh.
+        if (m_ins->repairs()) edges.clear();
+        if (k == 2) edges.push_back({after[1], after[0]});
     }
     return edges;
 }
@@ -283,7 +301,7 @@ const std::vector<Engine::PointState>& Engine::pointStates() const {
     const bool hasMesh = m_ins->mesh().numTriangles() > 0;
     for (std::int32_t i = 0; i < n; ++i) {
         PointState& s = m_states[i];
-        if (m_ins->done()) {
+        if (m_ins->done() || m_ins->repairs()) {  // an opened mesh has every point in it
             s = hasMesh ? PointState::Inserted : PointState::Pending;
         } else if (ctl.phase == Phase::Start) {
             s = PointState::Pending;

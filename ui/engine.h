@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <span>
 #include <string>
 #include <utility>
@@ -58,6 +59,13 @@ public:
     // As reset, then replays to `position` (clamped to the end): the same step after an edit.
     bool resetAt(std::vector<Vec2> points, const InsertOptions& options, std::size_t position,
                  std::string& error);
+    // Lawson's flip algorithm from a given triangulation of `points` (Inserter's StartMesh),
+    // stepped like insertion; with `flips` false the mesh is only shown (it is no
+    // triangulation: nothing may be flipped). Restarts at operation 0 and runs to Start.
+    bool resetRepair(std::vector<Vec2> points, Inserter::StartMesh start, bool flips,
+                     std::string& error);
+    // True while the run is the flip algorithm on an opened mesh.
+    bool repairs() const { return m_ins->repairs(); }
 
     // The GL context that the GL ID-buffer locators and the mesh renderer draw on (the window's,
     // or OSMesa headless). Without one, idbuffer-gl is refused with a message. The owner of the
@@ -123,6 +131,8 @@ public:
 
 private:
     void bump() { ++m_version; }
+    bool resetWith(std::vector<Vec2> points, const InsertOptions& options, std::size_t position,
+                   std::optional<Inserter::StartMesh> start, std::string& error);
     // At the op limit with the cursor at the tip: finish in one batch, drop the history.
     void capHistory();
 

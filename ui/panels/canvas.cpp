@@ -975,6 +975,7 @@ void DrawMeshLayers(AppState& st, CanvasCache& cache, const Scene& scene, ImVec2
     if (st.overlays.circumcircles) DrawCircumcircles(scene);
     if (st.overlays.voronoi) DrawVoronoi(scene);
     DrawGhostTriangles(st, scene.dl);
+    DrawCheckOverlay(st, scene.dl);
     DrawOpOverlay(scene);
 }
 

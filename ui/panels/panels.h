@@ -40,7 +40,15 @@ void ShowCornerTable(AppState& state);  // corner_table.cpp: c, t, V, O, n, p, l
 void ShowVertexTable(AppState& state);  // corner_table.cpp: G (vertex coordinates)
 void ShowInspector(AppState& state);    // inspector.cpp: the selected corner's operators
 void ShowMessages(AppState& state);     // messages.cpp: every warning and error
-void ShowHelp(AppState& state);         // help.cpp: F1 overlay with all shortcuts
+// check.cpp: an opened mesh's exact check (problems listed, picked, drawn) and the check of the
+// mesh at the current step.
+void ShowCheck(AppState& state);
+void DrawCheckOverlay(AppState& state, ImDrawList* dl);
+// Opens a mesh file (.ele, .off, .obj, .corners, a corner table or Delaunator JSON), checks
+// it and runs the flip algorithm on it (only shows it when it is no triangulation); on bad
+// input logs one line and changes nothing.
+bool openMeshFile(AppState& state, const std::string& path);
+void ShowHelp(AppState& state);  // help.cpp: F1 overlay with all shortcuts
 // The help's rows: keys, and what they do.
 const std::vector<std::array<const char*, 2>>& helpRows();
 void ShowLesson(AppState& state);  // lesson.cpp: the lesson's text and questions
