@@ -3,6 +3,7 @@
 #include "app/dtlab_common.h"
 
 #include "core/engine/generators.h"
+#include "core/engine/mesh_read.h"
 #include "core/engine/output_files.h"
 #include "core/engine/text_util.h"
 #include "ui/gl/mesh_renderer.h"
@@ -197,6 +198,11 @@ void loadRenderInput(ui::AppState& state, const RenderArgs& args) {
         state.loadPoints(demoPoints(), "built-in demo");
         return;
     }
+    const std::string ext = lowered(std::filesystem::path(args.input).extension().string());
+    if (isMeshPath(args.input) && ext != ".json") {  // checked, then repaired by flips
+        if (!ui::openMeshFile(state, args.input)) fail(state.messages.back().text);
+        return;
+    }
     LoadedPoints loaded = loadPoints(args.input);
     if (!state.loadPoints(std::move(loaded.points), args.input)) fail(state.messages.back().text);
 }
@@ -344,7 +350,7 @@ void addRender(CLI::App& app) {
         ->check(CLI::Range(0, 1000));
     cmd->add_option("--tab", args->tab, "The side tab to show")
         ->check(CLI::IsMember({"corner-table", "vertex-table", "expressions", "predicates",
-                               "idbuffer", "statistics", "trace-compare"}));
+                               "idbuffer", "statistics", "trace-compare", "check"}));
     cmd->add_option("--overlay", args->overlays,
                     "voronoi, circumcircles, triangle-ids, no-corner-ids, no-fill (repeatable)");
     args->engine.add(*cmd);

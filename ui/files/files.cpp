@@ -57,6 +57,17 @@ bool looksLikeJson(const std::string& path) {
     return false;
 }
 
+// A corner table {"G", "V", ...} or Delaunator's {"coords", "triangles", ...}, by the keys in
+// its first 64 KiB (a session has neither pair).
+bool looksLikeMeshJson(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::string head(64 * 1024, '\0');
+    in.read(head.data(), static_cast<std::streamsize>(head.size()));
+    head.resize(static_cast<std::size_t>(in.gcount()));
+    auto has = [&](const char* key) { return head.find(key) != std::string::npos; };
+    return (has("\"coords\"") && has("\"triangles\"")) || (has("\"G\"") && has("\"V\""));
+}
+
 // Runs a writer; a failure becomes one fileError line.
 bool writeFile(AppState& st, const std::string& path,
                const std::function<void(std::ostream&)>& body) {
@@ -107,10 +118,19 @@ bool openFile(AppState& st, const std::string& path) {
                 st.messages.size() > before ? st.messages.back().text : path + ": cannot be read";
     } else if (lowerExtension(path) == ".jsonl") {
         ok = openStudentTrace(st, path);  // it reported its own error
+    } else if (isMeshPath(path) && lowerExtension(path) != ".json") {
+        const std::size_t before = st.messages.size();
+        ok = openMeshFile(st, path);
+        if (!ok)
+            st.files.notice =
+                st.messages.size() > before ? st.messages.back().text : path + ": cannot be read";
     } else if (lowerExtension(path) == ".json" || looksLikeJson(path)) {
+        // A session, or a mesh as JSON (a corner table, Delaunator's output): told apart by
+        // their keys.
         std::string error;
-        ok = loadSession(st, path, error);
-        if (!ok) fileError(st, error + " (nothing was changed)");
+        ok = looksLikeMeshJson(path) ? openMeshFile(st, path) : loadSession(st, path, error);
+        if (!ok && !error.empty()) fileError(st, error + " (nothing was changed)");
+        if (!ok && error.empty()) st.files.notice = st.messages.back().text;
     } else {
         const std::size_t before = st.messages.size();
         ok = loadPointFile(st, path);

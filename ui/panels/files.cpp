@@ -27,9 +27,10 @@ struct DialogInfo {
 const std::vector<DialogInfo>& dialogs() {
     static const std::vector<DialogInfo> kDialogs = {
         {FileState::Dialog::OpenFile,
-         "Open points, a session, a lesson or a student trace",
+         "Open points, a mesh, a session, a lesson or a student trace",
          "",
-         {".node", ".csv", ".xy", ".txt", ".pts", ".json", ".toml", ".jsonl"},
+         {".node", ".csv", ".xy", ".txt", ".pts", ".ele", ".off", ".obj", ".corners", ".json",
+          ".toml", ".jsonl"},
          "Open"},
         {FileState::Dialog::SavePoints,
          "Save the points",
