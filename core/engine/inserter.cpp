@@ -1412,7 +1412,15 @@ const Op* Journal::forward() {
         m_budgetReached = true;
         return nullptr;
     }
+    const PredicateCounters& counters = predicateCounters();
+    const std::uint64_t orient = counters.orientExact, incircle = counters.incircleExact;
+    const std::array<std::uint32_t, 2> before = exactFallbacksAt(m_ops.size());
     m_ins->step(this);
+    while (m_exact.size() < m_ops.size()) {
+        m_exact.push_back(
+            {before[0] + static_cast<std::uint32_t>(counters.orientExact - orient),
+             before[1] + static_cast<std::uint32_t>(counters.incircleExact - incircle)});
+    }
     return &m_ops.back();
 }
 

@@ -413,6 +413,12 @@ public:
     // (i + 1 == position() or i == position() < recorded()), whose mesh the inserter holds;
     // throws std::out_of_range for any other.
     std::vector<RecordedPredicateCall> predicateCallsOf(std::size_t i) const;
+    // Predicate calls the floating-point filter could not decide (predicateCounters()) that
+    // the first `position` ops made as they were recorded: orient2d, incircle.
+    std::array<std::uint32_t, 2> exactFallbacksAt(std::size_t position) const {
+        const std::size_t p = std::min(position, m_exact.size());
+        return p == 0 ? std::array<std::uint32_t, 2>{} : m_exact[p - 1];
+    }
     // Memory the record holds: ops, control snapshots and cell changes (sizes, not capacities).
     std::size_t bytesUsed() const {
         return m_ops.size() * sizeof(Op) + m_controls.size() * sizeof(Control) +
@@ -440,6 +446,8 @@ private:
     std::vector<Op> m_ops;
     std::vector<Control> m_controls;  // snapshots, see Op::control
     std::vector<CellChange> m_changes;
+    // exactFallbacksAt(i + 1) for each op i (8 bytes an op, outside bytesUsed and the budget)
+    std::vector<std::array<std::uint32_t, 2>> m_exact;
     std::size_t m_pos = 0;
     Control m_tip;  // the inserter's control state after the last recorded op
     std::size_t m_budget = kHistoryBudgetBytes;
