@@ -34,6 +34,7 @@ struct LessonState {
     std::optional<InsertOptions> optionsBefore;
     float slideQuestionHeight = 0;  // the slide's question block, as laid out last frame
     float slideTextHeight = 0;      // and the height the stop's text needed
+    float paneHeightWanted = 0;     // the windowed lesson pane's whole content, last frame
     // Progress of every lesson opened, by path (persisted with the settings).
     std::map<std::string, LessonProgress> saved;
     // Where the progress is written as it changes (saveLessonProgressIfChanged); empty: only

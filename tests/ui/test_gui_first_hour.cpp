@@ -58,6 +58,7 @@ void typeKeys(UiHarness& h, const std::string& text) {
     for (char ch : text) {
         const int k = key::letter(ch);
         io.KeysDown[k] = true;
+        dlab::ui::queueKeyPress(k, false, false);
         io.AddInputCharacter(static_cast<unsigned>(ch));
         h.frames(1);
         io.KeysDown[k] = false;
