@@ -468,7 +468,7 @@ TEST(GuiSmall, FirstCaptionSaysStartOnce) {
     const std::string caption = dlab::ui::captionText(h.state());
     EXPECT_EQ(caption.find("Start: start"), std::string::npos) << caption;
     EXPECT_EQ(caption.find("triangle triangle"), std::string::npos) << caption;
-    EXPECT_EQ(caption.rfind("[0] Start: triangle 0 (", 0), 0u) << caption;
+    EXPECT_EQ(caption.rfind("[op 1] Start: triangle 0 (", 0), 0u) << caption;
 }
 
 TEST(GuiSmall, GhostVertexCellShowsWholeAndItsTooltipCoversTheCell) {
