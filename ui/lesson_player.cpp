@@ -193,6 +193,7 @@ void goToStop(AppState& st, std::size_t k) {
     L.typed.clear();
     L.feedback = LessonState::Feedback::None;
     L.showHint = false;
+    L.paneHeightStop = static_cast<std::size_t>(-1);  // the pane measures the new stop afresh
     // The stop's tab in front, or else the first panel it names.
     L.pendingTabSelect = stop.tab.empty();
     st.pendingTab = stop.tab == "none" ? std::string() : stop.tab;

@@ -412,7 +412,9 @@ void ShowLesson(AppState& st) {
     if (stop.figure == "lifting-map") LiftingFigure(st);
     Question(st, stop, k);
     // What the pane needs to show the text and the question whole (app.cpp sizes it).
-    L.paneHeightWanted = header + ImGui::GetCursorPosY() + 2 * ImGui::GetStyle().WindowPadding.y;
+    const float wanted = header + ImGui::GetCursorPosY() + 2 * ImGui::GetStyle().WindowPadding.y;
+    L.paneHeightWanted = L.paneHeightStop == k ? std::max(L.paneHeightWanted, wanted) : wanted;
+    L.paneHeightStop = k;
     ImGui::EndChild();
     RecordItem(st, "lesson-text");
 }
