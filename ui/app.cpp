@@ -165,6 +165,15 @@ void ShowSideTabs(AppState& state, const SideTab* firstWanted, float height) {
     ImGui::EndChild();
 }
 
+// The inspector's height with a corner selected: its title and buttons, the ten rows of its
+// table (c, t, v, n, p, o, l, r, s, u), the vertex's coordinates and the last move.
+float InspectorHeightNeeded() {
+    const ImGuiStyle& style = ImGui::GetStyle();
+    const float row = ImGui::GetTextLineHeight() + 2 * style.CellPadding.y;
+    return ImGui::GetFrameHeightWithSpacing() + 10 * row +
+           2 * ImGui::GetTextLineHeightWithSpacing() + style.ItemSpacing.y;
+}
+
 // Right: the lesson (when one is open), the tables (tabs), the inspector. A lesson stop may
 // name the panels it wants: only those show (lesson_player.h).
 void ShowSideColumn(AppState& state, const Regions& r) {
@@ -176,10 +185,14 @@ void ShowSideColumn(AppState& state, const Regions& r) {
     }
     Layout& L = state.layout;
     const bool showInspector = lessonWantsPanel(state, "inspector");
-    const float inspH =
-        !showInspector ? 0.0f
-        : firstWanted ? std::clamp(L.inspectorHeight * sideH, 80.0f, std::max(80.0f, sideH - 80.0f))
-                      : sideH;
+    // With a corner selected the inspector gets at least the rows it shows (t to u, s and u
+    // included), while the tables above keep 140 pixels: a short window need not scroll it.
+    float inspShare = L.inspectorHeight * sideH;
+    if (state.selection.corner != kNone)
+        inspShare = std::max(inspShare, std::min(InspectorHeightNeeded(), sideH - 140.0f));
+    const float inspH = !showInspector ? 0.0f
+                        : firstWanted ? std::clamp(inspShare, 80.0f, std::max(80.0f, sideH - 80.0f))
+                                      : sideH;
     if (firstWanted) ShowSideTabs(state, firstWanted, showInspector ? sideH - inspH - kBar : sideH);
     state.lessonPlayer.pendingTabSelect = false;
     state.pendingTab.clear();

@@ -7,11 +7,14 @@
 #include "tests/ui/ui_harness.h"
 #include "ui/panels/panels.h"
 #include "ui/platform/keys.h"
+#include "ui/render/drawn_text.h"
 
 #include <gtest/gtest.h>
 #include <imgui.h>
 
+#include <algorithm>
 #include <string>
+#include <vector>
 
 using dlab::OpType;
 using dlab::test::UiHarness;
@@ -206,5 +209,23 @@ TEST(Layout, EverySideTabShowsItsWholeLabelAt1280x720) {
         const auto r = h.rect(title);
         EXPECT_GE(r[2] - r[0] + 0.5f, ImGui::CalcTextSize(label).x + 2 * pad)
             << "the tab " << label << " is cut";
+    }
+}
+
+TEST(Layout, TheInspectorShowsSwingAndUnswingWithoutScrollingAt1280x720) {
+    UiHarness h(1280, 720);
+    auto& st = h.state();
+    for (int i = 0; i < 30; ++i) st.engine.forward();
+    st.select(4);
+    h.frames(3);
+    const std::vector<std::string> lines =
+        dlab::ui::drawnLines(dlab::ui::drawnText(ImGui::GetDrawData()));
+    std::string all;
+    for (const std::string& l : lines) all += l + "\n";
+    for (const char* row : {"c.s", "c.u"}) {
+        EXPECT_TRUE(std::any_of(lines.begin(), lines.end(),
+                                [&](const std::string& l) { return l.rfind(row, 0) == 0; }))
+            << row << " is not on screen:\n"
+            << all;
     }
 }
