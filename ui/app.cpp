@@ -9,23 +9,37 @@
 #include <imgui.h>
 
 #include <algorithm>
+#include <string>
 
 namespace dlab::ui {
 
 namespace {
 
-// Short labels, so that every tab shows whole in a 1600-pixel window; the full title in the
-// tooltip (and as the name tests and lessons find it by).
+// Short labels, so that every tab shows whole in a 1600-pixel window, and shorter ones when the
+// column is narrower (1280 x 720); the full title in the tooltip (and as the name tests and
+// lessons find it by).
 const SideTab kSideTabs[] = {
-    {"Corners", ShowCornerTable, "corner-table", "Corner table"},
-    {"G", ShowVertexTable, "vertex-table", "G (vertices)"},
-    {"Expressions", ShowExpressions, "expressions", "Expressions"},
-    {"Predicates", ShowPredicates, "predicates", "Predicates"},
-    {"ID buffer", ShowIdBuffer, "idbuffer", "ID buffer"},
-    {"Statistics", ShowStatistics, "statistics", "Statistics"},
-    {"Trace", ShowTraceCompare, "trace-compare", "Student trace"},
-    {"Check", ShowCheck, "check", "Check the mesh"},
+    {"Corners", ShowCornerTable, "corner-table", "Corner table", "Corners"},
+    {"G", ShowVertexTable, "vertex-table", "G (vertices)", "G"},
+    {"Expressions", ShowExpressions, "expressions", "Expressions", "Expr"},
+    {"Predicates", ShowPredicates, "predicates", "Predicates", "Pred"},
+    {"ID buffer", ShowIdBuffer, "idbuffer", "ID buffer", "IDs"},
+    {"Statistics", ShowStatistics, "statistics", "Statistics", "Stats"},
+    {"Trace", ShowTraceCompare, "trace-compare", "Student trace", "Trace"},
+    {"Check", ShowCheck, "check", "Check the mesh", "Check"},
 };
+
+// Whether the tabs' labels (those shown) fit the column whole, with the tab list's button.
+bool TabLabelsFit(const AppState& state) {
+    const ImGuiStyle& style = ImGui::GetStyle();
+    float width = ImGui::GetFrameHeight();  // the tab list button
+    for (const SideTab& tab : kSideTabs) {
+        if (tab.id && !lessonWantsPanel(state, tab.id)) continue;
+        width +=
+            ImGui::CalcTextSize(tab.name).x + 2 * style.FramePadding.x + style.ItemInnerSpacing.x;
+    }
+    return width <= ImGui::GetContentRegionAvail().x;
+}
 
 // A draggable bar; returns the drag delta in pixels along its axis.
 float Splitter(const char* id, bool vertical, float thickness, float length) {
@@ -105,7 +119,11 @@ void ShowLeftColumn(AppState& state, const Regions& r) {
 float ShowLessonPane(AppState& state, const Regions& r) {
     if (!state.lessonPlayer.lesson) return r.mainH;
     Layout& L = state.layout;
-    const float lessonH = std::clamp(L.lessonHeight * r.mainH, 120.0f, r.mainH - 60.0f);
+    // The splitter's share, or more when the stop's text and question need it (a short window):
+    // the question is never below the fold while the tables keep a few rows.
+    const float wanted = std::min(state.lessonPlayer.paneHeightWanted, r.mainH - 140.0f);
+    const float lessonH =
+        std::clamp(std::max(L.lessonHeight * r.mainH, wanted), 120.0f, r.mainH - 60.0f);
     ImGui::BeginChild("##lesson", ImVec2(0, lessonH), true);
     ShowLesson(state);
     ImGui::EndChild();
@@ -124,14 +142,18 @@ void ShowSideTabs(AppState& state, const SideTab* firstWanted, float height) {
     if (ImGui::BeginTabBar("##sidetabs", ImGuiTabBarFlags_FittingPolicyScroll |
                                              ImGuiTabBarFlags_TabListPopupButton)) {
         const bool traceOpened = studentTraceSelectTab(state);
+        const bool whole = TabLabelsFit(state);
         for (const SideTab& tab : kSideTabs) {
             if (tab.id && !lessonWantsPanel(state, tab.id)) continue;
             const bool select =
                 (state.lessonPlayer.pendingTabSelect && &tab == firstWanted) ||
                 (traceOpened && tab.id && std::string_view(tab.id) == "trace-compare") ||
                 (tab.id && state.pendingTab == tab.id);
-            const bool open =
-                ImGui::BeginTabItem(tab.name, nullptr, select ? ImGuiTabItemFlags_SetSelected : 0);
+            // One id whichever label shows: the selected tab stays selected across a resize.
+            const std::string label =
+                std::string(whole ? tab.name : tab.shortName) + "###" + tab.title;
+            const bool open = ImGui::BeginTabItem(label.c_str(), nullptr,
+                                                  select ? ImGuiTabItemFlags_SetSelected : 0);
             RecordItem(state, tab.title);
             if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", tab.title);
             if (open) {
@@ -142,6 +164,15 @@ void ShowSideTabs(AppState& state, const SideTab* firstWanted, float height) {
         ImGui::EndTabBar();
     }
     ImGui::EndChild();
+}
+
+// The inspector's height with a corner selected: its title and buttons, the ten rows of its
+// table (c, t, v, n, p, o, l, r, s, u), the vertex's coordinates and the last move.
+float InspectorHeightNeeded() {
+    const ImGuiStyle& style = ImGui::GetStyle();
+    const float row = ImGui::GetTextLineHeight() + 2 * style.CellPadding.y;
+    return ImGui::GetFrameHeightWithSpacing() + 10 * row +
+           2 * ImGui::GetTextLineHeightWithSpacing() + style.ItemSpacing.y;
 }
 
 // Right: the lesson (when one is open), the tables (tabs), the inspector. A lesson stop may
@@ -155,10 +186,14 @@ void ShowSideColumn(AppState& state, const Regions& r) {
     }
     Layout& L = state.layout;
     const bool showInspector = lessonWantsPanel(state, "inspector");
-    const float inspH =
-        !showInspector ? 0.0f
-        : firstWanted ? std::clamp(L.inspectorHeight * sideH, 80.0f, std::max(80.0f, sideH - 80.0f))
-                      : sideH;
+    // With a corner selected the inspector gets at least the rows it shows (t to u, s and u
+    // included), while the tables above keep 140 pixels: a short window need not scroll it.
+    float inspShare = L.inspectorHeight * sideH;
+    if (state.selection.corner != kNone)
+        inspShare = std::max(inspShare, std::min(InspectorHeightNeeded(), sideH - 140.0f));
+    const float inspH = !showInspector ? 0.0f
+                        : firstWanted ? std::clamp(inspShare, 80.0f, std::max(80.0f, sideH - 80.0f))
+                                      : sideH;
     if (firstWanted) ShowSideTabs(state, firstWanted, showInspector ? sideH - inspH - kBar : sideH);
     state.lessonPlayer.pendingTabSelect = false;
     state.pendingTab.clear();
@@ -235,7 +270,86 @@ void RecordItem(AppState& state, const char* name) {
     state.itemRects[name] = {a.x, a.y, b.x, b.y};
 }
 
+namespace {
+
+// Ctrl + a key: undo/redo, quit, save, open; Ctrl + arrows pan the canvas by a tenth of its size.
+void ctrlShortcut(AppState& state, const KeyPress& k) {
+    switch (k.key) {
+        case key::letter('Z'): k.shift ? state.redoEdit() : state.undoEdit(); return;
+        case key::letter('Y'): state.redoEdit(); return;
+        case key::letter('Q'): state.quitRequested = true; return;
+        case key::letter('S'): state.files.dialog = FileState::Dialog::SaveSession; return;
+        case key::letter('O'): state.files.dialog = FileState::Dialog::OpenFile; return;
+        default: break;
+    }
+    View& v = state.view;
+    const double step = 0.1 * std::min(v.size.x, v.size.y) / v.scale;
+    if (k.key == key::kLeft) v.center.x -= step;
+    if (k.key == key::kRight) v.center.x += step;
+    if (k.key == key::kUp) v.center.y += step;
+    if (k.key == key::kDown) v.center.y -= step;
+}
+
+// Stepping: arrows and presentation clickers (Page Up / Page Down); on slides the clickers move
+// between the lesson's stops. True when the key was one of them.
+bool stepShortcut(AppState& state, const KeyPress& k) {
+    Engine& e = state.engine;
+    const bool slides = slideMode(state);
+    if (slides && k.key == key::kPageDown) {
+        goToStop(state, state.lessonPlayer.progress.stop + 1);
+    } else if (slides && k.key == key::kPageUp) {
+        if (state.lessonPlayer.progress.stop > 0)
+            goToStop(state, state.lessonPlayer.progress.stop - 1);
+    } else if (k.key == key::kRight || k.key == key::kPageDown) {
+        state.run.running = false;
+        k.shift ? e.forwardInsertion() : e.forward();
+    } else if (k.key == key::kLeft || k.key == key::kPageUp) {
+        state.run.running = false;
+        k.shift ? e.backInsertion() : e.back();
+    } else if (k.key == key::kHome) {
+        state.run.running = false;
+        e.toStart();
+    } else if (k.key == key::kEnd) {
+        state.run.runToEnd();
+    } else if (k.key == key::kSpace) {
+        state.run.running = !state.run.running;
+    } else {
+        return false;
+    }
+    return true;
+}
+
+// A key without Ctrl: help, screenshot, Esc, stepping, corner operators, view and overlays.
+void plainShortcut(AppState& state, const KeyPress& k) {
+    if (k.key == key::kF1) state.showHelp = !state.showHelp;
+    if (k.key == key::kF12) state.files.screenshotRequested = true;  // serviceCaptures writes it
+    // Esc closes a popup first (the popup does it), then the help, then the selection.
+    if (k.key == key::kEscape && !ImGui::IsPopupOpen("", ImGuiPopupFlags_AnyPopupId)) {
+        if (state.showHelp)
+            state.showHelp = false;
+        else
+            state.select(kNone);
+    }
+    if (stepShortcut(state, k)) return;
+    for (char op : {'n', 'p', 'o', 'l', 'r', 's', 'u'}) {
+        if (k.key == key::letter(op)) state.moveSelection(op);
+    }
+    if (k.key == key::letter('F')) state.fitPending = true;
+    if (k.key == key::letter('V')) state.overlays.voronoi = !state.overlays.voronoi;
+    if (k.key == key::letter('C')) state.overlays.circumcircles = !state.overlays.circumcircles;
+    if (k.key == key::letter('G')) state.snapToGrid = !state.snapToGrid;
+    if (k.key == key::kEqual || k.key == key::kKpAdd)
+        state.view.zoomAt(state.view.origin + state.view.size * 0.5, 1.25);
+    if (k.key == key::kMinus || k.key == key::kKpSubtract)
+        state.view.zoomAt(state.view.origin + state.view.size * 0.5, 0.8);
+}
+
+}  // namespace
+
 void handleShortcuts(AppState& state) {
+    // Every press since the last frame, in order (ui/platform/keys.h): a tap whose release came
+    // before this frame counts as much as a held key, and auto-repeat steps on.
+    const std::vector<KeyPress> presses = takeKeyPresses();
     const ImGuiIO& io = ImGui::GetIO();
     // A text field has the keyboard (or takes it back this frame, after Enter): every key is
     // typing, no shortcut fires.
@@ -246,68 +360,7 @@ void handleShortcuts(AppState& state) {
         return;
     }
     if (io.WantTextInput || ImGui::IsAnyItemActive()) return;
-    auto pressed = [](int k) { return ImGui::IsKeyPressed(k, true); };
-    auto once = [](int k) { return ImGui::IsKeyPressed(k, false); };
-    Engine& e = state.engine;
-    const bool ctrl = io.KeyCtrl, shift = io.KeyShift;
-
-    if (once(key::kF1)) state.showHelp = !state.showHelp;
-    if (once(key::kF12)) state.files.screenshotRequested = true;  // serviceCaptures writes it
-    // Esc closes a popup first (the popup does it), then the help, then the selection.
-    if (once(key::kEscape) && !ImGui::IsPopupOpen("", ImGuiPopupFlags_AnyPopupId)) {
-        if (state.showHelp)
-            state.showHelp = false;
-        else
-            state.select(kNone);
-    }
-    if (ctrl) {
-        if (once(key::letter('Z'))) shift ? state.redoEdit() : state.undoEdit();
-        if (once(key::letter('Y'))) state.redoEdit();
-        if (once(key::letter('Q'))) state.quitRequested = true;
-        if (once(key::letter('S'))) state.files.dialog = FileState::Dialog::SaveSession;
-        if (once(key::letter('O'))) state.files.dialog = FileState::Dialog::OpenFile;
-        // Ctrl + arrows pan the canvas by a tenth of its size.
-        View& v = state.view;
-        const double step = 0.1 * std::min(v.size.x, v.size.y) / v.scale;
-        if (pressed(key::kLeft)) v.center.x -= step;
-        if (pressed(key::kRight)) v.center.x += step;
-        if (pressed(key::kUp)) v.center.y += step;
-        if (pressed(key::kDown)) v.center.y -= step;
-        return;
-    }
-    // Stepping: arrows and presentation clickers (Page Up / Page Down); on slides the clickers
-    // move between the lesson's stops.
-    const bool slides = slideMode(state);
-    if (slides && once(key::kPageDown)) goToStop(state, state.lessonPlayer.progress.stop + 1);
-    if (slides && once(key::kPageUp) && state.lessonPlayer.progress.stop > 0)
-        goToStop(state, state.lessonPlayer.progress.stop - 1);
-    if (pressed(key::kRight) || (!slides && pressed(key::kPageDown))) {
-        state.run.running = false;
-        shift ? e.forwardInsertion() : e.forward();
-    }
-    if (pressed(key::kLeft) || (!slides && pressed(key::kPageUp))) {
-        state.run.running = false;
-        shift ? e.backInsertion() : e.back();
-    }
-    if (once(key::kHome)) {
-        state.run.running = false;
-        e.toStart();
-    }
-    if (once(key::kEnd)) state.run.runToEnd();
-    if (once(key::kSpace)) state.run.running = !state.run.running;
-    // Corner operators on the selection.
-    for (char op : {'n', 'p', 'o', 'l', 'r', 's', 'u'}) {
-        if (pressed(key::letter(op))) state.moveSelection(op);
-    }
-    // View and overlays.
-    if (once(key::letter('F'))) state.fitPending = true;
-    if (once(key::letter('V'))) state.overlays.voronoi = !state.overlays.voronoi;
-    if (once(key::letter('C'))) state.overlays.circumcircles = !state.overlays.circumcircles;
-    if (once(key::letter('G'))) state.snapToGrid = !state.snapToGrid;
-    if (pressed(key::kEqual) || pressed(key::kKpAdd))
-        state.view.zoomAt(state.view.origin + state.view.size * 0.5, 1.25);
-    if (pressed(key::kMinus) || pressed(key::kKpSubtract))
-        state.view.zoomAt(state.view.origin + state.view.size * 0.5, 0.8);
+    for (const KeyPress& k : presses) k.ctrl ? ctrlShortcut(state, k) : plainShortcut(state, k);
 }
 
 }  // namespace dlab::ui

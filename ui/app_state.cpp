@@ -117,17 +117,54 @@ bool swapPoints(Engine& engine, std::vector<std::vector<Vec2>>& from,
     return true;
 }
 
+// What an edit of the points did, in a message's words: "point 7 removed (12 -> 11 points)",
+// "point 3 moved", "2 points added (10 -> 12 points)".
+std::string editText(const std::vector<Vec2>& before, const std::vector<Vec2>& after) {
+    const std::size_t n = std::min(before.size(), after.size());
+    std::size_t changed = 0, first = n;
+    for (std::size_t i = 0; i < n; ++i) {
+        if (before[i].x != after[i].x || before[i].y != after[i].y) {
+            ++changed;
+            first = std::min(first, i);
+        }
+    }
+    const std::string counts =
+        " (" + std::to_string(before.size()) + " -> " + std::to_string(after.size()) + " points)";
+    if (after.size() != before.size()) {
+        const bool added = after.size() > before.size();
+        const std::size_t k = added ? after.size() - before.size() : before.size() - after.size();
+        const std::string verb = added ? " added" : " removed";
+        // One point at the end, or one whose place the rest moved up into.
+        if (k == 1) return "point " + std::to_string(first < n ? first : n) + verb + counts;
+        return std::to_string(k) + " points" + verb + counts;
+    }
+    if (changed == 1) return "point " + std::to_string(first) + " moved";
+    return std::to_string(changed) + " points changed";
+}
+
 }  // namespace
 
 bool AppState::undoEdit() {
+    if (undoPoints.empty()) {
+        log(Message::Level::Info, "nothing to undo: no edit of the points");
+        return false;
+    }
+    const std::string what = editText(undoPoints.back(), engine.points());
     if (!swapPoints(engine, undoPoints, redoPoints)) return false;
     selection = {};
+    log(Message::Level::Info, "undone: " + what);
     return true;
 }
 
 bool AppState::redoEdit() {
+    if (redoPoints.empty()) {
+        log(Message::Level::Info, "nothing to redo: no edit of the points");
+        return false;
+    }
+    const std::string what = editText(engine.points(), redoPoints.back());
     if (!swapPoints(engine, redoPoints, undoPoints)) return false;
     selection = {};
+    log(Message::Level::Info, "redone: " + what);
     return true;
 }
 

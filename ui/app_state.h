@@ -108,6 +108,16 @@ struct RunControl {
     double lastAdvanceMs = -1;     // when advanceRun last ran (steady clock ms), -1: not yet
     std::string stopReason;        // why the last run stopped ("end", "breakpoint: next flip", ...)
     std::size_t stopPosition = 0;  // where it stopped (the caption shows the reason only there)
+    std::uint64_t stopRun = 0;     // in which run (Engine::run())
+    void stop(std::string reason, std::size_t position, std::uint64_t engineRun) {
+        stopReason = std::move(reason);
+        stopPosition = position;
+        stopRun = engineRun;
+    }
+    // The reason belongs to where the run stopped: moving away (a step, a restart) drops it.
+    void clearStaleStop(std::size_t position, std::uint64_t engineRun) {
+        if (position != stopPosition || engineRun != stopRun) stopReason.clear();
+    }
 };
 
 // What the last frame cost (the statistics panel and `dtlab render --bench-frames` show it).

@@ -1,5 +1,6 @@
 // The GUI's run: restart on new points or options, step, and derive what the canvas highlights.
 #include "ui/engine.h"
+#include "core/engine/predicates.h"
 
 #include "ui/render/renderer.h"
 
@@ -128,8 +129,9 @@ bool Engine::resetWith(std::vector<Vec2> points, const InsertOptions& options, s
     m_options = options;
     m_batchReason.clear();
     m_estimatedOps = 0;
+    m_batchExact = {};
     if (m_points.size() > kHistoryLimit) {
-        m_ins->run();
+        finishInBatch();
         m_batchReason = "more than " + std::to_string(kHistoryLimit) +
                         " points: triangulated in one batch, stepping is off";
     } else {
@@ -157,7 +159,7 @@ void Engine::capHistory() {
         m_journal->position() < m_journal->recorded() || m_ins->done()) {
         return;
     }
-    m_ins->run();
+    finishInBatch();
     m_journal.reset();
     m_batchReason = "the history reached " + std::to_string(m_opLimit) +
                     " operations: the run was finished in one batch and stepping is off (BRIO "
@@ -166,9 +168,28 @@ void Engine::capHistory() {
     bump();
 }
 
+void Engine::finishInBatch() {
+    const PredicateCounters& c = predicateCounters();
+    const std::uint64_t orient = c.orientExact, incircle = c.incircleExact;
+    m_batchExact = {};
+    if (m_journal) {
+        const auto done = m_journal->exactFallbacksAt(m_journal->position());
+        m_batchExact = {done[0], done[1]};
+    }
+    m_ins->run();
+    m_batchExact[0] += c.orientExact - orient;
+    m_batchExact[1] += c.incircleExact - incircle;
+}
+
+std::array<std::uint64_t, 2> Engine::exactFallbacks() const {
+    if (!m_journal) return m_batchExact;
+    const auto at = m_journal->exactFallbacksAt(m_journal->position());
+    return {at[0], at[1]};
+}
+
 void Engine::runWithoutHistory() {
     if (!m_journal) return;
-    m_ins->run();
+    finishInBatch();
     m_journal.reset();
     m_estimatedOps = 0;
     m_batchReason =

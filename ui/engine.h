@@ -7,6 +7,7 @@
 #include "core/teaching/breakpoint.h"
 
 #include <algorithm>
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -107,6 +108,9 @@ public:
     // Whether the breakpoint holds at the current position (false in batch mode).
     bool hits(const Breakpoint& bp) const;
     std::size_t insertionsDone() const;
+    // Predicate calls past the floating-point filter (orient2d, incircle) that this run made up
+    // to the current position; in batch mode, the whole run's.
+    std::array<std::uint64_t, 2> exactFallbacks() const;
 
     // ---- Derived from the ops of the insertion in progress ------------------------------------
     // Ops from the first op of the current insertion up to the current position (empty between
@@ -135,6 +139,8 @@ private:
                    std::optional<Inserter::StartMesh> start, std::string& error);
     // At the op limit with the cursor at the tip: finish in one batch, drop the history.
     void capHistory();
+    // Runs the rest of the run in one batch, counting its exact fallbacks into m_batchExact.
+    void finishInBatch();
 
     std::vector<Vec2> m_points;
     InsertOptions m_options;
@@ -151,6 +157,7 @@ private:
     std::string m_batchReason;
     std::size_t m_opLimit = kOpLimit;
     std::size_t m_estimatedOps = 0;
+    std::array<std::uint64_t, 2> m_batchExact{};  // exactFallbacks() in batch mode
 };
 
 // The operations a recorded run of these points in this order (input ids in insertion order)

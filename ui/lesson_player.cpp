@@ -61,6 +61,28 @@ void applyView(AppState& st, const LessonStop& stop) {
     st.fitPending = false;
 }
 
+// Stop k's overlays, the same however it is reached (paged to, resumed, jumped to): exactly
+// those the last stop up to k names (a stop without a list keeps the one before it), or the
+// user's from before the lesson when no stop so far names any.
+void applyStopOverlays(AppState& st, std::size_t k) {
+    const LessonState& L = st.lessonPlayer;
+    std::size_t named = k + 1;
+    while (named > 0 && L.lesson->stops[named - 1].overlays.empty()) --named;
+    if (named == 0) {
+        if (L.userOverlays) st.overlays = *L.userOverlays;
+        return;
+    }
+    Overlays& o = st.overlays;
+    for (bool* b :
+         {&o.fill, &o.vertexIds, &o.cornerIds, &o.triangleIds, &o.walk, &o.flipQueue, &o.flipped,
+          &o.circumcircles, &o.voronoi, &o.pendingPoints, &o.virtualTriangles}) {
+        *b = false;
+    }
+    for (const std::string& name : L.lesson->stops[named - 1].overlays) {
+        if (bool* b = overlaySwitch(o, name)) *b = true;
+    }
+}
+
 void saveProgress(AppState& st) {
     LessonState& L = st.lessonPlayer;
     if (!L.lesson) return;
@@ -164,24 +186,14 @@ void goToStop(AppState& st, std::size_t k) {
     st.engine.seek(at.position);
     st.select(at.selected);
     if (at.selected != kNone) st.selection.jumpToCorner = at.selected;
-    if (!stop.overlays.empty()) {
-        // A stop that names overlays shows exactly those.
-        Overlays& o = st.overlays;
-        for (bool* b :
-             {&o.fill, &o.vertexIds, &o.cornerIds, &o.triangleIds, &o.walk, &o.flipQueue,
-              &o.flipped, &o.circumcircles, &o.voronoi, &o.pendingPoints, &o.virtualTriangles}) {
-            *b = false;
-        }
-        for (const std::string& name : stop.overlays) {
-            if (bool* b = overlaySwitch(o, name)) *b = true;
-        }
-    }
+    applyStopOverlays(st, k);
     applyView(st, stop);
     L.progress.stop = k;
     L.progress.furthest = std::max(L.progress.furthest, k);
     L.typed.clear();
     L.feedback = LessonState::Feedback::None;
     L.showHint = false;
+    L.paneHeightStop = static_cast<std::size_t>(-1);  // the pane measures the new stop afresh
     // The stop's tab in front, or else the first panel it names.
     L.pendingTabSelect = stop.tab.empty();
     st.pendingTab = stop.tab == "none" ? std::string() : stop.tab;

@@ -34,6 +34,11 @@ struct LessonState {
     std::optional<InsertOptions> optionsBefore;
     float slideQuestionHeight = 0;  // the slide's question block, as laid out last frame
     float slideTextHeight = 0;      // and the height the stop's text needed
+    // The windowed lesson pane's whole content at this stop: the most it took in any frame since
+    // the stop was shown (a scrollbar that comes and goes changes the wrapping: never shrinking
+    // keeps the layout still).
+    float paneHeightWanted = 0;
+    std::size_t paneHeightStop = static_cast<std::size_t>(-1);
     // Progress of every lesson opened, by path (persisted with the settings).
     std::map<std::string, LessonProgress> saved;
     // Where the progress is written as it changes (saveLessonProgressIfChanged); empty: only

@@ -1456,7 +1456,15 @@ const Op* Journal::forward() {
         m_budgetReached = true;
         return nullptr;
     }
+    const PredicateCounters& counters = predicateCounters();
+    const std::uint64_t orient = counters.orientExact, incircle = counters.incircleExact;
+    const std::array<std::uint32_t, 2> before = exactFallbacksAt(m_ops.size());
     m_ins->step(this);
+    while (m_exact.size() < m_ops.size()) {
+        m_exact.push_back(
+            {before[0] + static_cast<std::uint32_t>(counters.orientExact - orient),
+             before[1] + static_cast<std::uint32_t>(counters.incircleExact - incircle)});
+    }
     return &m_ops.back();
 }
 
@@ -1471,8 +1479,9 @@ bool Journal::fitsBudget() const {
     const std::size_t controls = grown(m_controls.size(), m_controls.capacity(), 1);
     const std::size_t changes = grown(m_changes.size(), m_changes.capacity(), kChangesPerOpAtMost);
     const std::size_t pushes = grown(m_pushes.size(), m_pushes.capacity(), 4);
+    const std::size_t exact = grown(m_exact.size(), m_exact.capacity(), 1);
     return ops * sizeof(Op) + controls * sizeof(Control) + changes * sizeof(CellChange) +
-               pushes * sizeof(std::int32_t) <=
+               pushes * sizeof(std::int32_t) + exact * sizeof(m_exact[0]) <=
            m_budget;
 }
 

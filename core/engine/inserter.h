@@ -434,6 +434,7 @@ public:
         m_ops.reserve(expectedOps);
         m_changes.reserve(expectedChanges);
         m_pushes.reserve(expectedOps / 2);  // BRIO: ~9 pushes a point in ~18 ops
+        m_exact.reserve(expectedOps);
     }
     // Forward one op: replays a recorded op after an undo, else asks the inserter for a new one.
     // Returns nullptr at the end.
@@ -453,10 +454,17 @@ public:
     // (i + 1 == position() or i == position() < recorded()), whose mesh the inserter holds;
     // throws std::out_of_range for any other.
     std::vector<RecordedPredicateCall> predicateCallsOf(std::size_t i) const;
+    // Predicate calls the floating-point filter could not decide (predicateCounters()) that
+    // the first `position` ops made as they were recorded: orient2d, incircle.
+    std::array<std::uint32_t, 2> exactFallbacksAt(std::size_t position) const {
+        const std::size_t p = std::min(position, m_exact.size());
+        return p == 0 ? std::array<std::uint32_t, 2>{} : m_exact[p - 1];
+    }
     // Memory the record holds: ops, control snapshots and cell changes (sizes, not capacities).
     std::size_t bytesUsed() const {
         return m_ops.size() * sizeof(Op) + m_controls.size() * sizeof(Control) +
-               m_changes.size() * sizeof(CellChange) + m_pushes.size() * sizeof(std::int32_t);
+               m_changes.size() * sizeof(CellChange) + m_pushes.size() * sizeof(std::int32_t) +
+               m_exact.size() * sizeof(m_exact[0]);
     }
     std::size_t controlSnapshots() const { return m_controls.size(); }
     // The history's memory budget (bytes of reserved ops, control snapshots and cell changes),
@@ -467,7 +475,8 @@ public:
     std::size_t memoryBytes() const {
         return m_ops.capacity() * sizeof(Op) + m_controls.capacity() * sizeof(Control) +
                m_changes.capacity() * sizeof(CellChange) +
-               m_pushes.capacity() * sizeof(std::int32_t);
+               m_pushes.capacity() * sizeof(std::int32_t) +
+               m_exact.capacity() * sizeof(m_exact[0]);
     }
     bool budgetReached() const { return m_budgetReached; }
 
@@ -486,6 +495,8 @@ private:
     std::vector<Control> m_controls;  // snapshots, see Op::control
     std::vector<CellChange> m_changes;
     std::vector<std::int32_t> m_pushes;
+    // exactFallbacksAt(i + 1) for each op i
+    std::vector<std::array<std::uint32_t, 2>> m_exact;
     std::size_t m_pos = 0;
     std::size_t m_pushEnd = 0;  // pushes of the ops before m_pos
     Control m_tip;              // the inserter's control state after the last recorded op

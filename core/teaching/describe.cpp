@@ -24,8 +24,40 @@ std::string triName(const Inserter& ins, std::int32_t t) {
            vname(ins, V[3 * t + 1]) + ", " + vname(ins, V[3 * t + 2]) + ")";
 }
 
+// Exact mode while the run is on: the ghost vertex is no point, so an edge to it is named by
+// its real end ("the ghost edge at 3"), and a ghost triangle by its hull edge.
+bool ghostMode(const Inserter& ins) {
+    return ins.options().boundary == Boundary::Exact && !ins.done();
+}
+
 std::string edgeName(const Inserter& ins, std::int32_t a, std::int32_t b) {
-    return vname(ins, a) + "-" + vname(ins, b);
+    if (ghostMode(ins) && ins.isVirtual(a) != ins.isVirtual(b))
+        return "the ghost edge at " + vname(ins, ins.isVirtual(a) ? b : a);
+    return "edge " + vname(ins, a) + "-" + vname(ins, b);
+}
+
+bool isGhostTriangle(const Inserter& ins, std::int32_t t) {
+    return ghostMode(ins) && t >= 0 && t < ins.mesh().numTriangles() && ins.isVirtualTriangle(t);
+}
+
+// "hull edge 4-3" of ghost triangle t: its two real vertices, in the triangle's order.
+std::string hullEdgeOf(const Inserter& ins, std::int32_t t) {
+    const auto& V = ins.mesh().V;
+    for (int k = 0; k < 3; ++k) {
+        if (ins.isVirtual(V[3 * t + k]))
+            return "hull edge " + vname(ins, V[3 * t + (k + 1) % 3]) + "-" +
+                   vname(ins, V[3 * t + (k + 2) % 3]);
+    }
+    return "the hull";
+}
+
+// The question of an in-circle test against triangle t: a ghost triangle's "circle" is the
+// open half-plane beyond its hull edge.
+std::string inCircleQuestion(const Inserter& ins, const std::string& p, std::int32_t t) {
+    if (isGhostTriangle(ins, t))
+        return "is " + p + " beyond " + hullEdgeOf(ins, t) + " (ghost triangle " +
+               std::to_string(t) + ")? ";
+    return "is " + p + " inside the circle of triangle " + std::to_string(t) + "? ";
 }
 
 }  // namespace
@@ -58,24 +90,28 @@ std::string describe(const Op& op, const Inserter& ins) {
                    " (corners " + std::to_string(3 * op.a) + ".." + std::to_string(3 * op.a + 2) +
                    " reused, triangles " + std::to_string(op.trianglesBefore) + " and " +
                    std::to_string(op.trianglesBefore + 1) + " appended)";
-        case OpType::SplitEdge:
-            return op.b == kNone ? "split the boundary edge opposite corner " +
-                                       std::to_string(op.a) + " at " + p + " (1 -> 2)"
-                                 : "split the edge opposite corner " + std::to_string(op.a) +
-                                       " at " + p + " (2 -> 4)";
+        case OpType::SplitEdge: {
+            const std::string edge =
+                "the edge opposite corner " + std::to_string(op.a) + " at " + p;
+            if (op.b == kNone)
+                return "split the boundary " + edge.substr(4) + " (1 -> 2 triangles)";
+            // A hull edge in exact mode: one real triangle and its ghost become two of each.
+            if (isGhostTriangle(ins, tri(op.a)) || isGhostTriangle(ins, tri(op.b)))
+                return "split the hull " + edge.substr(4) +
+                       " (1 triangle -> 2, its ghost triangle -> 2 ghost triangles)";
+            return "split " + edge + " (2 -> 4 triangles)";
+        }
         case OpType::InCircleTest: {
             const std::int32_t a = V[next(op.a)], b = V[prev(op.a)];
-            if (op.b == kNone)
-                return "edge " + edgeName(ins, a, b) + " is on the boundary: nothing to test";
-            const std::string q =
-                "is " + p + " inside the circle of triangle " + std::to_string(tri(op.b)) + "? ";
-            if (op.sign > 0) return q + "yes: edge " + edgeName(ins, a, b) + " must flip";
-            if (op.sign == 0)
-                return q + "on it (cocircular): edge " + edgeName(ins, a, b) + " stays";
-            return q + "no: edge " + edgeName(ins, a, b) + " is Delaunay";
+            const std::string edge = edgeName(ins, a, b);
+            if (op.b == kNone) return edge + " is on the boundary: nothing to test";
+            const std::string q = inCircleQuestion(ins, p, tri(op.b));
+            if (op.sign > 0) return q + "yes: " + edge + " must flip";
+            if (op.sign == 0) return q + "on it (cocircular): " + edge + " stays";
+            return q + "no: " + edge + " is Delaunay";
         }
         case OpType::Flip:
-            return "flip edge " + edgeName(ins, V[next(op.a)], V[next(op.b)]) + " to " +
+            return "flip " + edgeName(ins, V[next(op.a)], V[next(op.b)]) + " to " +
                    edgeName(ins, V[op.a], V[op.b]);
         case OpType::SkipDuplicate:
             return p + " duplicates vertex " + vname(ins, op.b) + ": skipped (vertex " +

@@ -1654,7 +1654,8 @@ StopState stopStateAt(const Lesson& lesson, std::size_t k, Inserter& ins, Journa
     state.selected = selected;
     if (const Op* op = journal.current()) {
         state.caption = describe(*op, ins);
-        state.banner = "[" + std::to_string(journal.position() - 1) + "] " + toString(op->type) +
+        // "[op N]": the N-th operation done, as the GUI's caption and timeline number it.
+        state.banner = "[op " + std::to_string(journal.position()) + "] " + toString(op->type) +
                        ": " + state.caption;
     }
     if (!s.question.empty()) {

@@ -189,7 +189,7 @@ struct StopState {
     std::int32_t selected = kNone;  // the selected corner there
     std::optional<Answer> answer;   // when the stop has a question
     std::string caption;            // describe() of the last op ("" at position 0)
-    std::string banner;             // the GUI's operation banner: "[N] Type: caption"
+    std::string banner;             // the GUI's operation banner: "[op N] Type: caption"
     // The stop's text, question and hint with every {{value}} replaced by the engine's value.
     std::string text, question, hint;
 };

@@ -319,7 +319,7 @@ std::vector<LessonError> lessonProblems(const Lesson& lesson, const LessonPlan& 
                                  ") already appears in the stop's text: say it after the "
                                  "question, or ask something the text does not tell");
         }
-        // The banner without its "[N] " operation counter: the caption and the op's type.
+        // The banner without its "[op N] " operation counter: the caption and the op's type.
         const std::size_t close = st.banner.find("] ");
         const std::string banner =
             close == std::string::npos ? st.banner : st.banner.substr(close + 2);

@@ -58,6 +58,7 @@ void typeKeys(UiHarness& h, const std::string& text) {
     for (char ch : text) {
         const int k = key::letter(ch);
         io.KeysDown[k] = true;
+        dlab::ui::queueKeyPress(k, false, false);
         io.AddInputCharacter(static_cast<unsigned>(ch));
         h.frames(1);
         io.KeysDown[k] = false;
@@ -467,7 +468,7 @@ TEST(GuiSmall, FirstCaptionSaysStartOnce) {
     const std::string caption = dlab::ui::captionText(h.state());
     EXPECT_EQ(caption.find("Start: start"), std::string::npos) << caption;
     EXPECT_EQ(caption.find("triangle triangle"), std::string::npos) << caption;
-    EXPECT_EQ(caption.rfind("[0] Start: triangle 0 (", 0), 0u) << caption;
+    EXPECT_EQ(caption.rfind("[op 1] Start: triangle 0 (", 0), 0u) << caption;
 }
 
 TEST(GuiSmall, GhostVertexCellShowsWholeAndItsTooltipCoversTheCell) {

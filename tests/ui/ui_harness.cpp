@@ -3,6 +3,7 @@
 #include "tests/ui/ui_harness.h"
 
 #include "core/engine/generators.h"
+#include "ui/platform/keys.h"
 
 #include <gtest/gtest.h>
 #include <imgui.h>
@@ -71,6 +72,7 @@ void UiHarness::press(int key, bool shift, bool ctrl) {
     io.KeyShift = shift;
     io.KeyCtrl = ctrl;
     io.KeysDown[key] = true;
+    ui::queueKeyPress(key, shift, ctrl);  // as the window's key callback does
     frames(1);
     io.KeysDown[key] = false;
     io.KeyShift = io.KeyCtrl = false;

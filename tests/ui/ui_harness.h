@@ -1,6 +1,7 @@
 // A headless instance of the whole GUI driven with synthetic input, as a user would:
 // ImGui 1.86 has no input-event API, so the harness sets io.MousePos, io.MouseDown[],
-// io.MouseWheel and io.KeysDown[] (GLFW key codes, as in the real window) between frames.
+// io.MouseWheel and io.KeysDown[] (GLFW key codes, as in the real window) between frames, and
+// queues each key press for the shortcuts as the window's key callback does (ui/platform/keys.h).
 #pragma once
 
 #include "ui/gui.h"

@@ -149,8 +149,8 @@ int checkAll(AppState& st, const std::vector<std::int32_t>* corners, WatchReport
 std::string opName(const Engine& e) {
     const Op* op = e.current();
     if (!op) return "before the first operation";
-    return "op " + std::to_string(e.position() - 1) + " (" + toString(op->type) + ": " +
-           describe(*op, e.inserter()) + ")";
+    return opLabel(e.position()) + " (" + toString(op->type) + ": " + describe(*op, e.inserter()) +
+           ")";
 }
 
 void reportFailure(AppState& st, const WatchEntry& w, const WatchReport& rep, bool runMoved) {
@@ -163,9 +163,9 @@ void reportFailure(AppState& st, const WatchEntry& w, const WatchReport& rep, bo
     }
     if ((runMoved || st.run.running) && st.expressions.pauseOnFailure) {
         st.run.running = false;
-        st.run.stopReason = "watch " + w.text + " fails" +
-                            (rep.corner != kNone ? " at c = " + std::to_string(rep.corner) : "");
-        st.run.stopPosition = st.engine.position();
+        st.run.stop("watch " + w.text + " fails" +
+                        (rep.corner != kNone ? " at c = " + std::to_string(rep.corner) : ""),
+                    st.engine.position(), st.engine.run());
     }
 }
 

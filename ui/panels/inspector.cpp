@@ -86,16 +86,27 @@ void ShowCornerValues(const Mesh& m, std::int32_t c) {
 void ShowInspector(AppState& st) {
     const Mesh& m = st.engine.mesh();
     const std::int32_t c = st.selection.corner;
+    const char* hint = "click a corner on the canvas or a table row; N P O L R S U move it";
+    ImGui::AlignTextToFramePadding();
     ImGui::TextUnformatted("Corner inspector");
-    ImGui::SameLine();
-    ImGui::TextDisabled("(click a corner on the canvas or a table row; keys N P O L R S U move)");
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", hint);
     if (c == kNone || c >= m.numCorners()) {
+        ImGui::SameLine();
+        ImGui::PushTextWrapPos(0);  // a narrow column wraps the hint instead of cutting it
+        ImGui::TextDisabled("(%s)", hint);
+        ImGui::PopTextWrapPos();
         ImGui::TextWrapped(
             "No corner selected. A corner is a triangle seen from one of its vertices: triangle t "
             "owns "
             "corners 3t, 3t+1 and 3t+2, counter-clockwise.");
         return;
     }
+    // The operator buttons beside the title when they fit: a short column keeps its rows for
+    // the values (s and u included); the hint is the title's tooltip.
+    const ImGuiStyle& style = ImGui::GetStyle();
+    const float buttons = 7 * (ImGui::GetFrameHeight() * 1.4f + style.ItemSpacing.x);
+    ImGui::SameLine();
+    if (ImGui::GetContentRegionAvail().x < buttons) ImGui::NewLine();
     ShowOperatorButtons(st);
     ShowCornerValues(m, c);
     const Vec2 g = m.G[m.V[c]];

@@ -169,7 +169,7 @@ void SlideHeader(AppState& st, std::size_t k, std::size_t n) {
     ImGui::PopFont();
     const Engine& e = st.engine;
     if (const Op* op = e.current()) {
-        ImGui::TextWrapped("[%zu] %s: %s", e.position() - 1, toString(op->type),
+        ImGui::TextWrapped("%s %s: %s", opLabel(e.position()).c_str(), toString(op->type),
                            describe(*op, e.inserter()).c_str());
     } else {
         ImGui::TextWrapped("%zu points, before the first operation", e.points().size());
@@ -404,12 +404,17 @@ void ShowLesson(AppState& st) {
     if (!StopButtons(st, k, n)) return;  // closed: nothing of the lesson is read after this
     ProgressBoxes(L, k, n);
     ImGui::Separator();
+    const float header = ImGui::GetCursorPosY();
     ImGui::BeginChild("##lessontext", ImVec2(0, 0), false);
     const LessonStop& stop = lesson.stops[k];
     // The stop's words with their {{values}} as the engine computed them at the stop.
     RichText(L.plan.stops[k].text);
     if (stop.figure == "lifting-map") LiftingFigure(st);
     Question(st, stop, k);
+    // What the pane needs to show the text and the question whole (app.cpp sizes it).
+    const float wanted = header + ImGui::GetCursorPosY() + 2 * ImGui::GetStyle().WindowPadding.y;
+    L.paneHeightWanted = L.paneHeightStop == k ? std::max(L.paneHeightWanted, wanted) : wanted;
+    L.paneHeightStop = k;
     ImGui::EndChild();
     RecordItem(st, "lesson-text");
 }

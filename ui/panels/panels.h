@@ -24,7 +24,10 @@ inline ImVec2 toIm(glm::dvec2 v) {
 
 void ShowMenuBar(AppState& state);  // menu.cpp: File, View, Run, Generate, Help
 void ShowToolbar(AppState& state);  // toolbar.cpp: stepping, run/pause, speed, modes
-void ShowCaption(AppState& state);  // toolbar.cpp: "[17/245] edge 4-9 is Delaunay"
+void ShowCaption(AppState& state);  // toolbar.cpp: "[op 17] InCircleTest: ... is Delaunay"
+// "[op 17]": the one numbering of operations the GUI shows (caption, lesson banner, messages,
+// stops): op N is the N-th operation done, position N of the timeline ("op 17 of 245").
+inline std::string opLabel(std::size_t position) { return "[op " + std::to_string(position) + "]"; }
 // The caption's text: the current operation, why stepping is off (batch), or how to start.
 std::string captionText(const AppState& state);
 void ShowTimeline(AppState& state);  // toolbar.cpp: scrubber over all operations
@@ -164,7 +167,8 @@ struct SideTab {
     void (*show)(AppState&);
     const char* id =
         nullptr;  // the panel's name in lesson files (core/teaching/lesson.h kPanelNames)
-    const char* title = nullptr;  // the full name: the tooltip, and itemRects' key
+    const char* title = nullptr;      // the full name: the tooltip, and itemRects' key
+    const char* shortName = nullptr;  // the label when the labels do not all fit (1280 x 720)
 };
 
 }  // namespace dlab::ui

@@ -384,13 +384,13 @@ void CountsTable(AppState& st) {
     CountRow("in-circle tests", num(t.tests));
     if (!batch)
         CountRow("splits", num(c.splits) + " in triangles, " + num(c.edgeSplits) + " on edges");
-    const PredicateCounters& pc = predicateCounters();
-    CountRow("exact fallbacks", num(static_cast<std::int64_t>(pc.orientExact)) + " orient2d, " +
-                                    num(static_cast<std::int64_t>(pc.incircleExact)) + " incircle");
+    const std::array<std::uint64_t, 2> exact = e.exactFallbacks();
+    CountRow("exact fallbacks", num(static_cast<std::int64_t>(exact[0])) + " orient2d, " +
+                                    num(static_cast<std::int64_t>(exact[1])) + " incircle");
     if (ImGui::IsItemHovered())
         ImGui::SetTooltip(
-            "Predicate calls the floating-point filter could not decide, since the program "
-            "started");
+            "Predicate calls the floating-point filter could not decide, made by this run's "
+            "operations up to the current one");
     ImGui::EndTable();
 }
 

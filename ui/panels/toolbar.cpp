@@ -225,11 +225,13 @@ void ShowStepControls(AppState& state) {
         run.running = false;
         e.forwardInsertion();
     }
-    if (ToolButton(state, ">|", "Run to the end at full speed (End)", canStep && !atEnd)) {
+    if (ToolButton(state, ">|", "Run to the end at full speed, past every breakpoint (End)",
+                   canStep && !atEnd)) {
         run.runToEnd();
     }
     if (ToolButton(state, run.running ? "Pause###run" : "Run###run",
-                   "Run or pause the animation (Space)", canStep && (run.running || !atEnd))) {
+                   "Run or pause the animation; it stops at the breakpoints (Space)",
+                   canStep && (run.running || !atEnd))) {
         run.running = !run.running;
     }
     SameLineOrWrap(Scaled(150));
@@ -286,8 +288,10 @@ void ShowToolbar(AppState& state) {
 
 namespace {
 
+// "[op 28] Flip: ": op N is the N-th operation done, as on the timeline ("op 28 of 120") and in
+// breakpoints ("op:28").
 std::string opPrefix(const Engine& e, const Op& op) {
-    return "[" + std::to_string(e.position() - 1) + "] " + toString(op.type) + ": ";
+    return opLabel(e.position()) + " " + toString(op.type) + ": ";
 }
 
 }  // namespace
@@ -331,7 +335,7 @@ void ShowCaption(AppState& state) {
     RecordItem(state, "caption");
     ImGui::PopFont();
     if (!state.run.stopReason.empty() && !state.run.running &&
-        state.run.stopPosition == e.position()) {
+        state.run.stopPosition == e.position() && state.run.stopRun == e.run()) {
         ImGui::SameLine();
         ImGui::TextDisabled("(stopped: %s)", state.run.stopReason.c_str());
     }
@@ -398,6 +402,7 @@ void advanceRun(AppState& state, double dt) {
     RunControl& run = state.run;
     Engine& e = state.engine;
     const std::size_t startPos = e.position();
+    run.clearStaleStop(startPos, e.run());
     struct Count {
         AppState& st;
         std::size_t from;
@@ -412,21 +417,23 @@ void advanceRun(AppState& state, double dt) {
     if (e.batch() || e.atEnd()) {
         run.running = false;
         run.toEnd = false;
-        run.stopReason = "end of the run";
+        run.stop("end of the run", e.position(), e.run());
         return;
     }
     auto stepOnce = [&]() -> bool {
         if (!e.forward()) {
             run.running = false;
-            run.stopReason = "end of the run";
-            run.stopPosition = e.position();
+            run.toEnd = false;
+            run.stop("end of the run", e.position(), e.run());
             return false;
         }
+        if (run.toEnd) return true;  // End runs past the breakpoints; Run stops at them
         for (const BreakpointEntry& b : run.breakpoints) {
             if (b.enabled && e.hits(b.bp)) {
                 run.running = false;
-                run.stopReason = "breakpoint: " + explain(b.bp);
-                run.stopPosition = e.position();
+                run.stop("breakpoint: " + explain(b.bp), e.position(), e.run());
+                state.log(Message::Level::Info,
+                          "run stopped at " + opLabel(e.position()) + ": " + run.stopReason);
                 return false;
             }
         }

@@ -4,6 +4,7 @@
 #pragma once
 
 #include "ui/gl/gl_renderer.h"
+#include "ui/platform/keys.h"
 #include "ui/platform/platform.h"
 
 #define GLFW_INCLUDE_NONE  // GL comes from ui/gl/gl_api.h, never from here
@@ -60,13 +61,27 @@ public:
     void framebufferSize(int& width, int& height) const override {
         glfwGetFramebufferSize(m_window, &width, &height);
     }
-    void initImGui() override { ImGui_ImplGlfw_InitForOpenGL(m_window, true); }
+    // ImGui's backend first (it chains nothing of ours), then our key callback in front of it:
+    // ImGui gets every event as before, and each press goes into the shortcut queue too.
+    void initImGui() override {
+        ImGui_ImplGlfw_InitForOpenGL(m_window, true);
+        imguiKeyCallback() = glfwSetKeyCallback(m_window, [](GLFWwindow* w, int key, int scancode,
+                                                             int action, int mods) {
+            if (GLFWkeyfun next = imguiKeyCallback()) next(w, key, scancode, action, mods);
+            if (action == GLFW_PRESS || action == GLFW_REPEAT)
+                queueKeyPress(key, (mods & GLFW_MOD_SHIFT) != 0, (mods & GLFW_MOD_CONTROL) != 0);
+        });
+    }
     void shutdownImGui() override { ImGui_ImplGlfw_Shutdown(); }
     std::vector<std::string> takeDroppedFiles() override { return std::exchange(m_dropped, {}); }
     GLFWwindow* window() const { return m_window; }
 
 protected:
     GLFWwindow* m_window;
+    static GLFWkeyfun& imguiKeyCallback() {
+        static GLFWkeyfun callback = nullptr;
+        return callback;
+    }
 
 private:
     std::vector<std::string> m_dropped;

@@ -425,3 +425,56 @@ TEST(LessonSlides, TheTextOfAFrameIsReadBackFromItsDrawLists) {
     EXPECT_FALSE(dlab::answerOnSlide(
         corners, dlab::ui::drawnLines(dlab::ui::drawnText(ImGui::GetDrawData())), ""));
 }
+
+// A stop looks the same whether the slides were paged to it or the lesson was reopened at it
+// (the progress kept in the settings): the same overlays, and the same text drawn.
+TEST(LessonSlides, AResumedStopShowsWhatPagingToItShows) {
+    const std::string path = lessonPath("05_flips.toml");
+    const std::size_t stop = 3;  // after stop 1, the only one naming its overlays
+    auto everyOverlayOn = [](dlab::ui::Overlays& o) {
+        for (bool* b :
+             {&o.fill, &o.vertexIds, &o.cornerIds, &o.triangleIds, &o.walk, &o.flipQueue,
+              &o.flipped, &o.circumcircles, &o.voronoi, &o.pendingPoints, &o.virtualTriangles})
+            *b = true;
+    };
+    // One GUI at a time (one ImGui context): each gives its overlays and the text it drew.
+    // `resumeAt`: reopen the lesson where the settings say the student was; else page to it.
+    struct Seen {
+        dlab::ui::Overlays overlays;
+        std::vector<std::string> lines;
+        std::size_t stop = 0;
+    };
+    auto show = [&](bool resume) {
+        UiHarness h(1280, 720);
+        auto& st = h.state();
+        st.presentation = true;
+        everyOverlayOn(st.overlays);  // the user's own: ids and ghost labels everywhere
+        if (resume) {
+            dlab::LessonProgress kept;
+            kept.lesson = path;
+            kept.title = dlab::loadLesson(path).title;
+            kept.stop = kept.furthest = stop;
+            st.lessonPlayer.saved[path] = kept;
+        }
+        EXPECT_TRUE(dlab::ui::openLesson(st, path));
+        for (std::size_t k = 1; !resume && k <= stop; ++k) h.press(dlab::ui::key::kPageDown);
+        h.frames(3);
+        return Seen{st.overlays, dlab::ui::drawnLines(dlab::ui::drawnText(ImGui::GetDrawData())),
+                    st.lessonPlayer.progress.stop};
+    };
+    const Seen paged = show(false), resumed = show(true);
+    ASSERT_EQ(paged.stop, stop);
+    ASSERT_EQ(resumed.stop, stop);
+    const auto& a = paged.overlays;
+    const auto& b = resumed.overlays;
+    EXPECT_EQ(b.vertexIds, a.vertexIds);
+    EXPECT_EQ(b.cornerIds, a.cornerIds);
+    EXPECT_EQ(b.triangleIds, a.triangleIds);
+    EXPECT_EQ(b.virtualTriangles, a.virtualTriangles);
+    EXPECT_EQ(b.circumcircles, a.circumcircles);
+    EXPECT_FALSE(b.cornerIds);  // stop 1 names its overlays: no corner ids among them
+    std::string pa, pb;
+    for (const std::string& l : paged.lines) pa += l + "\n";
+    for (const std::string& l : resumed.lines) pb += l + "\n";
+    EXPECT_EQ(paged.lines, resumed.lines) << "paged:\n" << pa << "\nresumed:\n" << pb;
+}

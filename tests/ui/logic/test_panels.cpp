@@ -94,7 +94,7 @@ TEST(Panels, AWatchPausesTheRunAtTheFirstOperationThatBreaksIt) {
     bool named = false;
     for (const auto& msg : st.messages) {
         named |= msg.level == dlab::ui::Message::Level::Error &&
-                 msg.text.find("op " + std::to_string(first - 1) + " (") != std::string::npos &&
+                 msg.text.find("[op " + std::to_string(first) + "] (") != std::string::npos &&
                  msg.text.find("c = " + std::to_string(st.selection.corner)) != std::string::npos;
     }
     EXPECT_TRUE(named);
