@@ -21,6 +21,7 @@ const SideTab kSideTabs[] = {
     {"G", ShowVertexTable, "vertex-table", "G (vertices)"},
     {"Expressions", ShowExpressions, "expressions", "Expressions"},
     {"Predicates", ShowPredicates, "predicates", "Predicates"},
+    {"Queue", ShowFlipQueue, "flip-queue", "Flip queue"},
     {"ID buffer", ShowIdBuffer, "idbuffer", "ID buffer"},
     {"Statistics", ShowStatistics, "statistics", "Statistics"},
     {"Trace", ShowTraceCompare, "trace-compare", "Student trace"},
@@ -302,6 +303,7 @@ void handleShortcuts(AppState& state) {
     if (once(key::letter('F'))) state.fitPending = true;
     if (once(key::letter('V'))) state.overlays.voronoi = !state.overlays.voronoi;
     if (once(key::letter('C'))) state.overlays.circumcircles = !state.overlays.circumcircles;
+    if (once(key::letter('L'))) state.overlays.legend = !state.overlays.legend;
     if (once(key::letter('G'))) state.snapToGrid = !state.snapToGrid;
     if (pressed(key::kEqual) || pressed(key::kKpAdd))
         state.view.zoomAt(state.view.origin + state.view.size * 0.5, 1.25);

@@ -53,8 +53,8 @@ namespace dlab {
 
 // Names a stop may use. The GUI maps them to its panels and overlay switches.
 inline constexpr const char* kPanelNames[] = {
-    "canvas",      "corner-table", "vertex-table", "inspector",  "messages",
-    "expressions", "predicates",   "idbuffer",     "statistics", "lesson",
+    "canvas",     "corner-table", "vertex-table", "inspector", "messages",   "expressions",
+    "predicates", "idbuffer",     "statistics",   "lesson",    "flip-queue",
 };
 inline constexpr const char* kOverlayNames[] = {
     "fill",    "vertex-ids",     "corner-ids",        "triangle-ids",

@@ -57,6 +57,7 @@ constexpr OverlayField kOverlayFields[] = {
     {"flip_queue", &Overlays::flipQueue},
     {"flipped", &Overlays::flipped},
     {"circumcircles", &Overlays::circumcircles},
+    {"legend", &Overlays::legend},
     {"voronoi", &Overlays::voronoi},
     {"pending_points", &Overlays::pendingPoints},
     {"virtual_triangles", &Overlays::virtualTriangles},

@@ -154,6 +154,7 @@ Json settingsJson(const AppState& st, const WindowOptions* window) {
           {"flip_queue", ov.flipQueue},
           {"flipped", ov.flipped},
           {"circumcircles", ov.circumcircles},
+          {"legend", ov.legend},
           {"voronoi", ov.voronoi},
           {"pending_points", ov.pendingPoints},
           {"virtual_triangles", ov.virtualTriangles}}},
@@ -237,6 +238,7 @@ void readOverlays(const Json& j, Overlays& ov) {
     read(*o, "flip_queue", ov.flipQueue);
     read(*o, "flipped", ov.flipped);
     read(*o, "circumcircles", ov.circumcircles);
+    read(*o, "legend", ov.legend);
     read(*o, "voronoi", ov.voronoi);
     read(*o, "pending_points", ov.pendingPoints);
     read(*o, "virtual_triangles", ov.virtualTriangles);

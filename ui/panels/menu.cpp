@@ -106,6 +106,7 @@ void ShowViewMenu(AppState& st) {
     ImGui::MenuItem("Voronoi diagram", "V", &o.voronoi);
     ImGui::MenuItem("Queued points", nullptr, &o.pendingPoints);
     ImGui::MenuItem("Super-triangle (super mode)", nullptr, &o.virtualTriangles);
+    ImGui::MenuItem("Legend", "L", &o.legend);
     ImGui::Separator();
     ImGui::MenuItem("Snap new points to grid", "G", &st.snapToGrid);
     ImGui::SetNextItemWidth(100);

@@ -34,8 +34,14 @@ std::string timelineText(const Engine& engine);
 std::string pointCountsText(const Engine& engine);
 void ShowCanvas(AppState& state);  // canvas.cpp: the mesh and every overlay
 // ghosts.cpp: exact mode's ghost triangles as grey bands beyond the hull edges (overlay
-// "virtual-triangles"), labelled when triangle ids are on.
-void DrawGhostTriangles(AppState& state, ImDrawList* dl);
+// "virtual-triangles"), labelled when triangle ids are on; true when a band was drawn.
+bool DrawGhostTriangles(AppState& state, ImDrawList* dl);
+// Exact mode, run in progress: ghost triangle t on the screen as a wedge, its hull edge a -> b
+// and the sides it leaves the hull along at a and at b (da, db: along the bisectors at the hull
+// vertices, so that neighbouring wedges share their sides; a depth of 1 along da and db is a
+// depth of 1 from the edge). False for any other triangle.
+bool ghostWedge(const AppState& state, std::int32_t t, ImVec2& a, ImVec2& b, ImVec2& da,
+                ImVec2& db);
 void ShowCornerTable(AppState& state);  // corner_table.cpp: c, t, V, O, n, p, l, r
 void ShowVertexTable(AppState& state);  // corner_table.cpp: G (vertex coordinates)
 void ShowInspector(AppState& state);    // inspector.cpp: the selected corner's operators
@@ -77,6 +83,10 @@ void ShowExpressions(AppState& state);  // expressions.cpp: console, path on the
 void ShowPredicates(AppState& state);   // predicates.cpp: the current test's determinant and signs
 void ShowIdBuffer(AppState& state);     // idbuffer.cpp: the colour-ID buffer, pixel under the mouse
 void ShowStatistics(AppState& state);   // statistics.cpp: counts, flips plot, frame times, checks
+void ShowFlipQueue(AppState& state);    // flip_queue.cpp: the edges still to test, next first
+// "1. edge 3-7 (triangles 4 | 9)": the Queue tab's row for the number-th edge to test.
+std::string queueRowText(const Inserter& inserter, std::size_t number,
+                         const Engine::QueuedTest& test);
 void ShowTraceCompare(AppState& state);  // trace_compare.cpp: a student's trace beside our run
 
 // A student's trace (.jsonl) compared with this run (same points and options): opens at the

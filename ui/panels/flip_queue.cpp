@@ -1,0 +1,59 @@
+// The Queue tab: the edges on the inserter's flip stack, the next one first, numbered as the
+// canvas numbers them; a row selects its corner.
+#include "ui/panels/panels.h"
+
+#include <imgui.h>
+
+#include <cstdio>
+#include <string>
+
+namespace dlab::ui {
+
+std::string queueRowText(const Inserter& ins, std::size_t number, const Engine::QueuedTest& q) {
+    const auto triangle = [&](std::int32_t t) {
+        if (t == kNone) return std::string("hull");
+        std::string s = std::to_string(t);
+        if (ins.isVirtualTriangle(t) && !ins.done()) s += " ghost";
+        return s;
+    };
+    return std::to_string(number) + ". edge " + std::to_string(q.edge.a) + "-" +
+           std::to_string(q.edge.b) + " (triangles " + triangle(q.near) + " | " + triangle(q.far) +
+           ")";
+}
+
+void ShowFlipQueue(AppState& st) {
+    const Engine& e = st.engine;
+    if (e.batch()) {
+        ImGui::TextWrapped("This run has no history: the flip queue shows while stepping.");
+        return;
+    }
+    const Op* op = e.current();
+    const Mesh& m = e.mesh();
+    if (op && op->type == OpType::InCircleTest && op->a >= 0 && op->a < m.numCorners()) {
+        ImGui::Text("Testing now: edge %d-%d (taken off the stack)", m.V[next(op->a)],
+                    m.V[prev(op->a)]);
+    }
+    const std::vector<Engine::QueuedTest> queue = e.pendingTests();
+    if (queue.empty()) {
+        ImGui::TextWrapped("No edge waits for its in-circle test.");
+        return;
+    }
+    ImGui::TextWrapped(
+        "%zu %s to test, the next first: the flip stack's top is 1 (a flip puts "
+        "its two new outer edges on top).",
+        queue.size(), queue.size() == 1 ? "edge" : "edges");
+    ImGui::Separator();
+    ImGui::BeginChild("##queue", ImVec2(0, 0), false);
+    for (std::size_t i = 0; i < queue.size(); ++i) {
+        const std::string row = queueRowText(e.inserter(), i + 1, queue[i]);
+        ImGui::PushID(static_cast<int>(i));
+        if (ImGui::Selectable(row.c_str(), st.selection.corner == queue[i].corner))
+            st.select(queue[i].corner);
+        if (ImGui::IsItemHovered())
+            ImGui::SetTooltip("corner %d on the flip stack: the edge opposite it", queue[i].corner);
+        ImGui::PopID();
+    }
+    ImGui::EndChild();
+}
+
+}  // namespace dlab::ui
