@@ -436,25 +436,51 @@ void DrawHalfPlane(const Scene& s, std::int32_t t, ImU32 col, float w) {
     s.edge(u, v, col, w * 1.6f);
 }
 
+// Where queued edge q is drawn on the screen: from pa to pb. An edge to the ghost vertex (exact
+// mode) stands for the ray from its hull vertex that two ghost wedges share: drawn that far.
+bool queuedEdgeOnScreen(const Scene& s, const Engine::QueuedTest& q, ImVec2& pa, ImVec2& pb) {
+    const VertexEdge e = q.edge;
+    if (e.a < 0 || e.b < 0 || e.a >= s.m.numVertices() || e.b >= s.m.numVertices()) return false;
+    const bool va = s.ins.isVirtual(e.a), vb = s.ins.isVirtual(e.b);
+    if (!s.ghostMode || !s.running || (!va && !vb)) {
+        pa = s.screen(e.a);
+        pb = s.screen(e.b);
+        return true;
+    }
+    if (va && vb) return false;
+    const std::int32_t u = va ? e.b : e.a;
+    ImVec2 a, b, da, db;
+    if (!ghostWedge(s.st, q.near, a, b, da, db)) return false;
+    pa = s.screen(u);
+    const ImVec2 side = (pa.x == a.x && pa.y == a.y) ? da : db;
+    const float len = ImGui::GetFontSize() * 3.2f;
+    pb = ImVec2(pa.x + side.x * len, pa.y + side.y * len);
+    return true;
+}
+
 // The edges on the flip stack, dashed, each with its place in the stack in a disc at its middle:
 // 1 is the top, the edge the engine tests next (the Queue tab lists them alike).
 void DrawFlipQueue(const Scene& s, float w) {
     const std::vector<Engine::QueuedTest> queue = s.e.pendingTests();
     if (queue.empty()) return;
     const ImU32 col = s.use(Mark::QueuedEdge);
-    for (const Engine::QueuedTest& q : queue) {
-        if (!s.room(200)) break;  // dashes: at most ~2 screen diagonals of them
-        s.edge(q.edge.a, q.edge.b, col, w, true);
+    std::vector<ImVec2> ends(2 * queue.size());
+    std::vector<bool> shown(queue.size());
+    for (std::size_t i = 0; i < queue.size(); ++i) {
+        shown[i] = queuedEdgeOnScreen(s, queue[i], ends[2 * i], ends[2 * i + 1]);
+        const ImVec2 pa = ends[2 * i], pb = ends[2 * i + 1];
+        if (!shown[i] || !s.room(200)) continue;  // dashes: at most ~2 screen diagonals of them
+        if (s.onCanvas(std::min(pa.x, pb.x), std::min(pa.y, pb.y), std::max(pa.x, pb.x),
+                       std::max(pa.y, pb.y), w))
+            DashedLine(s.dl, pa, pb, col, w);
     }
     ImFont* font = fonts().ui;
     const float fs = ImGui::GetFontSize() * 0.8f, r = fs * 0.72f;
     char buf[24];
     // The last first, so that the next edge's disc is on top where discs meet.
     for (std::size_t i = queue.size(); i-- > 0;) {
-        const VertexEdge e = queue[i].edge;
-        if (e.a < 0 || e.b < 0 || e.a >= s.m.numVertices() || e.b >= s.m.numVertices()) continue;
-        if (s.ghostMode && (s.ins.isVirtual(e.a) || s.ins.isVirtual(e.b))) continue;
-        const ImVec2 pa = s.screen(e.a), pb = s.screen(e.b);
+        if (!shown[i]) continue;
+        const ImVec2 pa = ends[2 * i], pb = ends[2 * i + 1];
         const ImVec2 mid((pa.x + pb.x) / 2, (pa.y + pb.y) / 2);
         if (!s.onCanvas(mid.x - r, mid.y - r, mid.x + r, mid.y + r) || !s.room(80)) continue;
         std::snprintf(buf, sizeof buf, "%zu", i + 1);
@@ -1046,6 +1072,24 @@ void DrawMeshLayers(AppState& st, CanvasCache& cache, const Scene& scene, ImVec2
     DrawOpOverlay(scene);
 }
 
+// What the legend should not cover: the points on the canvas (the one being inserted most of
+// all), the labels and the ends of the queued edges.
+std::vector<BusyPoint> busy(const Scene& s) {
+    std::vector<BusyPoint> out;
+    const auto& pts = s.e.points();
+    const std::size_t step = std::max<std::size_t>(1, pts.size() / 20000);
+    for (std::size_t i = 0; i < pts.size(); i += step) {
+        const ImVec2 q = toIm(s.view.toScreen(pts[i]));
+        if (s.onCanvas(q.x, q.y, q.x, q.y, 0)) out.push_back({q, 1});
+    }
+    for (const auto& b : s.labels.boxes)
+        out.push_back({ImVec2((b[0] + b[2]) / 2, (b[1] + b[3]) / 2), 1});
+    if (const std::int32_t v = s.e.currentVertex();
+        v >= 0 && v < static_cast<std::int32_t>(pts.size()))
+        out.push_back({toIm(s.view.toScreen(pts[v])), 1000});
+    return out;
+}
+
 // Labels, points (a dragged queued point where the mouse is) and the selection; returns the
 // corner under the mouse.
 std::int32_t DrawLabelsAndPoints(AppState& st, const CanvasCache& cache, Scene& scene,
@@ -1092,8 +1136,9 @@ void ShowCanvas(AppState& st) {
     DrawMeshLayers(st, cache, scene, p0, p1);
     const std::int32_t hoveredCorner = DrawLabelsAndPoints(st, cache, scene, hovered);
     if (st.overlays.legend || slideMode(st)) {
-        const ImVec4 box = DrawCanvasLegend(dl, p0, p1, scene.drawn,
-                                            ImGui::GetFontSize() * (slideMode(st) ? 0.8f : 0.9f));
+        const ImVec4 box =
+            DrawCanvasLegend(dl, p0, p1, scene.drawn,
+                             ImGui::GetFontSize() * (slideMode(st) ? 0.8f : 0.9f), busy(scene));
         if (box.z > box.x) st.itemRects["canvas-legend"] = {box.x, box.y, box.z, box.w};
     } else {
         st.itemRects.erase("canvas-legend");

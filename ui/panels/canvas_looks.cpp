@@ -85,7 +85,7 @@ void DrawSample(ImDrawList* dl, const Look& look, ImVec2 a, ImVec2 b) {
 std::span<const Look> canvasLooks() { return kLooks; }
 
 ImVec4 DrawCanvasLegend(ImDrawList* dl, ImVec2 lo, ImVec2 hi, const MarksDrawn& drawn,
-                        float fontSize) {
+                        float fontSize, std::span<const BusyPoint> busy) {
     if (drawn.none()) return ImVec4(0, 0, 0, 0);
     ImFont* font = ImGui::GetFont();
     const float row = std::ceil(fontSize * 1.25f), sample = std::ceil(fontSize * 1.9f),
@@ -98,7 +98,25 @@ ImVec4 DrawCanvasLegend(ImDrawList* dl, ImVec2 lo, ImVec2 hi, const MarksDrawn& 
         ++rows;
     }
     const float w = pad * 3 + sample + textW, h = pad * 2 + row * static_cast<float>(rows);
-    const ImVec2 a(std::max(lo.x, hi.x - w - 6), lo.y + 6), b(a.x + w, a.y + h);
+    // Top right, bottom right, top left, bottom left: the first that covers the least.
+    const float left = lo.x + 6, right = std::max(lo.x, hi.x - w - 6), top = lo.y + 6,
+                bottom = std::max(lo.y, hi.y - h - 6);
+    const ImVec2 corners[4] = {{right, top}, {right, bottom}, {left, top}, {left, bottom}};
+    ImVec2 a = corners[0];
+    float least = -1;
+    for (const ImVec2& c : corners) {
+        float covered = 0;
+        for (const BusyPoint& p : busy) {
+            if (p.at.x >= c.x - 8 && p.at.x <= c.x + w + 8 && p.at.y >= c.y - 8 &&
+                p.at.y <= c.y + h + 8)
+                covered += p.weight;
+        }
+        if (least < 0 || covered < least) {
+            least = covered;
+            a = c;
+        }
+    }
+    const ImVec2 b(a.x + w, a.y + h);
     dl->AddRectFilled(a, b, IM_COL32(255, 255, 255, 230), 4);
     dl->AddRect(a, b, IM_COL32(170, 175, 190, 255), 4);
     float y = a.y + pad;

@@ -53,9 +53,14 @@ inline const Look& lookOf(Mark m) { return canvasLooks()[static_cast<std::size_t
 // The marks a frame drew (the canvas records each as it takes its colour).
 using MarksDrawn = std::bitset<kMarkCount>;
 
-// Draws the legend of the marks drawn into dl, in the canvas' corner [lo, hi] (top right), text
-// at fontSize; returns its box (x0, y0, x1, y1), or an empty one when nothing was drawn.
+// Draws the legend of the marks drawn into dl, in the corner of the canvas [lo, hi] that covers
+// the least of what is drawn (`busy`: screen points, each with its weight; top right on a tie),
+// text at fontSize; returns its box (x0, y0, x1, y1), or an empty one when nothing was drawn.
+struct BusyPoint {
+    ImVec2 at;
+    float weight = 1;
+};
 ImVec4 DrawCanvasLegend(ImDrawList* dl, ImVec2 lo, ImVec2 hi, const MarksDrawn& drawn,
-                        float fontSize);
+                        float fontSize, std::span<const BusyPoint> busy);
 
 }  // namespace dlab::ui

@@ -1,5 +1,6 @@
 // The Queue tab: the edges on the inserter's flip stack, the next one first, numbered as the
 // canvas numbers them; a row selects its corner.
+#include "core/teaching/describe.h"
 #include "ui/panels/panels.h"
 
 #include <imgui.h>
@@ -10,14 +11,15 @@
 namespace dlab::ui {
 
 std::string queueRowText(const Inserter& ins, std::size_t number, const Engine::QueuedTest& q) {
+    const bool exact = ins.options().boundary == Boundary::Exact;
     const auto triangle = [&](std::int32_t t) {
         if (t == kNone) return std::string("hull");
         std::string s = std::to_string(t);
-        if (ins.isVirtualTriangle(t) && !ins.done()) s += " ghost";
+        if (ins.isVirtualTriangle(t) && !ins.done()) s += exact ? " ghost" : " super";
         return s;
     };
-    return std::to_string(number) + ". edge " + std::to_string(q.edge.a) + "-" +
-           std::to_string(q.edge.b) + " (triangles " + triangle(q.near) + " | " + triangle(q.far) +
+    return std::to_string(number) + ". edge " + vertexName(ins, q.edge.a) + "-" +
+           vertexName(ins, q.edge.b) + " (triangles " + triangle(q.near) + " | " + triangle(q.far) +
            ")";
 }
 
@@ -30,8 +32,9 @@ void ShowFlipQueue(AppState& st) {
     const Op* op = e.current();
     const Mesh& m = e.mesh();
     if (op && op->type == OpType::InCircleTest && op->a >= 0 && op->a < m.numCorners()) {
-        ImGui::Text("Testing now: edge %d-%d (taken off the stack)", m.V[next(op->a)],
-                    m.V[prev(op->a)]);
+        ImGui::Text("Testing now: edge %s-%s (taken off the stack)",
+                    vertexName(e.inserter(), m.V[next(op->a)]).c_str(),
+                    vertexName(e.inserter(), m.V[prev(op->a)]).c_str());
     }
     const std::vector<Engine::QueuedTest> queue = e.pendingTests();
     if (queue.empty()) {
