@@ -113,10 +113,18 @@ bool DrawGhostTriangles(AppState& st, ImDrawList* dl) {
     const float band = ImGui::GetFontSize() * 2.2f;
     const ImU32 fill = lookOf(Mark::GhostBand).colour;
     const ImU32 rim = (fill & 0x00FFFFFFu) | (160u << 24);
+    // The ghost triangle the walk is in has its wedge in the walk's colour (canvas.cpp): no band
+    // over it.
+    std::int32_t target = kNone;
+    if (const Op* op = e.current();
+        st.overlays.walk && op && (op->type == OpType::LocateStep || op->type == OpType::Located)) {
+        const std::vector<std::int32_t> path = e.walkPath();
+        if (!path.empty()) target = path.back();
+    }
     int drawn = 0;
     for (std::int32_t t = 0; t < m.numTriangles() && drawn < kMostBands; ++t) {
         ImVec2 a, b, da, db;
-        if (!ins.isVirtualTriangle(t) || !ghostWedge(st, t, a, b, da, db)) continue;
+        if (t == target || !ins.isVirtualTriangle(t) || !ghostWedge(st, t, a, b, da, db)) continue;
         const ImVec2 p[4] = {a, b, ImVec2(b.x + db.x * band, b.y + db.y * band),
                              ImVec2(a.x + da.x * band, a.y + da.y * band)};
         dl->AddConvexPolyFilled(p, 4, fill);
