@@ -624,6 +624,16 @@ ImVec2 placeCornerLabel(const Scene& s, std::int32_t c, bool ghost, ImVec2 a, co
         size);
 }
 
+// The radius of the circle inscribed in a screen triangle (twice its area over its perimeter).
+float inradius(const ImVec2 (&p)[3]) {
+    const float area2 =
+        std::abs((p[1].x - p[0].x) * (p[2].y - p[0].y) - (p[1].y - p[0].y) * (p[2].x - p[0].x));
+    float perimeter = 0;
+    for (int k = 0; k < 3; ++k)
+        perimeter += std::hypot(p[(k + 1) % 3].x - p[k].x, p[(k + 1) % 3].y - p[k].y);
+    return perimeter > 0 ? area2 / perimeter : 0.0f;
+}
+
 void DrawLabels(const Scene& s, std::int32_t& hoveredCorner, ImVec2 mouse, bool mouseInCanvas) {
     const Mesh& m = s.m;
     const Overlays& ov = s.st.overlays;
@@ -675,6 +685,9 @@ void DrawLabels(const Scene& s, std::int32_t& hoveredCorner, ImVec2 mouse, bool 
                              buf);
             }
         }
+        // A sliver (a long hull triangle at a far zoom) has no room for its corners' labels:
+        // they would sit on its edges, over the neighbours' (legible only when zoomed in).
+        const bool roomy = ghost || inradius(p) >= 0.5f * fs;
         for (int k = 0; k < 3; ++k) {
             const std::int32_t c = 3 * t + k;
             ImVec2 a;
@@ -686,7 +699,7 @@ void DrawLabels(const Scene& s, std::int32_t& hoveredCorner, ImVec2 mouse, bool 
                     hoveredCorner = c;
                 }
             }
-            if (!ov.cornerIds || !s.room(48 + s.pointReserve())) continue;
+            if (!ov.cornerIds || !roomy || !s.room(48 + s.pointReserve())) continue;
             const bool isChanged = std::find(changed.begin(), changed.end(), c) != changed.end();
             // A ghost triangle's corners in the ghost colour, beside its hull edge; the ghost
             // corner itself says so.
