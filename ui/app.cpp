@@ -95,6 +95,7 @@ void ShowLeftColumn(AppState& state, const Regions& r) {
                       ImGuiWindowFlags_NoScrollbar | ImGuiWindowFlags_NoScrollWithMouse);
     ShowCanvas(state);
     DrawDebugOverlays(state);
+    ShowCanvasLegend(state);
     ShowCanvasNotice(state);
     ShowTimeline(state);
     ImGui::EndChild();

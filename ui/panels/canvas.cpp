@@ -50,6 +50,10 @@ struct CanvasCache {
     ImVec2 pressPos{0, 0};
     bool moved = false;
     bool pressedOnCorner = false;
+    // What this frame drew (the legend's entries; the layers over the canvas add theirs) and
+    // what the legend should not cover.
+    MarksDrawn drawn;
+    std::vector<BusyPoint> busy;
 };
 
 namespace {
@@ -953,6 +957,29 @@ bool canvasHasRoom(AppState& st, const ImDrawList* dl, unsigned vertices) {
     return false;
 }
 
+ImU32 useLook(AppState& st, Mark mark) {
+    if (st.canvas) st.canvas->drawn.set(static_cast<std::size_t>(mark));
+    return lookOf(mark).colour;
+}
+
+void ShowCanvasLegend(AppState& st) {
+    if (!st.canvas || !(st.overlays.legend || slideMode(st))) {
+        st.itemRects.erase("canvas-legend");
+        return;
+    }
+    const ImVec2 p0 = toIm(st.view.origin), p1 = toIm(st.view.origin + st.view.size);
+    ImDrawList* dl = ImGui::GetWindowDrawList();
+    dl->PushClipRect(p0, p1, true);
+    const ImVec4 box =
+        DrawCanvasLegend(dl, p0, p1, st.canvas->drawn,
+                         ImGui::GetFontSize() * (slideMode(st) ? 0.8f : 0.9f), st.canvas->busy);
+    dl->PopClipRect();
+    if (box.z > box.x)
+        st.itemRects["canvas-legend"] = {box.x, box.y, box.z, box.w};
+    else
+        st.itemRects.erase("canvas-legend");
+}
+
 void ShowCanvasNotice(AppState& st) {
     if (!st.frameStats.canvasFull) return;
     const char* text =
@@ -1148,14 +1175,8 @@ void ShowCanvas(AppState& st) {
     Scene scene = makeScene(st, dl);
     DrawMeshLayers(st, cache, scene, p0, p1);
     const std::int32_t hoveredCorner = DrawLabelsAndPoints(st, cache, scene, hovered);
-    if (st.overlays.legend || slideMode(st)) {
-        const ImVec4 box =
-            DrawCanvasLegend(dl, p0, p1, scene.drawn,
-                             ImGui::GetFontSize() * (slideMode(st) ? 0.8f : 0.9f), busy(scene));
-        if (box.z > box.x) st.itemRects["canvas-legend"] = {box.x, box.y, box.z, box.w};
-    } else {
-        st.itemRects.erase("canvas-legend");
-    }
+    cache.drawn = scene.drawn;
+    cache.busy = busy(scene);
     dl->PopClipRect();
     handleInput(st, cache, hovered);
     if (hovered && hoveredCorner != kNone && cache.drag == CanvasCache::Drag::None) {

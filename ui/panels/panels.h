@@ -69,6 +69,9 @@ bool cornerAnchor(const AppState& state, std::int32_t corner, float& x, float& y
 bool canvasHasRoom(AppState& state, const ImDrawList* drawList, unsigned vertices);
 // Says so on the canvas when canvasHasRoom left shapes out this frame (after all overlays).
 void ShowCanvasNotice(AppState& state);
+// The legend of what the canvas and the layers over it drew this frame (after all overlays;
+// View > Legend, always on slides; canvas_looks.h).
+void ShowCanvasLegend(AppState& state);
 
 // Remembers the last ImGui item's rectangle under `name` in state.itemRects (app.cpp).
 void RecordItem(AppState& state, const char* name);

@@ -4,6 +4,7 @@
 #include "core/engine/predicates.h"
 #include "ui/gui.h"
 #include "ui/lesson_player.h"
+#include "ui/panels/canvas_looks.h"
 #include "ui/panels/panels.h"
 
 #include <imgui.h>
@@ -16,10 +17,6 @@
 namespace dlab::ui {
 
 namespace {
-
-constexpr ImU32 kViolationColour = IM_COL32(230, 0, 0, 255);
-// Edges not Delaunay yet while the insertion's flips are still to come: expected, drawn calmer.
-constexpr ImU32 kPendingColour = IM_COL32(250, 170, 60, 255);
 
 bool sameOp(const Op& a, const Op& b) {
     return a.type == b.type && a.vertex == b.vertex && a.a == b.a && a.b == b.b &&
@@ -188,7 +185,8 @@ void DrawViolationOverlay(AppState& st) {
         midInsertion(st.engine) &&
         std::all_of(s.violations.begin(), s.violations.end(),
                     [](const Violation& v) { return v.kind == Violation::Kind::NotDelaunay; });
-    const ImU32 col = expected ? kPendingColour : kViolationColour;
+    const ImU32 col = useLook(st, expected ? Mark::NotYetDelaunay : Mark::Violation);
+    const ImU32 broken = lookOf(Mark::Violation).colour;
     const float w = (st.presentation ? 7.0f : 5.0f) * (expected ? 0.6f : 1.0f);
     const Inserter& ins = st.engine.inserter();
     auto drawable = [&](std::int32_t v) {
@@ -211,9 +209,9 @@ void DrawViolationOverlay(AppState& st) {
         if (!drawable(a) || !drawable(b) || !drawable(c)) continue;
         const ImVec2 pa = toIm(view.toScreen(m.G[a])), pb = toIm(view.toScreen(m.G[b])),
                      pc = toIm(view.toScreen(m.G[c]));
-        dl->AddTriangleFilled(pa, pb, pc, IM_COL32(230, 0, 0, 90));
-        dl->AddLine(pa, pc, kViolationColour, st.presentation ? 3.0f : 2.0f);
-        dl->AddCircle(pb, 12, kViolationColour, 0, 3);
+        dl->AddTriangleFilled(pa, pb, pc, useLook(st, Mark::HullDent));
+        dl->AddLine(pa, pc, broken, st.presentation ? 3.0f : 2.0f);
+        dl->AddCircle(pb, 12, broken, 0, 3);
     }
     dl->PopClipRect();
 }
