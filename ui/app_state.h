@@ -54,6 +54,7 @@ struct Overlays {
     bool triangleIds = false;
     bool walk = true;            // the current locate's path and the line L
     bool flipQueue = true;       // edges still to test
+    bool queueOrder = true;      // and their order (1 = tested next); lessons name it to show it
     bool flipped = true;         // edges flipped by the current insertion
     bool circumcircles = false;  // every triangle's circumcircle
     bool voronoi = false;

@@ -19,6 +19,7 @@ bool* overlaySwitch(Overlays& o, const std::string& name) {
     if (name == "triangle-ids") return &o.triangleIds;
     if (name == "walk") return &o.walk;
     if (name == "flip-queue") return &o.flipQueue;
+    if (name == "flip-queue-order") return &o.queueOrder;
     if (name == "flipped") return &o.flipped;
     if (name == "circumcircles") return &o.circumcircles;
     if (name == "voronoi") return &o.voronoi;
@@ -167,9 +168,9 @@ void goToStop(AppState& st, std::size_t k) {
     if (!stop.overlays.empty()) {
         // A stop that names overlays shows exactly those.
         Overlays& o = st.overlays;
-        for (bool* b :
-             {&o.fill, &o.vertexIds, &o.cornerIds, &o.triangleIds, &o.walk, &o.flipQueue,
-              &o.flipped, &o.circumcircles, &o.voronoi, &o.pendingPoints, &o.virtualTriangles}) {
+        for (bool* b : {&o.fill, &o.vertexIds, &o.cornerIds, &o.triangleIds, &o.walk, &o.flipQueue,
+                        &o.queueOrder, &o.flipped, &o.circumcircles, &o.voronoi, &o.pendingPoints,
+                        &o.virtualTriangles}) {
             *b = false;
         }
         for (const std::string& name : stop.overlays) {

@@ -57,9 +57,19 @@ inline constexpr const char* kPanelNames[] = {
     "predicates", "idbuffer",     "statistics",   "lesson",    "flip-queue",
 };
 inline constexpr const char* kOverlayNames[] = {
-    "fill",    "vertex-ids",     "corner-ids",        "triangle-ids",
-    "walk",    "flip-queue",     "flipped",           "circumcircles",
-    "voronoi", "pending-points", "virtual-triangles", "idbuffer",
+    "fill",
+    "vertex-ids",
+    "corner-ids",
+    "triangle-ids",
+    "walk",
+    "flip-queue",
+    "flipped",
+    "circumcircles",
+    "voronoi",
+    "pending-points",
+    "virtual-triangles",
+    "idbuffer",
+    "flip-queue-order",
 };
 
 // Drawings a stop may show beside its text (`figure = "lifting-map"`).

@@ -55,6 +55,7 @@ constexpr OverlayField kOverlayFields[] = {
     {"triangle_ids", &Overlays::triangleIds},
     {"walk", &Overlays::walk},
     {"flip_queue", &Overlays::flipQueue},
+    {"flip_queue_order", &Overlays::queueOrder},
     {"flipped", &Overlays::flipped},
     {"circumcircles", &Overlays::circumcircles},
     {"legend", &Overlays::legend},

@@ -152,6 +152,7 @@ Json settingsJson(const AppState& st, const WindowOptions* window) {
           {"triangle_ids", ov.triangleIds},
           {"walk", ov.walk},
           {"flip_queue", ov.flipQueue},
+          {"flip_queue_order", ov.queueOrder},
           {"flipped", ov.flipped},
           {"circumcircles", ov.circumcircles},
           {"legend", ov.legend},
@@ -236,6 +237,7 @@ void readOverlays(const Json& j, Overlays& ov) {
     read(*o, "triangle_ids", ov.triangleIds);
     read(*o, "walk", ov.walk);
     read(*o, "flip_queue", ov.flipQueue);
+    read(*o, "flip_queue_order", ov.queueOrder);
     read(*o, "flipped", ov.flipped);
     read(*o, "circumcircles", ov.circumcircles);
     read(*o, "legend", ov.legend);

@@ -478,6 +478,8 @@ void DrawFlipQueue(const Scene& s, float w) {
                        std::max(pa.y, pb.y), w))
             DashedLine(s.dl, pa, pb, col, w);
     }
+    if (!s.st.overlays.queueOrder) return;
+    const ImU32 badge = s.use(Mark::QueueOrder);
     ImFont* font = fonts().ui;
     const float fs = ImGui::GetFontSize() * 0.8f, r = fs * 0.72f;
     char buf[24];
@@ -491,7 +493,7 @@ void DrawFlipQueue(const Scene& s, float w) {
         const ImVec2 ts = font->CalcTextSizeA(fs, 1e9f, 0, buf);
         const float rr = std::max(r, ts.x / 2 + 3);
         s.dl->AddCircleFilled(mid, rr + 1.5f, IM_COL32(255, 255, 255, 255));
-        s.dl->AddCircleFilled(mid, rr, col);
+        s.dl->AddCircleFilled(mid, rr, badge);
         s.dl->AddText(font, fs, ImVec2(mid.x - ts.x / 2, mid.y - ts.y / 2),
                       IM_COL32(255, 255, 255, 255), buf);
         s.labels.add(mid, ImVec2(2 * rr - 4, 2 * rr));  // corner labels keep clear of it
@@ -555,8 +557,7 @@ void DrawOpOverlay(const Scene& s) {
                     if (t < 0 || t >= m.numTriangles()) continue;
                     for (int k = 0; k < 3; ++k) {
                         if (m.V[3 * t + k] == op->vertex) {
-                            s.edge(op->vertex, m.V[3 * t + (k + 1) % 3],
-                                   s.pal.split[0] & 0xFF208020, w);
+                            s.edge(op->vertex, m.V[3 * t + (k + 1) % 3], s.use(Mark::NewEdge), w);
                         }
                     }
                 }

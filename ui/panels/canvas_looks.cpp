@@ -18,8 +18,10 @@ constexpr std::array<Look, kMarkCount> kLooks{{
     {Mark::CircleFlip, Shape::Ring, IM_COL32(215, 40, 40, 255), "circle holds the point: flip"},
     {Mark::CircleKeep, Shape::Ring, IM_COL32(30, 150, 60, 255), "circle misses the point: keep"},
     {Mark::FlippedEdge, Shape::Line, IM_COL32(215, 40, 40, 255), "edge made by a flip"},
-    {Mark::QueuedEdge, Shape::Badge, IM_COL32(135, 60, 205, 255), "edge still to test (1 = next)"},
-    {Mark::NextPoint, Shape::Diamond, IM_COL32(0, 150, 215, 255), "point being inserted"},
+    {Mark::NewEdge, Shape::Line, IM_COL32(32, 128, 32, 255), "edge the split made"},
+    {Mark::QueuedEdge, Shape::Dashed, IM_COL32(135, 60, 205, 255), "edge still to test"},
+    {Mark::QueueOrder, Shape::Badge, IM_COL32(135, 60, 205, 255), "order of the tests (1 = next)"},
+    {Mark::NextPoint, Shape::Diamond, IM_COL32(0, 150, 215, 255), "point being inserted, or next"},
     {Mark::QueuedPoint, Shape::Ring, IM_COL32(140, 140, 150, 255), "point not inserted yet"},
     {Mark::SkippedPoint, Shape::Cross, IM_COL32(200, 30, 30, 255), "duplicate point, skipped"},
     {Mark::SelectedCorner, Shape::Dot, IM_COL32(0, 165, 175, 255), "selected corner"},
@@ -61,7 +63,8 @@ void DrawSample(ImDrawList* dl, const Look& look, ImVec2 a, ImVec2 b) {
         case Shape::Badge:
             for (float x = a.x; x < b.x; x += 8)
                 dl->AddLine(ImVec2(x, c.y), ImVec2(std::min(b.x, x + 5), c.y), col, 2.5f);
-            if (look.mark == Mark::QueuedEdge) {  // the disc its number sits in
+            if (look.shape == Shape::Dashed) break;
+            if (look.mark == Mark::QueueOrder) {  // the disc its number sits in
                 dl->AddCircleFilled(c, h * 0.42f, col);
                 dl->AddCircleFilled(c, h * 0.12f, IM_COL32(255, 255, 255, 255));
             } else {  // a label on a filled box

@@ -21,7 +21,9 @@ enum class Mark : std::uint8_t {
     CircleFlip,       // the test's circle (or half-plane): the new point is inside, flip
     CircleKeep,       // the test's circle: the new point is not inside, keep the edge
     FlippedEdge,      // edges flipped by this insertion so far
-    QueuedEdge,       // edges on the flip stack, numbered in test order (1 = next)
+    NewEdge,          // the edges a split made at the new vertex
+    QueuedEdge,       // edges on the flip stack
+    QueueOrder,       // their places on the stack, numbered in test order (1 = next)
     NextPoint,        // the point being inserted
     QueuedPoint,      // points not inserted yet
     SkippedPoint,     // duplicates skipped

@@ -158,6 +158,7 @@ TEST(Legend, ListsTheMarksTheCanvasDrewAndOnlyThose) {
     ASSERT_TRUE(st.itemRects.count("canvas-legend"));
     EXPECT_TRUE(has(dlab::ui::Mark::TestEdge));
     EXPECT_TRUE(has(dlab::ui::Mark::QueuedEdge));
+    EXPECT_TRUE(has(dlab::ui::Mark::QueueOrder));
     EXPECT_TRUE(has(dlab::ui::Mark::FlippedEdge));
     EXPECT_EQ(has(dlab::ui::Mark::CircleFlip), flip);
     EXPECT_EQ(has(dlab::ui::Mark::CircleKeep), !flip);
@@ -199,6 +200,34 @@ TEST(Legend, IsAlwaysOnSlidesAndLeavesTheQuestionClear) {
         EXPECT_TRUE(legend[2] <= q[0] || q[2] <= legend[0] || legend[3] <= q[1] ||
                     q[3] <= legend[1]);
     }
+}
+
+TEST(FlipQueue, ALessonShowsTheOrderOnlyWhereItNamesIt) {
+    // Lesson 5 asks which edge is tested first: its stop names the queue, not its order.
+    UiHarness h(1280, 720);
+    auto& st = h.state();
+    st.presentation = true;
+    ASSERT_TRUE(dlab::ui::openLesson(st, std::string(DLAB_SOURCE_DIR) + "/lessons/05_flips.toml"));
+    dlab::ui::goToStop(st, 1);
+    st.overlays.vertexIds = false;
+    h.frames(3);
+    ASSERT_GE(st.engine.inserter().flipStack().size(), 2u);
+    const auto canvas = h.rect("canvas");
+    const auto lines = dlab::ui::drawnLines(frameText());
+    const auto has = [&](dlab::ui::Mark m) {
+        return std::any_of(lines.begin(), lines.end(), [&](const std::string& l) {
+            return l.find(dlab::ui::lookOf(m).meaning) != std::string::npos;
+        });
+    };
+    EXPECT_TRUE(has(dlab::ui::Mark::QueuedEdge));
+    EXPECT_FALSE(has(dlab::ui::Mark::QueueOrder));
+    for (const auto& t : frameText()) EXPECT_FALSE(isNumber(t.text) && inside(t, canvas)) << t.text;
+    // Named, the numbers come back.
+    st.overlays.queueOrder = true;
+    h.frames(2);
+    int numbers = 0;
+    for (const auto& t : frameText()) numbers += isNumber(t.text) && inside(t, canvas);
+    EXPECT_EQ(numbers, static_cast<int>(st.engine.inserter().flipStack().size()));
 }
 
 TEST(Legend, EveryMarkHasItsOwnLook) {
