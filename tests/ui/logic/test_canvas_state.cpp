@@ -415,3 +415,25 @@ TEST(CanvasLabels, ASparseMeshKeepsEveryVertexLabel) {
     }
     EXPECT_EQ(overlaps(runs), 0u);
 }
+
+TEST(CanvasLabels, FollowThePresentationFontSize) {
+    const auto labelHeight = [](bool presentation) {
+        UiHarness h(1280, 720);
+        auto& st = h.state();
+        st.presentation = presentation;
+        st.overlays.legend = false;
+        while (!st.engine.toEnd(1 << 20)) {}
+        h.frames(3);
+        std::vector<float> heights;
+        for (const auto& t : canvasRuns(h)) {
+            if (isNumber(t.text)) heights.push_back(t.y1 - t.y0);
+        }
+        if (heights.empty()) return 0.0f;
+        std::sort(heights.begin(), heights.end());
+        return heights[heights.size() / 2];
+    };
+    const float normal = labelHeight(false), large = labelHeight(true);
+    ASSERT_GT(normal, 0.0f);
+    EXPECT_GT(large, 1.3f * normal)
+        << normal << " px in the normal mode, " << large << " px in presentation mode";
+}
