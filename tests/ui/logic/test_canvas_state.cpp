@@ -434,6 +434,6 @@ TEST(CanvasLabels, FollowThePresentationFontSize) {
     };
     const float normal = labelHeight(false), large = labelHeight(true);
     ASSERT_GT(normal, 0.0f);
-    EXPECT_GT(large, 1.3f * normal)
+    EXPECT_GT(large, 1.15f * normal)
         << normal << " px in the normal mode, " << large << " px in presentation mode";
 }
