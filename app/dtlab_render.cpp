@@ -344,7 +344,7 @@ void addRender(CLI::App& app) {
         ->check(CLI::Range(0, 1000));
     cmd->add_option("--tab", args->tab, "The side tab to show")
         ->check(CLI::IsMember({"corner-table", "vertex-table", "expressions", "predicates",
-                               "idbuffer", "statistics", "trace-compare", "flip-queue"}));
+                               "idbuffer", "statistics", "trace-compare"}));
     cmd->add_option("--overlay", args->overlays,
                     "voronoi, circumcircles, triangle-ids, no-corner-ids, no-fill (repeatable)");
     args->engine.add(*cmd);

@@ -21,7 +21,6 @@ const SideTab kSideTabs[] = {
     {"G", ShowVertexTable, "vertex-table", "G (vertices)"},
     {"Expressions", ShowExpressions, "expressions", "Expressions"},
     {"Predicates", ShowPredicates, "predicates", "Predicates"},
-    {"Queue", ShowFlipQueue, "flip-queue", "Flip queue"},
     {"ID buffer", ShowIdBuffer, "idbuffer", "ID buffer"},
     {"Statistics", ShowStatistics, "statistics", "Statistics"},
     {"Trace", ShowTraceCompare, "trace-compare", "Student trace"},

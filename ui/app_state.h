@@ -60,7 +60,7 @@ struct Overlays {
     bool voronoi = false;
     bool pendingPoints = true;     // points not inserted yet
     bool virtualTriangles = true;  // super-triangle (super mode) while the run is in progress
-    bool legend = true;            // what each colour and line means (always on slides)
+    bool legend = false;           // what each colour and line means (L; always on slides)
 };
 
 // A corner operator applied by the inspector (n p o l r s u).

@@ -53,8 +53,8 @@ namespace dlab {
 
 // Names a stop may use. The GUI maps them to its panels and overlay switches.
 inline constexpr const char* kPanelNames[] = {
-    "canvas",     "corner-table", "vertex-table", "inspector", "messages",   "expressions",
-    "predicates", "idbuffer",     "statistics",   "lesson",    "flip-queue",
+    "canvas",      "corner-table", "vertex-table", "inspector",  "messages",
+    "expressions", "predicates",   "idbuffer",     "statistics", "lesson",
 };
 inline constexpr const char* kOverlayNames[] = {
     "fill",

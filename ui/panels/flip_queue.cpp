@@ -1,5 +1,5 @@
-// The Queue tab: the edges on the inserter's flip stack, the next one first, numbered as the
-// canvas numbers them; a row selects its corner.
+// The Predicates tab's "Flip queue" section: the edges on the inserter's flip stack, the next one
+// first, numbered as the canvas numbers them; a row selects its corner.
 #include "core/teaching/describe.h"
 #include "ui/panels/panels.h"
 
@@ -25,6 +25,13 @@ std::string queueRowText(const Inserter& ins, std::size_t number, const Engine::
 
 void ShowFlipQueue(AppState& st) {
     const Engine& e = st.engine;
+    const std::vector<Engine::QueuedTest> queue = e.pendingTests();
+    const std::string header = "Flip queue (" + std::to_string(queue.size()) +
+                               (queue.size() == 1 ? " edge" : " edges") + " to test)###flipqueue";
+    ImGui::Spacing();
+    const bool open = ImGui::CollapsingHeader(header.c_str(), ImGuiTreeNodeFlags_DefaultOpen);
+    RecordItem(st, "flip-queue");
+    if (!open) return;
     if (e.batch()) {
         ImGui::TextWrapped("This run has no history: the flip queue shows while stepping.");
         return;
@@ -36,17 +43,17 @@ void ShowFlipQueue(AppState& st) {
                     vertexName(e.inserter(), m.V[next(op->a)]).c_str(),
                     vertexName(e.inserter(), m.V[prev(op->a)]).c_str());
     }
-    const std::vector<Engine::QueuedTest> queue = e.pendingTests();
     if (queue.empty()) {
-        ImGui::TextWrapped("No edge waits for its in-circle test.");
+        ImGui::TextDisabled("No edge waits for its in-circle test.");
         return;
     }
-    ImGui::TextWrapped(
-        "%zu %s to test, the next first: the flip stack's top is 1 (a flip puts "
-        "its two new outer edges on top).",
-        queue.size(), queue.size() == 1 ? "edge" : "edges");
-    ImGui::Separator();
-    ImGui::BeginChild("##queue", ImVec2(0, 0), false);
+    if (!st.overlays.queueOrder) {  // a lesson asking for it (the flip-queue-order overlay)
+        ImGui::TextDisabled("Their order is hidden (View > Their order).");
+        return;
+    }
+    ImGui::TextDisabled(
+        "The next first: the top of the flip stack is 1 (a flip puts its two new "
+        "outer edges on top).");
     for (std::size_t i = 0; i < queue.size(); ++i) {
         const std::string row = queueRowText(e.inserter(), i + 1, queue[i]);
         ImGui::PushID(static_cast<int>(i));
@@ -56,7 +63,6 @@ void ShowFlipQueue(AppState& st) {
             ImGui::SetTooltip("corner %d on the flip stack: the edge opposite it", queue[i].corner);
         ImGui::PopID();
     }
-    ImGui::EndChild();
 }
 
 }  // namespace dlab::ui

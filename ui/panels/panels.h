@@ -86,7 +86,8 @@ void ShowExpressions(AppState& state);  // expressions.cpp: console, path on the
 void ShowPredicates(AppState& state);   // predicates.cpp: the current test's determinant and signs
 void ShowIdBuffer(AppState& state);     // idbuffer.cpp: the colour-ID buffer, pixel under the mouse
 void ShowStatistics(AppState& state);   // statistics.cpp: counts, flips plot, frame times, checks
-void ShowFlipQueue(AppState& state);    // flip_queue.cpp: the edges still to test, next first
+// flip_queue.cpp: the Predicates tab's "Flip queue" section: the edges still to test, next first.
+void ShowFlipQueue(AppState& state);
 // "1. edge 3-7 (triangles 4 | 9)": the Queue tab's row for the number-th edge to test.
 std::string queueRowText(const Inserter& inserter, std::size_t number,
                          const Engine::QueuedTest& test);

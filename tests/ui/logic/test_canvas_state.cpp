@@ -113,7 +113,7 @@ TEST(FlipQueue, TheQueueTabListsTheStackTheNextEdgeFirst) {
     UiHarness h(1280, 720);
     auto& st = h.state();
     ASSERT_TRUE(toCascade(st, 3));
-    st.pendingTab = "flip-queue";
+    st.pendingTab = "predicates";
     h.frames(3);
     const std::vector<std::string> lines = dlab::ui::drawnLines(frameText());
     const auto& stack = st.engine.inserter().flipStack();
@@ -144,6 +144,7 @@ TEST(FlipQueue, TheQueueTabListsTheStackTheNextEdgeFirst) {
 TEST(Legend, ListsTheMarksTheCanvasDrewAndOnlyThose) {
     UiHarness h(1280, 720);
     auto& st = h.state();
+    st.overlays.legend = true;
     ASSERT_TRUE(toCascade(st, 2));
     ASSERT_TRUE(st.engine.forward());  // the test of the edge on top
     ASSERT_EQ(st.engine.current()->type, dlab::OpType::InCircleTest);
@@ -285,6 +286,7 @@ TEST(GhostTarget, TheWedgeTheWalkEntersIsHighlightedOutsideTheHull) {
     UiHarness h(1280, 720);
     auto& st = h.state();
     ASSERT_EQ(st.engine.options().boundary, dlab::Boundary::Exact);
+    st.overlays.legend = true;
     const std::int32_t t = toGhostWalk(st);
     ASSERT_NE(t, kNone) << "the demo's walk enters a ghost triangle";
     h.frames(2);
