@@ -213,9 +213,11 @@ void applyOverlays(ui::Overlays& ov, const std::vector<std::string>& overlays) {
             ov.cornerIds = false;
         else if (o == "no-fill")
             ov.fill = false;
+        else if (o == "legend")
+            ov.legend = true;
         else
             fail("unknown --overlay \"" + o +
-                     "\" (voronoi, circumcircles, triangle-ids, no-corner-ids, no-fill)",
+                     "\" (voronoi, circumcircles, triangle-ids, no-corner-ids, no-fill, legend)",
                  2);
     }
 }
@@ -346,7 +348,8 @@ void addRender(CLI::App& app) {
         ->check(CLI::IsMember({"corner-table", "vertex-table", "expressions", "predicates",
                                "idbuffer", "statistics", "trace-compare"}));
     cmd->add_option("--overlay", args->overlays,
-                    "voronoi, circumcircles, triangle-ids, no-corner-ids, no-fill (repeatable)");
+                    "voronoi, circumcircles, triangle-ids, no-corner-ids, no-fill, legend "
+                    "(repeatable)");
     args->engine.add(*cmd);
     cmd->parse_complete_callback(needGl);
     cmd->callback([args] { guarded([&] { runRender(*args); }); });
