@@ -51,9 +51,11 @@ void ShowFlipQueue(AppState& st) {
         ImGui::TextDisabled("Their order is hidden (View > Their order).");
         return;
     }
-    ImGui::TextDisabled(
+    ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
+    ImGui::TextWrapped(
         "The next first: the top of the flip stack is 1 (a flip puts its two new "
         "outer edges on top).");
+    ImGui::PopStyleColor();
     for (std::size_t i = 0; i < queue.size(); ++i) {
         const std::string row = queueRowText(e.inserter(), i + 1, queue[i]);
         ImGui::PushID(static_cast<int>(i));
