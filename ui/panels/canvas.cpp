@@ -639,6 +639,21 @@ float inradius(const ImVec2 (&p)[3]) {
     return perimeter > 0 ? area2 / perimeter : 0.0f;
 }
 
+// Triangle t's id inside it (screen corners p), unless it would cover another label.
+void DrawTriangleId(const Scene& s, std::int32_t t, const ImVec2 (&p)[3], float fs) {
+    if (!s.room(48 + s.pointReserve())) return;
+    ImFont* mono = fonts().mono;
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "t%d", t);
+    const ImVec2 centre((p[0].x + p[1].x + p[2].x) / 3, (p[0].y + p[1].y + p[2].y) / 3);
+    const ImVec2 at = placeInside(s.labels, p, centre, mono->CalcTextSizeA(fs, 1e9f, 0, buf));
+    if (!s.labels.lastFree) {
+        s.labels.dropLast();
+        return;
+    }
+    LabelBox(s.dl, mono, fs, at, s.pal.triangleId, IM_COL32(255, 255, 255, 200), buf);
+}
+
 void DrawLabels(const Scene& s, std::int32_t& hoveredCorner, ImVec2 mouse, bool mouseInCanvas) {
     const Mesh& m = s.m;
     const Overlays& ov = s.st.overlays;
@@ -678,18 +693,8 @@ void DrawLabels(const Scene& s, std::int32_t& hoveredCorner, ImVec2 mouse, bool 
             maxY < s.view.origin.y || minY > s.view.origin.y + s.view.size.y) {
             continue;
         }
-        if (ov.triangleIds && !ghost) {
-            const ImVec2 centre((p[0].x + p[1].x + p[2].x) / 3, (p[0].y + p[1].y + p[2].y) / 3);
-            if (maxX - minX > 40 && maxY - minY > 30 && s.room(48 + s.pointReserve())) {
-                std::snprintf(buf, sizeof buf, "t%d", t);
-                const ImVec2 at =
-                    placeInside(s.labels, p, centre, mono->CalcTextSizeA(fs, 1e9f, 0, buf));
-                if (!s.labels.lastFree) s.labels.dropLast();  // it would cover another
-                if (s.labels.lastFree)
-                    LabelBox(s.dl, mono, fs, at, s.pal.triangleId, IM_COL32(255, 255, 255, 200),
-                             buf);
-            }
-        }
+        if (ov.triangleIds && !ghost && maxX - minX > 40 && maxY - minY > 30)
+            DrawTriangleId(s, t, p, fs);
         // A sliver (a long hull triangle at a far zoom) has no room for its corners' labels:
         // they would sit on its edges, over the neighbours' (legible only when zoomed in).
         const bool roomy = ghost || inradius(p) >= 0.5f * fs;

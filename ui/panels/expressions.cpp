@@ -337,8 +337,7 @@ void DrawExpressionOverlay(AppState& st) {
     const Mesh& m = st.engine.mesh();
     const View& view = st.view;
     ImDrawList* dl = ImGui::GetWindowDrawList();
-    const ImVec2 p0 = toIm(view.origin), p1 = toIm(view.origin + view.size);
-    dl->PushClipRect(p0, p1, true);
+    dl->PushClipRect(toIm(view.origin), toIm(view.origin + view.size), true);
     const float w = st.presentation ? 4.0f : 3.0f;
     auto anchor = [&](std::int32_t c, ImVec2& out) {
         float x = 0, y = 0;
