@@ -207,22 +207,22 @@ void loadRenderInput(ui::AppState& state, const RenderArgs& args) {
     if (!state.loadPoints(std::move(loaded.points), args.input)) fail(state.messages.back().text);
 }
 
+// The overlays' names, "fill, vertex-ids, ...", for the help and the error.
+std::string overlayNames() {
+    std::string out;
+    for (const OverlaySwitch& s : kOverlaySwitches)
+        out += (out.empty() ? "" : ", ") + std::string(s.name);
+    return out;
+}
+
+// NAME turns an overlay on, no-NAME off.
 void applyOverlays(ui::Overlays& ov, const std::vector<std::string>& overlays) {
     for (const std::string& o : overlays) {
-        if (o == "voronoi")
-            ov.voronoi = true;
-        else if (o == "circumcircles")
-            ov.circumcircles = true;
-        else if (o == "triangle-ids")
-            ov.triangleIds = true;
-        else if (o == "no-corner-ids")
-            ov.cornerIds = false;
-        else if (o == "no-fill")
-            ov.fill = false;
-        else
-            fail("unknown --overlay \"" + o +
-                     "\" (voronoi, circumcircles, triangle-ids, no-corner-ids, no-fill)",
-                 2);
+        const bool off = o.rfind("no-", 0) == 0;
+        bool* flag = overlaySwitch(ov, off ? std::string_view(o).substr(3) : std::string_view(o));
+        if (!flag)
+            fail("unknown --overlay \"" + o + "\" (" + overlayNames() + ", or no- before one)", 2);
+        *flag = !off;
     }
 }
 
@@ -349,10 +349,10 @@ void addRender(CLI::App& app) {
                     "running frames record the run's history as they go)")
         ->check(CLI::Range(0, 1000));
     cmd->add_option("--tab", args->tab, "The side tab to show")
-        ->check(CLI::IsMember({"corner-table", "vertex-table", "expressions", "predicates",
-                               "idbuffer", "statistics", "trace-compare", "check"}));
+        ->check(CLI::IsMember(ui::sideTabIds()));
     cmd->add_option("--overlay", args->overlays,
-                    "voronoi, circumcircles, triangle-ids, no-corner-ids, no-fill (repeatable)");
+                    "An overlay to turn on (" + overlayNames() +
+                        "), or off with no- before its name (repeatable)");
     args->engine.add(*cmd);
     cmd->parse_complete_callback(needGl);
     cmd->callback([args] { guarded([&] { runRender(*args); }); });

@@ -41,6 +41,16 @@ bool TabLabelsFit(const AppState& state) {
     return width <= ImGui::GetContentRegionAvail().x;
 }
 
+}  // namespace
+
+std::vector<std::string> sideTabIds() {
+    std::vector<std::string> ids;
+    for (const SideTab& tab : kSideTabs) ids.emplace_back(tab.id);
+    return ids;
+}
+
+namespace {
+
 // A draggable bar; returns the drag delta in pixels along its axis.
 float Splitter(const char* id, bool vertical, float thickness, float length) {
     ImGui::InvisibleButton(id, vertical ? ImVec2(thickness, length) : ImVec2(length, thickness));
@@ -109,6 +119,7 @@ void ShowLeftColumn(AppState& state, const Regions& r) {
                       ImGuiWindowFlags_NoScrollbar | ImGuiWindowFlags_NoScrollWithMouse);
     ShowCanvas(state);
     DrawDebugOverlays(state);
+    ShowCanvasLegend(state);
     ShowCanvasNotice(state);
     ShowTimeline(state);
     ImGui::EndChild();
@@ -337,6 +348,7 @@ void plainShortcut(AppState& state, const KeyPress& k) {
     if (k.key == key::letter('F')) state.fitPending = true;
     if (k.key == key::letter('V')) state.overlays.voronoi = !state.overlays.voronoi;
     if (k.key == key::letter('C')) state.overlays.circumcircles = !state.overlays.circumcircles;
+    if (k.key == key::letter('L')) state.overlays.legend = !state.overlays.legend;
     if (k.key == key::letter('G')) state.snapToGrid = !state.snapToGrid;
     if (k.key == key::kEqual || k.key == key::kKpAdd)
         state.view.zoomAt(state.view.origin + state.view.size * 0.5, 1.25);

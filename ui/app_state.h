@@ -8,6 +8,7 @@
 #include "core/engine/mesh_diff.h"
 #include "core/engine/triangulation_check.h"
 #include "core/teaching/corner_expr.h"
+#include "core/teaching/overlays.h"
 #include "core/teaching/trace_diff.h"
 #include "ui/engine.h"
 #include "ui/lesson_player.h"
@@ -24,6 +25,8 @@
 #include <vector>
 
 namespace dlab::ui {
+
+using ::dlab::Overlays;  // core/teaching/overlays.h
 
 struct CanvasCache;  // canvas.cpp: the mesh renderer's arrays and the drag in progress
 class Renderer;      // ui/render/renderer.h: what the canvas and image views draw through
@@ -47,20 +50,6 @@ struct View {
     void fit(Vec2 lo, Vec2 hi);
     // Zooms by `factor`, keeping the world point under `screen` where it is.
     void zoomAt(glm::dvec2 screen, double factor);
-};
-
-struct Overlays {
-    bool fill = true;  // light fill of the triangles
-    bool vertexIds = true;
-    bool cornerIds = true;  // corner ids inside their corners (when zoomed in enough)
-    bool triangleIds = false;
-    bool walk = true;            // the current locate's path and the line L
-    bool flipQueue = true;       // edges still to test
-    bool flipped = true;         // edges flipped by the current insertion
-    bool circumcircles = false;  // every triangle's circumcircle
-    bool voronoi = false;
-    bool pendingPoints = true;     // points not inserted yet
-    bool virtualTriangles = true;  // super-triangle (super mode) while the run is in progress
 };
 
 // A corner operator applied by the inspector (n p o l r s u).

@@ -304,13 +304,17 @@ std::vector<VertexEdge> Engine::flippedEdges() const {
     return edges;
 }
 
-std::vector<VertexEdge> Engine::pendingTests() const {
-    std::vector<VertexEdge> edges;
+std::vector<Engine::QueuedTest> Engine::pendingTests() const {
+    std::vector<QueuedTest> tests;
     const Mesh& m = mesh();
-    for (std::int32_t c : m_ins->flipStack()) {
-        if (c >= 0 && c < m.numCorners()) edges.push_back({m.V[next(c)], m.V[prev(c)]});
+    const std::vector<std::int32_t>& stack = m_ins->flipStack();
+    for (auto it = stack.rbegin(); it != stack.rend(); ++it) {
+        const std::int32_t c = *it;
+        if (c < 0 || c >= m.numCorners()) continue;
+        const std::int32_t o = m.O[c];
+        tests.push_back({c, {m.V[next(c)], m.V[prev(c)]}, tri(c), o == kNone ? kNone : tri(o)});
     }
-    return edges;
+    return tests;
 }
 
 const std::vector<Engine::PointState>& Engine::pointStates() const {

@@ -121,8 +121,15 @@ public:
     std::vector<std::int32_t> walkPath() const;
     // Edges made by the flips of the current insertion so far (vertex pairs).
     std::vector<VertexEdge> flippedEdges() const;
-    // Edges still to test: the edge opposite each corner on the flip stack.
-    std::vector<VertexEdge> pendingTests() const;
+    // Edges still to test: the edge opposite each corner on the flip stack, the next one (the
+    // top of the stack) first.
+    struct QueuedTest {
+        std::int32_t corner = kNone;  // on the inserter's flip stack
+        VertexEdge edge;              // V[next(corner)], V[prev(corner)]
+        std::int32_t near = kNone;    // tri(corner): the new point's side
+        std::int32_t far = kNone;     // tri(O[corner]), kNone past the hull
+    };
+    std::vector<QueuedTest> pendingTests() const;
     // The input point being inserted, kNone between insertions.
     std::int32_t currentVertex() const { return m_ins->currentVertex(); }
     // What each input point is now: waiting, being inserted, a vertex, or a skipped duplicate.

@@ -12,21 +12,6 @@ namespace dlab::ui {
 
 namespace {
 
-bool* overlaySwitch(Overlays& o, const std::string& name) {
-    if (name == "fill") return &o.fill;
-    if (name == "vertex-ids") return &o.vertexIds;
-    if (name == "corner-ids") return &o.cornerIds;
-    if (name == "triangle-ids") return &o.triangleIds;
-    if (name == "walk") return &o.walk;
-    if (name == "flip-queue") return &o.flipQueue;
-    if (name == "flipped") return &o.flipped;
-    if (name == "circumcircles") return &o.circumcircles;
-    if (name == "voronoi") return &o.voronoi;
-    if (name == "pending-points") return &o.pendingPoints;
-    if (name == "virtual-triangles") return &o.virtualTriangles;
-    return nullptr;  // e.g. "idbuffer": shown by its panel
-}
-
 // The stop's view for the canvas' next frame; a stop without one shows all the points, so that a
 // slide looks the same whichever stop came before it.
 void applyView(AppState& st, const LessonStop& stop) {
@@ -73,11 +58,8 @@ void applyStopOverlays(AppState& st, std::size_t k) {
         return;
     }
     Overlays& o = st.overlays;
-    for (bool* b :
-         {&o.fill, &o.vertexIds, &o.cornerIds, &o.triangleIds, &o.walk, &o.flipQueue, &o.flipped,
-          &o.circumcircles, &o.voronoi, &o.pendingPoints, &o.virtualTriangles}) {
-        *b = false;
-    }
+    for (const OverlaySwitch& s : kOverlaySwitches)
+        if (s.perStop) o.*s.flag = false;
     for (const std::string& name : L.lesson->stops[named - 1].overlays) {
         if (bool* b = overlaySwitch(o, name)) *b = true;
     }

@@ -1446,8 +1446,8 @@ const Op* Journal::forward() {
     if (m_pos < m_ops.size()) {
         const Op& op = m_ops[m_pos];
         const Control after = m_pos + 1 < m_ops.size() ? controlBefore(m_pos + 1) : m_tip;
-        m_ins->redo(op, m_changes, {m_pushes.data() + m_pushEnd, pushCount(op)}, after);
-        m_pushEnd += pushCount(op);
+        m_ins->redo(op, m_changes, {m_pushes.data() + m_pushEnd, dlab::pushCount(op)}, after);
+        m_pushEnd += dlab::pushCount(op);
         ++m_pos;
         return &op;
     }
@@ -1490,8 +1490,8 @@ const Op* Journal::back() {
     if (m_pos == m_ops.size()) m_tip = m_ins->control();
     --m_pos;
     const Op& op = m_ops[m_pos];
-    m_pushEnd -= pushCount(op);
-    m_ins->undo(op, m_changes, {m_pushes.data() + m_pushEnd, pushCount(op)}, controlBefore(m_pos));
+    m_pushEnd -= dlab::pushCount(op);
+    m_ins->undo(op, m_changes, {m_pushes.data() + m_pushEnd, dlab::pushCount(op)}, controlBefore(m_pos));
     return &m_ops[m_pos];
 }
 

@@ -5,9 +5,7 @@
 
 namespace dlab {
 
-namespace {
-
-std::string vname(const Inserter& ins, std::int32_t v) {
+std::string vertexName(const Inserter& ins, std::int32_t v) {
     if (v == kNone) return "-";
     if (ins.isVirtual(v) && !ins.done()) {
         return ins.options().boundary == Boundary::Exact ? "ghost"
@@ -15,6 +13,10 @@ std::string vname(const Inserter& ins, std::int32_t v) {
     }
     return std::to_string(v);
 }
+
+namespace {
+
+std::string vname(const Inserter& ins, std::int32_t v) { return vertexName(ins, v); }
 
 std::string triName(const Inserter& ins, std::int32_t t) {
     const auto& V = ins.mesh().V;

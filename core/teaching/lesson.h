@@ -37,6 +37,7 @@
 
 #include "core/engine/inserter.h"
 #include "core/teaching/breakpoint.h"
+#include "core/teaching/overlays.h"
 
 #include <array>
 #include <cstddef>
@@ -55,11 +56,6 @@ namespace dlab {
 inline constexpr const char* kPanelNames[] = {
     "canvas",      "corner-table", "vertex-table", "inspector",  "messages",
     "expressions", "predicates",   "idbuffer",     "statistics", "lesson",
-};
-inline constexpr const char* kOverlayNames[] = {
-    "fill",    "vertex-ids",     "corner-ids",        "triangle-ids",
-    "walk",    "flip-queue",     "flipped",           "circumcircles",
-    "voronoi", "pending-points", "virtual-triangles", "idbuffer",
 };
 
 // Drawings a stop may show beside its text (`figure = "lifting-map"`).

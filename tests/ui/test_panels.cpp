@@ -28,8 +28,8 @@ namespace {
 constexpr std::array<int, 3> kPathRgb = {214, 0, 120};     // expressions.cpp
 constexpr std::array<int, 3> kWarningRgb = {200, 20, 30};  // predicates.cpp
 constexpr std::array<int, 3> kViolationRgb = {230, 0, 0};  // statistics.cpp
-constexpr std::array<int, 3> kPendingRgb = {250, 170,
-                                            60};  // statistics.cpp: expected mid-insertion
+constexpr std::array<int, 3> kPendingRgb = {245, 110,
+                                            150};  // statistics.cpp: expected mid-insertion
 
 void typeText(UiHarness& h, const std::string& text) {
     for (char ch : text) {

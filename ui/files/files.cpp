@@ -13,6 +13,7 @@
 
 #include "core/engine/io_write.h"
 #include "core/engine/mesh_build.h"
+#include "core/engine/mesh_read.h"
 #include "core/teaching/describe.h"
 #include "ui/files/gif_export.h"
 #include "ui/files/session.h"

@@ -43,28 +43,10 @@ std::string hex64(std::uint64_t v) {
     return buf;
 }
 
-// The overlay flags by their JSON names (reading and writing use the same table).
-struct OverlayField {
-    const char* name;
-    bool Overlays::*flag;
-};
-constexpr OverlayField kOverlayFields[] = {
-    {"fill", &Overlays::fill},
-    {"vertex_ids", &Overlays::vertexIds},
-    {"corner_ids", &Overlays::cornerIds},
-    {"triangle_ids", &Overlays::triangleIds},
-    {"walk", &Overlays::walk},
-    {"flip_queue", &Overlays::flipQueue},
-    {"flipped", &Overlays::flipped},
-    {"circumcircles", &Overlays::circumcircles},
-    {"voronoi", &Overlays::voronoi},
-    {"pending_points", &Overlays::pendingPoints},
-    {"virtual_triangles", &Overlays::virtualTriangles},
-};
-
+// The overlay flags by their JSON names (reading and writing use the one table of overlays).
 OrderedJson overlaysJson(const Overlays& ov) {
     OrderedJson j = OrderedJson::object();
-    for (const OverlayField& f : kOverlayFields) j[f.name] = ov.*f.flag;
+    for (const OverlaySwitch& f : kOverlaySwitches) j[overlayKey(f)] = ov.*f.flag;
     return j;
 }
 
@@ -387,9 +369,9 @@ void parseSelection(const Json& sel, Session& s) {
 Overlays parseOverlays(const Json& ov) {
     if (!ov.is_object()) fail("/overlays", "expected an object");
     Overlays o;
-    for (const OverlayField& f : kOverlayFields) {
-        if (const Json* v = member(ov, f.name))
-            o.*f.flag = flag(*v, std::string("/overlays/") + f.name);
+    for (const OverlaySwitch& f : kOverlaySwitches) {
+        const std::string key = overlayKey(f);
+        if (const Json* v = member(ov, key.c_str())) o.*f.flag = flag(*v, "/overlays/" + key);
     }
     return o;
 }

@@ -138,6 +138,14 @@ Json lessonsJson(const std::map<std::string, LessonProgress>& saved) {
 }
 
 // Everything but the lessons; the window only when it is given.
+namespace {
+Json overlaysJson(const Overlays& ov) {
+    Json j = Json::object();
+    for (const OverlaySwitch& f : kOverlaySwitches) j[overlayKey(f)] = ov.*f.flag;
+    return j;
+}
+}  // namespace
+
 Json settingsJson(const AppState& st, const WindowOptions* window) {
     const Overlays& ov = userOverlays(st);  // not a lesson's
     Json j = {
@@ -145,18 +153,7 @@ Json settingsJson(const AppState& st, const WindowOptions* window) {
          {{"right_width", st.layout.rightWidth},
           {"bottom_height", st.layout.bottomHeight},
           {"inspector_height", st.layout.inspectorHeight}}},
-        {"overlays",
-         {{"fill", ov.fill},
-          {"vertex_ids", ov.vertexIds},
-          {"corner_ids", ov.cornerIds},
-          {"triangle_ids", ov.triangleIds},
-          {"walk", ov.walk},
-          {"flip_queue", ov.flipQueue},
-          {"flipped", ov.flipped},
-          {"circumcircles", ov.circumcircles},
-          {"voronoi", ov.voronoi},
-          {"pending_points", ov.pendingPoints},
-          {"virtual_triangles", ov.virtualTriangles}}},
+        {"overlays", overlaysJson(ov)},
         {"presentation", st.presentation},
         {"ops_per_second", st.run.opsPerSecond},
         {"snap_to_grid", st.snapToGrid},
@@ -229,17 +226,7 @@ void readWindowAndLayout(const Json& j, AppState& st, WindowOptions& window) {
 void readOverlays(const Json& j, Overlays& ov) {
     const auto o = j.find("overlays");
     if (o == j.end() || !o->is_object()) return;
-    read(*o, "fill", ov.fill);
-    read(*o, "vertex_ids", ov.vertexIds);
-    read(*o, "corner_ids", ov.cornerIds);
-    read(*o, "triangle_ids", ov.triangleIds);
-    read(*o, "walk", ov.walk);
-    read(*o, "flip_queue", ov.flipQueue);
-    read(*o, "flipped", ov.flipped);
-    read(*o, "circumcircles", ov.circumcircles);
-    read(*o, "voronoi", ov.voronoi);
-    read(*o, "pending_points", ov.pendingPoints);
-    read(*o, "virtual_triangles", ov.virtualTriangles);
+    for (const OverlaySwitch& f : kOverlaySwitches) read(*o, overlayKey(f).c_str(), ov.*f.flag);
 }
 
 }  // namespace

@@ -12,6 +12,7 @@
 //   [SECTION] ShowCanvas
 #include "core/engine/voronoi.h"
 #include "ui/gui.h"
+#include "ui/panels/canvas_looks.h"
 #include "ui/panels/labels.h"
 #include "ui/panels/panels.h"
 #include "ui/render/renderer.h"
@@ -49,6 +50,10 @@ struct CanvasCache {
     ImVec2 pressPos{0, 0};
     bool moved = false;
     bool pressedOnCorner = false;
+    // What this frame drew (the legend's entries; the layers over the canvas add theirs) and
+    // what the legend should not cover.
+    MarksDrawn drawn;
+    std::vector<BusyPoint> busy;
 };
 
 namespace {
@@ -57,11 +62,11 @@ namespace {
 // [SECTION] Colours and small drawing helpers
 // ============================================================================================
 
+// The mesh's own colours; what stands for something of the run takes its look from the marks'
+// table (canvas_looks.h), which the legend lists.
 struct Palette {
-    ImU32 background, grid, fill, edge, virtualEdge, vertex, vertexId, pending, current, skipped;
-    ImU32 walk, walkNow, lineL, split[3], testEdge, circleFlip, circleKeep, flipped, queue,
-        cornerId, cornerChanged;
-    ImU32 selected, hovered, arrow, triangleId, voronoi, circum, ghostId;
+    ImU32 background, grid, fill, edge, virtualEdge, vertex, vertexId;
+    ImU32 split[3], cornerId, triangleId, ghostId;
 };
 
 Palette palette(bool presentation) {
@@ -73,28 +78,12 @@ Palette palette(bool presentation) {
     p.virtualEdge = IM_COL32(175, 180, 190, 255);
     p.vertex = IM_COL32(20, 20, 30, 255);
     p.vertexId = IM_COL32(25, 60, 160, 255);
-    p.pending = IM_COL32(140, 140, 150, 255);
-    p.current = IM_COL32(240, 120, 0, 255);
-    p.skipped = IM_COL32(200, 30, 30, 255);
-    p.walk = IM_COL32(255, 244, 190, 255);
-    p.walkNow = IM_COL32(255, 214, 90, 255);
-    p.lineL = IM_COL32(30, 90, 220, 255);
+    // The new triangles of a split (Mark::NewTriangles), told apart by their fills.
     p.split[0] = IM_COL32(214, 234, 200, 255);
-    p.split[1] = IM_COL32(200, 224, 248, 255);
+    p.split[1] = lookOf(Mark::NewTriangles).colour;
     p.split[2] = IM_COL32(240, 214, 236, 255);
-    p.testEdge = IM_COL32(240, 120, 0, 255);
-    p.circleFlip = IM_COL32(215, 40, 40, 255);
-    p.circleKeep = IM_COL32(30, 150, 60, 255);
-    p.flipped = IM_COL32(215, 40, 40, 255);
-    p.queue = IM_COL32(240, 150, 20, 255);
     p.cornerId = IM_COL32(110, 110, 120, 255);
-    p.cornerChanged = IM_COL32(215, 90, 0, 255);
-    p.selected = IM_COL32(240, 120, 0, 255);
-    p.hovered = IM_COL32(30, 110, 230, 255);
-    p.arrow = IM_COL32(150, 40, 190, 255);
     p.triangleId = IM_COL32(90, 120, 90, 255);
-    p.voronoi = IM_COL32(40, 150, 120, 255);
-    p.circum = IM_COL32(150, 150, 200, 160);
     p.ghostId = IM_COL32(150, 130, 190, 255);
     return p;
 }
@@ -149,6 +138,15 @@ void Arrow(ImDrawList* dl, ImVec2 a, ImVec2 b, ImU32 col, float thickness) {
                           ImVec2(b.x - ux * s + uy * s * 0.5f, b.y - uy * s - ux * s * 0.5f), col);
 }
 
+// The point being inserted: a diamond, white-edged (no other mark is one).
+void DrawNextPoint(ImDrawList* dl, ImVec2 q, float r, ImU32 col) {
+    const float d = r + 5;
+    dl->AddQuadFilled(ImVec2(q.x, q.y - d - 2), ImVec2(q.x + d + 2, q.y), ImVec2(q.x, q.y + d + 2),
+                      ImVec2(q.x - d - 2, q.y), IM_COL32(255, 255, 255, 255));
+    dl->AddQuadFilled(ImVec2(q.x, q.y - d), ImVec2(q.x + d, q.y), ImVec2(q.x, q.y + d),
+                      ImVec2(q.x - d, q.y), col);
+}
+
 void LabelBox(ImDrawList* dl, ImFont* font, float size, ImVec2 centre, ImU32 text, ImU32 box,
               const char* s) {
     const ImVec2 ts = font->CalcTextSizeA(size, 1e9f, 0, s);
@@ -178,6 +176,13 @@ struct Scene {
     mutable LabelBoxes labels{};
     mutable std::vector<ImVec2> vertexLabelAt{};
     mutable std::optional<ImVec2> selectedLabelAt{};  // where the selected corner's label went
+    mutable MarksDrawn drawn{};                       // the marks drawn so far (the legend's)
+
+    // A mark's colour, recorded as drawn.
+    ImU32 use(Mark mark) const {
+        drawn.set(static_cast<std::size_t>(mark));
+        return lookOf(mark).colour;
+    }
 
     ImVec2 screen(std::int32_t v) const { return toIm(view.toScreen(m.G[v])); }
     bool virtualTri(std::int32_t t) const { return running && ins.isVirtualTriangle(t); }
@@ -317,6 +322,28 @@ bool circumcircle(const Mesh& m, std::int32_t t, Vec2& centre, double& radius) {
 // [SECTION] Highlights of the current operation
 // ============================================================================================
 
+// The walk is in ghost triangle t (exact mode: the point lies beyond that hull edge): its wedge
+// outside the hull in the colour of the walk's current triangle, deep enough to hold the point.
+void DrawGhostTarget(const Scene& s, std::int32_t t, std::int32_t point) {
+    ImVec2 a, b, da, db;
+    if (!ghostWedge(s.st, t, a, b, da, db)) return;
+    ImVec2 dir, n;
+    float len;
+    Scene::edgeFrame(a, b, dir, len, n);
+    float depth = std::max(ImGui::GetFontSize() * 5.0f,
+                           0.15f * static_cast<float>(std::min(s.view.size.x, s.view.size.y)));
+    if (point >= 0 && point < s.m.numVertices()) {
+        const ImVec2 q = s.screen(point);
+        depth = std::max(depth, (q.x - a.x) * n.x + (q.y - a.y) * n.y + 30.0f);
+    }
+    depth = std::min(depth, 4.0f * static_cast<float>(s.view.size.x + s.view.size.y));
+    const ImVec2 p[4] = {a, b, ImVec2(b.x + db.x * depth, b.y + db.y * depth),
+                         ImVec2(a.x + da.x * depth, a.y + da.y * depth)};
+    const ImU32 col = s.use(Mark::WalkNow);
+    s.dl->AddConvexPolyFilled(p, 4, (col & 0x00FFFFFFu) | (190u << 24));
+    s.dl->AddPolyline(p, 4, col, ImDrawFlags_Closed, 2.0f);
+}
+
 void DrawOpUnderlay(const Scene& s) {
     const Op* op = s.e.current();
     if (!op || !s.st.overlays.walk) return;
@@ -327,17 +354,22 @@ void DrawOpUnderlay(const Scene& s) {
             const std::vector<std::int32_t> path = s.e.walkPath();
             for (std::int32_t t : path) {
                 if (!s.room(16)) break;
-                s.fillTriangle(t, s.pal.walk);
+                s.fillTriangle(t, s.use(Mark::WalkVisited));
             }
-            if (!path.empty()) s.fillTriangle(path.back(), s.pal.walkNow);
+            if (!path.empty() && s.ghostTri(path.back()))
+                DrawGhostTarget(s, path.back(), op->vertex);
+            else if (!path.empty())
+                s.fillTriangle(path.back(), s.use(Mark::WalkNow));
             break;
         }
         case OpType::Split:
+            s.use(Mark::NewTriangles);
             s.fillTriangle(op->a, s.pal.split[0]);
             s.fillTriangle(op->trianglesBefore, s.pal.split[1]);
             s.fillTriangle(op->trianglesBefore + 1, s.pal.split[2]);
             break;
         case OpType::SplitEdge:
+            s.use(Mark::NewTriangles);
             s.fillTriangle(tri(op->a), s.pal.split[0]);
             s.fillTriangle(op->trianglesBefore, s.pal.split[1]);
             if (op->b != kNone) {
@@ -346,6 +378,7 @@ void DrawOpUnderlay(const Scene& s) {
             }
             break;
         case OpType::Flip:
+            s.use(Mark::NewTriangles);
             if (op->a >= 0 && op->a < m.numCorners()) s.fillTriangle(tri(op->a), s.pal.split[1]);
             if (op->b >= 0 && op->b < m.numCorners()) s.fillTriangle(tri(op->b), s.pal.split[2]);
             break;
@@ -407,6 +440,66 @@ void DrawHalfPlane(const Scene& s, std::int32_t t, ImU32 col, float w) {
     s.edge(u, v, col, w * 1.6f);
 }
 
+// Where queued edge q is drawn on the screen: from pa to pb. An edge to the ghost vertex (exact
+// mode) stands for the ray from its hull vertex that two ghost wedges share: drawn that far.
+bool queuedEdgeOnScreen(const Scene& s, const Engine::QueuedTest& q, ImVec2& pa, ImVec2& pb) {
+    const VertexEdge e = q.edge;
+    if (e.a < 0 || e.b < 0 || e.a >= s.m.numVertices() || e.b >= s.m.numVertices()) return false;
+    const bool va = s.ins.isVirtual(e.a), vb = s.ins.isVirtual(e.b);
+    if (!s.ghostMode || !s.running || (!va && !vb)) {
+        pa = s.screen(e.a);
+        pb = s.screen(e.b);
+        return true;
+    }
+    if (va && vb) return false;
+    const std::int32_t u = va ? e.b : e.a;
+    ImVec2 a, b, da, db;
+    if (!ghostWedge(s.st, q.near, a, b, da, db)) return false;
+    pa = s.screen(u);
+    const ImVec2 side = (pa.x == a.x && pa.y == a.y) ? da : db;
+    const float len = ImGui::GetFontSize() * 3.2f;
+    pb = ImVec2(pa.x + side.x * len, pa.y + side.y * len);
+    return true;
+}
+
+// The edges on the flip stack, dashed, each with its place in the stack in a disc at its middle:
+// 1 is the top, the edge the engine tests next (the Queue tab lists them alike).
+void DrawFlipQueue(const Scene& s, float w) {
+    const std::vector<Engine::QueuedTest> queue = s.e.pendingTests();
+    if (queue.empty()) return;
+    const ImU32 col = s.use(Mark::QueuedEdge);
+    std::vector<ImVec2> ends(2 * queue.size());
+    std::vector<bool> shown(queue.size());
+    for (std::size_t i = 0; i < queue.size(); ++i) {
+        shown[i] = queuedEdgeOnScreen(s, queue[i], ends[2 * i], ends[2 * i + 1]);
+        const ImVec2 pa = ends[2 * i], pb = ends[2 * i + 1];
+        if (!shown[i] || !s.room(200)) continue;  // dashes: at most ~2 screen diagonals of them
+        if (s.onCanvas(std::min(pa.x, pb.x), std::min(pa.y, pb.y), std::max(pa.x, pb.x),
+                       std::max(pa.y, pb.y), w))
+            DashedLine(s.dl, pa, pb, col, w);
+    }
+    if (!s.st.overlays.queueOrder) return;
+    const ImU32 badge = s.use(Mark::QueueOrder);
+    ImFont* font = fonts().ui;
+    const float fs = ImGui::GetFontSize() * 0.8f, r = fs * 0.72f;
+    char buf[24];
+    // The last first, so that the next edge's disc is on top where discs meet.
+    for (std::size_t i = queue.size(); i-- > 0;) {
+        if (!shown[i]) continue;
+        const ImVec2 pa = ends[2 * i], pb = ends[2 * i + 1];
+        const ImVec2 mid((pa.x + pb.x) / 2, (pa.y + pb.y) / 2);
+        if (!s.onCanvas(mid.x - r, mid.y - r, mid.x + r, mid.y + r) || !s.room(80)) continue;
+        std::snprintf(buf, sizeof buf, "%zu", i + 1);
+        const ImVec2 ts = font->CalcTextSizeA(fs, 1e9f, 0, buf);
+        const float rr = std::max(r, ts.x / 2 + 3);
+        s.dl->AddCircleFilled(mid, rr + 1.5f, IM_COL32(255, 255, 255, 255));
+        s.dl->AddCircleFilled(mid, rr, badge);
+        s.dl->AddText(font, fs, ImVec2(mid.x - ts.x / 2, mid.y - ts.y / 2),
+                      IM_COL32(255, 255, 255, 255), buf);
+        s.labels.add(mid, ImVec2(2 * rr - 4, 2 * rr));  // corner labels keep clear of it
+    }
+}
+
 void DrawOpOverlay(const Scene& s) {
     const Op* op = s.e.current();
     const Mesh& m = s.m;
@@ -416,15 +509,10 @@ void DrawOpOverlay(const Scene& s) {
     if (ov.flipped) {
         for (const VertexEdge& fe : s.e.flippedEdges()) {
             if (!s.room(8)) break;
-            s.edge(fe.a, fe.b, s.pal.flipped, w);
+            s.edge(fe.a, fe.b, s.use(Mark::FlippedEdge), w);
         }
     }
-    if (ov.flipQueue) {
-        for (const VertexEdge& qe : s.e.pendingTests()) {
-            if (!s.room(200)) break;  // dashes: at most ~2 screen diagonals of them
-            s.edge(qe.a, qe.b, s.pal.queue, w, true);
-        }
-    }
+    if (ov.flipQueue) DrawFlipQueue(s, w);
     if (!op) return;
     switch (op->type) {
         case OpType::LocateStep:
@@ -434,7 +522,7 @@ void DrawOpOverlay(const Scene& s) {
             const std::int32_t v = op->vertex;
             if (v >= 0 && v < m.numVertices() && ctl.walk.straight && ctl.walk.steps > 0) {
                 // The paper's line L from q (inside the start triangle) to the new point.
-                Arrow(s.dl, toIm(s.view.toScreen(ctl.walk.origin)), s.screen(v), s.pal.lineL,
+                Arrow(s.dl, toIm(s.view.toScreen(ctl.walk.origin)), s.screen(v), s.use(Mark::LineL),
                       w * 0.7f);
             }
             break;
@@ -442,9 +530,9 @@ void DrawOpOverlay(const Scene& s) {
         case OpType::InCircleTest: {
             const std::int32_t a = op->a, b = op->b;
             if (a < 0 || a >= m.numCorners()) break;
-            s.edge(m.V[next(a)], m.V[prev(a)], s.pal.testEdge, w * 1.4f);
+            s.edge(m.V[next(a)], m.V[prev(a)], s.use(Mark::TestEdge), w * 1.6f);
             if (b == kNone || b >= m.numCorners()) break;
-            const ImU32 col = op->sign > 0 ? s.pal.circleFlip : s.pal.circleKeep;
+            const ImU32 col = s.use(op->sign > 0 ? Mark::CircleFlip : Mark::CircleKeep);
             const std::int32_t t = tri(b);
             if (s.ghostTri(t)) {
                 DrawHalfPlane(s, t, col, w);
@@ -458,7 +546,7 @@ void DrawOpOverlay(const Scene& s) {
         }
         case OpType::Flip:
             if (op->a >= 0 && op->b >= 0 && op->a < m.numCorners() && op->b < m.numCorners()) {
-                s.edge(m.V[op->a], m.V[op->b], s.pal.flipped, w * 1.6f);
+                s.edge(m.V[op->a], m.V[op->b], s.use(Mark::FlippedEdge), w * 1.6f);
             }
             break;
         case OpType::Split:
@@ -469,8 +557,7 @@ void DrawOpOverlay(const Scene& s) {
                     if (t < 0 || t >= m.numTriangles()) continue;
                     for (int k = 0; k < 3; ++k) {
                         if (m.V[3 * t + k] == op->vertex) {
-                            s.edge(op->vertex, m.V[3 * t + (k + 1) % 3],
-                                   s.pal.split[0] & 0xFF208020, w);
+                            s.edge(op->vertex, m.V[3 * t + (k + 1) % 3], s.use(Mark::NewEdge), w);
                         }
                     }
                 }
@@ -512,7 +599,7 @@ void DrawVoronoi(const Scene& s) {
         if (!seg) continue;
         if (!s.room(8)) return;
         s.dl->AddLine(toIm(s.view.toScreen(seg->first)), toIm(s.view.toScreen(seg->second)),
-                      s.pal.voronoi, w);
+                      s.use(Mark::Voronoi), w);
     }
     for (std::int32_t t = 0; t < m.numTriangles(); ++t) {
         if (s.virtualTri(t)) continue;
@@ -521,7 +608,7 @@ void DrawVoronoi(const Scene& s) {
             q.x > s.view.origin.x + s.view.size.x || q.y > s.view.origin.y + s.view.size.y)
             continue;
         if (!s.room(32)) return;
-        s.dl->AddCircleFilled(q, 2.5f, s.pal.voronoi);
+        s.dl->AddCircleFilled(q, 2.5f, s.use(Mark::Voronoi));
     }
 }
 
@@ -540,6 +627,31 @@ ImVec2 placeCornerLabel(const Scene& s, std::int32_t c, bool ghost, ImVec2 a, co
         {a, ImVec2(a.x + in.x, a.y + in.y), ImVec2(a.x + 2 * in.x, a.y + 2 * in.y),
          ImVec2(a.x + d.x, a.y + d.y), ImVec2(a.x - d.x, a.y - d.y)},
         size);
+}
+
+// The radius of the circle inscribed in a screen triangle (twice its area over its perimeter).
+float inradius(const ImVec2 (&p)[3]) {
+    const float area2 =
+        std::abs((p[1].x - p[0].x) * (p[2].y - p[0].y) - (p[1].y - p[0].y) * (p[2].x - p[0].x));
+    float perimeter = 0;
+    for (int k = 0; k < 3; ++k)
+        perimeter += std::hypot(p[(k + 1) % 3].x - p[k].x, p[(k + 1) % 3].y - p[k].y);
+    return perimeter > 0 ? area2 / perimeter : 0.0f;
+}
+
+// Triangle t's id inside it (screen corners p), unless it would cover another label.
+void DrawTriangleId(const Scene& s, std::int32_t t, const ImVec2 (&p)[3], float fs) {
+    if (!s.room(48 + s.pointReserve())) return;
+    ImFont* mono = fonts().mono;
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "t%d", t);
+    const ImVec2 centre((p[0].x + p[1].x + p[2].x) / 3, (p[0].y + p[1].y + p[2].y) / 3);
+    const ImVec2 at = placeInside(s.labels, p, centre, mono->CalcTextSizeA(fs, 1e9f, 0, buf));
+    if (!s.labels.lastFree) {
+        s.labels.dropLast();
+        return;
+    }
+    LabelBox(s.dl, mono, fs, at, s.pal.triangleId, IM_COL32(255, 255, 255, 200), buf);
 }
 
 void DrawLabels(const Scene& s, std::int32_t& hoveredCorner, ImVec2 mouse, bool mouseInCanvas) {
@@ -581,15 +693,11 @@ void DrawLabels(const Scene& s, std::int32_t& hoveredCorner, ImVec2 mouse, bool 
             maxY < s.view.origin.y || minY > s.view.origin.y + s.view.size.y) {
             continue;
         }
-        if (ov.triangleIds && !ghost) {
-            const ImVec2 centre((p[0].x + p[1].x + p[2].x) / 3, (p[0].y + p[1].y + p[2].y) / 3);
-            if (maxX - minX > 40 && maxY - minY > 30 && s.room(48 + s.pointReserve())) {
-                std::snprintf(buf, sizeof buf, "t%d", t);
-                const ImVec2 at =
-                    placeInside(s.labels, p, centre, mono->CalcTextSizeA(fs, 1e9f, 0, buf));
-                LabelBox(s.dl, mono, fs, at, s.pal.triangleId, IM_COL32(255, 255, 255, 200), buf);
-            }
-        }
+        if (ov.triangleIds && !ghost && maxX - minX > 40 && maxY - minY > 30)
+            DrawTriangleId(s, t, p, fs);
+        // A sliver (a long hull triangle at a far zoom) has no room for its corners' labels:
+        // they would sit on its edges, over the neighbours' (legible only when zoomed in).
+        const bool roomy = ghost || inradius(p) >= 0.5f * fs;
         for (int k = 0; k < 3; ++k) {
             const std::int32_t c = 3 * t + k;
             ImVec2 a;
@@ -601,17 +709,22 @@ void DrawLabels(const Scene& s, std::int32_t& hoveredCorner, ImVec2 mouse, bool 
                     hoveredCorner = c;
                 }
             }
-            if (!ov.cornerIds || !s.room(48 + s.pointReserve())) continue;
+            if (!ov.cornerIds || !roomy || !s.room(48 + s.pointReserve())) continue;
             const bool isChanged = std::find(changed.begin(), changed.end(), c) != changed.end();
             // A ghost triangle's corners in the ghost colour, beside its hull edge; the ghost
             // corner itself says so.
             const bool ghostCorner = ghost && s.ins.isVirtual(m.V[c]);
             std::snprintf(buf, sizeof buf, ghostCorner ? "%d g" : "%d", c);
             a = placeCornerLabel(s, c, ghost, a, p, mono->CalcTextSizeA(fs, 1e9f, 0, buf));
+            // One that would cover another is left out; the selected corner's, never.
+            if (!s.labels.lastFree && c != s.st.selection.corner) {
+                s.labels.dropLast();
+                continue;
+            }
             const ImU32 text = isChanged ? IM_COL32(255, 255, 255, 255)
                                : ghost   ? s.pal.ghostId
                                          : s.pal.cornerId;
-            LabelBox(s.dl, mono, fs, a, text, isChanged ? s.pal.cornerChanged : 0, buf);
+            LabelBox(s.dl, mono, fs, a, text, isChanged ? s.use(Mark::ChangedCorner) : 0, buf);
             if (c == s.st.selection.corner) s.selectedLabelAt = a;
         }
     }
@@ -647,18 +760,17 @@ void DrawPoints(const Scene& s, std::int32_t draggedPoint, Vec2 dragTo) {
             case Engine::PointState::Inserted: s.dl->AddCircleFilled(q, r, s.pal.vertex); break;
             case Engine::PointState::Pending:
                 if (!s.st.overlays.pendingPoints) continue;
-                s.dl->AddCircle(q, r + 1, s.pal.pending, 0, 1.5f);
-                idCol = s.pal.pending;
+                idCol = s.use(Mark::QueuedPoint);
+                s.dl->AddCircle(q, r + 1, idCol, 0, 1.5f);
                 break;
             case Engine::PointState::Current:
-                s.dl->AddCircleFilled(q, r + 1, s.pal.current);
-                s.dl->AddCircle(q, r + 6, s.pal.current, 0, 2.0f);
-                idCol = s.pal.current;
+                idCol = s.use(Mark::NextPoint);
+                DrawNextPoint(s.dl, q, r, idCol);
                 break;
             case Engine::PointState::Skipped:
-                s.dl->AddLine(ImVec2(q.x - r, q.y - r), ImVec2(q.x + r, q.y + r), s.pal.skipped, 2);
-                s.dl->AddLine(ImVec2(q.x - r, q.y + r), ImVec2(q.x + r, q.y - r), s.pal.skipped, 2);
-                idCol = s.pal.skipped;
+                idCol = s.use(Mark::SkippedPoint);
+                s.dl->AddLine(ImVec2(q.x - r, q.y - r), ImVec2(q.x + r, q.y + r), idCol, 2);
+                s.dl->AddLine(ImVec2(q.x - r, q.y + r), ImVec2(q.x + r, q.y - r), idCol, 2);
                 break;
         }
         if (ids) {
@@ -666,8 +778,11 @@ void DrawPoints(const Scene& s, std::int32_t draggedPoint, Vec2 dragTo) {
             const bool placed = i < s.vertexLabelAt.size() &&
                                 static_cast<std::int32_t>(i) != draggedPoint &&
                                 !std::isnan(s.vertexLabelAt[i].x);
-            s.dl->AddText(mono, fs, placed ? s.vertexLabelAt[i] : ImVec2(q.x + r + 2, q.y - r - fs),
-                          idCol, buf);
+            // A dragged point's label follows it; another is hidden where it would cover one.
+            if (placed || static_cast<std::int32_t>(i) == draggedPoint)
+                s.dl->AddText(mono, fs,
+                              placed ? s.vertexLabelAt[i] : ImVec2(q.x + r + 2, q.y - r - fs),
+                              idCol, buf);
         }
     }
 }
@@ -677,13 +792,14 @@ void DrawSelection(const Scene& s) {
     const float w = s.st.presentation ? 3.5f : 2.5f;
     ImVec2 a;
     if (sel.corner != kNone && sel.corner < s.m.numCorners()) {
-        s.outlineTriangle(tri(sel.corner), s.pal.selected, w);
+        const ImU32 selected = s.use(Mark::SelectedCorner);
+        s.outlineTriangle(tri(sel.corner), selected, w);
         std::int32_t u, v;
         int k;
-        if (s.hullEdge(tri(sel.corner), u, v, k)) s.edge(u, v, s.pal.selected, w, true);
+        if (s.hullEdge(tri(sel.corner), u, v, k)) s.edge(u, v, selected, w, true);
         if (s.anchor(sel.corner, a)) {
             if (s.selectedLabelAt) a = *s.selectedLabelAt;  // on its label, wherever that went
-            s.dl->AddCircleFilled(a, 11, s.pal.selected);
+            s.dl->AddCircleFilled(a, 11, selected);
             char buf[16];
             std::snprintf(buf, sizeof buf, "%d", sel.corner);
             LabelBox(s.dl, fonts().mono, ImGui::GetFontSize() * 0.85f, a,
@@ -691,17 +807,18 @@ void DrawSelection(const Scene& s) {
         }
     }
     for (std::int32_t c : {sel.hoveredRow, sel.hoveredCorner}) {
-        if (c != kNone && s.anchor(c, a)) s.dl->AddCircle(a, 13, s.pal.hovered, 0, 2.5f);
+        if (c != kNone && s.anchor(c, a))
+            s.dl->AddCircle(a, 13, s.use(Mark::HoveredCorner), 0, 2.5f);
     }
     const CornerMove* mv = s.st.currentMove();
     ImVec2 from, to;
     if (mv && s.anchor(mv->from, from) && s.anchor(mv->to, to)) {
-        Arrow(s.dl, from, to, s.pal.arrow, w);
+        Arrow(s.dl, from, to, s.use(Mark::CornerMove), w);
         char buf[8];
         std::snprintf(buf, sizeof buf, "%c", mv->op);
         LabelBox(s.dl, fonts().ui, ImGui::GetFontSize(),
                  ImVec2((from.x + to.x) / 2, (from.y + to.y) / 2 - 12),
-                 IM_COL32(255, 255, 255, 255), s.pal.arrow, buf);
+                 IM_COL32(255, 255, 255, 255), lookOf(Mark::CornerMove).colour, buf);
     }
 }
 
@@ -846,6 +963,29 @@ bool canvasHasRoom(AppState& st, const ImDrawList* dl, unsigned vertices) {
     return false;
 }
 
+ImU32 useLook(AppState& st, Mark mark) {
+    if (st.canvas) st.canvas->drawn.set(static_cast<std::size_t>(mark));
+    return lookOf(mark).colour;
+}
+
+void ShowCanvasLegend(AppState& st) {
+    if (!st.canvas || !(st.overlays.legend || slideMode(st))) {
+        st.itemRects.erase("canvas-legend");
+        return;
+    }
+    const ImVec2 p0 = toIm(st.view.origin), p1 = toIm(st.view.origin + st.view.size);
+    ImDrawList* dl = ImGui::GetWindowDrawList();
+    dl->PushClipRect(p0, p1, true);
+    const ImVec4 box =
+        DrawCanvasLegend(dl, p0, p1, st.canvas->drawn,
+                         ImGui::GetFontSize() * (slideMode(st) ? 0.8f : 0.9f), st.canvas->busy);
+    dl->PopClipRect();
+    if (box.z > box.x)
+        st.itemRects["canvas-legend"] = {box.x, box.y, box.z, box.w};
+    else
+        st.itemRects.erase("canvas-legend");
+}
+
 void ShowCanvasNotice(AppState& st) {
     if (!st.frameStats.canvasFull) return;
     const char* text =
@@ -910,7 +1050,7 @@ MeshStyle canvasMeshStyle(const AppState& st, const Palette& pal) {
     ms.edge = pal.edge;
     ms.virtualEdge = pal.virtualEdge;
     ms.point = pal.vertex;
-    ms.pending = pal.pending;
+    ms.pending = lookOf(Mark::QueuedPoint).colour;
     ms.background = pal.background;
     ms.edgeWidth = st.presentation ? 2.0f : 1.0f;
     ms.pointSize = st.engine.points().size() <= 5000 ? 4.0f : 2.0f;
@@ -950,7 +1090,7 @@ void DrawCircumcircles(const Scene& scene) {
         double r;
         if (scene.virtualTri(t) || !circumcircle(scene.m, t, c, r)) continue;
         if (!scene.room(800)) break;
-        scene.circle(c, r, scene.pal.circum, 1.0f);
+        scene.circle(c, r, scene.use(Mark::Circumcircle), 1.0f);
     }
 }
 
@@ -974,9 +1114,27 @@ void DrawMeshLayers(AppState& st, CanvasCache& cache, const Scene& scene, ImVec2
     }
     if (st.overlays.circumcircles) DrawCircumcircles(scene);
     if (st.overlays.voronoi) DrawVoronoi(scene);
-    DrawGhostTriangles(st, scene.dl);
+    if (DrawGhostTriangles(st, scene.dl)) scene.use(Mark::GhostBand);
     DrawCheckOverlay(st, scene.dl);
     DrawOpOverlay(scene);
+}
+
+// What the legend should not cover: the points on the canvas (the one being inserted most of
+// all), the labels and the ends of the queued edges.
+std::vector<BusyPoint> busy(const Scene& s) {
+    std::vector<BusyPoint> out;
+    const auto& pts = s.e.points();
+    const std::size_t step = std::max<std::size_t>(1, pts.size() / 20000);
+    for (std::size_t i = 0; i < pts.size(); i += step) {
+        const ImVec2 q = toIm(s.view.toScreen(pts[i]));
+        if (s.onCanvas(q.x, q.y, q.x, q.y, 0)) out.push_back({q, 1});
+    }
+    for (const auto& b : s.labels.boxes)
+        out.push_back({ImVec2((b[0] + b[2]) / 2, (b[1] + b[3]) / 2), 1});
+    if (const std::int32_t v = s.e.currentVertex();
+        v >= 0 && v < static_cast<std::int32_t>(pts.size()))
+        out.push_back({toIm(s.view.toScreen(pts[v])), 1000});
+    return out;
 }
 
 // Labels, points (a dragged queued point where the mouse is) and the selection; returns the
@@ -1024,6 +1182,8 @@ void ShowCanvas(AppState& st) {
     Scene scene = makeScene(st, dl);
     DrawMeshLayers(st, cache, scene, p0, p1);
     const std::int32_t hoveredCorner = DrawLabelsAndPoints(st, cache, scene, hovered);
+    cache.drawn = scene.drawn;
+    cache.busy = busy(scene);
     dl->PopClipRect();
     handleInput(st, cache, hovered);
     if (hovered && hoveredCorner != kNone && cache.drag == CanvasCache::Drag::None) {

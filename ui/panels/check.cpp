@@ -3,6 +3,7 @@
 // engine; the check of the mesh at the current step beside the one as opened.
 #include "core/engine/mesh_diff.h"
 #include "core/engine/mesh_read.h"
+#include "ui/panels/canvas_looks.h"
 #include "ui/panels/panels.h"
 
 #include <imgui.h>
@@ -20,12 +21,6 @@ using Kind = MeshProblem::Kind;
 
 // The live check runs on every step up to this many triangles; above, on request.
 constexpr std::int32_t kLiveCheckTriangles = 20000;
-
-constexpr ImU32 kViolation = IM_COL32(205, 30, 40, 255);
-constexpr ImU32 kViolationFill = IM_COL32(205, 30, 40, 60);
-constexpr ImU32 kPicked = IM_COL32(150, 0, 160, 255);
-constexpr ImU32 kOnlyGiven = IM_COL32(205, 30, 40, 255);
-constexpr ImU32 kOnlyDelaunay = IM_COL32(20, 140, 60, 255);
 
 // The mesh at this step can be checked: a flip run on an opened mesh, or an insertion run
 // after Finalize (before it, ghost or super triangles are part of the table).
@@ -146,12 +141,12 @@ void DrawEdge(const AppState& st, ImDrawList* dl, std::int32_t a, std::int32_t b
 
 // A triangle filled and hatched (overlaps), or only outlined.
 void DrawTriangle(const AppState& st, ImDrawList* dl, const std::int32_t tv[3], ImU32 col,
-                  bool hatch) {
+                  bool hatch, ImU32 fill) {
     ImVec2 p[3];
     for (int k = 0; k < 3; ++k) p[k] = toIm(st.view.toScreen(vertexAt(st, tv[k])));
     dl->AddTriangle(p[0], p[1], p[2], col, 2.0f);
     if (!hatch) return;
-    dl->AddTriangleFilled(p[0], p[1], p[2], kViolationFill);
+    dl->AddTriangleFilled(p[0], p[1], p[2], fill);
     // Lines x + y = s across the triangle, 8 pixels apart, clipped to it.
     float lo = p[0].x + p[0].y, hi = lo;
     for (const ImVec2& q : p) {
@@ -174,8 +169,7 @@ void DrawTriangle(const AppState& st, ImDrawList* dl, const std::int32_t tv[3], 
 
 // One problem: its edge and circle (not Delaunay), its triangles (hatched where they overlap),
 // its vertices ringed, its outline (holes, a non-convex outline).
-void DrawProblem(const AppState& st, ImDrawList* dl, const MeshProblem& p, ImU32 col,
-                 bool asOpened) {
+void DrawProblem(AppState& st, ImDrawList* dl, const MeshProblem& p, ImU32 col, bool asOpened) {
     if (p.kind == Kind::NotDelaunay && p.vertices.size() == 3 && p.triangles.size() == 2) {
         DrawEdge(st, dl, p.vertices[0], p.vertices[1], col, 3.0f);
         std::int32_t tv[3];
@@ -204,7 +198,8 @@ void DrawProblem(const AppState& st, ImDrawList* dl, const MeshProblem& p, ImU32
     }
     for (std::int32_t t : p.triangles) {
         std::int32_t tv[3];
-        if (openedTriangle(st, t, tv)) DrawTriangle(st, dl, tv, col, p.kind == Kind::Overlap);
+        if (openedTriangle(st, t, tv))
+            DrawTriangle(st, dl, tv, col, p.kind == Kind::Overlap, useLook(st, Mark::MeshProblem));
     }
     for (std::int32_t v : p.vertices) {
         if (validVertex(st, v))
@@ -346,9 +341,9 @@ void DrawCheckOverlay(AppState& st, ImDrawList* dl) {
     if (mc.open && mc.run != st.engine.run()) mc.open = false;
     if (mc.showDiff && mc.diffVersion == st.engine.version()) {
         for (const MeshEdge& ed : mc.diff.onlyGiven)
-            DrawEdge(st, dl, ed.first, ed.second, kOnlyGiven, 2.5f);
+            DrawEdge(st, dl, ed.first, ed.second, useLook(st, Mark::OnlyInMesh), 2.5f);
         for (const MeshEdge& ed : mc.diff.onlyDelaunay)
-            DrawEdge(st, dl, ed.first, ed.second, kOnlyDelaunay, 2.5f);
+            DrawEdge(st, dl, ed.first, ed.second, useLook(st, Mark::OnlyInDelaunay), 2.5f);
     }
     // What is wrong now: each edge that is not Delaunay at this step with its circle; the
     // problems that block a repair as opened (the mesh is shown as it is).
@@ -357,11 +352,12 @@ void DrawCheckOverlay(AppState& st, ImDrawList* dl) {
     if (nowIsCurrent(st) && checkableNow(st.engine)) {
         for (const MeshProblem& p : mc.now.problems)
             if (p.kind == Kind::NotDelaunay && drawn++ < kDrawn)
-                DrawProblem(st, dl, p, kViolation, false);
+                DrawProblem(st, dl, p, useLook(st, Mark::MeshNotDelaunay), false);
     }
     if (!mc.open) return;
     for (const MeshProblem& p : mc.report.problems)
-        if (blocksRepair(p.kind) && drawn++ < kDrawn) DrawProblem(st, dl, p, kViolation, true);
+        if (blocksRepair(p.kind) && drawn++ < kDrawn)
+            DrawProblem(st, dl, p, useLook(st, Mark::MeshProblem) | IM_COL32_A_MASK, true);
     if (mc.picked >= 0 && mc.picked < static_cast<std::int32_t>(mc.report.problems.size()))
         DrawProblem(st, dl, mc.report.problems[static_cast<std::size_t>(mc.picked)], kPicked, true);
 }

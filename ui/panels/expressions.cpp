@@ -4,6 +4,7 @@
 // operation that breaks one and name that operation and corner.
 #include "core/teaching/describe.h"
 #include "ui/gui.h"
+#include "ui/panels/canvas_looks.h"
 #include "ui/panels/panels.h"
 
 #include <imgui.h>
@@ -17,10 +18,10 @@ namespace dlab::ui {
 
 namespace {
 
-// The canvas colours of the path (distinct from every colour the canvas itself uses, so that
-// tests can find the path in a screenshot).
-constexpr ImU32 kPathColour = IM_COL32(214, 0, 120, 255);
-constexpr ImU32 kResultColour = IM_COL32(214, 0, 120, 255);
+// The canvas colours of the path (the marks' table: distinct from every colour the canvas itself
+// uses, so that tests can find the path in a screenshot).
+const ImU32 kPathColour = lookOf(Mark::ExpressionPath).colour;
+const ImU32 kResultColour = kPathColour;
 
 // Above this many corners a step's watches look only at the corners it changed (and their
 // neighbours): every corner after every operation would stall a large run.
@@ -332,11 +333,11 @@ void DrawExpressionOverlay(AppState& st) {
     const ExpressionState& ex = st.expressions;
     for (int k = 1; st.itemRects.erase("expr-path-" + std::to_string(k)) > 0; ++k) {}
     if (ex.live.empty() || ex.liveVersion != st.engine.version()) return;
+    useLook(st, Mark::ExpressionPath);
     const Mesh& m = st.engine.mesh();
     const View& view = st.view;
     ImDrawList* dl = ImGui::GetWindowDrawList();
-    const ImVec2 p0 = toIm(view.origin), p1 = toIm(view.origin + view.size);
-    dl->PushClipRect(p0, p1, true);
+    dl->PushClipRect(toIm(view.origin), toIm(view.origin + view.size), true);
     const float w = st.presentation ? 4.0f : 3.0f;
     auto anchor = [&](std::int32_t c, ImVec2& out) {
         float x = 0, y = 0;

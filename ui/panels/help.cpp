@@ -26,6 +26,7 @@ const std::vector<std::array<const char*, 2>>& helpRows() {
         {"Drag a queued point", "move it; right-click removes it"},
         {"G", "snap new points to the grid"},
         {"V / C", "Voronoi diagram / circumcircles"},
+        {"L", "Legend of the canvas' colours and lines"},
         {"Ctrl + Z / Ctrl + Y", "undo / redo an edit of the points"},
         {"Ctrl + O", "open a point file or a session"},
         {"Ctrl + S", "save the session"},

@@ -40,11 +40,13 @@ bool boxFree(const LabelBoxes& labels, ImVec2 c, ImVec2 size) {
 ImVec2 placeAlong(LabelBoxes& labels, ImVec2 vertex, ImVec2 anchor, const ImVec2 (&tri)[3],
                   ImVec2 size) {
     ImVec2 best = anchor;
+    labels.lastFree = false;
     for (float f : {1.0f, 1.5f, 2.0f, 2.6f, 0.75f}) {
         const ImVec2 c(vertex.x + (anchor.x - vertex.x) * f, vertex.y + (anchor.y - vertex.y) * f);
         if (f != 1.0f && !insideTriangle(tri, c)) continue;
         if (boxFree(labels, c, size)) {
             best = c;
+            labels.lastFree = true;
             break;
         }
     }
@@ -54,9 +56,11 @@ ImVec2 placeAlong(LabelBoxes& labels, ImVec2 vertex, ImVec2 anchor, const ImVec2
 
 ImVec2 placeFirstFree(LabelBoxes& labels, std::initializer_list<ImVec2> candidates, ImVec2 size) {
     ImVec2 best = *candidates.begin();
+    labels.lastFree = false;
     for (const ImVec2& c : candidates) {
         if (boxFree(labels, c, size)) {
             best = c;
+            labels.lastFree = true;
             break;
         }
     }
@@ -95,6 +99,7 @@ ImVec2 placeInside(LabelBoxes& labels, const ImVec2 (&tri)[3], ImVec2 centre, Im
             }
         }
     }
+    labels.lastFree = found;
     labels.add(best, size);
     return best;
 }
@@ -122,14 +127,13 @@ std::vector<ImVec2> placeVertexLabels(LabelBoxes& labels, const View& view,
         const ImVec2 spots[] = {{x + r + 2, y - r - h}, {x - r - 2 - w, y - r - h},
                                 {x + r + 2, y + r},     {x - r - 2 - w, y + r},
                                 {x + r + 3, y - h / 2}, {x - r - 3 - w, y - h / 2}};
-        at[i] = spots[0];
         for (const ImVec2& p : spots) {
             if (labels.isFree(p.x, p.y, p.x + w, p.y + h)) {
                 at[i] = p;
+                labels.addBox(p.x, p.y, p.x + w, p.y + h);
                 break;
             }
         }
-        labels.addBox(at[i].x, at[i].y, at[i].x + w, at[i].y + h);
     }
     return at;
 }

@@ -1,6 +1,7 @@
 // Label placement on the canvas: vertex labels try the four sides of their point, corner labels
 // slide along their bisector, each to the first spot that meets no label placed before it, so
-// that crowded vertices stay readable.
+// that crowded vertices stay readable. A label with no free spot is not drawn (a dense mesh
+// shows the labels that fit, not a pile of them).
 #pragma once
 
 #include "core/engine/geometry.h"
@@ -16,7 +17,11 @@ namespace dlab::ui {
 
 struct LabelBoxes {
     std::vector<std::array<float, 4>> boxes;  // x0, y0, x1, y1
+    // Whether the last place* call found a free spot (else it placed the label at its first
+    // candidate, over another: the caller hides it, and may take it back with dropLast()).
+    bool lastFree = true;
     void add(ImVec2 centre, ImVec2 size);
+    void dropLast() { boxes.pop_back(); }
     void addBox(float x0, float y0, float x1, float y1) { boxes.push_back({x0, y0, x1, y1}); }
     bool isFree(float x0, float y0, float x1, float y1) const;
 };
@@ -38,7 +43,7 @@ ImVec2 placeInside(LabelBoxes& labels, const ImVec2 (&tri)[3], ImVec2 centre, Im
 
 // The top-left corner of each point's label (top-right of the point, else top-left,
 // bottom-right, bottom-left, right, left of it), registered with the points' markers; NaN for
-// points off the canvas.
+// points off the canvas and for labels that would meet another (hidden).
 std::vector<ImVec2> placeVertexLabels(LabelBoxes& labels, const View& view,
                                       const std::vector<Vec2>& points, ImFont* font, float fontSize,
                                       float radius);

@@ -267,6 +267,7 @@ void ShowSlide(AppState& st) {
     ImGui::BeginChild("##slidecanvas", ImVec2(avail.x - sideW - gap, avail.y), false, still);
     ShowCanvas(st);
     DrawDebugOverlays(st);
+    ShowCanvasLegend(st);
     ShowCanvasNotice(st);
     ShowTimeline(st);
     ImGui::EndChild();

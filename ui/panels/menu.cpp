@@ -101,11 +101,13 @@ void ShowViewMenu(AppState& st) {
     ImGui::MenuItem("Triangle ids", nullptr, &o.triangleIds);
     ImGui::MenuItem("Walk path and line L", nullptr, &o.walk);
     ImGui::MenuItem("Edges still to test", nullptr, &o.flipQueue);
+    ImGui::MenuItem("Their order (1 = tested next)", nullptr, &o.queueOrder);
     ImGui::MenuItem("Flipped edges", nullptr, &o.flipped);
     ImGui::MenuItem("Circumcircles", "C", &o.circumcircles);
     ImGui::MenuItem("Voronoi diagram", "V", &o.voronoi);
     ImGui::MenuItem("Queued points", nullptr, &o.pendingPoints);
     ImGui::MenuItem("Super-triangle (super mode)", nullptr, &o.virtualTriangles);
+    ImGui::MenuItem("Legend", "L", &o.legend);
     ImGui::Separator();
     ImGui::MenuItem("Snap new points to grid", "G", &st.snapToGrid);
     ImGui::SetNextItemWidth(100);

@@ -36,9 +36,17 @@ std::string timelineText(const Engine& engine);
 // "9 of 12 points inserted, 1 duplicate skipped": the one count of points done, everywhere.
 std::string pointCountsText(const Engine& engine);
 void ShowCanvas(AppState& state);  // canvas.cpp: the mesh and every overlay
+// The side tabs' ids ("corner-table", ..., "check"), in order (app.cpp's table).
+std::vector<std::string> sideTabIds();
 // ghosts.cpp: exact mode's ghost triangles as grey bands beyond the hull edges (overlay
-// "virtual-triangles"), labelled when triangle ids are on.
-void DrawGhostTriangles(AppState& state, ImDrawList* dl);
+// "virtual-triangles"), labelled when triangle ids are on; true when a band was drawn.
+bool DrawGhostTriangles(AppState& state, ImDrawList* dl);
+// Exact mode, run in progress: ghost triangle t on the screen as a wedge, its hull edge a -> b
+// and the sides it leaves the hull along at a and at b (da, db: along the bisectors at the hull
+// vertices, so that neighbouring wedges share their sides; a depth of 1 along da and db is a
+// depth of 1 from the edge). False for any other triangle.
+bool ghostWedge(const AppState& state, std::int32_t t, ImVec2& a, ImVec2& b, ImVec2& da,
+                ImVec2& db);
 void ShowCornerTable(AppState& state);  // corner_table.cpp: c, t, V, O, n, p, l, r
 void ShowVertexTable(AppState& state);  // corner_table.cpp: G (vertex coordinates)
 void ShowInspector(AppState& state);    // inspector.cpp: the selected corner's operators
@@ -74,6 +82,9 @@ bool cornerAnchor(const AppState& state, std::int32_t corner, float& x, float& y
 bool canvasHasRoom(AppState& state, const ImDrawList* drawList, unsigned vertices);
 // Says so on the canvas when canvasHasRoom left shapes out this frame (after all overlays).
 void ShowCanvasNotice(AppState& state);
+// The legend of what the canvas and the layers over it drew this frame (after all overlays;
+// View > Legend, always on slides; canvas_looks.h).
+void ShowCanvasLegend(AppState& state);
 
 // Remembers the last ImGui item's rectangle under `name` in state.itemRects (app.cpp).
 void RecordItem(AppState& state, const char* name);
@@ -88,6 +99,11 @@ void ShowExpressions(AppState& state);  // expressions.cpp: console, path on the
 void ShowPredicates(AppState& state);   // predicates.cpp: the current test's determinant and signs
 void ShowIdBuffer(AppState& state);     // idbuffer.cpp: the colour-ID buffer, pixel under the mouse
 void ShowStatistics(AppState& state);   // statistics.cpp: counts, flips plot, frame times, checks
+// flip_queue.cpp: the Predicates tab's "Flip queue" section: the edges still to test, next first.
+void ShowFlipQueue(AppState& state);
+// "1. edge 3-7 (triangles 4 | 9)": the Queue tab's row for the number-th edge to test.
+std::string queueRowText(const Inserter& inserter, std::size_t number,
+                         const Engine::QueuedTest& test);
 void ShowTraceCompare(AppState& state);  // trace_compare.cpp: a student's trace beside our run
 
 // A student's trace (.jsonl) compared with this run (same points and options): opens at the

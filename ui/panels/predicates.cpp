@@ -321,6 +321,7 @@ void ShowPredicates(AppState& st) {
     ShowPredicatesTitle();
     ImGui::BeginChild("##predbody", ImVec2(0, 0), false);  // scrolls when the column is short
     ShowCurrentCalls(st);
+    ShowFlipQueue(st);
     ShowOwnPoints(st);
     ImGui::EndChild();
 }

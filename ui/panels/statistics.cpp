@@ -4,6 +4,7 @@
 #include "core/engine/predicates.h"
 #include "ui/gui.h"
 #include "ui/lesson_player.h"
+#include "ui/panels/canvas_looks.h"
 #include "ui/panels/panels.h"
 
 #include <imgui.h>
@@ -16,10 +17,6 @@
 namespace dlab::ui {
 
 namespace {
-
-constexpr ImU32 kViolationColour = IM_COL32(230, 0, 0, 255);
-// Edges not Delaunay yet while the insertion's flips are still to come: expected, drawn calmer.
-constexpr ImU32 kPendingColour = IM_COL32(250, 170, 60, 255);
 
 bool sameOp(const Op& a, const Op& b) {
     return a.type == b.type && a.vertex == b.vertex && a.a == b.a && a.b == b.b &&
@@ -176,6 +173,24 @@ void updateStatistics(AppState& st) {
     }
 }
 
+namespace {
+
+// The edges the canvas marks as under test or still to test: mid-insertion they keep that look
+// (a violation there is the test to come).
+bool markedByTheCanvas(const Engine& e, std::int32_t a, std::int32_t b) {
+    const Mesh& m = e.mesh();
+    std::vector<VertexEdge> edges;
+    for (const Engine::QueuedTest& q : e.pendingTests()) edges.push_back(q.edge);
+    if (const Op* op = e.current();
+        op && op->type == OpType::InCircleTest && op->a >= 0 && op->a < m.numCorners())
+        edges.push_back({m.V[next(op->a)], m.V[prev(op->a)]});
+    return std::any_of(edges.begin(), edges.end(), [&](const VertexEdge& q) {
+        return (q.a == a && q.b == b) || (q.a == b && q.b == a);
+    });
+}
+
+}  // namespace
+
 void DrawViolationOverlay(AppState& st) {
     const StatisticsState& s = st.statistics;
     if (!s.showViolations || s.validatedVersion != st.engine.version()) return;
@@ -188,7 +203,8 @@ void DrawViolationOverlay(AppState& st) {
         midInsertion(st.engine) &&
         std::all_of(s.violations.begin(), s.violations.end(),
                     [](const Violation& v) { return v.kind == Violation::Kind::NotDelaunay; });
-    const ImU32 col = expected ? kPendingColour : kViolationColour;
+    const ImU32 col = useLook(st, expected ? Mark::NotYetDelaunay : Mark::Violation);
+    const ImU32 broken = lookOf(Mark::Violation).colour;
     const float w = (st.presentation ? 7.0f : 5.0f) * (expected ? 0.6f : 1.0f);
     const Inserter& ins = st.engine.inserter();
     auto drawable = [&](std::int32_t v) {
@@ -200,7 +216,7 @@ void DrawViolationOverlay(AppState& st) {
         if (c < 0 || c >= m.numCorners()) continue;
         if (!canvasHasRoom(st, dl, 120)) break;
         const std::int32_t a = m.V[next(c)], b = m.V[prev(c)];
-        if (drawable(a) && drawable(b))
+        if (drawable(a) && drawable(b) && !(expected && markedByTheCanvas(st.engine, a, b)))
             dl->AddLine(toIm(view.toScreen(m.G[a])), toIm(view.toScreen(m.G[b])), col, w);
         float x = 0, y = 0;
         if (cornerAnchor(st, c, x, y)) dl->AddCircle(ImVec2(x, y), 14, col, 0, 3);
@@ -211,9 +227,9 @@ void DrawViolationOverlay(AppState& st) {
         if (!drawable(a) || !drawable(b) || !drawable(c)) continue;
         const ImVec2 pa = toIm(view.toScreen(m.G[a])), pb = toIm(view.toScreen(m.G[b])),
                      pc = toIm(view.toScreen(m.G[c]));
-        dl->AddTriangleFilled(pa, pb, pc, IM_COL32(230, 0, 0, 90));
-        dl->AddLine(pa, pc, kViolationColour, st.presentation ? 3.0f : 2.0f);
-        dl->AddCircle(pb, 12, kViolationColour, 0, 3);
+        dl->AddTriangleFilled(pa, pb, pc, useLook(st, Mark::HullDent));
+        dl->AddLine(pa, pc, broken, st.presentation ? 3.0f : 2.0f);
+        dl->AddCircle(pb, 12, broken, 0, 3);
     }
     dl->PopClipRect();
 }

@@ -3,6 +3,7 @@
 // operations and the evidence, steps both runs side by side (one mesh change at a time), and
 // draws the student's triangles that are not ours over the canvas.
 #include "ui/files/files.h"
+#include "ui/panels/canvas_looks.h"
 #include "ui/panels/panels.h"
 
 #include <imgui.h>
@@ -14,7 +15,6 @@ namespace dlab::ui {
 
 namespace {
 
-constexpr ImU32 kStudentColour = IM_COL32(200, 0, 160, 255);
 // Our own trace is a whole recorded run: keep it to what the GUI records anyway.
 constexpr std::size_t kMaxComparedPoints = 20000;
 
@@ -279,7 +279,7 @@ void DrawTraceCompareOverlay(AppState& st) {
             if (ok) p[k] = toIm(view.toScreen(m.G[t[k]]));
         }
         if (!ok || !canvasHasRoom(st, dl, 40)) continue;
-        dl->AddTriangle(p[0], p[1], p[2], kStudentColour, w);
+        dl->AddTriangle(p[0], p[1], p[2], useLook(st, Mark::StudentTriangle), w);
     }
     dl->PopClipRect();
 }

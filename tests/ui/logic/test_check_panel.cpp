@@ -1,0 +1,154 @@
+// The Check tab on a mesh made elsewhere: opened from a file, its problems listed as the exact
+// check names them and picked (the view goes there), the flip algorithm stepped by the engine
+// to an exactly Delaunay end and back to the mesh as opened, and a broken mesh shown, not
+// repaired.
+#include "core/engine/generators.h"
+#include "core/engine/inserter.h"
+#include "core/engine/io_write.h"
+#include "core/engine/predicates.h"
+#include "tests/exact_check.h"
+#include "tests/ui/ui_harness.h"
+#include "ui/files/files.h"
+#include "ui/panels/panels.h"
+#include "ui/render/drawn_text.h"
+
+#include <gtest/gtest.h>
+#include <imgui.h>
+
+#include <fstream>
+#include <random>
+#include <string>
+#include <vector>
+
+using dlab::test::TempDir;
+using dlab::test::UiHarness;
+using namespace dlab;
+
+namespace {
+
+// A valid triangulation of 80 points that is far from Delaunay: legal random flips of ours.
+Mesh scrambledMesh() {
+    Inserter ins(generatePoints(Generator::Uniform, 80, 3));
+    ins.run();
+    Mesh m = ins.mesh();
+    std::mt19937 rng(9);
+    for (int i = 0; i < 200; ++i) {
+        const std::int32_t c = static_cast<std::int32_t>(rng() % m.V.size());
+        const std::int32_t d = m.O[c];
+        if (d == kNone) continue;
+        const Vec2 P = m.point(c), A = m.point(next(c)), B = m.point(prev(c)), D = m.point(d);
+        if (orient2d(P, A, D) <= 0 || orient2d(D, B, P) <= 0) continue;
+        const std::int32_t cn = next(c), cp = prev(c), dn = next(d), dp = prev(d);
+        const std::int32_t ocn = m.O[cn], odn = m.O[dn];
+        m.V[cp] = m.V[d];
+        m.V[dp] = m.V[c];
+        auto link = [&](std::int32_t x, std::int32_t y) {
+            m.O[x] = y;
+            if (y != kNone) m.O[y] = x;
+        };
+        link(c, odn);
+        link(d, ocn);
+        link(cn, dn);
+    }
+    return m;
+}
+
+void writeMesh(const TempDir& dir, const std::string& base, const Mesh& m) {
+    std::ofstream node(dir / (base + ".node")), ele(dir / (base + ".ele"));
+    writeNode(node, m.G);
+    writeEle(ele, m);
+}
+
+std::string drawnText() {
+    std::string all;
+    for (const std::string& line : ui::drawnLines(ui::drawnText(ImGui::GetDrawData())))
+        all += line + "\n";
+    return all;
+}
+
+}  // namespace
+
+TEST(CheckPanel, AnOpenedMeshIsCheckedPickedAndRepairedStepByStep) {
+    TempDir dir("check_panel");
+    const Mesh m = scrambledMesh();
+    writeMesh(dir, "m", m);
+    UiHarness h(1600, 1000);
+    ui::AppState& st = h.state();
+    ASSERT_TRUE(ui::openFile(st, dir / "m.ele")) << st.messages.back().text;
+    h.frames(3);
+    const ui::Engine& e = st.engine;
+    ASSERT_TRUE(e.repairs());
+    EXPECT_EQ(e.position(), 1u);  // Start done: the mesh as opened
+    EXPECT_EQ(e.mesh().V, m.V);
+    ASSERT_TRUE(st.meshCheck.open);
+    const std::size_t bad = st.meshCheck.report.count(MeshProblem::Kind::NotDelaunay);
+    ASSERT_GT(bad, 0u);
+    const std::string text = drawnText();
+    EXPECT_NE(text.find(std::to_string(bad) + " edges not Delaunay"), std::string::npos) << text;
+    EXPECT_NE(text.find("not-delaunay: "), std::string::npos) << text;
+
+    // Picking a problem moves the view onto it.
+    const ui::View before = st.view;
+    h.clickItem("check-first-problem");
+    h.frames(2);
+    EXPECT_EQ(st.meshCheck.picked, 0);
+    EXPECT_GT(st.view.scale, before.scale);
+
+    // The flip algorithm to its end: exactly Delaunay, and the panel says so.
+    st.engine.toEnd(10000000);
+    h.frames(3);
+    ASSERT_TRUE(e.atEnd());
+    EXPECT_GT(e.inserter().stats().flips, 0);
+    EXPECT_EQ(checkDelaunayExact(e.mesh()), "");
+    EXPECT_TRUE(st.meshCheck.now.isDelaunay());
+    EXPECT_NE(drawnText().find("valid Delaunay triangulation"), std::string::npos);
+
+    // And back to the mesh as opened, bit for bit.
+    st.engine.seek(1);
+    h.frames(2);
+    EXPECT_EQ(e.mesh().V, m.V);
+    EXPECT_EQ(st.meshCheck.now.count(MeshProblem::Kind::NotDelaunay), bad);
+}
+
+TEST(CheckPanel, AMeshThatIsNoTriangulationIsShownNotRepaired) {
+    TempDir dir("check_panel_bad");
+    Mesh m = scrambledMesh();
+    std::swap(m.V[0], m.V[1]);  // one triangle clockwise
+    writeMesh(dir, "bad", m);
+    UiHarness h(1280, 720);
+    ui::AppState& st = h.state();
+    ASSERT_TRUE(ui::openFile(st, dir / "bad.ele"));
+    h.frames(3);
+    EXPECT_FALSE(st.meshCheck.report.isTriangulation());
+    EXPECT_GE(st.meshCheck.report.count(MeshProblem::Kind::ClockwiseTriangle), 1u);
+    EXPECT_EQ(st.engine.mesh().V, m.V);  // shown as it is
+    st.engine.toEnd(1000);
+    EXPECT_EQ(st.engine.inserter().stats().inCircleTests, 0);  // nothing tested, nothing flipped
+    EXPECT_EQ(st.engine.mesh().V, m.V);
+    h.frames(2);
+    const std::string text = drawnText();
+    EXPECT_NE(text.find("not a triangulation"), std::string::npos) << text;
+    EXPECT_NE(text.find("clockwise"), std::string::npos) << text;
+}
+
+TEST(CheckPanel, AnUnreadableMeshChangesNothing) {
+    TempDir dir("check_panel_unreadable");
+    {
+        std::ofstream(dir / "x.node") << "3 2 0 0\n0 0 0\n1 1 0\n2 0 1\n";
+        std::ofstream(dir / "x.ele") << "1 3 0\n0 0 1 7\n";  // vertex 7 does not exist
+    }
+    UiHarness h(1280, 720);
+    ui::AppState& st = h.state();
+    const std::vector<Vec2> points = st.engine.points();
+    const bool opened = ui::openFile(st, dir / "x.ele");
+    if (opened) {  // read, and the check names the vertex: only the points are shown
+        EXPECT_EQ(st.engine.mesh().numTriangles(), 0);
+        EXPECT_GE(st.meshCheck.report.count(MeshProblem::Kind::VertexRange), 1u);
+    } else {
+        EXPECT_TRUE(dlab::test::sameBits(st.engine.points(), points));
+        EXPECT_FALSE(st.files.notice.empty());
+    }
+    std::ofstream(dir / "y.off") << "OFF\nthis is not a mesh\n";
+    EXPECT_FALSE(ui::openFile(st, dir / "y.off"));
+    EXPECT_NE(st.files.notice.find("y.off"), std::string::npos) << st.files.notice;
+}

@@ -1,0 +1,150 @@
+// The canvas' marks with their looks and meanings (one table), and the legend drawn from it.
+#include "ui/panels/canvas_looks.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+namespace dlab::ui {
+
+namespace {
+
+constexpr std::array<Look, kMarkCount> kLooks{{
+    {Mark::WalkVisited, Shape::Fill, IM_COL32(255, 244, 190, 255), "walk: triangles visited"},
+    {Mark::WalkNow, Shape::Fill, IM_COL32(255, 214, 90, 255), "walk: triangle it is in now"},
+    {Mark::LineL, Shape::Arrow, IM_COL32(30, 90, 220, 255), "walk: line L to the new point"},
+    {Mark::NewTriangles, Shape::Fill, IM_COL32(200, 224, 248, 255), "triangles just made"},
+    {Mark::TestEdge, Shape::Line, IM_COL32(240, 120, 0, 255), "edge under test"},
+    {Mark::CircleFlip, Shape::Ring, IM_COL32(215, 40, 40, 255), "circle holds the point: flip"},
+    {Mark::CircleKeep, Shape::Ring, IM_COL32(30, 150, 60, 255), "circle misses the point: keep"},
+    {Mark::FlippedEdge, Shape::Line, IM_COL32(215, 40, 40, 255), "edge made by a flip"},
+    {Mark::NewEdge, Shape::Line, IM_COL32(32, 128, 32, 255), "edge the split made"},
+    {Mark::QueuedEdge, Shape::Dashed, IM_COL32(135, 60, 205, 255), "edge still to test"},
+    {Mark::QueueOrder, Shape::Badge, IM_COL32(135, 60, 205, 255), "order of the tests (1 = next)"},
+    {Mark::NextPoint, Shape::Diamond, IM_COL32(0, 150, 215, 255), "point being inserted, or next"},
+    {Mark::QueuedPoint, Shape::Ring, IM_COL32(140, 140, 150, 255), "point not inserted yet"},
+    {Mark::SkippedPoint, Shape::Cross, IM_COL32(200, 30, 30, 255), "duplicate point, skipped"},
+    {Mark::SelectedCorner, Shape::Dot, IM_COL32(0, 165, 175, 255), "selected corner"},
+    {Mark::HoveredCorner, Shape::Ring, IM_COL32(60, 60, 75, 255), "corner under the mouse"},
+    {Mark::ChangedCorner, Shape::Badge, IM_COL32(150, 95, 0, 255), "corner this step changed"},
+    {Mark::CornerMove, Shape::Arrow, IM_COL32(120, 70, 20, 255), "last corner operator"},
+    {Mark::Circumcircle, Shape::Ring, IM_COL32(150, 150, 200, 160), "circumcircle"},
+    {Mark::Voronoi, Shape::Line, IM_COL32(90, 160, 40, 255), "Voronoi edge"},
+    {Mark::GhostBand, Shape::Fill, IM_COL32(150, 155, 170, 90), "outside the hull (ghost)"},
+    {Mark::NotYetDelaunay, Shape::Ring, IM_COL32(245, 110, 150, 255),
+     "not Delaunay yet (tests to come)"},
+    {Mark::Violation, Shape::Line, IM_COL32(230, 0, 0, 255), "broken rule (validate)"},
+    {Mark::HullDent, Shape::Fill, IM_COL32(230, 0, 0, 90), "hull dent: triangle missing"},
+    {Mark::ExpressionPath, Shape::Arrow, IM_COL32(214, 0, 120, 255), "expression's path"},
+    {Mark::StudentTriangle, Shape::Line, IM_COL32(200, 0, 160, 255),
+     "student's triangle, not ours"},
+    {Mark::MeshNotDelaunay, Shape::Ring, IM_COL32(205, 30, 40, 255),
+     "edge not Delaunay, its circle"},
+    {Mark::MeshProblem, Shape::Fill, IM_COL32(205, 30, 40, 110), "mesh problem (Check)"},
+    {Mark::MeshPicked, Shape::Line, IM_COL32(150, 0, 160, 255), "problem picked in Check"},
+    {Mark::OnlyInMesh, Shape::Line, IM_COL32(205, 30, 40, 255), "edge only in this mesh"},
+    {Mark::OnlyInDelaunay, Shape::Dashed, IM_COL32(20, 140, 60, 255),
+     "edge only in the Delaunay triangulation"},
+}};
+
+constexpr bool inMarkOrder() {
+    for (std::size_t i = 0; i < kLooks.size(); ++i) {
+        if (static_cast<std::size_t>(kLooks[i].mark) != i) return false;
+    }
+    return true;
+}
+static_assert(inMarkOrder(), "kLooks lists the marks in Mark order");
+
+// The sample of a look in the box [a, b].
+void DrawSample(ImDrawList* dl, const Look& look, ImVec2 a, ImVec2 b) {
+    const ImVec2 c((a.x + b.x) / 2, (a.y + b.y) / 2);
+    const float h = b.y - a.y, r = h * 0.32f;
+    const ImU32 col = look.colour;
+    switch (look.shape) {
+        case Shape::Fill:
+            dl->AddRectFilled(ImVec2(a.x, a.y + 2), ImVec2(b.x, b.y - 2), col);
+            dl->AddRect(ImVec2(a.x, a.y + 2), ImVec2(b.x, b.y - 2), IM_COL32(120, 125, 140, 255));
+            break;
+        case Shape::Line: dl->AddLine(ImVec2(a.x, c.y), ImVec2(b.x, c.y), col, 3.0f); break;
+        case Shape::Dashed:
+        case Shape::Badge:
+            for (float x = a.x; x < b.x; x += 8)
+                dl->AddLine(ImVec2(x, c.y), ImVec2(std::min(b.x, x + 5), c.y), col, 2.5f);
+            if (look.shape == Shape::Dashed) break;
+            if (look.mark == Mark::QueueOrder) {  // the disc its number sits in
+                dl->AddCircleFilled(c, h * 0.42f, col);
+                dl->AddCircleFilled(c, h * 0.12f, IM_COL32(255, 255, 255, 255));
+            } else {  // a label on a filled box
+                dl->AddRectFilled(ImVec2(c.x - h * 0.5f, a.y + 2), ImVec2(c.x + h * 0.5f, b.y - 2),
+                                  col, 3);
+            }
+            break;
+        case Shape::Arrow:
+            dl->AddLine(ImVec2(a.x, c.y), ImVec2(b.x - 4, c.y), col, 2.0f);
+            dl->AddTriangleFilled(ImVec2(b.x, c.y), ImVec2(b.x - 8, c.y - 4),
+                                  ImVec2(b.x - 8, c.y + 4), col);
+            break;
+        case Shape::Ring: dl->AddCircle(c, r + 1, col, 0, 2.0f); break;
+        case Shape::Dot: dl->AddCircleFilled(c, r + 1, col); break;
+        case Shape::Diamond:
+            dl->AddQuadFilled(ImVec2(c.x, c.y - r - 2), ImVec2(c.x + r + 2, c.y),
+                              ImVec2(c.x, c.y + r + 2), ImVec2(c.x - r - 2, c.y), col);
+            break;
+        case Shape::Cross:
+            dl->AddLine(ImVec2(c.x - r, c.y - r), ImVec2(c.x + r, c.y + r), col, 2.0f);
+            dl->AddLine(ImVec2(c.x - r, c.y + r), ImVec2(c.x + r, c.y - r), col, 2.0f);
+            break;
+    }
+}
+
+}  // namespace
+
+std::span<const Look> canvasLooks() { return kLooks; }
+
+ImVec4 DrawCanvasLegend(ImDrawList* dl, ImVec2 lo, ImVec2 hi, const MarksDrawn& drawn,
+                        float fontSize, std::span<const BusyPoint> busy) {
+    if (drawn.none()) return ImVec4(0, 0, 0, 0);
+    ImFont* font = ImGui::GetFont();
+    const float row = std::ceil(fontSize * 1.25f), sample = std::ceil(fontSize * 1.9f),
+                pad = std::ceil(fontSize * 0.4f);
+    float textW = 0;
+    int rows = 0;
+    for (const Look& look : kLooks) {
+        if (!drawn[static_cast<std::size_t>(look.mark)]) continue;
+        textW = std::max(textW, font->CalcTextSizeA(fontSize, 1e9f, 0, look.meaning).x);
+        ++rows;
+    }
+    const float w = pad * 3 + sample + textW, h = pad * 2 + row * static_cast<float>(rows);
+    // Top right, bottom right, top left, bottom left: the first that covers the least.
+    const float left = lo.x + 6, right = std::max(lo.x, hi.x - w - 6), top = lo.y + 6,
+                bottom = std::max(lo.y, hi.y - h - 6);
+    const ImVec2 corners[4] = {{right, top}, {right, bottom}, {left, top}, {left, bottom}};
+    ImVec2 a = corners[0];
+    float least = -1;
+    for (const ImVec2& c : corners) {
+        float covered = 0;
+        for (const BusyPoint& p : busy) {
+            if (p.at.x >= c.x - 8 && p.at.x <= c.x + w + 8 && p.at.y >= c.y - 8 &&
+                p.at.y <= c.y + h + 8)
+                covered += p.weight;
+        }
+        if (least < 0 || covered < least) {
+            least = covered;
+            a = c;
+        }
+    }
+    const ImVec2 b(a.x + w, a.y + h);
+    dl->AddRectFilled(a, b, IM_COL32(255, 255, 255, 230), 4);
+    dl->AddRect(a, b, IM_COL32(170, 175, 190, 255), 4);
+    float y = a.y + pad;
+    for (const Look& look : kLooks) {
+        if (!drawn[static_cast<std::size_t>(look.mark)]) continue;
+        DrawSample(dl, look, ImVec2(a.x + pad, y + 1), ImVec2(a.x + pad + sample, y + row - 1));
+        dl->AddText(font, fontSize, ImVec2(a.x + pad * 2 + sample, y + (row - fontSize) / 2),
+                    IM_COL32(30, 30, 40, 255), look.meaning);
+        y += row;
+    }
+    return ImVec4(a.x, a.y, b.x, b.y);
+}
+
+}  // namespace dlab::ui
