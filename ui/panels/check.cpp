@@ -359,7 +359,8 @@ void DrawCheckOverlay(AppState& st, ImDrawList* dl) {
         if (blocksRepair(p.kind) && drawn++ < kDrawn)
             DrawProblem(st, dl, p, useLook(st, Mark::MeshProblem) | IM_COL32_A_MASK, true);
     if (mc.picked >= 0 && mc.picked < static_cast<std::int32_t>(mc.report.problems.size()))
-        DrawProblem(st, dl, mc.report.problems[static_cast<std::size_t>(mc.picked)], kPicked, true);
+        DrawProblem(st, dl, mc.report.problems[static_cast<std::size_t>(mc.picked)],
+                    useLook(st, Mark::MeshPicked), true);
 }
 
 }  // namespace dlab::ui
