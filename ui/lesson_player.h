@@ -15,7 +15,6 @@
 namespace dlab::ui {
 
 struct AppState;
-struct Overlays;
 
 struct LessonState {
     std::shared_ptr<const Lesson> lesson;  // null: no lesson open
