@@ -29,12 +29,18 @@ const SideTab kSideTabs[] = {
     {"Check", ShowCheck, "check", "Check the mesh", "Check"},
 };
 
+// A lesson shows the tabs it names; the Check tab is there while a mesh made elsewhere is open.
+bool TabShown(const AppState& state, const SideTab& tab) {
+    if (tab.id && std::string_view(tab.id) == "check" && !state.meshCheck.open) return false;
+    return !tab.id || lessonWantsPanel(state, tab.id);
+}
+
 // Whether the tabs' labels (those shown) fit the column whole, with the tab list's button.
 bool TabLabelsFit(const AppState& state) {
     const ImGuiStyle& style = ImGui::GetStyle();
     float width = ImGui::GetFrameHeight();  // the tab list button
     for (const SideTab& tab : kSideTabs) {
-        if (tab.id && !lessonWantsPanel(state, tab.id)) continue;
+        if (!TabShown(state, tab)) continue;
         width +=
             ImGui::CalcTextSize(tab.name).x + 2 * style.FramePadding.x + style.ItemInnerSpacing.x;
     }
@@ -155,7 +161,7 @@ void ShowSideTabs(AppState& state, const SideTab* firstWanted, float height) {
         const bool traceOpened = studentTraceSelectTab(state);
         const bool whole = TabLabelsFit(state);
         for (const SideTab& tab : kSideTabs) {
-            if (tab.id && !lessonWantsPanel(state, tab.id)) continue;
+            if (!TabShown(state, tab)) continue;
             const bool select =
                 (state.lessonPlayer.pendingTabSelect && &tab == firstWanted) ||
                 (traceOpened && tab.id && std::string_view(tab.id) == "trace-compare") ||
@@ -193,7 +199,7 @@ void ShowSideColumn(AppState& state, const Regions& r) {
     const float sideH = ShowLessonPane(state, r);
     const SideTab* firstWanted = nullptr;
     for (const SideTab& tab : kSideTabs) {
-        if (!firstWanted && tab.id && lessonWantsPanel(state, tab.id)) firstWanted = &tab;
+        if (!firstWanted && tab.id && TabShown(state, tab)) firstWanted = &tab;
     }
     Layout& L = state.layout;
     const bool showInspector = lessonWantsPanel(state, "inspector");

@@ -468,10 +468,11 @@ void ShowConsoleInput(AppState& st) {
     }
 }
 
-// The history in its own scrolling box that keeps the newest line in view.
+// The log of earlier answers in its own scrolling box, in the height left (at least three
+// lines), the newest line kept in view.
 void ShowHistory(const ExpressionState& ex) {
-    const float logH = std::max(ImGui::GetTextLineHeightWithSpacing() * 5,
-                                ImGui::GetContentRegionAvail().y * 0.45f);
+    const float logH =
+        std::max(ImGui::GetTextLineHeightWithSpacing() * 3, ImGui::GetContentRegionAvail().y);
     ImGui::BeginChild("##exprlog", ImVec2(0, logH), true);
     ImGui::PushFont(fonts().mono);
     for (const ExprLine& line : ex.history) {
@@ -506,7 +507,11 @@ void ShowLiveExpression(AppState& st) {
         ImGui::SameLine();
         ImGui::TextColored(ImVec4(0.84f, 0.0f, 0.47f, 1), "= %s", formatValue(*ex.result).c_str());
     }
-    if (!ex.path.empty()) ImGui::TextDisabled("path: %s", pathText(ex.path).c_str());
+    // The path and the buttons share a line (a short column keeps the watches below in sight).
+    if (!ex.path.empty()) {
+        ImGui::TextDisabled("path: %s", pathText(ex.path).c_str());
+        ImGui::SameLine();
+    }
     if (ex.result && ex.result->kind == ValueKind::Corner && ex.result->i >= 0) {
         if (ImGui::SmallButton("Select the result")) {
             st.select(static_cast<std::int32_t>(ex.result->i));
@@ -586,10 +591,13 @@ void ShowExpressions(AppState& st) {
     // Below the input line everything scrolls (the side column may be short); the history has
     // its own scrolling box.
     ImGui::BeginChild("##exprbody", ImVec2(0, 0), false);
-    ShowHistory(st.expressions);
+    // The answer first, then the watches, then the log of earlier answers in what is left: an
+    // Eval never pushes the watches out of a short column.
     ShowLiveExpression(st);
     ShowWatches(st.expressions);
     ShowAddWatch(st);
+    ImGui::Separator();
+    ShowHistory(st.expressions);
     ImGui::EndChild();
 }
 

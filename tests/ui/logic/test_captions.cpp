@@ -212,6 +212,37 @@ TEST(Layout, EverySideTabShowsItsWholeLabelAt1280x720) {
     }
 }
 
+// The watches sit right under the answer and the log of earlier answers below them: Eval after
+// Eval, the watches in sight stay in sight.
+TEST(Layout, EvalsDoNotPushTheWatchesAwayAt1280x720) {
+    UiHarness h(1280, 720);
+    auto& st = h.state();
+    for (const char* w : dlab::standardWatches()) ASSERT_TRUE(dlab::ui::addWatch(st, w));
+    for (int i = 0; i < 30; ++i) st.engine.forward();
+    st.pendingTab = "expressions";
+    h.frames(2);
+    auto watchesInSight = [&] {
+        std::string all;
+        for (const std::string& l : dlab::ui::drawnLines(dlab::ui::drawnText(ImGui::GetDrawData())))
+            all += l + "\n";
+        std::vector<std::string> seen;
+        for (const char* w : dlab::standardWatches())
+            if (all.find(w) != std::string::npos) seen.push_back(w);
+        return seen;
+    };
+    st.expressions.input = "n(7)";
+    h.clickItem("expr-eval");  // as typed; the field keeps the keyboard after it
+    h.frames(2);
+    const std::vector<std::string> first = watchesInSight();
+    EXPECT_GE(first.size(), 3u);
+    for (const char* e : {"o(n(7))", "V[p(7)]", "r(o(7))", "n(n(7))", "o(7)", "p(p(7))"}) {
+        ASSERT_TRUE(dlab::ui::evaluateExpression(st, e));
+        h.frames(2);
+        EXPECT_EQ(watchesInSight(), first) << "after " << e;
+    }
+    ASSERT_EQ(st.expressions.history.size(), 7u);
+}
+
 TEST(Layout, TheInspectorShowsSwingAndUnswingWithoutScrollingAt1280x720) {
     UiHarness h(1280, 720);
     auto& st = h.state();

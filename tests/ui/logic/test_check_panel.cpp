@@ -127,7 +127,7 @@ TEST(CheckPanel, AMeshThatIsNoTriangulationIsShownNotRepaired) {
     EXPECT_EQ(st.engine.mesh().V, m.V);
     h.frames(2);
     const std::string text = drawnText();
-    EXPECT_NE(text.find("not a triangulation"), std::string::npos) << text;
+    EXPECT_NE(text.find("not a valid triangulation"), std::string::npos) << text;
     EXPECT_NE(text.find("clockwise"), std::string::npos) << text;
 }
 
