@@ -1491,7 +1491,8 @@ const Op* Journal::back() {
     --m_pos;
     const Op& op = m_ops[m_pos];
     m_pushEnd -= dlab::pushCount(op);
-    m_ins->undo(op, m_changes, {m_pushes.data() + m_pushEnd, dlab::pushCount(op)}, controlBefore(m_pos));
+    m_ins->undo(op, m_changes, {m_pushes.data() + m_pushEnd, dlab::pushCount(op)},
+                controlBefore(m_pos));
     return &m_ops[m_pos];
 }
 

@@ -475,8 +475,7 @@ public:
     std::size_t memoryBytes() const {
         return m_ops.capacity() * sizeof(Op) + m_controls.capacity() * sizeof(Control) +
                m_changes.capacity() * sizeof(CellChange) +
-               m_pushes.capacity() * sizeof(std::int32_t) +
-               m_exact.capacity() * sizeof(m_exact[0]);
+               m_pushes.capacity() * sizeof(std::int32_t) + m_exact.capacity() * sizeof(m_exact[0]);
     }
     bool budgetReached() const { return m_budgetReached; }
 
