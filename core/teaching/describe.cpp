@@ -70,6 +70,9 @@ std::string describe(const Op& op, const Inserter& ins) {
     switch (op.type) {
         case OpType::Start:
             // The caption's prefix already says "Start": the text goes on from there.
+            // (A caption describes the op just done: the stack is the one Start left.)
+            if (ins.repairs() && ins.flipStack().empty())
+                return "the given triangles in the corner table, no edge on the flip stack";
             if (ins.repairs())
                 return "the given triangles in the corner table, every interior edge on the "
                        "flip stack (Lawson's flip algorithm)";
@@ -125,6 +128,8 @@ std::string describe(const Op& op, const Inserter& ins) {
                    std::to_string(std::min(op.vertex, op.b)) + ", the first occurrence, is kept)";
         case OpType::Inserted: return p + " inserted; every edge around it is Delaunay";
         case OpType::Finalize:
+            if (ins.repairs() && ins.stats().inCircleTests == 0)
+                return "the given triangles, as they are: no edge was tested";
             if (ins.repairs())
                 return "the flip stack is empty: every edge is locally Delaunay, so the "
                        "triangulation is Delaunay";

@@ -298,8 +298,7 @@ std::string opPrefix(const Engine& e, const Op& op) {
 
 std::string pointCountsText(const Engine& e) {
     if (e.repairs())  // no point is inserted: the triangles were given
-        return "flip algorithm on a given triangulation of " + std::to_string(e.points().size()) +
-               " points";
+        return std::to_string(e.points().size()) + " points, triangles given (none inserted)";
     const InsertStats& st = e.inserter().stats();
     std::string s = std::to_string(st.inserted) + " of " + std::to_string(e.points().size()) +
                     " points inserted";
