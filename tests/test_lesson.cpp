@@ -5,6 +5,7 @@
 
 #include "core/engine/generators.h"
 #include "core/engine/predicates.h"
+#include "core/engine/triangulation_check.h"
 
 #include "tests/run_dtlab.h"
 
@@ -329,6 +330,98 @@ TEST(LessonPointsFile, ReadsAFileBesideTheLessonAndRefusesEscapes) {
     } catch (const LessonError& e) {
         EXPECT_NE(std::string(e.what()).find("bad.csv:2:"), std::string::npos) << e.what();
     }
+}
+
+// ---- A start triangulation: the run is Lawson's flip algorithm -------------------------------
+
+// Ten points in convex position, triangulated as a fan from vertex 0: long thin triangles that
+// take many flips to become Delaunay.
+const std::string kFanPoints =
+    "points = [[0, 7], [5, 3], [7, 2], [12, 0], [16, 2], [21, 6], [19, 9], [14, 12], [7, 12], "
+    "[3, 10]]\n";
+const std::string kFanTriangles =
+    "triangles = [[0, 1, 2], [0, 2, 3], [0, 3, 4], [0, 4, 5], [0, 5, 6], [0, 6, 7], [0, 7, 8], "
+    "[0, 8, 9]]\n";
+
+TEST(LessonStartMesh, TrianglesPlanTheFlipAlgorithmToTheDelaunayTriangulation) {
+    const fs::path p = scratchDir() / "lessons" / "fan.toml";
+    write(p, "title = \"fan\"\n" + kFanPoints + kFanTriangles +
+                 "[[stop]]\nrun_to = \"op:1\"\nquestion = \"q\"\nanswer = \"delaunay_violations\"\n"
+                 "[[stop]]\nrun_to = \"end\"\nquestion = \"q\"\nanswer = \"flips\"\n");
+    const Lesson lesson = loadLesson(p.string());
+    ASSERT_TRUE(lesson.start);
+    EXPECT_EQ(lesson.start->V.size(), 24u);
+    const LessonPlan plan = planLesson(lesson);
+    ASSERT_EQ(plan.stops.size(), 2u);
+    // After Start the fan is in the table, unrepaired: some of its edges are not Delaunay.
+    EXPECT_GT(plan.stops[0].answer->a, 0);
+    EXPECT_NE(plan.stops[0].banner.find("Start"), std::string::npos) << plan.stops[0].banner;
+
+    // The same mesh repaired by the checker's own flip algorithm: as many flips.
+    Mesh fan;
+    fan.G = lesson.points;
+    fan.V = lesson.start->V;
+    fan.O.assign(fan.V.size(), kNone);  // checkMesh computes it
+    const RepairResult repaired = repairByFlips(fan, checkMesh(fan));
+    const std::int64_t flips = plan.stops[1].answer->a;
+    EXPECT_EQ(flips, static_cast<std::int64_t>(repaired.flips.size()));
+    EXPECT_GT(flips, 7);  // more flips than the fan has interior edges
+
+    auto ins = makeInserter(lesson);
+    EXPECT_TRUE(ins->repairs());
+    ins->run();
+    EXPECT_EQ(ins->stats().flips, flips);
+    // Start, every test, every flip, Finalize: no point is located or inserted.
+    EXPECT_EQ(ins->stats().inserted, 0);
+    EXPECT_EQ(plan.totalOps, static_cast<std::size_t>(2 + flips + ins->stats().inCircleTests));
+    Mesh result = ins->mesh();
+    const CheckReport report = checkMesh(result);
+    EXPECT_TRUE(report.isDelaunay()) << report.summary();
+    EXPECT_EQ(result.numTriangles(), 8);
+}
+
+TEST(LessonStartMesh, TestsAndFlipsReadAsTheFlipAlgorithmsNotAnInsertions) {
+    const fs::path p = scratchDir() / "lessons" / "fan_words.toml";
+    write(p, "title = \"fan\"\n" + kFanPoints + kFanTriangles +
+                 "[[stop]]\nrun_to = \"incircle\"\ntext = \"t\"\n[[stop]]\nrun_to = \"flip\"\n"
+                 "text = \"t\"\n[[stop]]\nrun_to = \"end\"\ntext = \"t\"\n");
+    const LessonPlan plan = planLesson(loadLesson(p.string()));
+    ASSERT_EQ(plan.stops.size(), 3u);
+    const std::string& test = plan.stops[0].banner;
+    EXPECT_NE(test.find("InCircleTest"), std::string::npos) << test;
+    EXPECT_EQ(test.find("vertex -"), std::string::npos) << test;  // no point being inserted
+    EXPECT_NE(test.find("is vertex "), std::string::npos) << test;
+    EXPECT_NE(plan.stops[1].banner.find("Flip: flip edge "), std::string::npos)
+        << plan.stops[1].banner;
+    EXPECT_NE(plan.stops[2].banner.find("every edge is locally Delaunay"), std::string::npos)
+        << plan.stops[2].banner;
+    EXPECT_EQ(plan.stops[2].banner.find("ghost"), std::string::npos) << plan.stops[2].banner;
+}
+
+TEST(LessonErrors, TrianglesThatAreNoTriangulationNameFileAndLine) {
+    const std::string stop = "[[stop]]\nrun_to = \"end\"\ntext = \"t\"\n";
+    // kHead's five points: four around the fifth, (3, 1).
+    const ErrorCase cases[] = {
+        {kHead + "triangles = [[0, 4, 1], [1, 2, 4], [2, 3, 4], [3, 0, 4]]\n" + stop, 3, 0,
+         "\"triangles\" refused: not a valid triangulation of 5 points (4 triangles): 1 "
+         "clockwise triangle (first: triangle 0 (0, 4, 1) is clockwise"},
+        {kHead + "triangles = [[0, 1, 4], [1, 2, 4]]\n" + stop, 3, 0,
+         "\"triangles\" refused: not a valid triangulation"},
+        {kHead + "triangles = [\n  [0, 1, 4],\n  [1, 2, 9],\n]\n" + stop, 5, 0,
+         "triangle 1 names vertex 9, but the points are numbered from 0 to 4"},
+        {kHead + "triangles = [[0, 1]]\n" + stop, 3, 0, "triangle 0 must be [a, b, c]"},
+        {kHead + "triangles = []\n" + stop, 3, 0, "must be a list of [a, b, c]"},
+        {kHead +
+             "triangles = [[0, 1, 4], [1, 2, 4], [2, 3, 4], [3, 0, 4]]\n[options]\n"
+             "order = \"random\"\n" +
+             stop,
+         4, 0, "[options] (boundary, locator, order) does not apply"},
+    };
+    expectErrors(cases);
+    // The same four triangles counter-clockwise are a triangulation: the lesson plans.
+    const fs::path p = scratchDir() / "lessons" / "ok.toml";
+    write(p, kHead + "triangles = [[0, 1, 4], [1, 2, 4], [2, 3, 4], [3, 0, 4]]\n" + stop);
+    EXPECT_NO_THROW(planLesson(loadLesson(p.string())));
 }
 
 // ---- Answers ------------------------------------------------------------------------------------

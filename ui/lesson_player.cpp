@@ -65,6 +65,31 @@ void applyStopOverlays(AppState& st, std::size_t k) {
     }
 }
 
+// The lesson's run in the engine: its points inserted with its options, or Lawson's flip
+// algorithm from its start triangulation (`triangles`).
+bool loadLessonRun(AppState& st, const Lesson& lesson) {
+    if (!st.setOptions(lesson.options)) return false;
+    if (!lesson.start) return st.loadPoints(lesson.points, lesson.title);
+    std::string error;
+    std::vector<Vec2> previous = st.engine.points();
+    if (!st.engine.resetRepair(lesson.points, *lesson.start, true, error)) {
+        st.log(Message::Level::Error, lesson.title + ": " + error + " (nothing was changed)");
+        return false;
+    }
+    if (!previous.empty()) {
+        st.undoPoints.push_back(std::move(previous));
+        st.redoPoints.clear();
+    }
+    st.source = lesson.title;
+    st.selection = {};
+    st.run.running = false;
+    st.fitPending = true;
+    st.log(Message::Level::Info, lesson.title + ": " + std::to_string(lesson.points.size()) +
+                                     " points, " + std::to_string(lesson.start->V.size() / 3) +
+                                     " triangles given: Lawson's flip algorithm from them");
+    return true;
+}
+
 void saveProgress(AppState& st) {
     LessonState& L = st.lessonPlayer;
     if (!L.lesson) return;
@@ -91,8 +116,7 @@ bool openLesson(AppState& st, const std::string& path) {
     }
     saveProgress(st);
     const InsertOptions before = st.engine.options();
-    if (!st.setOptions(lesson->options) || !st.loadPoints(lesson->points, lesson->title))
-        return false;
+    if (!loadLessonRun(st, *lesson)) return false;
     LessonState& L = st.lessonPlayer;
     if (!L.userOverlays) {  // a lesson opened over another keeps the user's from before both
         L.userOverlays = std::make_shared<const Overlays>(st.overlays);
@@ -147,7 +171,8 @@ bool lessonStateChanged(const AppState& st) {
     const LessonState& L = st.lessonPlayer;
     if (!L.lesson) return false;
     return !sameRun(st.engine.options(), L.lesson->options) ||
-           st.engine.points() != L.lesson->points;
+           st.engine.points() != L.lesson->points ||
+           st.engine.repairs() != L.lesson->start.has_value();
 }
 
 void goToStop(AppState& st, std::size_t k) {
@@ -157,8 +182,7 @@ void goToStop(AppState& st, std::size_t k) {
     // The stops are operations of the lesson's own run: after the user changed the points or
     // the options, going to a stop brings the lesson's back (their own stay on the undo stack).
     if (lessonStateChanged(st)) {
-        if (!st.setOptions(L.lesson->options) || !st.loadPoints(L.lesson->points, L.lesson->title))
-            return;
+        if (!loadLessonRun(st, *L.lesson)) return;
         st.log(Message::Level::Info,
                "lesson: its points and options are back (Ctrl+Z brings your points back)");
     }

@@ -15,6 +15,7 @@
 namespace dlab::ui {
 
 struct AppState;
+using ::dlab::Overlays;  // core/teaching/overlays.h
 
 struct LessonState {
     std::shared_ptr<const Lesson> lesson;  // null: no lesson open

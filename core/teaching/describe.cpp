@@ -70,6 +70,12 @@ std::string describe(const Op& op, const Inserter& ins) {
     switch (op.type) {
         case OpType::Start:
             // The caption's prefix already says "Start": the text goes on from there.
+            // (A caption describes the op just done: the stack is the one Start left.)
+            if (ins.repairs() && ins.flipStack().empty())
+                return "the given triangles in the corner table, no edge on the flip stack";
+            if (ins.repairs())
+                return "the given triangles in the corner table, every interior edge on the "
+                       "flip stack (Lawson's flip algorithm)";
             if (op.a == kNone) return "fewer than three points not on one line, so no triangle";
             return ins.options().boundary == Boundary::Super
                        ? triName(ins, 0) + ", the super-triangle, holds every point"
@@ -107,7 +113,9 @@ std::string describe(const Op& op, const Inserter& ins) {
             const std::int32_t a = V[next(op.a)], b = V[prev(op.a)];
             const std::string edge = edgeName(ins, a, b);
             if (op.b == kNone) return edge + " is on the boundary: nothing to test";
-            const std::string q = inCircleQuestion(ins, p, tri(op.b));
+            // The flip algorithm inserts no point: the vertex tested is the one at corner a.
+            const std::string tested = op.vertex == kNone ? "vertex " + vname(ins, V[op.a]) : p;
+            const std::string q = inCircleQuestion(ins, tested, tri(op.b));
             if (op.sign > 0) return q + "yes: " + edge + " must flip";
             if (op.sign == 0) return q + "on it (cocircular): " + edge + " stays";
             return q + "no: " + edge + " is Delaunay";
@@ -120,6 +128,11 @@ std::string describe(const Op& op, const Inserter& ins) {
                    std::to_string(std::min(op.vertex, op.b)) + ", the first occurrence, is kept)";
         case OpType::Inserted: return p + " inserted; every edge around it is Delaunay";
         case OpType::Finalize:
+            if (ins.repairs() && ins.stats().inCircleTests == 0)
+                return "the given triangles, as they are: no edge was tested";
+            if (ins.repairs())
+                return "the flip stack is empty: every edge is locally Delaunay, so the "
+                       "triangulation is Delaunay";
             return std::to_string(op.a) +
                    (ins.options().boundary == Boundary::Super
                         ? " triangles touching the super-triangle"

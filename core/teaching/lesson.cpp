@@ -6,6 +6,7 @@
 #include "core/engine/numbers.h"
 #include "core/engine/predicates.h"
 #include "core/engine/text_util.h"
+#include "core/engine/triangulation_check.h"
 #include "core/engine/voronoi.h"
 #include "core/teaching/corner_expr.h"
 #include "core/teaching/describe.h"
@@ -1169,6 +1170,74 @@ public:
         return out;
     }
 
+    // points = [...] or points_file = "...": exactly one of them.
+    void lessonPoints(const toml::table& root, const std::string& path, Lesson& L) {
+        const toml::node* inl = root.get("points");
+        const auto file = string(root, "points_file");
+        if (inl && file) fail(lineOf(*inl), "give either \"points\" or \"points_file\", not both");
+        if (!inl && !file)
+            fail(1, "the lesson needs \"points\" (a list of [x, y]) or \"points_file\"");
+        if (inl) {
+            L.points = points(*inl);
+            return;
+        }
+        const int line = lineOf(*root.get("points_file"));
+        L.pointsFile = resolveLessonFile(path, *file, line);
+        try {
+            PointSet set = readPointsFile(L.pointsFile);
+            L.points = std::move(set.points);
+        } catch (const InputError& e) {
+            fail(line, "cannot read points_file: " + std::string(e.what()));
+        }
+        if (L.points.size() > kMaxLessonPoints) {
+            fail(line,
+                 "too many points for a lesson (at most " + std::to_string(kMaxLessonPoints) + ")");
+        }
+    }
+
+    // triangles = [[0, 1, 2], ...]: the flip algorithm's start, a valid triangulation of the
+    // points as checkMesh finds it (its O is the one checkMesh computes).
+    Inserter::StartMesh startMesh(const toml::node& n, const std::vector<Vec2>& pts) {
+        const toml::array* a = n.as_array();
+        if (!a || a->empty())
+            fail(lineOf(n), "\"triangles\" must be a list of [a, b, c] vertex ids");
+        if (a->size() > 2 * kMaxLessonPoints) fail(lineOf(n), "too many triangles for a lesson");
+        const auto at = [&](const toml::node& x) { return lineOf(x) ? lineOf(x) : lineOf(n); };
+        Mesh mesh;
+        mesh.G = pts;
+        for (const toml::node& t : *a) {
+            const std::string which = "triangle " + std::to_string(mesh.numTriangles());
+            const toml::array* abc = t.as_array();
+            if (!abc || abc->size() != 3)
+                fail(at(t), which + " must be [a, b, c]: three vertex ids");
+            for (const toml::node& e : *abc) {
+                if (!e.is_integer()) fail(at(e), which + ": vertex ids must be whole numbers");
+                const std::int64_t v = e.as_integer()->get();
+                if (v < 0 || v >= static_cast<std::int64_t>(pts.size()))
+                    fail(at(e), which + " names vertex " + std::to_string(v) +
+                                    ", but the points are numbered from 0 to " +
+                                    std::to_string(static_cast<std::int64_t>(pts.size()) - 1));
+                mesh.V.push_back(static_cast<std::int32_t>(v));
+            }
+        }
+        mesh.O.assign(mesh.V.size(), kNone);  // not given: checkMesh computes it
+        CheckReport report = checkMesh(mesh);
+        if (!report.isTriangulation())
+            fail(lineOf(n), "\"triangles\" refused: " + report.summary() + firstProblem(report));
+        Inserter::StartMesh start;
+        start.V = std::move(mesh.V);
+        start.O = std::move(report.opposites);
+        return start;
+    }
+
+    // " (first: ...)": the first problem that blocks the flip algorithm, in its own words.
+    static std::string firstProblem(const CheckReport& report) {
+        for (const MeshProblem& p : report.problems) {
+            if (blocksRepair(p.kind) && !p.message.empty()) return " (first: " + p.message + ")";
+        }
+        return "";
+    }
+
     LessonStop stop(const toml::table& t) {
         LessonStop s;
         s.line = lineOf(t);
@@ -1301,7 +1370,8 @@ public:
                  "not valid TOML: " + std::string(e.description()));
         }
         checkKeys(root,
-                  {"title", "summary", "kind", "text", "points", "points_file", "options", "stop"},
+                  {"title", "summary", "kind", "text", "points", "points_file", "triangles",
+                   "options", "stop"},
                   "at the top level");
         L.title = string(root, "title").value_or("");
         if (trimmed(L.title).empty()) fail(1, "the lesson needs a \"title\"");
@@ -1319,26 +1389,13 @@ public:
             if (!o->is_table()) fail(lineOf(*o), "\"options\" must be a table: [options]");
             options(*o->as_table(), L.options);
         }
-        const toml::node* inl = root.get("points");
-        const auto file = string(root, "points_file");
-        if (inl && file) fail(lineOf(*inl), "give either \"points\" or \"points_file\", not both");
-        if (!inl && !file)
-            fail(1, "the lesson needs \"points\" (a list of [x, y]) or \"points_file\"");
-        if (inl) {
-            L.points = points(*inl);
-        } else {
-            const int line = lineOf(*root.get("points_file"));
-            L.pointsFile = resolveLessonFile(path, *file, line);
-            try {
-                PointSet set = readPointsFile(L.pointsFile);
-                L.points = std::move(set.points);
-            } catch (const InputError& e) {
-                fail(line, "cannot read points_file: " + std::string(e.what()));
-            }
-            if (L.points.size() > kMaxLessonPoints) {
-                fail(line, "too many points for a lesson (at most " +
-                               std::to_string(kMaxLessonPoints) + ")");
-            }
+        lessonPoints(root, path, L);
+        if (const toml::node* t = root.get("triangles")) {
+            if (const toml::node* o = root.get("options"))
+                fail(lineOf(*o),
+                     "a lesson with \"triangles\" runs Lawson's flip algorithm from them: "
+                     "[options] (boundary, locator, order) does not apply; leave it out");
+            L.start = startMesh(*t, L.points);
         }
         if (const toml::node* st = root.get("stop")) {
             const toml::array* a = st->as_array();
@@ -1471,6 +1528,7 @@ Lesson loadLesson(const std::string& path) {
 
 std::unique_ptr<Inserter> makeInserter(const Lesson& lesson) {
     try {
+        if (lesson.start) return std::make_unique<Inserter>(lesson.points, *lesson.start);
         return std::make_unique<Inserter>(lesson.points, lesson.options);
     } catch (const std::exception& e) {
         throw LessonError(lesson.file, 0, 0, std::string("cannot start the run: ") + e.what());

@@ -8,6 +8,10 @@
 //   summary = "G, V and O for two triangles."
 //   kind = "lesson"                 # or "assignment": points and text only, no stops needed
 //   points = [[0, 0], [4, 0], [4, 3], [0, 3]]   # or points_file = "square.csv", beside the lesson
+//   triangles = [[0, 1, 2], [0, 2, 3]]  # optional: a start triangulation (0-based ids into
+//                                   # points, counter-clockwise, valid as checkMesh finds it);
+//                                   # the run is then Lawson's flip algorithm from it, not
+//                                   # insertion, and [options] does not apply
 //
 //   [options]                       # all optional
 //   boundary = "exact"              # exact | super
@@ -122,6 +126,9 @@ struct Lesson {
     InsertOptions options;
     std::vector<Vec2> points;
     std::string pointsFile;  // resolved path of points_file, empty for inline points
+    // `triangles`: the run is Lawson's flip algorithm from this mesh (V from the file, O as
+    // checkMesh computes it) instead of the insertion of the points. nullopt: insertion.
+    std::optional<Inserter::StartMesh> start;
     std::vector<LessonStop> stops;
 };
 
@@ -195,7 +202,8 @@ struct LessonPlan {
     std::size_t totalOps = 0;  // operations of the whole run
 };
 
-// A fresh engine with the lesson's points and options.
+// A fresh engine with the lesson's points and options (the flip algorithm from its start
+// triangulation when it has one).
 std::unique_ptr<Inserter> makeInserter(const Lesson& lesson);
 // Runs the lesson to its end: every stop must be reached in order and every question must have
 // a computable answer. Throws LessonError naming the stop.

@@ -33,7 +33,8 @@ std::string captionText(const AppState& state);
 void ShowTimeline(AppState& state);  // toolbar.cpp: scrubber over all operations
 // "op 45 of 120   |   9 of 12 points inserted, 1 duplicate skipped": the timeline's words.
 std::string timelineText(const Engine& engine);
-// "9 of 12 points inserted, 1 duplicate skipped": the one count of points done, everywhere.
+// "9 of 12 points inserted, 1 duplicate skipped": the one count of points done, everywhere
+// (the flip algorithm on a given mesh inserts none and says so).
 std::string pointCountsText(const Engine& engine);
 void ShowCanvas(AppState& state);  // canvas.cpp: the mesh and every overlay
 // The side tabs' ids ("corner-table", ..., "check"), in order (app.cpp's table).

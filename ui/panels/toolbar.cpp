@@ -297,6 +297,8 @@ std::string opPrefix(const Engine& e, const Op& op) {
 }  // namespace
 
 std::string pointCountsText(const Engine& e) {
+    if (e.repairs())  // no point is inserted: the triangles were given
+        return std::to_string(e.points().size()) + " points, triangles given (none inserted)";
     const InsertStats& st = e.inserter().stats();
     std::string s = std::to_string(st.inserted) + " of " + std::to_string(e.points().size()) +
                     " points inserted";

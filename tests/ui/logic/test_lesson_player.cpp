@@ -89,6 +89,33 @@ TEST(LessonPlayer, AfterTheUserChangesThePointsNextBringsTheLessonBackAndCtrlZTh
     EXPECT_EQ(st.engine.points(), mine);
 }
 
+TEST(LessonPlayer, ALessonWithTrianglesPlaysTheFlipAlgorithmAndBringsItBack) {
+    UiHarness h;
+    auto& st = h.state();
+    ASSERT_TRUE(dlab::ui::openLesson(st, lessonPath("11_flip_algorithm.toml")))
+        << st.messages.back().text;
+    h.frames(2);
+    const auto& L = st.lessonPlayer;
+    ASSERT_TRUE(L.lesson && L.lesson->start);
+    EXPECT_TRUE(st.engine.repairs());
+    EXPECT_EQ(st.engine.position(), L.plan.stops[0].position);
+    EXPECT_EQ(st.engine.mesh().numTriangles(), 8);  // the fan, as given
+    h.clickItem("lesson-next");
+    EXPECT_EQ(st.engine.current()->type, dlab::OpType::InCircleTest);
+    EXPECT_EQ(dlab::ui::captionText(st), L.plan.stops[1].banner);
+    // The same points inserted instead: not the lesson's run; Next brings the flip algorithm back.
+    ASSERT_TRUE(st.loadPoints(L.lesson->points, "same points"));
+    EXPECT_FALSE(st.engine.repairs());
+    EXPECT_TRUE(dlab::ui::lessonStateChanged(st));
+    h.frames(2);
+    h.clickItem("lesson-next");
+    EXPECT_EQ(L.progress.stop, 2u);
+    EXPECT_TRUE(st.engine.repairs());
+    EXPECT_FALSE(dlab::ui::lessonStateChanged(st));
+    EXPECT_EQ(st.engine.position(), L.plan.stops[2].position);
+    EXPECT_EQ(st.engine.current()->type, dlab::OpType::Flip);
+}
+
 TEST(LessonPlayer, AnswersAreCheckedAgainstTheEngine) {
     UiHarness h;
     auto& st = h.state();
