@@ -625,6 +625,9 @@ private:
                                            : std::string("no idea #") + std::to_string(below(100));
             note("lesson answer '" + text + "'");
             closeHelp();
+            // A user clears what an earlier try left in the field before typing the next one.
+            m_h.frames(1);
+            L.typed.clear();
             m_h.clickItem("lesson-answer");
             for (char c : text) ImGui::GetIO().AddInputCharacter(static_cast<unsigned char>(c));
             m_h.frames(2);
@@ -757,8 +760,20 @@ private:
             return "back to 0 and forward to " + std::to_string(p) + " gave another V/O";
         ui::Engine fresh;
         std::string error;
-        if (!fresh.resetAt(e.points(), e.options(), p, error))
-            return "a fresh replay was refused: " + error;
+        // The same run afresh: insertion, or the flip algorithm from the triangles its Start put
+        // in the table (Start queues edges unless the mesh is only shown).
+        bool made = false;
+        if (e.repairs()) {
+            e.seek(1);
+            dlab::Inserter::StartMesh start{e.mesh().V, e.mesh().O};
+            const bool flips = !e.inserter().flipStack().empty();
+            e.seek(p);
+            made = fresh.resetRepair(e.points(), std::move(start), flips, error);
+            fresh.seek(p);
+        } else {
+            made = fresh.resetAt(e.points(), e.options(), p, error);
+        }
+        if (!made) return "a fresh replay was refused: " + error;
         if (!(copyOf(fresh.mesh()) == at))
             return "a fresh replay to " + std::to_string(p) + " gives another V/O";
         m_h.frames(1);
