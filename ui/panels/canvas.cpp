@@ -659,9 +659,12 @@ void DrawLabels(const Scene& s, std::int32_t& hoveredCorner, ImVec2 mouse, bool 
     const Overlays& ov = s.st.overlays;
     ImFont* mono = fonts().mono;
     const float fs = ImGui::GetFontSize() * (s.st.presentation ? 0.8f : 0.85f);
-    // Cells the current op changed: their corners' labels are drawn in the highlight colour.
+    // Cells the current op changed: their corners' labels are drawn in the highlight colour. An
+    // op that fills the whole table (the flip algorithm's Start, Finalize) marks none: every
+    // label would be a badge.
     std::vector<std::int32_t> changed;
-    if (const Op* op = s.e.current(); op && s.e.journal()) {
+    constexpr std::uint32_t kBadgesAtMost = 64;
+    if (const Op* op = s.e.current(); op && s.e.journal() && op->numChanges <= 2 * kBadgesAtMost) {
         for (std::uint32_t i = 0; i < op->numChanges; ++i)
             changed.push_back(s.e.journal()->changes()[op->firstChange + i].corner());
     }
@@ -1180,9 +1183,10 @@ void ShowCanvas(AppState& st) {
 
     st.frameStats.canvasFull = false;
     Scene scene = makeScene(st, dl);
+    cache.drawn.reset();  // this frame's marks: the scene's, and those drawn through useLook
     DrawMeshLayers(st, cache, scene, p0, p1);
     const std::int32_t hoveredCorner = DrawLabelsAndPoints(st, cache, scene, hovered);
-    cache.drawn = scene.drawn;
+    cache.drawn |= scene.drawn;
     cache.busy = busy(scene);
     dl->PopClipRect();
     handleInput(st, cache, hovered);

@@ -39,7 +39,7 @@ constexpr std::array<Look, kMarkCount> kLooks{{
     {Mark::StudentTriangle, Shape::Line, IM_COL32(200, 0, 160, 255),
      "student's triangle, not ours"},
     {Mark::MeshNotDelaunay, Shape::Ring, IM_COL32(205, 30, 40, 255),
-     "edge not Delaunay, its circle"},
+     "circle with a vertex inside (Check)"},
     {Mark::MeshProblem, Shape::Fill, IM_COL32(205, 30, 40, 110), "mesh problem (Check)"},
     {Mark::MeshPicked, Shape::Line, IM_COL32(150, 0, 160, 255), "problem picked in Check"},
     {Mark::OnlyInMesh, Shape::Line, IM_COL32(205, 30, 40, 255), "edge only in this mesh"},

@@ -33,7 +33,17 @@ void checkNow(AppState& st) {
     CheckOptions o;
     o.indexBase = mc.open ? mc.indexBase : 0;
     o.hasOpposites = true;  // the engine's own O, checked against its triangles
-    mc.now = checkMesh(st.engine.mesh(), o);
+    // The check is of the triangulation of the input points: the ghost vertex's placeholder
+    // (there until Finalize) is no unused point of it.
+    const Mesh& m = st.engine.mesh();
+    const std::size_t n = st.engine.points().size();
+    if (m.G.size() > n) {
+        Mesh input = m;
+        input.G.resize(n);
+        mc.now = checkMesh(input, o);
+    } else {
+        mc.now = checkMesh(m, o);
+    }
     mc.nowVersion = st.engine.version();
 }
 
@@ -171,7 +181,9 @@ void DrawTriangle(const AppState& st, ImDrawList* dl, const std::int32_t tv[3], 
 // its vertices ringed, its outline (holes, a non-convex outline).
 void DrawProblem(AppState& st, ImDrawList* dl, const MeshProblem& p, ImU32 col, bool asOpened) {
     if (p.kind == Kind::NotDelaunay && p.vertices.size() == 3 && p.triangles.size() == 2) {
-        DrawEdge(st, dl, p.vertices[0], p.vertices[1], col, 3.0f);
+        // The circle and the vertex inside it; the edge itself only when picked (a flip's new
+        // edge is drawn red too).
+        if (asOpened) DrawEdge(st, dl, p.vertices[0], p.vertices[1], col, 3.0f);
         std::int32_t tv[3];
         bool have = true;
         if (asOpened) {
