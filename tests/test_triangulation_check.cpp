@@ -10,6 +10,7 @@
 #include "core/engine/triangulation_check.h"
 #include "tests/exact_check.h"
 #include "tests/run_dtlab.h"
+#include "tests/scrambled_mesh.h"
 
 #include <gtest/gtest.h>
 
@@ -195,19 +196,7 @@ std::int32_t triangleWithBoundary(const Mesh& m, int boundaryEdges) {
     return kNone;
 }
 
-void flip(Mesh& m, std::int32_t c) {
-    const std::int32_t d = m.O[c], cn = next(c), cp = prev(c), dn = next(d), dp = prev(d);
-    const std::int32_t ocn = m.O[cn], odn = m.O[dn];
-    m.V[cp] = m.V[d];
-    m.V[dp] = m.V[c];
-    const auto link = [&](std::int32_t a, std::int32_t b) {
-        m.O[a] = b;
-        if (b != kNone) m.O[b] = a;
-    };
-    link(c, odn);
-    link(d, ocn);
-    link(cn, dn);
-}
+using dlab::test::flipEdge;
 
 // A flippable edge (the quadrilateral strictly convex) that is not cocircular.
 std::int32_t convexEdge(const Mesh& m, std::int32_t from = 0) {
@@ -298,7 +287,7 @@ std::vector<Planted> plantDefects(const Mesh& base) {
         Planted& p = plant(Kind::NotDelaunay);
         const std::int32_t c = convexEdge(base);
         const std::int32_t d = base.O[c];
-        flip(p.mesh, c);
+        flipEdge(p.mesh, c);
         p.vertices = {base.V[c], base.V[d]};
     }
     const std::int32_t c = interiorCorner(base), d = base.O[c];
@@ -507,17 +496,7 @@ TEST(TriangulationCheck, RepairByFlipsEndsExactlyDelaunayWithTheNumberingKept) {
     for (const unsigned seed : {4u, 5u, 6u}) {
         const Mesh base = delaunayMesh(200, seed);
         Mesh m = base;
-        std::mt19937 rng(seed);
-        int flipped = 0;
-        for (int i = 0; i < 400; ++i) {  // random legal flips: a valid, far from Delaunay mesh
-            const std::int32_t c = static_cast<std::int32_t>(rng() % m.V.size());
-            const std::int32_t d = m.O[c];
-            if (d == kNone) continue;
-            const Vec2 P = m.point(c), A = m.point(next(c)), B = m.point(prev(c)), D = m.point(d);
-            if (orient2d(P, A, D) <= 0 || orient2d(D, B, P) <= 0) continue;
-            flip(m, c);
-            ++flipped;
-        }
+        const int flipped = dlab::test::scrambleByLegalFlips(m, seed, 400);
         ASSERT_GT(flipped, 100);
         const CheckReport before = checkMesh(m);
         ASSERT_TRUE(before.isTriangulation()) << listed(before);
@@ -539,15 +518,7 @@ TEST(TriangulationCheck, RepairByFlipsEndsExactlyDelaunayWithTheNumberingKept) {
 TEST(TriangulationCheck, TheSteppedRepairFlipsAsTheBatchRepairAndStepsBack) {
     for (const unsigned seed : {7u, 8u}) {
         Mesh m = delaunayMesh(150, seed);
-        std::mt19937 rng(seed);
-        for (int i = 0; i < 300; ++i) {
-            const std::int32_t c = static_cast<std::int32_t>(rng() % m.V.size());
-            const std::int32_t d = m.O[c];
-            if (d == kNone) continue;
-            const Vec2 P = m.point(c), A = m.point(next(c)), B = m.point(prev(c)), D = m.point(d);
-            if (orient2d(P, A, D) <= 0 || orient2d(D, B, P) <= 0) continue;
-            flip(m, c);
-        }
+        dlab::test::scrambleByLegalFlips(m, seed, 300);
         const CheckReport report = checkMesh(m);
         ASSERT_TRUE(report.isTriangulation()) << listed(report);
         ASSERT_GT(report.count(Kind::NotDelaunay), 0u);
@@ -623,7 +594,7 @@ TEST(TriangulationCheck, TheDiffWithDelaunayNamesTheEdgesThatDiffer) {
     ASSERT_NE(flipped, kNone);
     const MeshEdge before = std::minmax(m.V[next(flipped)], m.V[prev(flipped)]);
     const MeshEdge after = std::minmax(m.V[flipped], m.V[m.O[flipped]]);
-    flip(m, flipped);
+    flipEdge(m, flipped);
     const DelaunayDiff d = diffWithDelaunay(m);
     ASSERT_EQ(d.onlyGiven.size(), 1u);
     ASSERT_EQ(d.onlyDelaunay.size(), 1u);
@@ -692,7 +663,7 @@ TEST(TriangulationCheck, DtlabCheckAndRepairEndToEnd) {
     CheckReport r = check(im);
     Mesh m = im.mesh;
     m.O = r.opposites;
-    flip(m, convexEdge(m));
+    flipEdge(m, convexEdge(m));
     const std::string bad = (dir / "bad").string();
     writeTextFiles({{bad + ".node", [&](std::ostream& os) { writeNode(os, m.G, 0); }},
                     {bad + ".ele", [&](std::ostream& os) { writeEle(os, m, 0); }}});

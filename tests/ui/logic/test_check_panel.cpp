@@ -7,6 +7,7 @@
 #include "core/engine/io_write.h"
 #include "core/engine/predicates.h"
 #include "tests/exact_check.h"
+#include "tests/scrambled_mesh.h"
 #include "tests/ui/ui_harness.h"
 #include "ui/files/files.h"
 #include "ui/panels/panels.h"
@@ -16,7 +17,6 @@
 #include <imgui.h>
 
 #include <fstream>
-#include <random>
 #include <string>
 #include <vector>
 
@@ -31,25 +31,7 @@ Mesh scrambledMesh() {
     Inserter ins(generatePoints(Generator::Uniform, 80, 3));
     ins.run();
     Mesh m = ins.mesh();
-    std::mt19937 rng(9);
-    for (int i = 0; i < 200; ++i) {
-        const std::int32_t c = static_cast<std::int32_t>(rng() % m.V.size());
-        const std::int32_t d = m.O[c];
-        if (d == kNone) continue;
-        const Vec2 P = m.point(c), A = m.point(next(c)), B = m.point(prev(c)), D = m.point(d);
-        if (orient2d(P, A, D) <= 0 || orient2d(D, B, P) <= 0) continue;
-        const std::int32_t cn = next(c), cp = prev(c), dn = next(d), dp = prev(d);
-        const std::int32_t ocn = m.O[cn], odn = m.O[dn];
-        m.V[cp] = m.V[d];
-        m.V[dp] = m.V[c];
-        auto link = [&](std::int32_t x, std::int32_t y) {
-            m.O[x] = y;
-            if (y != kNone) m.O[y] = x;
-        };
-        link(c, odn);
-        link(d, ocn);
-        link(cn, dn);
-    }
+    dlab::test::scrambleByLegalFlips(m, 9, 200);
     return m;
 }
 
