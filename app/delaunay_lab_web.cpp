@@ -306,6 +306,7 @@ EMSCRIPTEN_KEEPALIVE const char* dlab_web_test_info() {
     j["notice"] = st.files.notice;
     j["presentation"] = st.presentation;
     j["recovery"] = st.files.recoveryPath;
+    j["autosaved"] = st.files.autosaved.size();  // the points the last autosave holds
     const auto& lp = st.lessonPlayer;
     j["lesson"] = lp.lesson ? lp.lesson->title : "";
     j["stop"] = lp.lesson ? static_cast<long>(lp.progress.stop) + 1 : 0;

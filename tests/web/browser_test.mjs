@@ -195,7 +195,8 @@ try {
                                         chord(page, ["Control", "o"])]);
   await chooser2.accept([good]);
   i = await waitFor(page, (x) => x.points === 5, "the good file");
-  await sleep(300);  // the autosave is written after the frame that changed the points
+  // The autosave is written after the frame that changed the points (later on a loaded machine).
+  i = await waitFor(page, (x) => x.autosaved === 5, "the autosave of the good file");
   const synced = await page.evaluate("window.dlab.syncs || 0");
   await page.evaluate("Module.ccall('dlab_web_save_state', null, [], [])");
   await page.waitForFunction(`(window.dlab.syncs || 0) > ${synced}`, { timeout: 10000 });
