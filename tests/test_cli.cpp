@@ -613,5 +613,12 @@ TEST(Cli, ALatticeLessonOfTheLargestSizeOpensWithinTheHistoryBudget) {
     const std::string lesson = writeFile(dir / "lattice.toml", text);
     const long kib = peakKibOfDtlab({"lesson", "check", lesson});
     ASSERT_GT(kib, 0) << "lesson check failed";
-    EXPECT_LT(kib, 1300l * 1024) << kib << " KiB";
+    // About 820 MiB here in a release build. AddressSanitizer adds its redzones and keeps the
+    // history's freed buffers (each vector doubles) in its quarantine: about 1350 MiB.
+#if defined(__SANITIZE_ADDRESS__)
+    constexpr long kLimitMib = 1600;
+#else
+    constexpr long kLimitMib = 1300;
+#endif
+    EXPECT_LT(kib, kLimitMib * 1024) << kib << " KiB";
 }
