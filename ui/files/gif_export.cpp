@@ -251,11 +251,25 @@ std::vector<std::uint8_t> CaptureRegion(Gui& gui, bool wholeWindow, int& width, 
 
 namespace {
 
+// An RGBA frame of w x h as one of w0 x h0: its top-left part, white where it is smaller.
+std::vector<std::uint8_t> fitFrame(const std::vector<std::uint8_t>& px, int w, int h, int w0,
+                                   int h0) {
+    if (w == w0 && h == h0) return px;
+    std::vector<std::uint8_t> out(static_cast<std::size_t>(w0) * h0 * 4, 255);
+    for (int y = 0; y < std::min(h, h0); ++y) {
+        const auto* from = px.data() + static_cast<std::size_t>(y) * w * 4;
+        std::copy(from, from + static_cast<std::size_t>(std::min(w, w0)) * 4,
+                  out.data() + static_cast<std::size_t>(y) * w0 * 4);
+    }
+    return out;
+}
+
 // Renders steps req.from .. req.to (every `every`) into a GIF on `os`; false with `error` set.
 bool renderGifFrames(Gui& gui, const GifRequest& req, std::size_t every, std::ostream& os,
                      int& frames, std::string& error) {
     Engine& e = gui.state().engine;
     GifWriter gif;
+    int w0 = 0, h0 = 0;  // the first frame's size: every frame of a GIF has it
     for (std::size_t p = req.from;; p = std::min(req.to, p + every)) {
         e.seek(p);
         // Two frames: ImGui settles a layout (tables measure columns) in the first.
@@ -263,9 +277,15 @@ bool renderGifFrames(Gui& gui, const GifRequest& req, std::size_t every, std::os
         gui.frame();
         int w = 0, h = 0;
         const std::vector<std::uint8_t> px = CaptureRegion(gui, req.wholeWindow, w, h);
-        if (gif.frames() == 0 && !gif.open(os, req.path, w, h, error)) return false;
-        if (w * h * 4 != static_cast<int>(px.size()) ||
-            !gif.addFrame(px.data(), req.delayMs, error)) {
+        if (gif.frames() == 0) {
+            if (!gif.open(os, req.path, w, h, error)) return false;
+            w0 = w;
+            h0 = h;
+        }
+        // A caption that wraps onto another line resizes the canvas: the frame is cut or padded
+        // (white) to the first frame's size, which every frame of a GIF has.
+        const bool whole = w * h * 4 == static_cast<int>(px.size());
+        if (!whole || !gif.addFrame(fitFrame(px, w, h, w0, h0).data(), req.delayMs, error)) {
             if (error.empty()) error = req.path + ": the window changed size during the export";
             return false;
         }
