@@ -30,6 +30,15 @@ void tapBetweenFrames(int k, int times) {
 
 bool startsWith(const std::string& s, const std::string& prefix) { return s.rfind(prefix, 0) == 0; }
 
+// A breakpoint on every flip, then Space at full speed until the run stops.
+void runToAFlipBreakpoint(UiHarness& h) {
+    auto& st = h.state();
+    st.run.breakpoints.push_back({{dlab::BreakKind::Flip, std::nullopt}, true});
+    st.run.opsPerSecond = dlab::ui::RunControl::kFullSpeed;
+    h.press(key::kSpace);
+    for (int i = 0; i < 50 && st.run.running; ++i) h.frames(1);
+}
+
 }  // namespace
 
 TEST(Keys, TapsReleasedBeforeTheFrameEachStepOnce) {
@@ -64,10 +73,7 @@ TEST(Captions, CaptionBannerTimelineAndStopsShareOneNumbering) {
     EXPECT_TRUE(startsWith(dlab::ui::timelineText(st.engine), "op 3 of "))
         << dlab::ui::timelineText(st.engine);
     // A breakpoint's stop says the same number in the messages.
-    st.run.breakpoints.push_back({{dlab::BreakKind::Flip, std::nullopt}, true});
-    st.run.opsPerSecond = dlab::ui::RunControl::kFullSpeed;
-    h.press(key::kSpace);
-    for (int i = 0; i < 50 && st.run.running; ++i) h.frames(1);
+    runToAFlipBreakpoint(h);
     ASSERT_FALSE(st.run.running);
     const std::string at = "[op " + std::to_string(st.engine.position()) + "]";
     ASSERT_FALSE(st.messages.empty());
@@ -79,10 +85,7 @@ TEST(Captions, CaptionBannerTimelineAndStopsShareOneNumbering) {
 TEST(Captions, TheStopReasonGoesWhenThePositionMoves) {
     UiHarness h;
     auto& st = h.state();
-    st.run.breakpoints.push_back({{dlab::BreakKind::Flip, std::nullopt}, true});
-    st.run.opsPerSecond = dlab::ui::RunControl::kFullSpeed;
-    h.press(key::kSpace);
-    for (int i = 0; i < 50 && st.run.running; ++i) h.frames(1);
+    runToAFlipBreakpoint(h);
     ASSERT_NE(st.run.stopReason.find("breakpoint"), std::string::npos);
     h.frames(2);  // staying there keeps it
     EXPECT_FALSE(st.run.stopReason.empty());
