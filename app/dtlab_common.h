@@ -13,6 +13,7 @@
 #include "core/engine/halves.h"
 #include "core/engine/inserter.h"
 #include "core/engine/text_util.h"  // escapeControls: file names in messages
+#include "core/teaching/slide_check.h"
 #include "ui/gl/idbuffer_gl.h"
 #include "ui/platform/platform.h"
 
@@ -89,10 +90,11 @@ void needGl();
 // asked for. Nothing in dtlab.
 void chooseGl();
 
-// The lines of text drawn on each stop's slide of a lesson (1280x720, presentation mode), read
-// back from the rendered frames (ui/render/drawn_text.h). dtlab-gl only: dtlab runs `lesson check`
-// there (needGl). On a lesson that cannot be opened: fail()s with its error.
-std::vector<std::vector<std::string>> renderedSlideText(const std::string& lessonPath);
+// Each stop's slide of a lesson as drawn (1280x720, presentation mode): the text read back from
+// the rendered frames (ui/render/drawn_text.h) and the canvas's marks (ui/render/drawn_marks.h).
+// dtlab-gl only: dtlab runs `lesson check` there (needGl). On a lesson that cannot be opened:
+// fail()s with its error.
+std::vector<RenderedSlide> renderedSlides(const std::string& lessonPath);
 
 // Loads a point file; on bad input prints "dtlab: error: FILE:LINE: what" and throws Exit.
 struct LoadedPoints {

@@ -66,7 +66,12 @@ void runCheck(const LessonArgs& args) {
             const LessonPlan plan = planLesson(lesson);
             std::vector<LessonError> problems = lessonProblems(lesson, plan);
             if (!args.noSlides && !lesson.stops.empty()) {
-                for (LessonError& e : slideProblems(lesson, plan, renderedSlideText(path)))
+                const std::vector<RenderedSlide> slides = renderedSlides(path);
+                std::vector<std::vector<std::string>> lines;
+                for (const RenderedSlide& s : slides) lines.push_back(s.lines);
+                for (LessonError& e : slideProblems(lesson, plan, lines))
+                    problems.push_back(std::move(e));
+                for (LessonError& e : renderedSlideProblems(lesson, plan, slides))
                     problems.push_back(std::move(e));
             }
             if (!problems.empty()) {

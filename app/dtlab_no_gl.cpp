@@ -11,7 +11,7 @@ void chooseGl() {}
 
 void releaseGl() {}
 
-std::vector<std::vector<std::string>> renderedSlideText(const std::string&) {
+std::vector<RenderedSlide> renderedSlides(const std::string&) {
     needGl();
     return {};
 }

@@ -10,6 +10,7 @@
 #include "ui/gui.h"
 #include "ui/lesson_player.h"
 #include "ui/panels/panels.h"
+#include "ui/render/drawn_marks.h"
 #include "ui/render/drawn_text.h"
 
 #include <imgui.h>
@@ -248,10 +249,10 @@ void moveAndSelect(ui::AppState& state, const RenderArgs& args) {
 
 // What `lesson check` reads on each slide: the lines of text drawn, stop by stop.
 void printSlideText(const std::string& lesson) {
-    const auto slides = renderedSlideText(lesson);
+    const auto slides = renderedSlides(lesson);
     for (std::size_t k = 0; k < slides.size(); ++k) {
         std::cout << "## stop " << k + 1 << "\n";
-        for (const std::string& line : slides[k]) std::cout << escapeControls(line) << "\n";
+        for (const std::string& line : slides[k].lines) std::cout << escapeControls(line) << "\n";
     }
 }
 
@@ -292,17 +293,28 @@ void runRender(const RenderArgs& args) {
 
 }  // namespace
 
-std::vector<std::vector<std::string>> renderedSlideText(const std::string& lessonPath) {
+std::vector<RenderedSlide> renderedSlides(const std::string& lessonPath) {
     ui::AppState state;
     auto platform = headlessPlatform(1280, 720);
     ui::Gui gui(*platform, state);
     state.presentation = true;
     if (!ui::openLesson(state, lessonPath)) fail(state.messages.back().text, 2);
-    std::vector<std::vector<std::string>> out;
+    std::vector<RenderedSlide> out;
     for (std::size_t k = 0; k < state.lessonPlayer.lesson->stops.size(); ++k) {
         ui::goToStop(state, k);
-        for (int i = 0; i < 3; ++i) gui.frame();  // as the slides are: laid out, then drawn
-        out.push_back(ui::drawnLines(ui::drawnText(ImGui::GetDrawData())));
+        for (int i = 0; i < 2; ++i) gui.frame();  // as the slides are: laid out, then drawn
+        RenderedSlide slide;
+        {
+            const ui::MarkRecording recording(slide.marks);
+            gui.frame();
+        }
+        for (ui::DrawnText& r : ui::drawnText(ImGui::GetDrawData()))
+            slide.runs.push_back({std::move(r.text), {r.x0, r.y0, r.x1, r.y1}, r.list});
+        std::vector<ui::DrawnText> runs;
+        for (const SlideRun& r : slide.runs)
+            runs.push_back({r.text, r.box.x0, r.box.y0, r.box.x1, r.box.y1, r.list});
+        slide.lines = ui::drawnLines(runs);
+        out.push_back(std::move(slide));
     }
     return out;
 }

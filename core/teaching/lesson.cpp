@@ -1243,7 +1243,7 @@ public:
         s.line = lineOf(t);
         checkKeys(t,
                   {"run_to", "count", "panels", "overlays", "select", "text", "question", "answer",
-                   "hint", "view", "tab", "expect", "figure"},
+                   "hint", "view", "tab", "expect", "figure", "needs"},
                   "in a [[stop]]");
         if (auto r = string(t, "run_to")) {
             std::string why;
@@ -1298,6 +1298,7 @@ public:
         embedded(s.hint, s.hintLine, "hint");
         s.expect = expectations(t);
         s.figure = figure(t);
+        stopNeeds(t, s);
         return s;
     }
 
@@ -1487,6 +1488,42 @@ private:
             out.push_back(std::move(e));
         }
         return out;
+    }
+
+    // needs = ["vertex:4", "corner:7", "triangle:3", "panel:corner-table"]: what the slide must
+    // show beyond what lesson check reads from the text.
+    void stopNeeds(const toml::table& t, LessonStop& s) {
+        const toml::node* n = t.get("needs");
+        if (!n) return;
+        s.needsLine = lineOf(*n);
+        const char* form =
+            "\"needs\" must be a list like [\"vertex:4\", \"corner:7\", \"triangle:3\", "
+            "\"panel:corner-table\"]";
+        const toml::array* a = n->as_array();
+        if (!a) fail(s.needsLine, form);
+        for (const toml::node& e : *a) {
+            if (!e.is_string()) fail(lineOf(e), form);
+            const std::string need = e.as_string()->get();
+            const std::size_t colon = need.find(':');
+            const std::string kind = need.substr(0, colon);
+            const std::string what = colon == std::string::npos ? "" : need.substr(colon + 1);
+            if (kind == "panel") {
+                if (std::none_of(std::begin(kPanelNames), std::end(kPanelNames),
+                                 [&](const char* p) { return what == p; }))
+                    fail(lineOf(e), "needs \"" + need + "\": unknown panel \"" + what +
+                                        "\" (known: " + joinNames(kPanelNames) + ")");
+            } else if (kind == "vertex" || kind == "corner" || kind == "triangle") {
+                if (what.empty() || what.size() > 9 ||
+                    !std::all_of(what.begin(), what.end(),
+                                 [](char c) { return c >= '0' && c <= '9'; }))
+                    fail(lineOf(e), "needs \"" + need + "\": " + kind + " needs an id, e.g. \"" +
+                                        kind + ":4\"");
+            } else {
+                fail(lineOf(e),
+                     "needs \"" + need + "\": write vertex:N, corner:N, triangle:N or panel:NAME");
+            }
+            s.needs.push_back(need);
+        }
     }
 
     // figure = "lifting-map": a drawing beside the text (kFigureNames).

@@ -32,11 +32,21 @@
 //   hint = "Look across the edge opposite c."
 //   expect = { located = "hit", walk_steps = 0 }  # checked against the engine at the stop
 //   figure = "lifting-map"          # a drawing beside the text (kFigureNames)
+//   needs = ["vertex:4", "panel:corner-table"]  # what the slide must show (see below)
 //
 // The answer is computed by the engine at the stop, never typed into the file. Text, question
 // and hint may embed engine values: {{walk_steps}}, {{test_edge}}, {{V[c.n]}} (a quantity or a
 // corner expression, as in `answer`), replaced by the value at the stop. An expectation's value
 // is written as a student would type the answer ("0-2", "edge", 25, true).
+//
+// `dtlab lesson check` renders every stop's slide and reads it back (core/teaching/slide_check.h):
+// each vertex the text or question names ("vertex 7", "vertices 2, 3 and 5", an edge "2-3") and
+// each end of an edge answer must carry a legible label on the canvas; the stop's tab and each
+// panel the text refers to ("the corner table", "the statistics") must be on the slide; a stop
+// about the in-circle test must draw the engine's test edge, and a count of queued edges in the
+// text ("{{queue}} edges wait") must match the edges drawn. What the check cannot read from the
+// text, the stop declares: needs = ["vertex:N", "corner:N", "triangle:N", "panel:NAME"] (NAME
+// from kPanelNames).
 #pragma once
 
 #include "core/engine/inserter.h"
@@ -116,6 +126,10 @@ struct LessonStop {
     int textLine = 0, questionLine = 0, hintLine = 0;
     std::vector<LessonExpect> expect;
     std::string figure;  // a drawing beside the text: one of kFigureNames, or empty
+    // What the slide must show beyond what the check reads from the text: "vertex:4",
+    // "corner:7", "triangle:3" (a legible label on the canvas), "panel:corner-table".
+    std::vector<std::string> needs;
+    int needsLine = 0;
 };
 
 struct Lesson {

@@ -15,6 +15,7 @@
 #include "ui/panels/canvas_looks.h"
 #include "ui/panels/labels.h"
 #include "ui/panels/panels.h"
+#include "ui/render/drawn_marks.h"
 #include "ui/render/renderer.h"
 
 #include <imgui.h>
@@ -147,13 +148,15 @@ void DrawNextPoint(ImDrawList* dl, ImVec2 q, float r, ImU32 col) {
                       ImVec2(q.x - d, q.y), col);
 }
 
+// A label centred at `centre`; with an id, recorded as a mark in `role` (lesson check).
 void LabelBox(ImDrawList* dl, ImFont* font, float size, ImVec2 centre, ImU32 text, ImU32 box,
-              const char* s) {
+              const char* s, SlideMarkRole role = SlideMarkRole::Canvas, std::int32_t id = -1) {
     const ImVec2 ts = font->CalcTextSizeA(size, 1e9f, 0, s);
     const ImVec2 a(centre.x - ts.x / 2 - 2, centre.y - ts.y / 2),
         b(centre.x + ts.x / 2 + 2, centre.y + ts.y / 2);
     if (box) dl->AddRectFilled(a, b, box, 3);
     dl->AddText(font, size, ImVec2(a.x + 2, a.y), text, s);
+    if (id >= 0) recordMark(role, id, -1, a.x + 2, a.y, b.x - 2, b.y);
 }
 
 // ============================================================================================
@@ -283,31 +286,36 @@ struct Scene {
         corners(t, p);
         dl->AddTriangle(p[0], p[1], p[2], col, w);
     }
-    void edge(std::int32_t a, std::int32_t b, ImU32 col, float w, bool dashed = false) const {
-        if (a < 0 || b < 0 || a >= m.numVertices() || b >= m.numVertices()) return;
-        if (ghostMode && running && (ins.isVirtual(a) || ins.isVirtual(b))) return;
+    // Edge a-b; with a role other than Canvas, recorded as a mark in it (lesson check).
+    bool edge(std::int32_t a, std::int32_t b, ImU32 col, float w, bool dashed = false,
+              SlideMarkRole role = SlideMarkRole::Canvas) const {
+        if (a < 0 || b < 0 || a >= m.numVertices() || b >= m.numVertices()) return false;
+        if (ghostMode && running && (ins.isVirtual(a) || ins.isVirtual(b))) return false;
         const ImVec2 pa = screen(a), pb = screen(b);
         if (!onCanvas(std::min(pa.x, pb.x), std::min(pa.y, pb.y), std::max(pa.x, pb.x),
                       std::max(pa.y, pb.y), w))
-            return;
+            return false;
         dashed ? DashedLine(dl, pa, pb, col, w) : dl->AddLine(pa, pb, col, w);
+        if (role != SlideMarkRole::Canvas) recordMark(role, a, b, pa.x, pa.y, pb.x, pb.y);
+        return true;
     }
     // A circle given in world coordinates (centre, radius), clipped by the canvas.
-    void circle(Vec2 c, double r, ImU32 col, float w) const {
+    bool circle(Vec2 c, double r, ImU32 col, float w) const {
         const glm::dvec2 s = view.toScreen(c);
         const double rs = r * view.scale;
-        if (!std::isfinite(rs) || rs > 1e6) return;
+        if (!std::isfinite(rs) || rs > 1e6) return false;
         const float x = static_cast<float>(s.x), y = static_cast<float>(s.y),
                     rf = static_cast<float>(rs);
-        if (!onCanvas(x - rf, y - rf, x + rf, y + rf, w)) return;
+        if (!onCanvas(x - rf, y - rf, x + rf, y + rf, w)) return false;
         // Wholly around the canvas: nothing of it shows.
         const double dx =
             std::max(std::abs(s.x - view.origin.x), std::abs(s.x - view.origin.x - view.size.x));
         const double dy =
             std::max(std::abs(s.y - view.origin.y), std::abs(s.y - view.origin.y - view.size.y));
-        if (dx * dx + dy * dy < (rs - w) * (rs - w)) return;
+        if (dx * dx + dy * dy < (rs - w) * (rs - w)) return false;
         dl->AddCircle(toIm(s), static_cast<float>(rs), col,
                       std::clamp(static_cast<int>(rs / 3), 24, 256), w);
+        return true;
     }
 };
 
@@ -475,8 +483,11 @@ void DrawFlipQueue(const Scene& s, float w) {
         const ImVec2 pa = ends[2 * i], pb = ends[2 * i + 1];
         if (!shown[i] || !s.room(200)) continue;  // dashes: at most ~2 screen diagonals of them
         if (s.onCanvas(std::min(pa.x, pb.x), std::min(pa.y, pb.y), std::max(pa.x, pb.x),
-                       std::max(pa.y, pb.y), w))
+                       std::max(pa.y, pb.y), w)) {
             DashedLine(s.dl, pa, pb, col, w);
+            recordMark(SlideMarkRole::QueuedEdge, queue[i].edge.a, queue[i].edge.b, pa.x, pa.y,
+                       pb.x, pb.y);
+        }
     }
     if (!s.st.overlays.queueOrder) return;
     const ImU32 badge = s.use(Mark::QueueOrder);
@@ -509,7 +520,7 @@ void DrawOpOverlay(const Scene& s) {
     if (ov.flipped) {
         for (const VertexEdge& fe : s.e.flippedEdges()) {
             if (!s.room(8)) break;
-            s.edge(fe.a, fe.b, s.use(Mark::FlippedEdge), w);
+            s.edge(fe.a, fe.b, s.use(Mark::FlippedEdge), w, false, SlideMarkRole::FlippedEdge);
         }
     }
     if (ov.flipQueue) DrawFlipQueue(s, w);
@@ -530,7 +541,8 @@ void DrawOpOverlay(const Scene& s) {
         case OpType::InCircleTest: {
             const std::int32_t a = op->a, b = op->b;
             if (a < 0 || a >= m.numCorners()) break;
-            s.edge(m.V[next(a)], m.V[prev(a)], s.use(Mark::TestEdge), w * 1.6f);
+            s.edge(m.V[next(a)], m.V[prev(a)], s.use(Mark::TestEdge), w * 1.6f, false,
+                   SlideMarkRole::TestEdge);
             if (b == kNone || b >= m.numCorners()) break;
             const ImU32 col = s.use(op->sign > 0 ? Mark::CircleFlip : Mark::CircleKeep);
             const std::int32_t t = tri(b);
@@ -539,14 +551,21 @@ void DrawOpOverlay(const Scene& s) {
             } else {
                 Vec2 c;
                 double r;
-                if (circumcircle(m, t, c, r)) s.circle(c, r, col, w);
+                if (circumcircle(m, t, c, r) && s.circle(c, r, col, w)) {
+                    const glm::dvec2 q = s.view.toScreen(c);
+                    const double rs = r * s.view.scale;
+                    recordMark(SlideMarkRole::TestCircle, t, -1, static_cast<float>(q.x - rs),
+                               static_cast<float>(q.y - rs), static_cast<float>(q.x + rs),
+                               static_cast<float>(q.y + rs));
+                }
                 s.dl->AddCircleFilled(s.screen(m.V[b]), 6, col);
             }
             break;
         }
         case OpType::Flip:
             if (op->a >= 0 && op->b >= 0 && op->a < m.numCorners() && op->b < m.numCorners()) {
-                s.edge(m.V[op->a], m.V[op->b], s.use(Mark::FlippedEdge), w * 1.6f);
+                s.edge(m.V[op->a], m.V[op->b], s.use(Mark::FlippedEdge), w * 1.6f, false,
+                       SlideMarkRole::FlippedEdge);
             }
             break;
         case OpType::Split:
@@ -651,7 +670,8 @@ void DrawTriangleId(const Scene& s, std::int32_t t, const ImVec2 (&p)[3], float 
         s.labels.dropLast();
         return;
     }
-    LabelBox(s.dl, mono, fs, at, s.pal.triangleId, IM_COL32(255, 255, 255, 200), buf);
+    LabelBox(s.dl, mono, fs, at, s.pal.triangleId, IM_COL32(255, 255, 255, 200), buf,
+             SlideMarkRole::TriangleLabel, t);
 }
 
 void DrawLabels(const Scene& s, std::int32_t& hoveredCorner, ImVec2 mouse, bool mouseInCanvas) {
@@ -727,7 +747,8 @@ void DrawLabels(const Scene& s, std::int32_t& hoveredCorner, ImVec2 mouse, bool 
             const ImU32 text = isChanged ? IM_COL32(255, 255, 255, 255)
                                : ghost   ? s.pal.ghostId
                                          : s.pal.cornerId;
-            LabelBox(s.dl, mono, fs, a, text, isChanged ? s.use(Mark::ChangedCorner) : 0, buf);
+            LabelBox(s.dl, mono, fs, a, text, isChanged ? s.use(Mark::ChangedCorner) : 0, buf,
+                     SlideMarkRole::CornerLabel, c);
             if (c == s.st.selection.corner) s.selectedLabelAt = a;
         }
     }
@@ -759,6 +780,8 @@ void DrawPoints(const Scene& s, std::int32_t draggedPoint, Vec2 dragTo) {
         // The point in progress always; the others while the draw list has room.
         if (st != Engine::PointState::Current && !s.room(kVerticesPerPoint)) continue;
         ImU32 idCol = s.pal.vertexId;
+        recordMark(SlideMarkRole::Vertex, static_cast<std::int32_t>(i), -1, q.x - r, q.y - r,
+                   q.x + r, q.y + r);
         switch (st) {
             case Engine::PointState::Inserted: s.dl->AddCircleFilled(q, r, s.pal.vertex); break;
             case Engine::PointState::Pending:
@@ -782,10 +805,15 @@ void DrawPoints(const Scene& s, std::int32_t draggedPoint, Vec2 dragTo) {
                                 static_cast<std::int32_t>(i) != draggedPoint &&
                                 !std::isnan(s.vertexLabelAt[i].x);
             // A dragged point's label follows it; another is hidden where it would cover one.
-            if (placed || static_cast<std::int32_t>(i) == draggedPoint)
-                s.dl->AddText(mono, fs,
-                              placed ? s.vertexLabelAt[i] : ImVec2(q.x + r + 2, q.y - r - fs),
-                              idCol, buf);
+            if (placed || static_cast<std::int32_t>(i) == draggedPoint) {
+                const ImVec2 at = placed ? s.vertexLabelAt[i] : ImVec2(q.x + r + 2, q.y - r - fs);
+                s.dl->AddText(mono, fs, at, idCol, buf);
+                if (recordingMarks()) {
+                    const ImVec2 ts = mono->CalcTextSizeA(fs, 1e9f, 0, buf);
+                    recordMark(SlideMarkRole::VertexLabel, static_cast<std::int32_t>(i), -1, at.x,
+                               at.y, at.x + ts.x, at.y + ts.y);
+                }
+            }
         }
     }
 }
@@ -806,7 +834,7 @@ void DrawSelection(const Scene& s) {
             char buf[16];
             std::snprintf(buf, sizeof buf, "%d", sel.corner);
             LabelBox(s.dl, fonts().mono, ImGui::GetFontSize() * 0.85f, a,
-                     IM_COL32(255, 255, 255, 255), 0, buf);
+                     IM_COL32(255, 255, 255, 255), 0, buf, SlideMarkRole::CornerLabel, sel.corner);
         }
     }
     for (std::int32_t c : {sel.hoveredRow, sel.hoveredCorner}) {
@@ -1180,6 +1208,7 @@ void ShowCanvas(AppState& st) {
     ImDrawList* dl = ImGui::GetWindowDrawList();
     const ImVec2 p1(p0.x + size.x, p0.y + size.y);
     dl->PushClipRect(p0, p1, true);
+    recordMark(SlideMarkRole::Canvas, -1, -1, p0.x, p0.y, p1.x, p1.y);
 
     st.frameStats.canvasFull = false;
     Scene scene = makeScene(st, dl);

@@ -5,6 +5,7 @@
 // super-triangle's vertices are labelled.
 #include "ui/panels/canvas_looks.h"
 #include "ui/panels/panels.h"
+#include "ui/render/drawn_marks.h"
 
 #include <imgui.h>
 
@@ -34,6 +35,7 @@ void LabelSuperVertices(AppState& st, ImDrawList* dl) {
             std::clamp(static_cast<float>(q.y) - size.y - 4, static_cast<float>(st.view.origin.y),
                        static_cast<float>(st.view.origin.y + st.view.size.y) - size.y);
         dl->AddText(ImVec2(x, y), IM_COL32(110, 115, 130, 255), label.c_str());
+        recordMark(SlideMarkRole::VertexLabel, v, -1, x, y, x + size.x, y + size.y);
     }
 }
 
