@@ -1178,6 +1178,7 @@ std::int32_t DrawLabelsAndPoints(AppState& st, const CanvasCache& cache, Scene& 
         scene.vertexLabelAt =
             placeVertexLabels(scene.labels, st.view, e.points(), fonts().mono,
                               ImGui::GetFontSize() * 0.9f, st.presentation ? 5.5f : 4.0f);
+    LabelSuperVertices(st, scene.dl, scene.labels);
     DrawLabels(scene, hoveredCorner, ImGui::GetIO().MousePos, hovered);
     st.selection.hoveredCorner = hoveredCorner;
     const Vec2 dragTo =

@@ -4,6 +4,7 @@
 // meet along the bisectors at the hull vertices (no gaps, no overlaps). Super mode: the
 // super-triangle's vertices are labelled.
 #include "ui/panels/canvas_looks.h"
+#include "ui/panels/labels.h"
 #include "ui/panels/panels.h"
 #include "ui/render/drawn_marks.h"
 
@@ -16,28 +17,6 @@
 namespace dlab::ui {
 
 namespace {
-
-// Super mode: the super-triangle's vertices are named like the tables name them ("4 (s0)").
-void LabelSuperVertices(AppState& st, ImDrawList* dl) {
-    const Engine& e = st.engine;
-    const Inserter& ins = e.inserter();
-    const Mesh& m = e.mesh();
-    for (std::int32_t v = ins.firstVirtual(); v < m.numVertices(); ++v) {
-        const glm::dvec2 q = st.view.toScreen(m.G[v]);
-        const std::string label =
-            std::to_string(v) + " (s" + std::to_string(v - ins.firstVirtual()) + ")";
-        const ImVec2 size = ImGui::CalcTextSize(label.c_str());
-        // Inside the canvas, beside the vertex.
-        const float x =
-            std::clamp(static_cast<float>(q.x) + 6, static_cast<float>(st.view.origin.x),
-                       static_cast<float>(st.view.origin.x + st.view.size.x) - size.x);
-        const float y =
-            std::clamp(static_cast<float>(q.y) - size.y - 4, static_cast<float>(st.view.origin.y),
-                       static_cast<float>(st.view.origin.y + st.view.size.y) - size.y);
-        dl->AddText(ImVec2(x, y), IM_COL32(110, 115, 130, 255), label.c_str());
-        recordMark(SlideMarkRole::VertexLabel, v, -1, x, y, x + size.x, y + size.y);
-    }
-}
 
 // The hull edge u -> w of ghost triangle t (the world's left of it is outside) and the corners
 // of t at u and at w; false when t is no ghost triangle.
@@ -101,13 +80,47 @@ bool ghostWedge(const AppState& st, std::int32_t t, ImVec2& a, ImVec2& b, ImVec2
     return true;
 }
 
+void LabelSuperVertices(AppState& st, ImDrawList* dl, LabelBoxes& labels) {
+    const Engine& e = st.engine;
+    const Inserter& ins = e.inserter();
+    if (e.batch() || !st.overlays.virtualTriangles || !st.overlays.vertexIds || ins.done() ||
+        e.options().boundary != Boundary::Super)
+        return;
+    const Mesh& m = e.mesh();
+    const float left = static_cast<float>(st.view.origin.x),
+                top = static_cast<float>(st.view.origin.y);
+    const float right = left + static_cast<float>(st.view.size.x),
+                bottom = top + static_cast<float>(st.view.size.y);
+    for (std::int32_t v = ins.firstVirtual(); v < m.numVertices(); ++v) {
+        const glm::dvec2 q = st.view.toScreen(m.G[v]);
+        const std::string label =
+            std::to_string(v) + " (s" + std::to_string(v - ins.firstVirtual()) + ")";
+        const ImVec2 size = ImGui::CalcTextSize(label.c_str());
+        // Beside the vertex, inside the canvas; else further along the canvas's edge, then below.
+        const float x0 = static_cast<float>(q.x) + 6, y0 = static_cast<float>(q.y) - size.y - 4;
+        ImVec2 at(std::clamp(x0, left, right - size.x), std::clamp(y0, top, bottom - size.y));
+        for (int k = 0; k < 9; ++k) {
+            const float dx = (k + 1) / 2 * (size.x + 10) * (k % 2 ? 1.0f : -1.0f);
+            const float dy = k >= 7 ? (k == 7 ? 1.0f : -1.0f) * (size.y + 6) : 0.0f;
+            const ImVec2 c(std::clamp(x0 + (k ? dx : 0), left, right - size.x),
+                           std::clamp(y0 + dy, top, bottom - size.y));
+            if (labels.isFree(c.x, c.y, c.x + size.x, c.y + size.y)) {
+                at = c;
+                break;
+            }
+        }
+        labels.addBox(at.x, at.y, at.x + size.x, at.y + size.y);
+        dl->AddText(at, IM_COL32(110, 115, 130, 255), label.c_str());
+        recordMark(SlideMarkRole::VertexLabel, v, -1, at.x, at.y, at.x + size.x, at.y + size.y);
+    }
+}
+
 bool DrawGhostTriangles(AppState& st, ImDrawList* dl) {
     const Engine& e = st.engine;
     if (e.batch() || !st.overlays.virtualTriangles) return false;
     const Inserter& ins = e.inserter();
     if (ins.done()) return false;
     if (e.options().boundary == Boundary::Super) {
-        if (st.overlays.vertexIds) LabelSuperVertices(st, dl);
         return false;
     }
     const Mesh& m = e.mesh();

@@ -36,12 +36,17 @@ std::string timelineText(const Engine& engine);
 // "9 of 12 points inserted, 1 duplicate skipped": the one count of points done, everywhere
 // (the flip algorithm on a given mesh inserts none and says so).
 std::string pointCountsText(const Engine& engine);
+struct LabelBoxes;
 void ShowCanvas(AppState& state);  // canvas.cpp: the mesh and every overlay
 // The side tabs' ids ("corner-table", ..., "check"), in order (app.cpp's table).
 std::vector<std::string> sideTabIds();
 // ghosts.cpp: exact mode's ghost triangles as grey bands beyond the hull edges (overlay
 // "virtual-triangles"), labelled when triangle ids are on; true when a band was drawn.
 bool DrawGhostTriangles(AppState& state, ImDrawList* dl);
+// ghosts.cpp: super mode, run in progress, vertex ids on: the super-triangle's vertices named as
+// the tables name them ("4 (s0)"), beside the vertex or at the canvas's edge towards it, clear of
+// the labels placed before (registered in `labels`).
+void LabelSuperVertices(AppState& state, ImDrawList* dl, LabelBoxes& labels);
 // Exact mode, run in progress: ghost triangle t on the screen as a wedge, its hull edge a -> b
 // and the sides it leaves the hull along at a and at b (da, db: along the bisectors at the hull
 // vertices, so that neighbouring wedges share their sides; a depth of 1 along da and db is a
