@@ -193,6 +193,8 @@ TEST(SlideCheck, LessonCheckFailsOnEachClassPlantedInALessonFile) {
          "vertex 4 is drawn without its id", 8},
         {"panel.toml", "tab = \"vertex-table\"\ntext = \"The corner table shows its new rows.\"\n",
          "the corner-table panel is not on the slide", 8},
+        {"corner.toml", "overlays = [\"vertex-ids\"]\ntext = \"Corner 2 sits at a vertex.\"\n",
+         "corner 2 has no label on the canvas", 8},
         {"needs.toml", "overlays = [\"fill\"]\nneeds = [\"vertex:2\"]\ntext = \"A split.\"\n",
          "vertex 2 is drawn without its id: turn the vertex-ids overlay on", 8},
         {"off_view.toml",

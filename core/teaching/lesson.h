@@ -41,7 +41,8 @@
 //
 // `dtlab lesson check` renders every stop's slide and reads it back (core/teaching/slide_check.h):
 // each vertex the text or question names ("vertex 7", "vertices 2, 3 and 5", an edge "2-3") and
-// each end of an edge answer must carry a legible label on the canvas; the stop's tab and each
+// each end of an edge answer must carry a legible label on the canvas, and so must each corner
+// and triangle it names ("corner 4", "triangle 1"); the stop's tab and each
 // panel the text refers to ("the corner table", "the statistics") must be on the slide; a stop
 // about the in-circle test must draw the engine's test edge, and a count of queued edges in the
 // text ("{{queue}} edges wait") must match the edges drawn. What the check cannot read from the

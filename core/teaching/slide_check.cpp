@@ -101,8 +101,11 @@ bool holdsWord(const std::string& text, const std::string& word) {
 const SlideRun* labelRun(const SlideMark& mark, const std::string& text,
                          const RenderedSlide& slide) {
     for (const SlideRun& r : slide.runs) {
-        if (holdsWord(r.text, text) && r.box.meets(mark.box, 0) && r.box.x0 <= mark.box.x0 + 3 &&
-            r.box.x1 >= mark.box.x1 - 3)
+        // The selected corner's label is drawn twice on one spot (under its disc, then on it):
+        // the glyphs read back as one run, "22".
+        const bool twice = r.text == text + text;
+        if ((holdsWord(r.text, text) || twice) && r.box.meets(mark.box, 0) &&
+            r.box.x0 <= mark.box.x0 + 3 && r.box.x1 >= mark.box.x1 - 3)
             return &r;
     }
     return nullptr;
@@ -115,7 +118,10 @@ const SlideRun* coveringRun(const SlideMark& mark, const SlideRun* own,
     box.y0 = std::max(box.y0, own->box.y0);
     box.y1 = std::min(box.y1, own->box.y1);
     for (const SlideRun& r : slide.runs) {
-        if (&r != own && r.box.meets(box)) return &r;
+        // The same label drawn again on the spot (the selected corner's, on its disc).
+        const bool again = r.text == own->text && std::abs(r.box.x0 - own->box.x0) < 3 &&
+                           std::abs(r.box.y0 - own->box.y0) < 3;
+        if (&r != own && !again && r.box.meets(box)) return &r;
     }
     return nullptr;
 }
@@ -281,6 +287,22 @@ struct Need {
     std::string why;  // "the text names it", "the answer is this edge"
 };
 
+// The corners and triangles a text names: "corner 4", "triangle 1" (one word before the number).
+std::vector<std::pair<Need::Kind, std::int32_t>> elementsNamedIn(std::string_view text) {
+    const std::vector<Word> w = words(text);
+    std::vector<std::pair<Need::Kind, std::int32_t>> out;
+    for (std::size_t i = 0; i + 1 < w.size(); ++i) {
+        const bool corner = w[i].text == "corner", triangle = w[i].text == "triangle";
+        if (!(corner || triangle) || !w[i + 1].number() ||
+            !trimmed(text.substr(w[i].end, w[i + 1].begin - w[i].end)).empty())
+            continue;
+        const auto e =
+            std::make_pair(corner ? Need::Kind::Corner : Need::Kind::Triangle, toId(w[i + 1]));
+        if (std::find(out.begin(), out.end(), e) == out.end()) out.push_back(e);
+    }
+    return out;
+}
+
 // The things `needs = [...]` declares ("vertex:4", "corner:7", "triangle:3", "panel:statistics").
 void declaredNeeds(const LessonStop& s, std::vector<Need>& out) {
     for (const std::string& n : s.needs) {
@@ -318,6 +340,12 @@ std::vector<Need> stopNeeds(const Lesson& lesson, const LessonPlan& plan, std::s
     for (std::int32_t v : verticesNamedIn(st.text)) vertex(v, s.textLine, "the text names it");
     for (std::int32_t v : verticesNamedIn(st.question))
         vertex(v, s.questionLine, "the question names it");
+    const Mesh& m = ins.mesh();
+    for (const auto& [kind, id] : elementsNamedIn(st.text + "\n" + st.question)) {
+        const bool corner = kind == Need::Kind::Corner;
+        if (id >= (corner ? m.numCorners() : m.numTriangles())) continue;
+        out.push_back({kind, id, "", s.textLine, "the text names it"});
+    }
     if (st.answer && st.answer->kind == Answer::Kind::Edge) {
         vertex(static_cast<std::int32_t>(st.answer->a), s.answerLine,
                "the answer is an edge at it");

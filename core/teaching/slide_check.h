@@ -94,7 +94,8 @@ std::optional<std::string> vertexLabelProblem(std::int32_t v, const RenderedSlid
 std::optional<std::int64_t> queueCountIn(std::string_view text);
 
 // Everything the check finds on the rendered slides (slides[k]: stop k + 1), besides
-// slideProblems (the answer on the slide): named vertices unlabelled or covered, panels named but
+// slideProblems (the answer on the slide): named vertices, corners ("corner 4") and triangles
+// ("triangle 1") unlabelled or covered, panels named but
 // absent, the edge drawn as under test not the engine's, a count of queued edges in the text that
 // differs from the edges drawn. Each names file, line and stop.
 std::vector<LessonError> renderedSlideProblems(const Lesson& lesson, const LessonPlan& plan,
