@@ -149,3 +149,99 @@ TEST(Constrainer, CrossingSegmentsAreRefusedNamingTheConstrainedEdge) {
     EXPECT_EQ(con.insert(4, 3).result, ConstrainResult::Inserted);
     EXPECT_EQ(checkConstrainedDelaunay(mesh, con, 6), "");
 }
+
+namespace {
+
+struct Snapshot {
+    std::vector<std::int32_t> V, O;
+    std::vector<std::uint8_t> flags;
+    bool operator==(const Snapshot&) const = default;
+};
+
+Snapshot snapshot(const Mesh& m, const Constrainer& con) { return {m.V, m.O, con.flags()}; }
+
+// Replays ops [from, end) of the record forwards from their `before` state: what a journal's redo
+// does with the cell and flag changes alone.
+void replay(Mesh& m, std::vector<std::uint8_t>& flags, const ConstraintRecord& r,
+            std::size_t from) {
+    for (std::size_t i = from; i < r.ops.size(); ++i) {
+        const ConstrainOp& op = r.ops[i];
+        for (std::uint32_t k = 0; k < op.numChanges; ++k) {
+            const CellChange& ch = r.changes[op.firstChange + k];
+            (ch.isO() ? m.O : m.V)[ch.corner()] = ch.after;
+        }
+        for (std::uint32_t k = 0; k < op.numFlags; ++k) {
+            const FlagChange& f = r.flagChanges[op.firstFlag + k];
+            flags[f.corner] = f.after;
+        }
+    }
+}
+
+void recordAndUndo(const std::vector<Vec2>& input, int count, std::uint64_t seed) {
+    const std::vector<Vec2> pts = distinct(input);
+    const auto n = static_cast<std::int32_t>(pts.size());
+    Inserter ins(pts);
+    ins.run();
+    Mesh mesh = ins.takeMesh();
+    addGhosts(mesh);
+    Constrainer con(mesh, n);
+    const Snapshot start = snapshot(mesh, con);
+    ConstraintRecord record;
+    std::mt19937_64 rng(seed);
+    int inserted = 0;
+    for (int k = 0; k < count; ++k) {
+        const auto a = static_cast<std::int32_t>(rng() % n),
+                   b = static_cast<std::int32_t>(rng() % n);
+        const Snapshot before = snapshot(mesh, con);
+        const std::size_t from = record.ops.size();
+        const ConstrainOutcome out = con.insert(a, b, &record);
+        const std::string at = "segment " + std::to_string(a) + "-" + std::to_string(b);
+        if (out.result != ConstrainResult::Inserted) {
+            ASSERT_EQ(record.ops.size(), from) << at << ": a refusal recorded operations";
+            continue;
+        }
+        ++inserted;
+        const Snapshot after = snapshot(mesh, con);
+        std::int32_t crossed = 0, sloanFlips = 0, marks = 0;
+        for (std::size_t i = from; i < record.ops.size(); ++i) {
+            const ConstrainOp& op = record.ops[i];
+            EXPECT_EQ(op.segmentA, a) << at;
+            EXPECT_EQ(op.segmentB, b) << at;
+            if (op.type == ConstrainOpType::Walk) crossed += op.count;
+            if (op.type == ConstrainOpType::SloanFlip) ++sloanFlips;
+            if (op.type == ConstrainOpType::Mark) ++marks;
+        }
+        EXPECT_GE(sloanFlips, crossed) << at;  // every crossed edge is flipped out at least once
+        EXPECT_GE(marks, 1) << at;
+        con.undo(record, from);
+        ASSERT_TRUE(snapshot(mesh, con) == before) << at << ": undo is not bit for bit";
+        Mesh redone = mesh;
+        std::vector<std::uint8_t> flags = before.flags;
+        replay(redone, flags, record, from);
+        ASSERT_TRUE((Snapshot{redone.V, redone.O, flags}) == after) << at << ": replay differs";
+        // Insert again, recorded anew: the same mesh.
+        record.changes.resize(record.ops[from].firstChange);
+        record.flagChanges.resize(record.ops[from].firstFlag);
+        record.ops.resize(from);
+        ASSERT_EQ(con.insert(a, b, &record).result, ConstrainResult::Inserted) << at;
+        ASSERT_TRUE(snapshot(mesh, con) == after) << at << ": not the same mesh again";
+    }
+    EXPECT_GT(inserted, 0);
+    con.undo(record);
+    EXPECT_TRUE(snapshot(mesh, con) == start) << "undoing every insertion";
+}
+
+}  // namespace
+
+// Every walk, Sloan flip, mark, in-circle test and repair flip is recorded with its V, O and
+// flag changes: undoing an insertion restores the mesh and the flags bit for bit, replaying the
+// changes gives the constrained mesh again, and undoing the whole record gives the start.
+TEST(Constrainer, EveryInsertionIsRecordedAndUndoneBitForBit) {
+    recordAndUndo(generatePoints(Generator::Uniform, 300, 5), 60, 5);
+    std::vector<Vec2> lattice;
+    for (int y = 0; y < 10; ++y) {
+        for (int x = 0; x < 10; ++x) lattice.push_back({double(x), double(y)});
+    }
+    recordAndUndo(lattice, 60, 6);
+    recordAndUndo(generatePoints(Generator::Collinear, 200, 4), 40, 4);
+}
