@@ -245,3 +245,88 @@ TEST(Constrainer, EveryInsertionIsRecordedAndUndoneBitForBit) {
     recordAndUndo(lattice, 60, 6);
     recordAndUndo(generatePoints(Generator::Collinear, 200, 4), 40, 4);
 }
+
+namespace {
+
+void insertThenRemove(const std::vector<Vec2>& input, int count, std::uint64_t seed) {
+    const std::vector<Vec2> pts = distinct(input);
+    const auto n = static_cast<std::int32_t>(pts.size());
+    Inserter ins(pts);
+    ins.run();
+    Mesh mesh = ins.takeMesh();
+    addGhosts(mesh);
+    Constrainer con(mesh, n);
+    std::mt19937_64 rng(seed);
+    std::vector<std::pair<std::int32_t, std::int32_t>> inserted;
+    for (int k = 0; k < count; ++k) {
+        const auto a = static_cast<std::int32_t>(rng() % n),
+                   b = static_cast<std::int32_t>(rng() % n);
+        if (a != b && con.insert(a, b).result == ConstrainResult::Inserted)
+            inserted.push_back({a, b});
+    }
+    ASSERT_FALSE(inserted.empty());
+    std::shuffle(inserted.begin(), inserted.end(), rng);
+    ConstraintRecord record;
+    while (!inserted.empty()) {
+        const auto [a, b] = inserted.back();
+        inserted.pop_back();
+        const std::string at = "removing " + std::to_string(a) + "-" + std::to_string(b);
+        const Snapshot before = snapshot(mesh, con);
+        const std::size_t from = record.ops.size();
+        ASSERT_EQ(con.remove(a, b, &record).result, ConstrainResult::Inserted) << at;
+        ASSERT_EQ(checkConstrainedDelaunay(mesh, con, n), "") << at;
+        for (const auto& [s, t] : inserted) {  // the others keep every piece
+            const auto chain = onSegment(pts, s, t);
+            for (std::size_t i = 0; i + 1 < chain.size(); ++i)
+                ASSERT_TRUE(flaggedEdge(mesh, con, chain[i], chain[i + 1])) << at;
+        }
+        const Snapshot after = snapshot(mesh, con);
+        con.undo(record, from);
+        ASSERT_TRUE(snapshot(mesh, con) == before) << at << ": undo is not bit for bit";
+        record.changes.resize(record.ops[from].firstChange);
+        record.flagChanges.resize(record.ops[from].firstFlag);
+        record.ops.resize(from);
+        ASSERT_EQ(con.remove(a, b, &record).result, ConstrainResult::Inserted) << at;
+        ASSERT_TRUE(snapshot(mesh, con) == after) << at;
+    }
+    for (const std::uint8_t f : con.flags()) ASSERT_EQ(f, 0);
+    Mesh finished = mesh;
+    dropVirtual(finished, n);
+    EXPECT_EQ(checkDelaunayExact(finished), "") << "every constraint removed: Delaunay again";
+}
+
+}  // namespace
+
+// Constraints taken away in random order: the others keep every piece, the mesh is constrained
+// Delaunay after each removal (undone and redone bit for bit), and Delaunay once none is left.
+TEST(Constrainer, RemovedConstraintsLeaveTheConstrainedDelaunayTriangulationOfTheOthers) {
+    insertThenRemove(generatePoints(Generator::Uniform, 300, 8), 40, 8);
+    std::vector<Vec2> lattice;
+    for (int y = 0; y < 10; ++y) {
+        for (int x = 0; x < 10; ++x) lattice.push_back({double(x), double(y)});
+    }
+    insertThenRemove(lattice, 40, 9);
+    insertThenRemove(generatePoints(Generator::Collinear, 200, 5), 30, 5);
+}
+
+TEST(Constrainer, RemovingASegmentThatIsNoConstraintChangesNothing) {
+    const std::vector<Vec2> pts = {{0, 0}, {4, 0}, {4, 4}, {0, 4}, {1, 2}, {3, 2}, {2, 2}};
+    Inserter ins(pts);
+    ins.run();
+    Mesh mesh = ins.takeMesh();
+    addGhosts(mesh);
+    Constrainer con(mesh, 7);
+    ASSERT_EQ(con.insert(4, 5).result, ConstrainResult::Inserted);  // pieces 4-6 and 6-5
+    const Snapshot before = snapshot(mesh, con);
+    ConstraintRecord record;
+    EXPECT_EQ(con.remove(0, 2, &record).result, ConstrainResult::NotConstrained);
+    EXPECT_EQ(con.remove(4, 4, &record).result, ConstrainResult::SameVertex);
+    EXPECT_EQ(con.remove(4, 9, &record).result, ConstrainResult::NotInMesh);
+    EXPECT_TRUE(record.ops.empty());
+    EXPECT_TRUE(snapshot(mesh, con) == before);
+    // Inserted twice, removed once: still constrained.
+    ASSERT_EQ(con.insert(4, 6).result, ConstrainResult::Inserted);
+    ASSERT_EQ(con.remove(4, 5, &record).result, ConstrainResult::Inserted);
+    EXPECT_TRUE(flaggedEdge(mesh, con, 4, 6));
+    EXPECT_FALSE(flaggedEdge(mesh, con, 6, 5));
+}

@@ -25,6 +25,7 @@ const char* toString(ConstrainOpType t) {
         case ConstrainOpType::SloanFlip: return "SloanFlip";
         case ConstrainOpType::SloanWait: return "SloanWait";
         case ConstrainOpType::Mark: return "Mark";
+        case ConstrainOpType::Unmark: return "Unmark";
         case ConstrainOpType::InCircleTest: return "InCircleTest";
         case ConstrainOpType::Flip: return "Flip";
     }
@@ -233,9 +234,10 @@ void Constrainer::flipOut(std::int32_t a, std::int32_t b, std::vector<Edge> edge
 void Constrainer::mark(std::int32_t a, std::int32_t b) {
     const std::int32_t c = edgeCorner(a, b);
     if (c == kNone) throw std::logic_error("constrain: the segment is not an edge after the flips");
+    if (m_flag[c] == 255) throw std::logic_error("constrain: an edge in 255 constraints");
     beginOp(ConstrainOpType::Mark, a, b);
-    setFlag(c, 1);
-    setFlag(m_mesh.O[c], 1);
+    setFlag(c, static_cast<std::uint8_t>(m_flag[c] + 1));
+    setFlag(m_mesh.O[c], m_flag[c]);
     endOp();
 }
 
@@ -287,9 +289,7 @@ ConstrainOutcome Constrainer::insert(std::int32_t a, std::int32_t b, ConstraintR
         Constrainer& self;
         ~Recording() { self.m_record = nullptr; }
     } recording{*this};
-    m_record = record;
-    m_segA = a;
-    m_segB = b;
+    beginRecording(record, a, b);
     for (std::int32_t from = a, stop = kNone; from != b; from = stop) {
         crossed.clear();
         crossedEdges(from, b, crossed, stop, out);
@@ -302,6 +302,58 @@ ConstrainOutcome Constrainer::insert(std::int32_t a, std::int32_t b, ConstraintR
         restore(std::move(fresh));
     }
     return out;
+}
+
+// The edges from a to b along the segment, vertex to vertex; false when one is missing or not
+// constrained.
+bool Constrainer::pieces(std::int32_t a, std::int32_t b, std::vector<Edge>& out) const {
+    for (std::int32_t from = a; from != b;) {
+        std::int32_t corner = kNone, stop = kNone;
+        if (!firstCrossing(from, b, corner, stop) || stop == kNone) return false;
+        const std::int32_t c = edgeCorner(from, stop);
+        if (c == kNone || !m_flag[c]) return false;
+        out.push_back({from, stop});
+        from = stop;
+    }
+    return true;
+}
+
+ConstrainOutcome Constrainer::remove(std::int32_t a, std::int32_t b, ConstraintRecord* record) {
+    ConstrainOutcome out;
+    const auto n = static_cast<std::int32_t>(m_cornerOf.size());
+    for (const std::int32_t v : {a, b}) {
+        if (v < 0 || v >= n || isVirtual(v) || m_cornerOf[v] == kNone) {
+            out.result = ConstrainResult::NotInMesh;
+            return out;
+        }
+    }
+    std::vector<Edge> edges;
+    if (a == b || !pieces(a, b, edges)) {
+        out.result = a == b ? ConstrainResult::SameVertex : ConstrainResult::NotConstrained;
+        return out;
+    }
+    struct Recording {  // the record is this call's only, even when it throws
+        Constrainer& self;
+        ~Recording() { self.m_record = nullptr; }
+    } recording{*this};
+    beginRecording(record, a, b);
+    std::vector<Edge> freed;
+    for (const auto& [u, w] : edges) {
+        const std::int32_t c = edgeCorner(u, w);
+        beginOp(ConstrainOpType::Unmark, u, w);
+        setFlag(c, static_cast<std::uint8_t>(m_flag[c] - 1));
+        setFlag(m_mesh.O[c], m_flag[c]);
+        endOp();
+        if (m_flag[c] == 0) freed.push_back({u, w});
+    }
+    restore(std::move(freed));
+    return out;
+}
+
+void Constrainer::beginRecording(ConstraintRecord* record, std::int32_t a, std::int32_t b) {
+    m_record = record;
+    m_segA = a;
+    m_segB = b;
 }
 
 }  // namespace dlab

@@ -21,10 +21,11 @@
 namespace dlab {
 
 enum class ConstrainResult : std::uint8_t {
-    Inserted,    // the segment (or its pieces between the vertices on it) are constrained edges
-    SameVertex,  // a == b
-    NotInMesh,   // a or b is not a vertex of the mesh (or is the ghost vertex)
-    Crosses,     // the segment crosses the constrained edge `crossed` (nothing changed)
+    Inserted,        // the segment (or its pieces between the vertices on it) are constrained edges
+    SameVertex,      // a == b
+    NotInMesh,       // a or b is not a vertex of the mesh (or is the ghost vertex)
+    Crosses,         // the segment crosses the constrained edge `crossed` (nothing changed)
+    NotConstrained,  // remove: the segment is not a chain of constrained edges (nothing changed)
 };
 
 enum class ConstrainOpType : std::uint8_t {
@@ -33,6 +34,7 @@ enum class ConstrainOpType : std::uint8_t {
     SloanFlip,     // the crossed edge opposite corner a flipped (b: its new edge still crosses)
     SloanWait,     // the crossed edge opposite corner a: its quadrilateral is not convex, later
     Mark,          // the edge a-b (vertices) is now constrained, flagged on both its corners
+    Unmark,        // the edge a-b (vertices) is one constraint less (free once none is left)
     InCircleTest,  // the repair: the edge opposite corner a tested against corner b's vertex
     Flip,          // the repair flipped the edge opposite corner a
 };
@@ -75,10 +77,14 @@ public:
 
     // Constrains the segment a-b; with a record, every operation is appended to it.
     ConstrainOutcome insert(std::int32_t a, std::int32_t b, ConstraintRecord* record = nullptr);
+    // Takes the constraint a-b away: each of its pieces (the edges between the vertices on it)
+    // counts one constraint less; those left with none are free, and Lawson's flips make the mesh
+    // around them constrained Delaunay again. NotConstrained when a-b was not inserted.
+    ConstrainOutcome remove(std::int32_t a, std::int32_t b, ConstraintRecord* record = nullptr);
     // Reverts the record's ops from the last back to op `from` (V, O and the flags exactly as
     // before them).
     void undo(const ConstraintRecord& record, std::size_t from = 0);
-    // Is the edge opposite corner c constrained?
+    // Is the edge opposite corner c constrained? (flags()[c]: by how many inserted segments)
     bool isConstrained(std::int32_t c) const { return m_flag[c] != 0; }
     const std::vector<std::uint8_t>& flags() const { return m_flag; }
 
@@ -101,11 +107,14 @@ private:
     void endOp();
     void rebuildIndex();
 
+    bool pieces(std::int32_t a, std::int32_t b, std::vector<Edge>& out) const;
+    void beginRecording(ConstraintRecord* record, std::int32_t a, std::int32_t b);
+
     Mesh& m_mesh;
     std::int32_t m_firstVirtual;
     std::vector<std::int32_t> m_cornerOf;
-    std::vector<std::uint8_t> m_flag;      // per corner: the edge opposite it is constrained
-    ConstraintRecord* m_record = nullptr;  // where the current insertion records, if anywhere
+    std::vector<std::uint8_t> m_flag;  // per corner: how many constraints hold the edge opposite
+    ConstraintRecord* m_record = nullptr;  // where the current call records, if anywhere
     std::int32_t m_segA = kNone, m_segB = kNone;
 };
 
