@@ -20,6 +20,15 @@ using dlab::testutil::distinct;
 
 namespace {
 
+// The integer points of a side x side square: collinear runs and cocircular squares everywhere.
+std::vector<Vec2> squareLattice(int side) {
+    std::vector<Vec2> pts;
+    for (int y = 0; y < side; ++y) {
+        for (int x = 0; x < side; ++x) pts.push_back({double(x), double(y)});
+    }
+    return pts;
+}
+
 bool flaggedEdge(const Mesh& m, const Constrainer& con, std::int32_t a, std::int32_t b) {
     for (std::int32_t c = 0; c < m.numCorners(); ++c) {
         const std::int32_t u = m.V[next(c)], w = m.V[prev(c)];
@@ -123,10 +132,7 @@ TEST(Constrainer, RandomSegmentsOnUniformSetsGiveTheConstrainedDelaunayTriangula
 }
 
 TEST(Constrainer, SegmentsThroughLatticeVerticesSplitThere) {
-    std::vector<Vec2> pts;
-    for (int y = 0; y < 12; ++y) {
-        for (int x = 0; x < 12; ++x) pts.push_back({double(x), double(y)});
-    }
+    const std::vector<Vec2> pts = squareLattice(12);
     insertRandomSegments(pts, 80, 7, "lattice 12x12");
     insertRandomSegments(generatePoints(Generator::Collinear, 200, 3), 60, 3, "collinear runs");
 }
@@ -238,10 +244,7 @@ void recordAndUndo(const std::vector<Vec2>& input, int count, std::uint64_t seed
 // changes gives the constrained mesh again, and undoing the whole record gives the start.
 TEST(Constrainer, EveryInsertionIsRecordedAndUndoneBitForBit) {
     recordAndUndo(generatePoints(Generator::Uniform, 300, 5), 60, 5);
-    std::vector<Vec2> lattice;
-    for (int y = 0; y < 10; ++y) {
-        for (int x = 0; x < 10; ++x) lattice.push_back({double(x), double(y)});
-    }
+    const std::vector<Vec2> lattice = squareLattice(10);
     recordAndUndo(lattice, 60, 6);
     recordAndUndo(generatePoints(Generator::Collinear, 200, 4), 40, 4);
 }
@@ -301,10 +304,7 @@ void insertThenRemove(const std::vector<Vec2>& input, int count, std::uint64_t s
 // Delaunay after each removal (undone and redone bit for bit), and Delaunay once none is left.
 TEST(Constrainer, RemovedConstraintsLeaveTheConstrainedDelaunayTriangulationOfTheOthers) {
     insertThenRemove(generatePoints(Generator::Uniform, 300, 8), 40, 8);
-    std::vector<Vec2> lattice;
-    for (int y = 0; y < 10; ++y) {
-        for (int x = 0; x < 10; ++x) lattice.push_back({double(x), double(y)});
-    }
+    const std::vector<Vec2> lattice = squareLattice(10);
     insertThenRemove(lattice, 40, 9);
     insertThenRemove(generatePoints(Generator::Collinear, 200, 5), 30, 5);
 }
