@@ -25,6 +25,7 @@ const char* toString(ConstrainOpType t) {
         case ConstrainOpType::SloanFlip: return "SloanFlip";
         case ConstrainOpType::SloanWait: return "SloanWait";
         case ConstrainOpType::Mark: return "Mark";
+        case ConstrainOpType::Reflag: return "Reflag";
         case ConstrainOpType::Unmark: return "Unmark";
         case ConstrainOpType::InCircleTest: return "InCircleTest";
         case ConstrainOpType::Flip: return "Flip";
@@ -354,6 +355,73 @@ void Constrainer::beginRecording(ConstraintRecord* record, std::int32_t a, std::
     m_record = record;
     m_segA = a;
     m_segB = b;
+}
+
+VertexRemoval Constrainer::removeVertex(Remover& remover, std::int32_t v, RemovalRecord* removal,
+                                        ConstraintRecord* record) {
+    VertexRemoval out;
+    struct Held {
+        std::int32_t u, w;
+        std::uint8_t count;
+    };
+    std::vector<Held> held;  // every constrained edge once, by its vertices
+    for (std::int32_t c = 0; c < m_mesh.numCorners(); ++c) {
+        const std::int32_t o = m_mesh.O[c];
+        if (!m_flag[c] || (o != kNone && o < c)) continue;
+        const std::int32_t u = m_mesh.V[next(c)], w = m_mesh.V[prev(c)];
+        if (u == v || w == v) {
+            out.refused = true;
+            out.constrained = {u, w};
+            return out;
+        }
+        held.push_back({u, w, m_flag[c]});
+    }
+    std::vector<std::int32_t> rim;  // v's neighbours: the hole's new edges all join two of them
+    if (v >= 0 && v < static_cast<std::int32_t>(m_cornerOf.size()) && !isVirtual(v) &&
+        m_cornerOf[v] != kNone) {
+        const std::int32_t start = m_cornerOf[v];
+        std::int32_t c = start;
+        do {
+            rim.push_back(m_mesh.V[next(c)]);
+            c = next(m_mesh.O[next(c)]);
+        } while (c != start);
+    }
+    remover.meshChanged();
+    out.removed = remover.remove(v, removal);
+    rebuildIndex();
+    struct Recording {  // the record is this call's only, even when it throws
+        Constrainer& self;
+        ~Recording() { self.m_record = nullptr; }
+    } recording{*this};
+    beginRecording(record, v, kNone);
+    if (m_flag.size() < m_mesh.V.size()) m_flag.resize(m_mesh.V.size(), 0);
+    beginOp(ConstrainOpType::Reflag, v, kNone);
+    for (std::size_t c = 0; c < m_flag.size(); ++c) setFlag(static_cast<std::int32_t>(c), 0);
+    std::vector<Edge> around;
+    for (const Held& h : held) {
+        const std::int32_t c = edgeCorner(h.u, h.w);
+        if (c == kNone) {  // Collapsed: no triangle is left to hold it
+            ++out.droppedConstraints;
+            continue;
+        }
+        setFlag(c, h.count);
+        setFlag(m_mesh.O[c], h.count);
+    }
+    endOp();
+    // The hole's new edges and its rim: every edge at a vertex of the rim.
+    if (out.removed == RemoveResult::Removed) {
+        for (const std::int32_t u : rim) {
+            if (isVirtual(u)) continue;
+            const std::int32_t start = m_cornerOf[u];
+            std::int32_t c = start;
+            do {
+                around.push_back({u, m_mesh.V[next(c)]});
+                c = next(m_mesh.O[next(c)]);
+            } while (c != start);
+        }
+    }
+    restore(std::move(around));
+    return out;
 }
 
 }  // namespace dlab

@@ -13,6 +13,7 @@
 
 #include "core/engine/inserter.h"
 #include "core/engine/mesh.h"
+#include "core/engine/remover.h"
 
 #include <cstdint>
 #include <utility>
@@ -34,6 +35,7 @@ enum class ConstrainOpType : std::uint8_t {
     SloanFlip,     // the crossed edge opposite corner a flipped (b: its new edge still crosses)
     SloanWait,     // the crossed edge opposite corner a: its quadrilateral is not convex, later
     Mark,          // the edge a-b (vertices) is now constrained, flagged on both its corners
+    Reflag,        // vertex a removed: the constrained flags put back on their edges' corners
     Unmark,        // the edge a-b (vertices) is one constraint less (free once none is left)
     InCircleTest,  // the repair: the edge opposite corner a tested against corner b's vertex
     Flip,          // the repair flipped the edge opposite corner a
@@ -65,6 +67,14 @@ struct ConstraintRecord {
     std::vector<FlagChange> flagChanges;
 };
 
+// What removeVertex did.
+struct VertexRemoval {
+    RemoveResult removed = RemoveResult::NotInMesh;  // the Remover's answer, when it ran
+    bool refused = false;  // a constrained edge ends at the vertex: nothing changed
+    std::pair<std::int32_t, std::int32_t> constrained{-1, -1};  // that edge
+    std::int32_t droppedConstraints = 0;  // Collapsed: the constrained edges left with no mesh
+};
+
 struct ConstrainOutcome {
     ConstrainResult result = ConstrainResult::Inserted;
     std::pair<std::int32_t, std::int32_t> crossed{-1, -1};
@@ -81,6 +91,15 @@ public:
     // counts one constraint less; those left with none are free, and Lawson's flips make the mesh
     // around them constrained Delaunay again. NotConstrained when a-b was not inserted.
     ConstrainOutcome remove(std::int32_t a, std::int32_t b, ConstraintRecord* record = nullptr);
+    // Removes vertex v with `remover` (its ear flips and merge recorded in `removal`) and keeps
+    // every constraint: refused when a constrained edge ends at v (take the constraint away
+    // first); else the flags go back on their edges (a Reflag op) and Lawson's flips make the
+    // edges around the hole constrained Delaunay (recorded in `record`). To undo: this record's
+    // ops, then the removal's, then refresh().
+    VertexRemoval removeVertex(Remover& remover, std::int32_t v, RemovalRecord* removal,
+                               ConstraintRecord* record);
+    // The mesh was changed by another editor (the Remover's undo): the index is rebuilt.
+    void refresh() { rebuildIndex(); }
     // Reverts the record's ops from the last back to op `from` (V, O and the flags exactly as
     // before them).
     void undo(const ConstraintRecord& record, std::size_t from = 0);

@@ -652,7 +652,11 @@ private:
         std::size_t q = m_j.position();
         if (q > 0 && endsInsertion(m_j.ops()[q - 1].type)) --q;  // the insertion that just ended
         std::int64_t n = 0;
-        while (q > 0 && !endsInsertion(m_j.ops()[q - 1].type)) n += m_j.ops()[--q].type == type;
+        while (q > 0 && !endsInsertion(m_j.ops()[q - 1].type)) {
+            const Op& op = m_j.ops()[--q];
+            // An edge on the boundary comes off the stack with nothing to test: not a test.
+            n += op.type == type && (type != OpType::InCircleTest || op.b != kNone);
+        }
         return n;
     }
     Answer latestLocate(bool wantHint) const {

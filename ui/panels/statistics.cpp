@@ -46,7 +46,7 @@ void countOps(RunCounts& s, const Engine& e) {
                 break;
             case OpType::Split: ++s.splits; break;
             case OpType::SplitEdge: ++s.edgeSplits; break;
-            case OpType::InCircleTest: ++s.inCircleTests; break;
+            case OpType::InCircleTest: s.inCircleTests += op.b != kNone; break;
             case OpType::Flip:
                 ++s.flips;
                 ++s.flipsNow;
