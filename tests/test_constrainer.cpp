@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <numeric>
 #include <random>
 #include <set>
 #include <string>
@@ -329,4 +330,86 @@ TEST(Constrainer, RemovingASegmentThatIsNoConstraintChangesNothing) {
     ASSERT_EQ(con.remove(4, 5, &record).result, ConstrainResult::Inserted);
     EXPECT_TRUE(flaggedEdge(mesh, con, 4, 6));
     EXPECT_FALSE(flaggedEdge(mesh, con, 6, 5));
+}
+
+namespace {
+
+void removeVerticesKeepingConstraints(const std::vector<Vec2>& input, int segments,
+                                      std::uint64_t seed) {
+    const std::vector<Vec2> pts = distinct(input);
+    const auto n = static_cast<std::int32_t>(pts.size());
+    Inserter ins(pts);
+    ins.run();
+    Mesh mesh = ins.takeMesh();
+    addGhosts(mesh);
+    Constrainer con(mesh, n);
+    Remover remover(mesh, n, Boundary::Exact);
+    std::mt19937_64 rng(seed);
+    std::vector<std::pair<std::int32_t, std::int32_t>> inserted;
+    for (int k = 0; k < segments; ++k) {
+        const auto a = static_cast<std::int32_t>(rng() % n),
+                   b = static_cast<std::int32_t>(rng() % n);
+        if (a != b && con.insert(a, b).result == ConstrainResult::Inserted)
+            inserted.push_back({a, b});
+    }
+    std::set<std::int32_t> held;  // vertices on a constraint
+    for (const auto& [a, b] : inserted)
+        for (const std::int32_t v : onSegment(pts, a, b)) held.insert(v);
+    std::vector<std::int32_t> order(static_cast<std::size_t>(n));
+    std::iota(order.begin(), order.end(), 0);
+    std::shuffle(order.begin(), order.end(), rng);
+    order.resize(order.size() / 2);
+    RemovalRecord removal;
+    ConstraintRecord record;
+    int removed = 0, refused = 0;
+    for (const std::int32_t v : order) {
+        const std::string at = "vertex " + std::to_string(v);
+        const Snapshot before = snapshot(mesh, con);
+        const std::size_t fromR = removal.ops.size(), fromC = record.ops.size();
+        const VertexRemoval out = con.removeVertex(remover, v, &removal, &record);
+        if (held.count(v)) {
+            ASSERT_TRUE(out.refused) << at << " is on a constraint";
+            ASSERT_TRUE(snapshot(mesh, con) == before) << at;
+            ++refused;
+            continue;
+        }
+        ASSERT_FALSE(out.refused) << at;
+        ASSERT_EQ(out.removed, RemoveResult::Removed) << at;
+        ++removed;
+        ValidateOptions vo;
+        vo.firstVirtual = n;
+        vo.delaunay = false;
+        const auto bad = validate(mesh, vo);
+        ASSERT_TRUE(bad.empty()) << at << ": " << bad[0].message;
+        ASSERT_EQ(checkConstrainedDelaunay(mesh, con, n), "") << at;
+        for (const auto& [s, t] : inserted) {
+            const auto chain = onSegment(pts, s, t);
+            for (std::size_t i = 0; i + 1 < chain.size(); ++i)
+                ASSERT_TRUE(flaggedEdge(mesh, con, chain[i], chain[i + 1])) << at;
+        }
+        const Snapshot after = snapshot(mesh, con);
+        con.undo(record, fromC);  // the flags and flips first, then the removal itself
+        remover.undo(removal, fromR);
+        con.refresh();
+        ASSERT_TRUE(snapshot(mesh, con) == before) << at << ": undo is not bit for bit";
+        removal.changes.resize(removal.ops[fromR].firstChange);
+        removal.ops.resize(fromR);
+        record.changes.resize(record.ops[fromC].firstChange);
+        record.flagChanges.resize(record.ops[fromC].firstFlag);
+        record.ops.resize(fromC);
+        ASSERT_FALSE(con.removeVertex(remover, v, &removal, &record).refused) << at;
+        ASSERT_TRUE(snapshot(mesh, con) == after) << at;
+    }
+    EXPECT_GT(removed, 0);
+    EXPECT_GT(refused, 0);
+}
+
+}  // namespace
+
+// Vertices removed from a constrained triangulation: refused on a constraint (nothing changed);
+// elsewhere the mesh stays valid and constrained Delaunay with every constraint's pieces, and
+// each removal is undone (flags, flips, then the removal) bit for bit and done again alike.
+TEST(Constrainer, VertexRemovalKeepsEveryConstraint) {
+    removeVerticesKeepingConstraints(generatePoints(Generator::Uniform, 200, 11), 25, 11);
+    removeVerticesKeepingConstraints(squareLattice(9), 12, 12);
 }
