@@ -453,6 +453,22 @@ TEST(LessonSlides, TheTextOfAFrameIsReadBackFromItsDrawLists) {
         corners, dlab::ui::drawnLines(dlab::ui::drawnText(ImGui::GetDrawData())), ""));
 }
 
+// A glyph whose ink reaches left of its pen position (a "T" opening a paragraph at the edge of
+// the text's clip rectangle) is read: the check of the slide sees the whole word.
+TEST(LessonSlides, ALineOpeningWithAnOverhangingLetterIsReadWhole) {
+    UiHarness h(1280, 720);
+    auto& st = h.state();
+    st.presentation = true;
+    ASSERT_TRUE(dlab::ui::openLesson(st, lessonPath("11_flip_algorithm.toml")));
+    dlab::ui::goToStop(st, 0);
+    h.frames(3);
+    std::string all;
+    for (const std::string& l : dlab::ui::drawnLines(dlab::ui::drawnText(ImGui::GetDrawData())))
+        all += l + "\n";
+    EXPECT_NE(all.find("\nThis time"), std::string::npos) << all;
+    EXPECT_EQ(all.find("\nhis time"), std::string::npos) << all;
+}
+
 // A stop looks the same whether the slides were paged to it or the lesson was reopened at it
 // (the progress kept in the settings): the same overlays, and the same text drawn.
 TEST(LessonSlides, AResumedStopShowsWhatPagingToItShows) {
