@@ -593,7 +593,8 @@ TEST(LessonAnswers, StudentsTypeAnswersTheirWay) {
     e.kind = Answer::Kind::Edge;
     e.a = 4;
     e.b = 9;
-    for (const char* s : {"4-9", "9-4", "4 9", "(9, 4)", "edge 4-9", "4–9"})
+    for (const char* s : {"4-9", "9-4", "4 9", "(9, 4)", "edge 4-9", "4–9", "vertices 4 and 9",
+                          "edge from vertex 4 to vertex 9"})
         EXPECT_TRUE(acceptsAnswer(e, s)) << s;
     for (const char* s : {"4", "4-9-1", "4-8", "49"}) EXPECT_FALSE(acceptsAnswer(e, s)) << s;
     Answer t;
@@ -617,6 +618,24 @@ TEST(LessonAnswers, StudentsTypeAnswersTheirWay) {
     EXPECT_EQ(p.display(), "(1.5, -2)");
     EXPECT_EQ(e.display(), "4-9");
     EXPECT_EQ(y.display(), "no");
+}
+
+// A count of in-circle tests may carry the question's own words as its unit.
+TEST(LessonAnswers, ACountOfInCircleTestsTakesItsUnitAsTheQuestionWritesIt) {
+    const fs::path p = scratchDir() / "lessons" / "tests_unit.toml";
+    write(p,
+          "title = \"t\"\npoints = [[0, 0], [4, 0], [0, 4], [3, 3], [1, 1]]\n"
+          "[[stop]]\nrun_to = \"end\"\n"
+          "question = \"How many in-circle tests did the run make?\"\nanswer = \"tests\"\n");
+    const LessonPlan plan = planLesson(loadLesson(p.string()));
+    const Answer& a = *plan.stops[0].answer;
+    ASSERT_GT(a.a, 0);
+    const std::string n = std::to_string(a.a);
+    for (const std::string& typed :
+         {n, n + " tests", n + " in-circle tests", n + " incircle tests", n + " times"})
+        EXPECT_TRUE(acceptsAnswer(a, typed)) << typed;
+    for (const std::string& typed : {n + " flips", std::to_string(a.a + 1) + " in-circle tests"})
+        EXPECT_FALSE(acceptsAnswer(a, typed)) << typed;
 }
 
 TEST(LessonAnswers, LabelsAndPhrasesAsPeopleWriteThem) {

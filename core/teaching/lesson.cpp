@@ -377,7 +377,8 @@ bool acceptsAnswer(const Answer& expected, std::string_view typedIn) {
         case Answer::Kind::Edge: {
             std::vector<std::string> w;
             for (std::string& x : words(typed)) {
-                if (!isOneOf(x, {"edge", "from", "to", "and", "between", "the"}))
+                if (!isOneOf(x,
+                             {"edge", "from", "to", "and", "between", "the", "vertices", "vertex"}))
                     w.push_back(std::move(x));
             }
             const auto is = [&](const std::string& x, bool first) {
@@ -881,8 +882,12 @@ std::vector<std::string> quantityUnits(std::string_view name) {
         {"position", {"operations", "operation", "ops", "op"}},
         {"flips", {"flips", "flip", "times", "time"}},
         {"insertion_flips", {"flips", "flip", "times", "time"}},
-        {"tests", {"tests", "test", "times", "time"}},
-        {"insertion_tests", {"tests", "test", "times", "time"}},
+        {"tests",
+         {"in-circle tests", "incircle tests", "in circle tests", "tests", "test", "times",
+          "time"}},
+        {"insertion_tests",
+         {"in-circle tests", "incircle tests", "in circle tests", "tests", "test", "times",
+          "time"}},
         {"queue", {"edges", "edge"}},
         {"walk_steps", {"steps", "step"}},
         {"locate_steps", {"steps", "step"}},
