@@ -34,7 +34,7 @@ constexpr std::array<Look, kMarkCount> kLooks{{
     {Mark::Voronoi, Shape::Line, IM_COL32(90, 160, 40, 255), "Voronoi edge"},
     {Mark::GhostBand, Shape::Fill, IM_COL32(150, 155, 170, 90), "outside the hull (ghost)"},
     {Mark::NotYetDelaunay, Shape::Ring, IM_COL32(245, 110, 150, 255),
-     "not Delaunay yet (tests to come)"},
+     "vertex in the circle across an edge: not Delaunay yet"},
     {Mark::Violation, Shape::Line, IM_COL32(230, 0, 0, 255), "broken rule (validate)"},
     {Mark::HullDent, Shape::Fill, IM_COL32(230, 0, 0, 90), "hull dent: triangle missing"},
     {Mark::ExpressionPath, Shape::Arrow, IM_COL32(214, 0, 120, 255), "expression's path"},
