@@ -172,6 +172,11 @@ void writeSlides(ui::Gui& gui, ui::AppState& state, const RenderArgs& args, int 
             q != state.itemRects.end() &&
             (q->second[3] > static_cast<float>(height) || q->second[1] < 0))
             std::cout << "stop " << k + 1 << ": the question does not fit the slide\n";
+        const auto box = state.itemRects.find("slide-text"),
+                   content = state.itemRects.find("slide-text-content");
+        if (box != state.itemRects.end() && content != state.itemRects.end() &&
+            content->second[3] > box->second[3] + 1)
+            std::cout << "stop " << k + 1 << ": the text does not fit the slide (it scrolls)\n";
         char name[32];
         std::snprintf(name, sizeof name, "/%02zu.png", k + 1);
         pngs[k] = gui.screenshotPng();

@@ -1688,9 +1688,11 @@ std::vector<std::pair<std::size_t, std::size_t>> trackSlides(const Track& track)
 
 std::string objectivesText(const std::vector<std::string>& objectives) {
     if (objectives.empty()) return "";
-    std::string out = "**Objectives.** After this you can:\n\n";
-    for (const std::string& o : objectives) out += "- " + o + "\n";
-    return out + "\n";
+    // One paragraph: a slide's first column has little room to spare.
+    std::string out = "**Objectives:**";
+    for (std::size_t k = 0; k < objectives.size(); ++k)
+        out += (k ? "; " : " ") + objectives[k];
+    return out + ".\n\n";
 }
 
 Lesson loadLesson(const std::string& path) {
