@@ -370,8 +370,7 @@ std::string handoutHtml(const Handout& ho, const std::string& pictures) {
         h << "<p><strong>Question " << ++asked << ".</strong> " << htmlInline(st.question)
           << "</p>\n";
         if (!st.hint.empty())
-            h << "<details><summary>Hint</summary><p>" << htmlInline(st.hint)
-              << "</p></details>\n";
+            h << "<details><summary>Hint</summary><p>" << htmlInline(st.hint) << "</p></details>\n";
         h << "<p>Your answer: <span class=\"answer\"></span></p>\n";
     }
     h << "</body></html>\n";
@@ -415,9 +414,8 @@ void runHandout(const LessonArgs& args) {
     try {
         const Handout h = loadHandout(args.file);
         text = html ? handoutHtml(h, pictures) : handoutMarkdown(h, pictures);
-        files.push_back({folder, {}, [&](const std::string& dir) {
-                             renderSlides(args.file, dir, folder);
-                         }});
+        files.push_back(
+            {folder, {}, [&](const std::string& dir) { renderSlides(args.file, dir, folder); }});
     } catch (const LessonError& e) {
         fail(e.what());
     }

@@ -585,8 +585,8 @@ public:
         if (name == "min_angle") return integer(minAngle());
         if (name == "flips_per_point") {
             if (realVertices() == 0) throw Unavailable{"no point is inserted yet"};
-            return integer(std::llround(static_cast<double>(st.flips) /
-                                        static_cast<double>(realVertices())));
+            return integer(
+                std::llround(static_cast<double>(st.flips) / static_cast<double>(realVertices())));
         }
         if (name == "incircle_det") return incircleDeterminant();
         if (name == "pixel_outcome") return pixelOutcome();
@@ -1154,8 +1154,7 @@ public:
             if (!e.is_string() || trimmed(e.as_string()->get()).empty())
                 fail(line, "\"objectives\" must hold sentences (strings that are not empty)");
             const std::string o = trimmed(e.as_string()->get());
-            if (o.find('\n') != std::string::npos)
-                fail(line, "an objective is one line");
+            if (o.find('\n') != std::string::npos) fail(line, "an objective is one line");
             text(o, line);
             out.push_back(o);
         }
@@ -1176,8 +1175,7 @@ public:
         }
         checkKeys(root, {"title", "summary", "kind", "objectives", "minutes", "item"},
                   "at the top level of a track");
-        if (string(root, "kind").value_or("") != "track")
-            fail(1, "a track says kind = \"track\"");
+        if (string(root, "kind").value_or("") != "track") fail(1, "a track says kind = \"track\"");
         T.title = string(root, "title").value_or("");
         if (trimmed(T.title).empty()) fail(1, "the track needs a \"title\"");
         T.summary = string(root, "summary").value_or("");
@@ -1194,9 +1192,9 @@ public:
             T.items.push_back(trackItem(*n.as_table(), path));
             total += T.items.back().minutes;
             if (total > T.minutes)
-                fail(T.items.back().line,
-                     "the items' minutes add up to " + std::to_string(total) +
-                         " here, more than the track's " + std::to_string(T.minutes));
+                fail(T.items.back().line, "the items' minutes add up to " + std::to_string(total) +
+                                              " here, more than the track's " +
+                                              std::to_string(T.minutes));
         }
         if (T.slides() > kMaxLessonStops) fail(1, "too many stops in the track");
         return T;
@@ -1504,6 +1502,9 @@ public:
             fail(static_cast<int>(e.source().begin.line),
                  "not valid TOML: " + std::string(e.description()));
         }
+        if (string(root, "kind").value_or("") == "track")
+            fail(lineOf(*root.get("kind")),
+                 "this is a track (kind = \"track\"): stops of other lessons, not a lesson");
         checkKeys(root,
                   {"title", "summary", "kind", "text", "objectives", "minutes", "points",
                    "points_file", "triangles", "options", "stop"},
@@ -1512,9 +1513,6 @@ public:
         if (trimmed(L.title).empty()) fail(1, "the lesson needs a \"title\"");
         L.summary = string(root, "summary").value_or("");
         if (auto k = string(root, "kind")) {
-            if (*k == "track")
-                fail(lineOf(*root.get("kind")),
-                     "this is a track (kind = \"track\"): stops of other lessons, not a lesson");
             if (*k != "lesson" && *k != "assignment")
                 fail(lineOf(*root.get("kind")), "kind must be \"lesson\" or \"assignment\"");
             L.assignment = *k == "assignment";
@@ -1690,8 +1688,7 @@ std::string objectivesText(const std::vector<std::string>& objectives) {
     if (objectives.empty()) return "";
     // One paragraph: a slide's first column has little room to spare.
     std::string out = "**Objectives:**";
-    for (std::size_t k = 0; k < objectives.size(); ++k)
-        out += (k ? "; " : " ") + objectives[k];
+    for (std::size_t k = 0; k < objectives.size(); ++k) out += (k ? "; " : " ") + objectives[k];
     return out + ".\n\n";
 }
 

@@ -273,7 +273,7 @@ void ShowSlide(AppState& st) {
     DrawDebugOverlays(st);
     ShowCanvasLegend(st);
     ShowCanvasNotice(st);
-    ShowTimeline(st);
+    if (!st.handoutSlides) ShowTimeline(st);  // a handout's picture: canvas and text
     ImGui::EndChild();
     ImGui::SameLine(0, gap);
     ImGui::BeginChild("##slideside", ImVec2(sideW, avail.y), false, still);

@@ -172,7 +172,8 @@ void ShowLessonsMenu(AppState& st) {
     if (list.empty()) list = findLessons();
     for (const auto& [path, title] : list) {
         const LessonState& L = st.lessonPlayer;
-        const bool current = L.track ? L.track->file == path : L.lesson && L.progress.lesson == path;
+        const bool current =
+            L.track ? L.track->file == path : L.lesson && L.progress.lesson == path;
         if (ImGui::MenuItem(title.c_str(), nullptr, current)) openLesson(st, path);
     }
     if (list.empty()) ImGui::TextDisabled("no lessons in %s", DLAB_LESSONS_DIR);
