@@ -11,6 +11,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
@@ -142,9 +143,10 @@ void runCheck(const LessonArgs& args) {
              " lessons failed");
 }
 
-void runShow(const LessonArgs& args) {
+// The answer key of a lesson: every stop, or those `only` lists (a track's item).
+void showLesson(const std::string& path, bool tables, const std::vector<std::size_t>* only) {
     try {
-        const Lesson lesson = loadLesson(args.file);
+        const Lesson lesson = loadLesson(path);
         const LessonPlan plan = planLesson(lesson);
         auto ins = makeInserter(lesson);
         Journal journal(*ins);
@@ -163,6 +165,7 @@ void runShow(const LessonArgs& args) {
                       << escapeControlsKeepLines(lesson.text)
                       << (lesson.text.back() == '\n' ? "" : "\n");
         for (std::size_t k = 0; k < lesson.stops.size(); ++k) {
+            if (only && std::find(only->begin(), only->end(), k) == only->end()) continue;
             const LessonStop& s = lesson.stops[k];
             const StopState& st = plan.stops[k];
             std::cout << "\n## stop " << k + 1 << " (line " << s.line << "): "
@@ -171,7 +174,7 @@ void runShow(const LessonArgs& args) {
                                   : std::string("stay"))
                       << " -> op " << st.position << "\n";
             if (!st.caption.empty()) std::cout << "caption: " << text(st.caption) << "\n";
-            if (args.tables) {
+            if (tables) {
                 journal.seek(st.position);
                 printTables(*ins);
             }
@@ -188,6 +191,28 @@ void runShow(const LessonArgs& args) {
         }
     } catch (const LessonError& e) {
         fail(e.what(), 2);  // bad input
+    }
+}
+
+void runShow(const LessonArgs& args) {
+    if (!isTrackFile(args.file)) return showLesson(args.file, args.tables, nullptr);
+    Track track;
+    try {
+        track = loadTrack(args.file);
+    } catch (const LessonError& e) {
+        fail(e.what(), 2);  // bad input
+    }
+    std::cout << "# track: " << escapeControls(track.title) << " (" << track.slides() << " stops, "
+              << track.minutes << " minutes)\n"
+              << escapeControlsKeepLines(track.summary) << "\n";
+    for (const std::string& o : track.objectives)
+        std::cout << "objective: " << escapeControls(o) << "\n";
+    for (std::size_t i = 0; i < track.items.size(); ++i) {
+        const TrackItem& item = track.items[i];
+        std::cout << "\n=== item " << i + 1 << " (line " << item.line
+                  << "): " << escapeControls(item.written) << ", " << item.minutes
+                  << " minutes\n\n";
+        showLesson(item.lesson, args.tables, &item.stops);
     }
 }
 
@@ -441,9 +466,9 @@ void addLesson(CLI::App& app) {
                     "Do not render the slides (no GL): skip the check that the answer is not on "
                     "the slide as drawn");
     check->callback([args] { guarded([&] { runCheck(*args); }); });
-    CLI::App* show =
-        cmd->add_subcommand("show", "Print a lesson stop by stop with the engine's answers");
-    show->add_option("lesson", args->file, "Lesson file (.toml)")->required();
+    CLI::App* show = cmd->add_subcommand(
+        "show", "Print a lesson (or a track) stop by stop with the engine's answers");
+    show->add_option("lesson", args->file, "Lesson or track file (.toml)")->required();
     show->add_flag("--tables", args->tables,
                    "Also print the corner table (V and O per triangle) at each stop");
     show->callback([args] { guarded([&] { runShow(*args); }); });
