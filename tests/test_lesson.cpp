@@ -1138,6 +1138,16 @@ TEST(LessonHandout, WritesTextAndQuestionsWithoutAnswers) {
     EXPECT_EQ(blanks, questions);
     EXPECT_EQ(md.find("A: "), std::string::npos);
     EXPECT_EQ(md.find("{{"), std::string::npos) << "values are rendered";
+    // Each stop's picture in the folder beside it, as the HTML handout has; the objectives first;
+    // hints fold away.
+    for (std::size_t k = 1; k <= l.stops.size(); ++k) {
+        char png[48];
+        std::snprintf(png, sizeof png, "handout_files/%02zu.png", k);
+        EXPECT_NE(md.find(std::string("](") + png + ")"), std::string::npos) << png;
+        EXPECT_TRUE(fs::is_regular_file(out.parent_path() / png)) << png;
+    }
+    EXPECT_LT(md.find(l.objectives.at(0)), md.find("Question 1."));
+    EXPECT_NE(md.find("<details><summary>Hint</summary>"), std::string::npos);
     // The answer key stays in `lesson show`.
     const Result show = dtlab("lesson show " + lesson);
     EXPECT_NE(show.out.find("A: "), std::string::npos);
@@ -1191,6 +1201,7 @@ TEST(LessonHandout, HtmlShowsEachStopsSlideAndNoAnswers) {
     EXPECT_EQ(blanks, questions);
     EXPECT_EQ(html.find("A: "), std::string::npos);
     EXPECT_EQ(html.find("{{"), std::string::npos) << "values are rendered";
+    EXPECT_EQ(html.find('*'), std::string::npos) << "Markdown left literal";
 }
 
 // ---- Markdown-light -----------------------------------------------------------------------------
