@@ -278,7 +278,8 @@ struct AppState {
     Layout layout;
     std::vector<Message> messages;
     bool showHelp = false;
-    bool presentation = false;  // large fonts, high contrast, no clutter
+    bool presentation = false;   // large fonts, high contrast, no clutter
+    bool handoutSlides = false;  // slides for a handout: no menus, buttons, answer box, side tab
     bool snapToGrid = false;
     double gridStep = 10.0;
     bool quitRequested = false;
