@@ -225,7 +225,6 @@ struct StatisticsState {
     // Each dent b with its boundary neighbours (a, b, c): the triangle the mesh misses there.
     std::vector<std::array<std::int32_t, 3>> hullGaps;
     std::string hullReport;  // the hull / Euler check in one line
-    bool showViolations = true;
     RunCounts counts;
 };
 

@@ -107,6 +107,8 @@ void ShowViewMenu(AppState& st) {
     ImGui::MenuItem("Voronoi diagram", "V", &o.voronoi);
     ImGui::MenuItem("Queued points", nullptr, &o.pendingPoints);
     ImGui::MenuItem("Super-triangle (super mode)", nullptr, &o.virtualTriangles);
+    ImGui::MenuItem("Validation marks (broken rules, edges not Delaunay yet)", nullptr,
+                    &o.violations);
     ImGui::MenuItem("Legend", "L", &o.legend);
     ImGui::Separator();
     ImGui::MenuItem("Snap new points to grid", "G", &st.snapToGrid);

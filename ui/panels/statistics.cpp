@@ -195,7 +195,7 @@ bool markedByTheCanvas(const Engine& e, std::int32_t a, std::int32_t b) {
 
 void DrawViolationOverlay(AppState& st) {
     const StatisticsState& s = st.statistics;
-    if (!s.showViolations || s.validatedVersion != st.engine.version()) return;
+    if (!st.overlays.violations || s.validatedVersion != st.engine.version()) return;
     if (s.violations.empty() && s.hullDents.empty()) return;
     const Mesh& m = st.engine.mesh();
     const View& view = st.view;
@@ -276,7 +276,7 @@ void CheckControls(AppState& st) {
     if (ImGui::Button("Validate now")) validateNow(st);
     RecordItem(st, "validate-now");
     SameLineIfFits(CheckboxWidth("show on canvas"));
-    ImGui::Checkbox("show on canvas", &s.showViolations);
+    ImGui::Checkbox("show on canvas", &st.overlays.violations);
 }
 
 // The violations, one line each (click: select the corner; hover: the message).
