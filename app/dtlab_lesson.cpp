@@ -11,10 +11,12 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
 #include <iostream>
+#include <set>
 #include <sstream>
 
 extern char** environ;
@@ -57,37 +59,88 @@ std::size_t questions(const Lesson& lesson) {
     return n;
 }
 
+// Checks one lesson file as `lesson check` does; prints its line. False when it failed.
+bool checkLessonFile(const std::string& path, bool noSlides) {
+    try {
+        const Lesson lesson = loadLesson(path);
+        const LessonPlan plan = planLesson(lesson);
+        std::vector<LessonError> problems = lessonProblems(lesson, plan);
+        if (!noSlides && !lesson.stops.empty()) {
+            const std::vector<RenderedSlide> slides = renderedSlides(path);
+            std::vector<std::vector<std::string>> lines;
+            for (const RenderedSlide& s : slides) lines.push_back(s.lines);
+            for (LessonError& e : slideProblems(lesson, plan, lines))
+                problems.push_back(std::move(e));
+            for (LessonError& e : renderedSlideProblems(lesson, plan, slides))
+                problems.push_back(std::move(e));
+        }
+        if (!problems.empty()) {
+            for (const LessonError& e : problems)
+                std::cerr << "dtlab: error: " << escapeControls(e.what()) << "\n";
+            return false;
+        }
+        std::cout << escapeControls(path) << ": ok: \"" << escapeControls(lesson.title) << "\" ("
+                  << (lesson.assignment ? "assignment, " : "") << lesson.points.size()
+                  << " points, " << lesson.stops.size() << " stops, " << questions(lesson)
+                  << " questions, " << plan.totalOps << " operations"
+                  << (lesson.minutes ? ", " + std::to_string(lesson.minutes) + " minutes" : "")
+                  << ")\n";
+        return true;
+    } catch (const LessonError& e) {
+        std::cerr << "dtlab: error: " << escapeControls(e.what()) << "\n";
+        return false;
+    }
+}
+
+std::string canonicalName(const std::string& path) {
+    std::error_code ec;
+    const auto c = std::filesystem::weakly_canonical(path, ec);
+    return ec ? path : c.string();
+}
+
+// A track: its own keys and references (loadTrack), then every lesson it plays checked whole
+// as `lesson check` checks a lesson (once, when the same run has not checked it already).
+bool checkTrackFile(const std::string& path, bool noSlides, std::set<std::string>& checked) {
+    Track track;
+    try {
+        track = loadTrack(path);
+    } catch (const LessonError& e) {
+        std::cerr << "dtlab: error: " << escapeControls(e.what()) << "\n";
+        return false;
+    }
+    bool ok = true;
+    std::size_t asked = 0;
+    int minutes = 0;
+    for (const TrackItem& item : track.items) {
+        minutes += item.minutes;
+        const Lesson lesson = loadLesson(item.lesson);  // loadTrack read it already
+        for (std::size_t k : item.stops) asked += !lesson.stops[k].question.empty();
+        if (checked.insert(canonicalName(item.lesson)).second)
+            ok = checkLessonFile(item.lesson, noSlides) && ok;
+    }
+    if (!ok) {
+        std::cerr << "dtlab: error: " << escapeControls(path)
+                  << ": a lesson it plays fails its check\n";
+        return false;
+    }
+    std::cout << escapeControls(path) << ": ok: track \"" << escapeControls(track.title) << "\" ("
+              << track.items.size() << " items, " << track.slides() << " stops, " << asked
+              << " questions, " << minutes << " of " << track.minutes << " minutes)\n";
+    return true;
+}
+
 void runCheck(const LessonArgs& args) {
     if (!args.noSlides) needGl();  // the slides are rendered: dtlab-gl runs the check
     int failed = 0;
+    std::set<std::string> checked;  // lessons checked by this run (a track's are not again)
     for (const std::string& path : args.files) {
-        try {
-            const Lesson lesson = loadLesson(path);
-            const LessonPlan plan = planLesson(lesson);
-            std::vector<LessonError> problems = lessonProblems(lesson, plan);
-            if (!args.noSlides && !lesson.stops.empty()) {
-                const std::vector<RenderedSlide> slides = renderedSlides(path);
-                std::vector<std::vector<std::string>> lines;
-                for (const RenderedSlide& s : slides) lines.push_back(s.lines);
-                for (LessonError& e : slideProblems(lesson, plan, lines))
-                    problems.push_back(std::move(e));
-                for (LessonError& e : renderedSlideProblems(lesson, plan, slides))
-                    problems.push_back(std::move(e));
-            }
-            if (!problems.empty()) {
-                for (const LessonError& e : problems)
-                    std::cerr << "dtlab: error: " << e.what() << "\n";
-                ++failed;
-                continue;
-            }
-            std::cout << escapeControls(path) << ": ok: \"" << escapeControls(lesson.title)
-                      << "\" (" << (lesson.assignment ? "assignment, " : "") << lesson.points.size()
-                      << " points, " << lesson.stops.size() << " stops, " << questions(lesson)
-                      << " questions, " << plan.totalOps << " operations)\n";
-        } catch (const LessonError& e) {
-            std::cerr << "dtlab: error: " << escapeControls(e.what()) << "\n";
-            ++failed;
+        if (isTrackFile(path)) {
+            failed += !checkTrackFile(path, args.noSlides, checked);
+            continue;
         }
+        const bool ok = checkLessonFile(path, args.noSlides);
+        failed += !ok;
+        if (ok) checked.insert(canonicalName(path));
     }
     std::cout.flush();
     if (failed)
@@ -95,9 +148,10 @@ void runCheck(const LessonArgs& args) {
              " lessons failed");
 }
 
-void runShow(const LessonArgs& args) {
+// The answer key of a lesson: every stop, or those `only` lists (a track's item).
+void showLesson(const std::string& path, bool tables, const std::vector<std::size_t>* only) {
     try {
-        const Lesson lesson = loadLesson(args.file);
+        const Lesson lesson = loadLesson(path);
         const LessonPlan plan = planLesson(lesson);
         auto ins = makeInserter(lesson);
         Journal journal(*ins);
@@ -116,6 +170,7 @@ void runShow(const LessonArgs& args) {
                       << escapeControlsKeepLines(lesson.text)
                       << (lesson.text.back() == '\n' ? "" : "\n");
         for (std::size_t k = 0; k < lesson.stops.size(); ++k) {
+            if (only && std::find(only->begin(), only->end(), k) == only->end()) continue;
             const LessonStop& s = lesson.stops[k];
             const StopState& st = plan.stops[k];
             std::cout << "\n## stop " << k + 1 << " (line " << s.line << "): "
@@ -124,7 +179,7 @@ void runShow(const LessonArgs& args) {
                                   : std::string("stay"))
                       << " -> op " << st.position << "\n";
             if (!st.caption.empty()) std::cout << "caption: " << text(st.caption) << "\n";
-            if (args.tables) {
+            if (tables) {
                 journal.seek(st.position);
                 printTables(*ins);
             }
@@ -141,6 +196,28 @@ void runShow(const LessonArgs& args) {
         }
     } catch (const LessonError& e) {
         fail(e.what(), 2);  // bad input
+    }
+}
+
+void runShow(const LessonArgs& args) {
+    if (!isTrackFile(args.file)) return showLesson(args.file, args.tables, nullptr);
+    Track track;
+    try {
+        track = loadTrack(args.file);
+    } catch (const LessonError& e) {
+        fail(e.what(), 2);  // bad input
+    }
+    std::cout << "# track: " << escapeControls(track.title) << " (" << track.slides() << " stops, "
+              << track.minutes << " minutes)\n"
+              << escapeControlsKeepLines(track.summary) << "\n";
+    for (const std::string& o : track.objectives)
+        std::cout << "objective: " << escapeControls(o) << "\n";
+    for (std::size_t i = 0; i < track.items.size(); ++i) {
+        const TrackItem& item = track.items[i];
+        std::cout << "\n=== item " << i + 1 << " (line " << item.line
+                  << "): " << escapeControls(item.written) << ", " << item.minutes
+                  << " minutes\n\n";
+        showLesson(item.lesson, args.tables, &item.stops);
     }
 }
 
@@ -206,8 +283,8 @@ void renderSlides(const std::string& lesson, const std::string& dir, const std::
     std::error_code ec;
     const std::filesystem::path self = std::filesystem::read_symlink("/proc/self/exe", ec);
     const std::string gl = ((ec ? std::filesystem::path(".") : self.parent_path()) / "dtlab-gl");
-    std::vector<std::string> args = {gl,  "render",         "--lesson", lesson,    "--slides",
-                                     dir, "--presentation", "--size",   "1280x720"};
+    std::vector<std::string> args = {gl,  "render",    "--lesson", lesson,    "--slides",
+                                     dir, "--handout", "--size",   "1280x720"};
     std::vector<char*> argv;
     for (std::string& a : args) argv.push_back(a.data());
     argv.push_back(nullptr);
@@ -237,51 +314,125 @@ void renderSlides(const std::string& lesson, const std::string& dir, const std::
     fail(said.empty() ? gl + " render failed" : said, WEXITSTATUS(status));
 }
 
-// The handout as HTML: each stop's slide (PNGs in FILE_files/ beside it), text and question.
-std::string handoutHtml(const Lesson& lesson, const LessonPlan& plan, const std::string& pictures) {
+// Lesson text inline (a question, a hint): its spans, no paragraph around them.
+std::string htmlInline(const std::string& text) {
+    std::string html = htmlText(text);
+    for (const char* tag : {"<p>", "</p>\n", "<ul>\n", "</ul>\n", "<li>", "</li>\n"}) {
+        for (std::size_t at; (at = html.find(tag)) != std::string::npos;)
+            html.replace(at, std::strlen(tag), " ");
+    }
+    return trimmed(html);
+}
+
+// What a handout shows: the lessons it plays (one, or a track's) and its pages in order.
+struct Handout {
+    std::string title, summary;
+    std::vector<std::string> objectives;  // a track's (a lesson's are in its first stop)
+    std::vector<Lesson> lessons;
+    std::vector<LessonPlan> plans;
+    struct Page {
+        std::size_t lesson, stop;
+        int minutes = 0;  // a track item's first page: the item's minutes
+    };
+    std::vector<Page> pages;
+    bool track = false;
+    // The page's text: a track leaves a lesson's own objectives out (the track states its own).
+    std::string text(const Page& p) const {
+        std::string t = plans[p.lesson].stops[p.stop].text;
+        const std::string own = objectivesText(lessons[p.lesson].objectives);
+        if (track && !own.empty() && t.rfind(own, 0) == 0) t.erase(0, own.size());
+        return t;
+    }
+};
+
+Handout loadHandout(const std::string& path) {
+    Handout h;
+    if (!isTrackFile(path)) {
+        h.lessons.push_back(loadLesson(path));
+        h.plans.push_back(planLesson(h.lessons[0]));
+        h.title = h.lessons[0].title;
+        h.summary = h.lessons[0].summary;
+        for (std::size_t k = 0; k < h.lessons[0].stops.size(); ++k) h.pages.push_back({0, k});
+        return h;
+    }
+    const Track track = loadTrack(path);
+    h.track = true;
+    h.title = track.title;
+    h.summary = track.summary;
+    h.objectives = track.objectives;
+    for (std::size_t i = 0; i < track.items.size(); ++i) {
+        h.lessons.push_back(loadLesson(track.items[i].lesson));
+        h.plans.push_back(planLesson(h.lessons.back()));
+        for (std::size_t k : track.items[i].stops)
+            h.pages.push_back({i, k, k == track.items[i].stops[0] ? track.items[i].minutes : 0});
+    }
+    return h;
+}
+
+std::string pageHeading(const Handout& h, std::size_t n) {
+    const Handout::Page& p = h.pages[n];
+    std::string out = (h.track ? "Slide " : "Stop ") + std::to_string(n + 1);
+    if (h.track && p.minutes)
+        out += ": " + h.lessons[p.lesson].title + " (" + std::to_string(p.minutes) + " min)";
+    return out;
+}
+
+// The handout as HTML: each stop's slide (PNGs in FILE_files/ beside it), text and question;
+// hints fold away.
+std::string handoutHtml(const Handout& ho, const std::string& pictures) {
     std::ostringstream h;
-    h << "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>" << htmlEscaped(lesson.title)
+    h << "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>" << htmlEscaped(ho.title)
       << "</title>\n<style>body{font-family:sans-serif;max-width:60em;margin:auto}"
          "img{max-width:100%;border:1px solid #ccc}.answer{border-bottom:1px solid #000;"
          "display:inline-block;width:20em}</style></head><body>\n<h1>"
-      << htmlEscaped(lesson.title) << "</h1>\n<p>" << htmlEscaped(lesson.summary) << "</p>\n";
+      << htmlEscaped(ho.title) << "</h1>\n<p>" << htmlEscaped(ho.summary) << "</p>\n"
+      << htmlText(objectivesText(ho.objectives));
     int asked = 0;
-    for (std::size_t k = 0; k < lesson.stops.size(); ++k) {
-        const StopState& st = plan.stops[k];
+    for (std::size_t n = 0; n < ho.pages.size(); ++n) {
+        const Handout::Page& p = ho.pages[n];
+        const StopState& st = ho.plans[p.lesson].stops[p.stop];
         char png[32];
-        std::snprintf(png, sizeof png, "/%02zu.png", k + 1);
-        h << "<h2>Stop " << k + 1 << "</h2>\n<img src=\"" << htmlEscaped(pictures + png)
-          << "\" alt=\"stop " << k + 1 << "\">\n"
-          << htmlText(st.text);
-        if (lesson.stops[k].question.empty()) continue;
-        h << "<p><strong>Question " << ++asked << ".</strong> " << htmlEscaped(st.question)
+        std::snprintf(png, sizeof png, "/%02zu.png", n + 1);
+        h << "<h2>" << htmlEscaped(pageHeading(ho, n)) << "</h2>\n<img src=\""
+          << htmlEscaped(pictures + png) << "\" alt=\"slide " << n + 1 << "\">\n"
+          << htmlText(ho.text(p));
+        if (ho.lessons[p.lesson].stops[p.stop].question.empty()) continue;
+        h << "<p><strong>Question " << ++asked << ".</strong> " << htmlInline(st.question)
           << "</p>\n";
-        if (!st.hint.empty()) h << "<p><em>Hint:</em> " << htmlEscaped(st.hint) << "</p>\n";
+        if (!st.hint.empty())
+            h << "<details><summary>Hint</summary><p>" << htmlInline(st.hint) << "</p></details>\n";
         h << "<p>Your answer: <span class=\"answer\"></span></p>\n";
     }
     h << "</body></html>\n";
     return h.str();
 }
 
-std::string handoutMarkdown(const Lesson& lesson, const LessonPlan& plan) {
+// The same in Markdown, each slide's picture from FILE_files/; hints fold away (<details>).
+std::string handoutMarkdown(const Handout& ho, const std::string& pictures) {
     std::ostringstream md;
-    md << "# " << lesson.title << "\n\n" << lesson.summary << "\n";
+    md << "# " << ho.title << "\n\n" << ho.summary << "\n";
+    if (!ho.objectives.empty()) md << "\n" << trimmed(objectivesText(ho.objectives)) << "\n";
     int asked = 0;
-    for (std::size_t k = 0; k < lesson.stops.size(); ++k) {
-        const StopState& st = plan.stops[k];
-        md << "\n## Stop " << k + 1 << "\n\n";
-        if (!st.text.empty()) md << trimmed(st.text) << "\n";
-        if (lesson.stops[k].question.empty()) continue;
+    for (std::size_t n = 0; n < ho.pages.size(); ++n) {
+        const Handout::Page& p = ho.pages[n];
+        const StopState& st = ho.plans[p.lesson].stops[p.stop];
+        char png[32];
+        std::snprintf(png, sizeof png, "/%02zu.png", n + 1);
+        md << "\n## " << pageHeading(ho, n) << "\n\n![slide " << n + 1 << "](" << pictures << png
+           << ")\n\n";
+        if (const std::string t = trimmed(ho.text(p)); !t.empty()) md << t << "\n";
+        if (ho.lessons[p.lesson].stops[p.stop].question.empty()) continue;
         md << "\n**Question " << ++asked << ".** " << st.question << "\n";
-        if (!st.hint.empty()) md << "\n*Hint:* " << st.hint << "\n";
+        if (!st.hint.empty())
+            md << "\n<details><summary>Hint</summary>\n\n" << st.hint << "\n\n</details>\n";
         md << "\nYour answer: ____________________\n";
     }
     return md.str();
 }
 
-// A handout for students: the lesson's text and questions, no answers; Markdown, or HTML with
-// each stop's picture when FILE ends in .html. The HTML and its folder of pictures are one set:
-// both new, or both as they were.
+// A handout for students: the lesson's (or track's) text and questions, no answers, each
+// slide's picture in FILE_files/ beside it; Markdown, or HTML when FILE ends in .html. The
+// handout and its folder of pictures are one set: both new, or both as they were.
 void runHandout(const LessonArgs& args) {
     namespace fs = std::filesystem;
     const fs::path out(args.output);
@@ -291,22 +442,16 @@ void runHandout(const LessonArgs& args) {
     std::string text;
     std::vector<OutputFile> files = {{args.output, [&](std::ostream& os) { os << text; }, {}}};
     try {
-        const Lesson lesson = loadLesson(args.file);
-        const LessonPlan plan = planLesson(lesson);
-        if (html) {
-            text = handoutHtml(lesson, plan, pictures);
-            files.push_back({folder, {}, [&](const std::string& dir) {
-                                 renderSlides(args.file, dir, folder);
-                             }});
-        } else {
-            text = handoutMarkdown(lesson, plan);
-        }
+        const Handout h = loadHandout(args.file);
+        text = html ? handoutHtml(h, pictures) : handoutMarkdown(h, pictures);
+        files.push_back(
+            {folder, {}, [&](const std::string& dir) { renderSlides(args.file, dir, folder); }});
     } catch (const LessonError& e) {
         fail(e.what());
     }
     writeTextFiles(files, {args.file});
-    std::cout << "wrote " << escapeControls(args.output)
-              << (html ? " (pictures in " + escapeControls(folder) + ")" : std::string()) << "\n";
+    std::cout << "wrote " << escapeControls(args.output) << " (pictures in "
+              << escapeControls(folder) << ")\n";
 }
 
 }  // namespace
@@ -326,18 +471,18 @@ void addLesson(CLI::App& app) {
                     "Do not render the slides (no GL): skip the check that the answer is not on "
                     "the slide as drawn");
     check->callback([args] { guarded([&] { runCheck(*args); }); });
-    CLI::App* show =
-        cmd->add_subcommand("show", "Print a lesson stop by stop with the engine's answers");
-    show->add_option("lesson", args->file, "Lesson file (.toml)")->required();
+    CLI::App* show = cmd->add_subcommand(
+        "show", "Print a lesson (or a track) stop by stop with the engine's answers");
+    show->add_option("lesson", args->file, "Lesson or track file (.toml)")->required();
     show->add_flag("--tables", args->tables,
                    "Also print the corner table (V and O per triangle) at each stop");
     show->callback([args] { guarded([&] { runShow(*args); }); });
     CLI::App* handout = cmd->add_subcommand(
         "handout",
-        "Write a lesson as a handout for students: text and questions, no answers; Markdown, or "
-        "HTML with each stop's slide when FILE ends in .html (PNGs in FILE_files/, drawn by "
-        "dtlab-gl)");
-    handout->add_option("lesson", args->file, "Lesson file (.toml)")->required();
+        "Write a lesson (or a track) as a handout for students: text and questions, no answers, "
+        "each stop's slide (canvas and text) in FILE_files/ beside it (PNGs drawn by dtlab-gl); "
+        "Markdown, or HTML when FILE ends in .html");
+    handout->add_option("lesson", args->file, "Lesson or track file (.toml)")->required();
     handout->add_option("-o,--output", args->output, "Markdown or .html file to write")->required();
     handout->callback([args] { guarded([&] { runHandout(*args); }); });
 }

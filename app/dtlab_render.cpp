@@ -40,6 +40,7 @@ struct RenderArgs {
     std::string lesson;
     int stop = 1;
     std::string slides;
+    bool handout = false;
     EngineFlags engine;
 };
 
@@ -157,21 +158,26 @@ std::pair<int, int> checkRenderArgs(const RenderArgs& args) {
     return {width, height};
 }
 
-// One slide per stop of the open lesson: DIR/01.png, DIR/02.png, ..., written as one set (all
-// of them, or none and the old ones kept).
+// One slide per stop of the open lesson (or per slide of the open track): DIR/01.png,
+// DIR/02.png, ..., written as one set (all of them, or none and the old ones kept).
 void writeSlides(ui::Gui& gui, ui::AppState& state, const RenderArgs& args, int height) {
-    const std::size_t stops = state.lessonPlayer.lesson->stops.size();
+    const std::size_t stops = ui::slideCount(state);
     std::error_code ec;
     std::filesystem::create_directories(args.slides, ec);
     std::vector<std::string> pngs(stops);
     std::vector<OutputFile> files;
     for (std::size_t k = 0; k < stops; ++k) {
-        ui::goToStop(state, k);
+        ui::goToSlide(state, k);
         for (int i = 0; i < 3; ++i) gui.frame();
         if (const auto q = state.itemRects.find("slide-question");
             q != state.itemRects.end() &&
             (q->second[3] > static_cast<float>(height) || q->second[1] < 0))
             std::cout << "stop " << k + 1 << ": the question does not fit the slide\n";
+        const auto box = state.itemRects.find("slide-text"),
+                   content = state.itemRects.find("slide-text-content");
+        if (box != state.itemRects.end() && content != state.itemRects.end() &&
+            content->second[3] > box->second[3] + 1)
+            std::cout << "stop " << k + 1 << ": the text does not fit the slide (it scrolls)\n";
         char name[32];
         std::snprintf(name, sizeof name, "/%02zu.png", k + 1);
         pngs[k] = gui.screenshotPng();
@@ -186,11 +192,11 @@ void writeSlides(ui::Gui& gui, ui::AppState& state, const RenderArgs& args, int 
 
 // The open lesson at the stop --stop names.
 void goToLessonStop(ui::AppState& state, const RenderArgs& args) {
-    const std::size_t stops = state.lessonPlayer.lesson->stops.size();
+    const std::size_t stops = ui::slideCount(state);
     if (args.stop < 1 || static_cast<std::size_t>(args.stop) > std::max<std::size_t>(stops, 1)) {
         fail("--stop must be between 1 and " + std::to_string(stops) + " for " + args.lesson, 2);
     }
-    ui::goToStop(state, static_cast<std::size_t>(args.stop - 1));
+    ui::goToSlide(state, static_cast<std::size_t>(args.stop - 1));
 }
 
 // The points: the input file, or the built-in demo.
@@ -263,7 +269,8 @@ void runRender(const RenderArgs& args) {
     std::string error;
     auto platform = headlessPlatform(width, height);
     ui::Gui gui(*platform, state);
-    state.presentation = args.presentation;
+    state.presentation = args.presentation || args.handout;
+    state.handoutSlides = args.handout;
     state.setUserOptions(args.engine.options());  // the defaults its help states (order brio)
     if (!args.lesson.empty()) {
         if (!ui::openLesson(state, args.lesson)) fail(state.messages.back().text, 2);
@@ -347,7 +354,11 @@ void addRender(CLI::App& app) {
             "C >= 0"));
     cmd->add_flag("--presentation", args->presentation,
                   "Presentation mode (large fonts, high contrast)");
-    cmd->add_option("--lesson", args->lesson, "A lesson (.toml): render one of its stops");
+    cmd->add_option("--lesson", args->lesson,
+                    "A lesson (.toml) or a track of lessons' stops: render one of its stops");
+    cmd->add_flag("--handout", args->handout,
+                  "Slides for a handout: the canvas and the text only (no menus, buttons, answer "
+                  "box or side tab); implies --presentation");
     cmd->add_option("--stop", args->stop, "The lesson's stop to render (1-based)")
         ->capture_default_str();
     cmd->add_option("--slides", args->slides,

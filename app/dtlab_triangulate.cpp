@@ -160,12 +160,40 @@ std::size_t segmentHolding(const PolyFile& poly, std::size_t upTo, std::int32_t 
     return upTo;
 }
 
+// --remove on a .poly: the listed points removed from the constrained mesh, every constraint
+// kept (the rim repaired to constrained Delaunay). A point on a segment is refused, named with it.
+void removeKeepingSegments(const TriangulateArgs& args, const PolyFile& poly, Constrainer& con,
+                           const std::vector<std::int32_t>& gone, Triangulated& out) {
+    const auto n = static_cast<std::int32_t>(poly.points.points.size());
+    const int base = poly.points.indexBase;
+    const auto t0 = std::chrono::steady_clock::now();
+    Remover remover(out.mesh, n, Boundary::Exact);
+    for (const std::int32_t i : gone) {
+        const VertexRemoval r = con.removeVertex(remover, i, nullptr, nullptr);
+        if (r.refused) {
+            const auto [p, q] = r.constrained;
+            const std::size_t k = std::min(segmentHolding(poly, poly.segments.size(), p, q),
+                                           poly.segments.size() - 1);
+            fail("--remove " + args.removeFile + ": point " + std::to_string(i + base) +
+                     " is on segment " + std::to_string(k + base) + " (" +
+                     std::to_string(poly.segments[k].first + base) + "-" +
+                     std::to_string(poly.segments[k].second + base) +
+                     "): a point of a segment is not removed",
+                 2);
+        }
+        out.removed += r.removed == RemoveResult::Removed || r.removed == RemoveResult::Collapsed;
+    }
+    out.removeMs =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+
 // IN.poly: the one inserter, the ghosts back, every segment constrained (Sloan's flips), the
-// ghosts dropped. Two segments that cross stop with both named.
-Triangulated triangulatePoly(const TriangulateArgs& args, const PolyFile& poly) {
+// listed points removed (--remove), the ghosts dropped. Two segments that cross stop with both
+// named.
+Triangulated triangulatePoly(const TriangulateArgs& args, const PolyFile& poly,
+                             const std::vector<std::int32_t>& gone) {
     if (args.engine.options().boundary != Boundary::Exact)
         fail(args.input + ": segments need --boundary exact", 2);
-    if (!args.removeFile.empty()) fail(args.input + ": --remove does not take a .poly yet", 2);
     const auto n = static_cast<std::int32_t>(poly.points.points.size());
     const int base = poly.points.indexBase;
     const auto made = args.engine.makeInserter(poly.points.points);
@@ -187,6 +215,7 @@ Triangulated triangulatePoly(const TriangulateArgs& args, const PolyFile& poly) 
                  "); crossing segments are not split",
              2);
     }
+    if (!args.removeFile.empty()) removeKeepingSegments(args, poly, con, gone, out);
     const Mesh& m = out.mesh;
     for (std::int32_t c = 0; c < m.numCorners(); ++c) {
         if (con.isConstrained(c) && c < m.O[c])
@@ -318,7 +347,7 @@ void runTriangulate(const TriangulateArgs& args) {
     std::vector<std::int32_t> gone;
     if (!args.removeFile.empty()) gone = loadRemoveIds(args.removeFile, base, n);
     const auto t0 = std::chrono::steady_clock::now();
-    const Triangulated result = poly ? triangulatePoly(args, *poly)
+    const Triangulated result = poly ? triangulatePoly(args, *poly, gone)
                                 : args.removeFile.empty()
                                     ? triangulate(args, std::move(loaded.points))
                                     : triangulateThenRemove(args, std::move(loaded.points), gone);

@@ -104,3 +104,32 @@ TEST(Poly, CrossingSegmentsAreRefusedWithBothNamed) {
     EXPECT_NE(r.out.find("segment 2 (2-4) crosses segment 1 (1-3)"), std::string::npos) << r.out;
     EXPECT_FALSE(fs::exists(dir / "xo.ele"));
 }
+
+TEST(Poly, RemovedPointsLeaveEverySegmentAndAPointOnOneIsRefused) {
+    const fs::path dir = polyTempDir();
+    // The square with the segment 0-2 through the middle point 8; 5 and 7 sit near two sides.
+    const std::string in = put(dir / "rm.poly",
+                               "9 2 0 0\n0 0 0\n1 10 0\n2 10 10\n3 0 10\n4 1 5\n5 5 1\n"
+                               "6 9 5\n7 5 9\n8 5 5\n1 0\n0 0 2\n0\n");
+    const std::string ids = put(dir / "rm.txt", "5\n7\n4\n");
+    const std::string base = (dir / "rm_out").string();
+    const auto r =
+        dlab::testutil::runDtlab("triangulate " + in + " -o " + base + " --remove " + ids);
+    ASSERT_EQ(r.status, 0) << r.out;
+    EXPECT_NE(r.out.find("3 of the 3 listed point(s) removed"), std::string::npos) << r.out;
+    const auto edges = eleEdges(base + ".ele");
+    EXPECT_TRUE(edges.count({0, 8}) && edges.count({2, 8}));  // the segment's two pieces
+    for (const int gone : {4, 5, 7})
+        for (const auto& [a, b] : edges) EXPECT_TRUE(a != gone && b != gone) << gone;
+    std::ifstream ele(base + ".ele");
+    int triangles = 0;
+    ele >> triangles;
+    EXPECT_EQ(triangles, 6);  // 0, 1, 2, 3 on the hull, 6 and 8 inside: 2 * 6 - 4 - 2
+
+    const std::string onSegment = put(dir / "on.txt", "8\n");
+    const auto refused = dlab::testutil::runDtlab("triangulate " + in + " -o " +
+                                                  (dir / "no").string() + " --remove " + onSegment);
+    EXPECT_EQ(refused.status, 2) << refused.out;
+    EXPECT_NE(refused.out.find("point 8 is on segment 0 (0-2)"), std::string::npos) << refused.out;
+    EXPECT_FALSE(fs::exists(dir / "no.ele"));
+}

@@ -29,7 +29,9 @@ std::vector<std::string> lessonFiles() {
     const fs::path dir = fs::path(DLAB_SOURCE_DIR) / "lessons";
     std::error_code ec;
     for (const auto& e : fs::directory_iterator(dir, ec)) {
-        if (e.path().extension() == ".toml") out.push_back(e.path().string());
+        // A track (lecture.toml) plays stops of these lessons: its own tests are below.
+        if (e.path().extension() == ".toml" && !isTrackFile(e.path().string()))
+            out.push_back(e.path().string());
     }
     std::sort(out.begin(), out.end());
     return out;
@@ -371,9 +373,12 @@ TEST(LessonStartMesh, TrianglesPlanTheFlipAlgorithmToTheDelaunayTriangulation) {
     EXPECT_TRUE(ins->repairs());
     ins->run();
     EXPECT_EQ(ins->stats().flips, flips);
-    // Start, every test, every flip, Finalize: no point is located or inserted.
+    // As many in-circle tests as the checker's repair (an edge that comes off the stack on the
+    // hull is tested by neither).
+    EXPECT_EQ(ins->stats().inCircleTests, repaired.incircleTests);
+    // Start, every edge off the stack, every flip, Finalize: no point is located or inserted.
     EXPECT_EQ(ins->stats().inserted, 0);
-    EXPECT_EQ(plan.totalOps, static_cast<std::size_t>(2 + flips + ins->stats().inCircleTests));
+    EXPECT_GE(plan.totalOps, static_cast<std::size_t>(2 + flips + ins->stats().inCircleTests));
     Mesh result = ins->mesh();
     const CheckReport report = checkMesh(result);
     EXPECT_TRUE(report.isDelaunay()) << report.summary();
@@ -590,7 +595,8 @@ TEST(LessonAnswers, StudentsTypeAnswersTheirWay) {
     e.kind = Answer::Kind::Edge;
     e.a = 4;
     e.b = 9;
-    for (const char* s : {"4-9", "9-4", "4 9", "(9, 4)", "edge 4-9", "4–9"})
+    for (const char* s : {"4-9", "9-4", "4 9", "(9, 4)", "edge 4-9", "4–9", "vertices 4 and 9",
+                          "edge from vertex 4 to vertex 9"})
         EXPECT_TRUE(acceptsAnswer(e, s)) << s;
     for (const char* s : {"4", "4-9-1", "4-8", "49"}) EXPECT_FALSE(acceptsAnswer(e, s)) << s;
     Answer t;
@@ -614,6 +620,24 @@ TEST(LessonAnswers, StudentsTypeAnswersTheirWay) {
     EXPECT_EQ(p.display(), "(1.5, -2)");
     EXPECT_EQ(e.display(), "4-9");
     EXPECT_EQ(y.display(), "no");
+}
+
+// A count of in-circle tests may carry the question's own words as its unit.
+TEST(LessonAnswers, ACountOfInCircleTestsTakesItsUnitAsTheQuestionWritesIt) {
+    const fs::path p = scratchDir() / "lessons" / "tests_unit.toml";
+    write(p,
+          "title = \"t\"\npoints = [[0, 0], [4, 0], [0, 4], [3, 3], [1, 1]]\n"
+          "[[stop]]\nrun_to = \"end\"\n"
+          "question = \"How many in-circle tests did the run make?\"\nanswer = \"tests\"\n");
+    const LessonPlan plan = planLesson(loadLesson(p.string()));
+    const Answer& a = *plan.stops[0].answer;
+    ASSERT_GT(a.a, 0);
+    const std::string n = std::to_string(a.a);
+    for (const std::string& typed :
+         {n, n + " tests", n + " in-circle tests", n + " incircle tests", n + " times"})
+        EXPECT_TRUE(acceptsAnswer(a, typed)) << typed;
+    for (const std::string& typed : {n + " flips", std::to_string(a.a + 1) + " in-circle tests"})
+        EXPECT_FALSE(acceptsAnswer(a, typed)) << typed;
 }
 
 TEST(LessonAnswers, LabelsAndPhrasesAsPeopleWriteThem) {
@@ -1136,6 +1160,16 @@ TEST(LessonHandout, WritesTextAndQuestionsWithoutAnswers) {
     EXPECT_EQ(blanks, questions);
     EXPECT_EQ(md.find("A: "), std::string::npos);
     EXPECT_EQ(md.find("{{"), std::string::npos) << "values are rendered";
+    // Each stop's picture in the folder beside it, as the HTML handout has; the objectives first;
+    // hints fold away.
+    for (std::size_t k = 1; k <= l.stops.size(); ++k) {
+        char png[48];
+        std::snprintf(png, sizeof png, "handout_files/%02zu.png", k);
+        EXPECT_NE(md.find(std::string("](") + png + ")"), std::string::npos) << png;
+        EXPECT_TRUE(fs::is_regular_file(out.parent_path() / png)) << png;
+    }
+    EXPECT_LT(md.find(l.objectives.at(0)), md.find("Question 1."));
+    EXPECT_NE(md.find("<details><summary>Hint</summary>"), std::string::npos);
     // The answer key stays in `lesson show`.
     const Result show = dtlab("lesson show " + lesson);
     EXPECT_NE(show.out.find("A: "), std::string::npos);
@@ -1189,6 +1223,7 @@ TEST(LessonHandout, HtmlShowsEachStopsSlideAndNoAnswers) {
     EXPECT_EQ(blanks, questions);
     EXPECT_EQ(html.find("A: "), std::string::npos);
     EXPECT_EQ(html.find("{{"), std::string::npos) << "values are rendered";
+    EXPECT_EQ(html.find('*'), std::string::npos) << "Markdown left literal";
 }
 
 // ---- Markdown-light -----------------------------------------------------------------------------
@@ -1343,4 +1378,182 @@ TEST(LessonFigure, LiftingMapDrawsTheInCircleTestAtTheStop) {
         errorOf(kHead + "[[stop]]\nrun_to = \"end\"\ntext = \"t\"\nfigure = \"lifting-map\"\n");
     EXPECT_EQ(none.stop(), 1);
     EXPECT_NE(none.message().find("needs an in-circle test"), std::string::npos) << none.what();
+}
+
+// ---- Objectives, minutes and tracks -------------------------------------------------------------
+
+TEST(LessonObjectives, AreReadAndShownAboveTheFirstStop) {
+    const fs::path p = scratchDir() / "lessons" / "obj.toml";
+    write(p, kHead +
+                 "objectives = [\"name a corner\", \"say what O is\"]\nminutes = 7\n"
+                 "[[stop]]\ntext = \"First.\"\n[[stop]]\ntext = \"Second.\"\n");
+    const Lesson l = loadLesson(p.string());
+    EXPECT_EQ(l.objectives, (std::vector<std::string>{"name a corner", "say what O is"}));
+    EXPECT_EQ(l.minutes, 7);
+    const LessonPlan plan = planLesson(l);
+    EXPECT_EQ(plan.stops[0].text, objectivesText(l.objectives) + "First.");
+    EXPECT_NE(plan.stops[0].text.find("name a corner; say what O is"), std::string::npos);
+    EXPECT_EQ(plan.stops[1].text, "Second.");
+}
+
+TEST(LessonObjectives, BadValuesNameTheLine) {
+    const std::string stop = "[[stop]]\ntext = \"x\"\n";
+    const ErrorCase cases[] = {
+        {kHead + "objectives = \"one\"\n" + stop, 3, 0, "list of 1 to 8"},
+        {kHead + "objectives = []\n" + stop, 3, 0, "list of 1 to 8"},
+        {kHead + "objectives = [\n  \"fine\",\n  3,\n]\n" + stop, 5, 0, "sentences"},
+        {kHead + "objectives = [\"**open\"]\n" + stop, 3, 0, "**"},
+        {kHead + "minutes = 0\n" + stop, 3, 0, "between 1 and 300"},
+        {kHead + "minutes = \"ten\"\n" + stop, 3, 0, "whole number"},
+    };
+    expectErrors(cases);
+}
+
+namespace {
+
+// A track beside two small lessons, in a folder of its own; returns the track's path.
+std::string plantTrack(const std::string& name, const std::string& track) {
+    const fs::path dir = scratchDir() / ("track_" + name);
+    const std::string lesson = kHead +
+                               "objectives = [\"a\"]\nminutes = 5\n"
+                               "[[stop]]\ntext = \"One.\"\n[[stop]]\nrun_to = \"end\"\n"
+                               "text = \"Two.\"\n[[stop]]\ntext = \"Three.\"\n";
+    write(dir / "a.toml", lesson);
+    write(dir / "bare.toml", kHead + "[[stop]]\ntext = \"No objectives.\"\n");
+    return write(dir / "track.toml", track);
+}
+
+const std::string kTrackHead =
+    "title = \"T\"\nkind = \"track\"\nobjectives = [\"learn\"]\nminutes = 50\n";
+
+LessonError trackError(const std::string& name, const std::string& text) {
+    const std::string path = plantTrack(name, text);
+    try {
+        loadTrack(path);
+    } catch (const LessonError& e) {
+        EXPECT_EQ(e.file(), path);
+        EXPECT_EQ(std::string(e.what()).rfind(path + ":", 0), 0u) << e.what();
+        return e;
+    }
+    ADD_FAILURE() << "no error for:\n" << text;
+    return LessonError("", 0, 0, "");
+}
+
+}  // namespace
+
+TEST(LessonTrack, ReadsItsItemsInOrder) {
+    const std::string path =
+        plantTrack("ok", kTrackHead +
+                             "[[item]]\nlesson = \"a.toml\"\nstops = [1, 3]\nminutes = 20\n"
+                             "[[item]]\nlesson = \"a.toml\"\nstops = [2]\nminutes = 30\n");
+    EXPECT_TRUE(isTrackFile(path));
+    const Track t = loadTrack(path);
+    ASSERT_EQ(t.items.size(), 2u);
+    EXPECT_EQ(t.slides(), 3u);
+    EXPECT_EQ(t.items[0].stops, (std::vector<std::size_t>{0, 2}));
+    EXPECT_EQ(t.items[1].minutes, 30);
+    EXPECT_EQ(t.items[1].line, 9);
+    const auto slides = trackSlides(t);
+    EXPECT_EQ(slides, (std::vector<std::pair<std::size_t, std::size_t>>{{0, 0}, {0, 2}, {1, 1}}));
+    // A lesson is no track, and loadLesson on a track says what it is.
+    EXPECT_FALSE(isTrackFile(std::string(DLAB_SOURCE_DIR) + "/lessons/01_corner_table.toml"));
+    try {
+        loadLesson(path);
+        ADD_FAILURE() << "a track loaded as a lesson";
+    } catch (const LessonError& e) {
+        EXPECT_NE(e.message().find("this is a track"), std::string::npos) << e.what();
+    }
+}
+
+TEST(LessonTrack, PlantedErrorsNameFileAndLine) {
+    const std::string item = "[[item]]\nlesson = \"a.toml\"\nstops = [1]\nminutes = 10\n";
+    struct Case {
+        std::string name, text;
+        int line;
+        const char* says;
+    } cases[] = {
+        {"nostop", kTrackHead + "[[item]]\nlesson = \"a.toml\"\nstops = [1, 4]\nminutes = 5\n", 7,
+         "has stops 1 to 3: no stop 4"},
+        {"backwards", kTrackHead + "[[item]]\nlesson = \"a.toml\"\nstops = [2, 1]\nminutes = 5\n",
+         7, "go forward"},
+        {"over", kTrackHead + item + item + item + item + item + item, 25,
+         "add up to 60 here, more than the track's 50"},
+        {"nominutes", kTrackHead + "[[item]]\nlesson = \"a.toml\"\nstops = [1]\n", 5,
+         "needs \"minutes\""},
+        {"noobjectives", "title = \"T\"\nkind = \"track\"\nminutes = 50\n" + item, 1,
+         "needs \"objectives\""},
+        {"bare", kTrackHead + "[[item]]\nlesson = \"bare.toml\"\nstops = [1]\nminutes = 5\n", 5,
+         "states no objectives or minutes"},
+        {"missing", kTrackHead + "[[item]]\nlesson = \"gone.toml\"\nstops = [1]\nminutes = 5\n", 6,
+         "gone.toml"},
+        {"outside", kTrackHead + "[[item]]\nlesson = \"../a.toml\"\nstops = [1]\nminutes = 5\n", 6,
+         ".."},
+        {"empty", kTrackHead, 1, "[[item]]"},
+        {"key", kTrackHead + "[[item]]\nlesson = \"a.toml\"\nstop = [1]\nminutes = 5\n", 7,
+         "unknown key \"stop\""},
+    };
+    for (const Case& c : cases) {
+        SCOPED_TRACE(c.name);
+        const LessonError e = trackError(c.name, c.text);
+        EXPECT_EQ(e.line(), c.line) << e.what();
+        EXPECT_NE(e.message().find(c.says), std::string::npos) << e.what();
+    }
+}
+
+TEST(LessonTrack, TheLectureFitsFiftyMinutesAndChecks) {
+    const std::string path = std::string(DLAB_SOURCE_DIR) + "/lessons/lecture.toml";
+    const Track t = loadTrack(path);
+    int minutes = 0;
+    for (const TrackItem& i : t.items) {
+        EXPECT_GT(i.minutes, 0) << i.written;
+        minutes += i.minutes;
+        const Lesson l = loadLesson(i.lesson);
+        EXPECT_FALSE(l.objectives.empty()) << i.written;
+        EXPECT_GT(l.minutes, 0) << i.written;
+    }
+    EXPECT_LE(minutes, 50);
+    EXPECT_LE(t.minutes, 50);
+    EXPECT_LE(t.slides(), 25u);
+    EXPECT_FALSE(t.objectives.empty());
+    const Result r = dtlab("lesson check --no-slides " + path);
+    EXPECT_EQ(r.status, 0) << r.out;
+    EXPECT_NE(r.out.find("ok: track"), std::string::npos) << r.out;
+    // A planted error in a track fails `lesson check` with the track's file and line.
+    const std::string bad = plantTrack(
+        "check", kTrackHead + "[[item]]\nlesson = \"a.toml\"\nstops = [9]\nminutes = 5\n");
+    const Result f = dtlab("lesson check --no-slides " + bad);
+    EXPECT_NE(f.status, 0);
+    EXPECT_NE(f.out.find(bad + ":7:"), std::string::npos) << f.out;
+}
+
+TEST(LessonHandout, TrackHandoutHasEverySlideFoldedHintsAndNoAnswers) {
+    const std::string path = std::string(DLAB_SOURCE_DIR) + "/lessons/lecture.toml";
+    const Track t = loadTrack(path);
+    const fs::path dir = scratchDir() / "trackhandout";
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    for (const char* name : {"lecture.md", "lecture.html"}) {
+        SCOPED_TRACE(name);
+        const fs::path out = dir / name;
+        const Result r = dtlab("lesson handout " + path + " -o " + out.string());
+        ASSERT_EQ(r.status, 0) << r.out;
+        std::ifstream in(out);
+        const std::string doc((std::istreambuf_iterator<char>(in)),
+                              std::istreambuf_iterator<char>());
+        for (std::size_t k = 1; k <= t.slides(); ++k) {
+            char png[48];
+            std::snprintf(png, sizeof png, "lecture_files/%02zu.png", k);
+            EXPECT_NE(doc.find(png), std::string::npos) << png;
+            EXPECT_TRUE(fs::is_regular_file(dir / png)) << png;
+        }
+        EXPECT_FALSE(fs::exists(dir / "lecture_files" / "25.png"));
+        EXPECT_NE(doc.find(t.objectives[0]), std::string::npos) << "objectives first";
+        EXPECT_NE(doc.find("<details><summary>Hint</summary>"), std::string::npos);
+        EXPECT_EQ(doc.find("{{"), std::string::npos);
+        EXPECT_EQ(doc.find("A: "), std::string::npos);
+        if (out.extension() == ".html") {
+            EXPECT_EQ(doc.find('*'), std::string::npos) << "Markdown left literal in the HTML";
+        }
+        fs::remove_all(dir / "lecture_files");  // the next one writes its own
+    }
 }

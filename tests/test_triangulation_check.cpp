@@ -1,6 +1,7 @@
 // Mesh readers and the exact checker: a defect of every kind planted in a Delaunay mesh and
 // written in every format is named with its elements; our meshes check as valid Delaunay;
 // Lawson's repair ends exactly Delaunay (GMP); dtlab check and repair end to end.
+#include "core/engine/generators.h"
 #include "core/engine/inserter.h"
 #include "core/engine/io_read.h"
 #include "core/engine/io_write.h"
@@ -512,6 +513,31 @@ TEST(TriangulationCheck, RepairByFlipsEndsExactlyDelaunayWithTheNumberingKept) {
     }
 }
 
+// The flip worst case: a valid triangulation whose repair by Lawson's flips takes at least
+// n^2 / 8 flips (quadratic: doubling n at least triples them), ending exactly Delaunay with the
+// points as generated.
+TEST(TriangulationCheck, TheFlipWorstCaseNeedsQuadraticallyManyFlips) {
+    std::size_t previous = 0;
+    for (const std::size_t n : {20u, 40u, 80u, 160u}) {
+        SCOPED_TRACE(n);
+        const Mesh m = flipWorstCase(n);
+        ASSERT_EQ(m.numVertices(), static_cast<std::int32_t>(n));
+        const CheckReport report = checkMesh(m);
+        ASSERT_TRUE(report.isTriangulation()) << listed(report);
+        ASSERT_EQ(report.opposites, m.O);
+        const RepairResult r = repairByFlips(m, report);
+        EXPECT_GE(r.flips.size(), n * n / 8);
+        if (previous != 0) {
+            EXPECT_GE(r.flips.size(), 3 * previous);
+        }
+        previous = r.flips.size();
+        EXPECT_EQ(checkDelaunayExact(r.mesh), "");
+        EXPECT_EQ(r.mesh.G, m.G);
+    }
+    EXPECT_THROW(flipWorstCase(7), std::invalid_argument);
+    EXPECT_THROW(flipWorstCase(4), std::invalid_argument);
+}
+
 // The flip algorithm stepped like insertion: the inserter's repair run makes the flips that
 // repairByFlips makes, in the same order; its end is exactly Delaunay; stepping back restores
 // the imported mesh after Start bit for bit and the empty table at 0.
@@ -708,5 +734,30 @@ TEST(TriangulationCheck, DtlabCheckAndRepairEndToEnd) {
     std::ofstream(dir / "junk.off") << "OFF\n1 1\n";
     auto junk = testutil::runDtlab("check " + (dir / "junk.off").string());
     EXPECT_EQ(junk.status, 2) << junk.out;
+    fs::remove_all(dir);
+}
+
+TEST(TriangulationCheck, DtlabGenWritesTheFlipWorstCaseThatRepairMakesDelaunay) {
+    const fs::path dir =
+        fs::temp_directory_path() / ("dlab_flipworst_" + std::to_string(::getpid()));
+    fs::create_directories(dir);
+    const std::string base = (dir / "w").string();
+    auto gen = testutil::runDtlab("gen flip-worst-case 80 -o " + base + ".ele");
+    ASSERT_EQ(gen.status, 0) << gen.out;
+    EXPECT_NE(gen.out.find("80 points and"), std::string::npos) << gen.out;
+    auto chk = testutil::runDtlab("check " + base + ".ele");
+    EXPECT_EQ(chk.status, 1) << chk.out;  // valid, not Delaunay
+    EXPECT_NE(chk.out.find("valid triangulation of 80 points"), std::string::npos) << chk.out;
+    auto rep = testutil::runDtlab("repair " + base + ".ele -o " + (dir / "fixed").string());
+    EXPECT_EQ(rep.status, 0) << rep.out;
+    const std::size_t at = rep.out.find(" flips (");
+    ASSERT_NE(at, std::string::npos) << rep.out;
+    const std::size_t from = rep.out.rfind(' ', at - 1) + 1;
+    EXPECT_GE(std::stoul(rep.out.substr(from, at - from)), 80u * 80u / 8u) << rep.out;
+    EXPECT_EQ(testutil::runDtlab("check " + (dir / "fixed.ele").string()).status, 0);
+    auto odd = testutil::runDtlab("gen flip-worst-case 81 -o " + (dir / "odd").string());
+    EXPECT_EQ(odd.status, 2) << odd.out;
+    EXPECT_NE(odd.out.find("even number"), std::string::npos) << odd.out;
+    EXPECT_FALSE(fs::exists(dir / "odd.ele"));
     fs::remove_all(dir);
 }

@@ -88,13 +88,13 @@ void UpdateBeforeDrawing(AppState& state) {
 }
 
 // The host window filling the display, with a menu bar; the caller ends it.
-void BeginHostWindow() {
+void BeginHostWindow(bool menuBar) {
     const ImGuiViewport* vp = ImGui::GetMainViewport();
     ImGui::SetNextWindowPos(vp->WorkPos);
     ImGui::SetNextWindowSize(vp->WorkSize);
     const ImGuiWindowFlags hostFlags =
         ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoSavedSettings |
-        ImGuiWindowFlags_MenuBar | ImGuiWindowFlags_NoBringToFrontOnFocus |
+        (menuBar ? ImGuiWindowFlags_MenuBar : 0) | ImGuiWindowFlags_NoBringToFrontOnFocus |
         ImGuiWindowFlags_NoScrollWithMouse | ImGuiWindowFlags_NoBackground;  // the frame's clear
     ImGui::PushStyleVar(ImGuiStyleVar_WindowPadding, ImVec2(6, 4));
     ImGui::Begin("Delaunay Lab", nullptr, hostFlags);
@@ -243,8 +243,9 @@ void ShowBottomStrip(AppState& state, const Regions& r) {
 
 void ShowApplication(AppState& state) {
     UpdateBeforeDrawing(state);
-    BeginHostWindow();
-    ShowMenuBar(state);
+    const bool menus = !(state.handoutSlides && slideMode(state));  // a handout's picture: none
+    BeginHostWindow(menus);
+    if (menus) ShowMenuBar(state);
     if (slideMode(state)) {  // presentation with a lesson: the slide layout (lesson.cpp)
         ShowSlide(state);
         ImGui::End();
@@ -313,10 +314,9 @@ bool stepShortcut(AppState& state, const KeyPress& k) {
     Engine& e = state.engine;
     const bool slides = slideMode(state);
     if (slides && k.key == key::kPageDown) {
-        goToStop(state, state.lessonPlayer.progress.stop + 1);
+        goToSlide(state, slideIndex(state) + 1);  // a track's crosses into its next lesson
     } else if (slides && k.key == key::kPageUp) {
-        if (state.lessonPlayer.progress.stop > 0)
-            goToStop(state, state.lessonPlayer.progress.stop - 1);
+        if (slideIndex(state) > 0) goToSlide(state, slideIndex(state) - 1);
     } else if (k.key == key::kRight || k.key == key::kPageDown) {
         state.run.running = false;
         k.shift ? e.forwardInsertion() : e.forward();

@@ -225,7 +225,6 @@ struct StatisticsState {
     // Each dent b with its boundary neighbours (a, b, c): the triangle the mesh misses there.
     std::vector<std::array<std::int32_t, 3>> hullGaps;
     std::string hullReport;  // the hull / Euler check in one line
-    bool showViolations = true;
     RunCounts counts;
 };
 
@@ -278,7 +277,8 @@ struct AppState {
     Layout layout;
     std::vector<Message> messages;
     bool showHelp = false;
-    bool presentation = false;  // large fonts, high contrast, no clutter
+    bool presentation = false;   // large fonts, high contrast, no clutter
+    bool handoutSlides = false;  // slides for a handout: no menus, buttons, answer box, side tab
     bool snapToGrid = false;
     double gridStep = 10.0;
     bool quitRequested = false;

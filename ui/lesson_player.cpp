@@ -99,9 +99,83 @@ void saveProgress(AppState& st) {
     ++L.changes;
 }
 
+bool openLessonFile(AppState& st, const std::string& path);
+
+// A track's slide k: its item's lesson opened when another one is, the stop shown; the track's
+// objectives above the first slide's text, the lesson's own left out (they are the track's).
+bool showTrackSlide(AppState& st, std::size_t k) {
+    LessonState& L = st.lessonPlayer;
+    const auto track = L.track;
+    const auto slides = trackSlides(*track);
+    k = std::min(k, slides.size() - 1);
+    const TrackItem& item = track->items[slides[k].first];
+    if (!L.lesson || L.progress.lesson != item.lesson) {
+        if (!openLessonFile(st, item.lesson)) return false;
+        L.track = track;  // openLessonFile keeps it; a failure above leaves the track as it was
+        const std::string own = objectivesText(L.lesson->objectives);
+        std::string& first = L.plan.stops[0].text;
+        if (!own.empty() && first.rfind(own, 0) == 0) first.erase(0, own.size());
+    }
+    const std::size_t stop = slides[k].second;
+    std::string& text = L.plan.stops[stop].text;
+    const std::string mine = objectivesText(track->objectives);
+    if (k == 0 && text.rfind(mine, 0) != 0) text = mine + text;
+    L.trackSlide = k;
+    goToStop(st, stop);
+    return true;
+}
+
 }  // namespace
 
 bool openLesson(AppState& st, const std::string& path) {
+    if (isTrackFile(path)) {
+        std::shared_ptr<const Track> track;
+        try {
+            track = std::make_shared<const Track>(loadTrack(path));
+        } catch (const LessonError& e) {
+            st.log(Message::Level::Error, std::string(e.what()) + " (the track was not opened)");
+            return false;
+        }
+        const auto before = st.lessonPlayer.track;
+        saveProgress(st);
+        st.lessonPlayer.track = track;
+        st.lessonPlayer.lesson.reset();  // the first item's lesson opens afresh
+        if (showTrackSlide(st, 0)) {
+            st.log(Message::Level::Info, "track: " + track->title + " (" +
+                                             std::to_string(track->slides()) + " slides, " +
+                                             std::to_string(track->minutes) + " minutes)");
+            return true;
+        }
+        st.lessonPlayer.track = before;
+        return false;
+    }
+    if (!openLessonFile(st, path)) return false;
+    st.lessonPlayer.track.reset();
+    return true;
+}
+
+std::size_t slideCount(const AppState& st) {
+    const LessonState& L = st.lessonPlayer;
+    if (L.track) return L.track->slides();
+    return L.lesson ? L.lesson->stops.size() : 0;
+}
+
+std::size_t slideIndex(const AppState& st) {
+    const LessonState& L = st.lessonPlayer;
+    return L.track ? L.trackSlide : L.progress.stop;
+}
+
+void goToSlide(AppState& st, std::size_t k) {
+    if (st.lessonPlayer.track) {
+        showTrackSlide(st, k);
+    } else {
+        goToStop(st, k);
+    }
+}
+
+namespace {
+
+bool openLessonFile(AppState& st, const std::string& path) {
     std::shared_ptr<Lesson> lesson;
     LessonPlan plan;
     try {
@@ -141,10 +215,13 @@ bool openLesson(AppState& st, const std::string& path) {
     return true;
 }
 
+}  // namespace
+
 void closeLesson(AppState& st) {
     saveProgress(st);
     LessonState& L = st.lessonPlayer;
     L.lesson.reset();
+    L.track.reset();
     L.plan = {};
     L.pendingView.reset();
     if (L.userOverlays) st.overlays = *L.userOverlays;

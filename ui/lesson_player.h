@@ -19,6 +19,9 @@ using ::dlab::Overlays;  // core/teaching/overlays.h
 
 struct LessonState {
     std::shared_ptr<const Lesson> lesson;  // null: no lesson open
+    // A track open: its items' lessons are opened in turn as its slides are paged through.
+    std::shared_ptr<const Track> track;
+    std::size_t trackSlide = 0;  // the track's slide on show (0-based)
     LessonPlan plan;
     LessonProgress progress;
     std::string typed;  // the answer field
@@ -48,8 +51,14 @@ struct LessonState {
 };
 
 // Loads, checks and plans the lesson, then shows its first stop (or where the student was).
-// On a bad lesson: logs "FILE:LINE: stop K: what", changes nothing, returns false.
+// On a bad lesson: logs "FILE:LINE: stop K: what", changes nothing, returns false. A track file
+// (kind = "track") opens as a track, at its first slide.
 bool openLesson(AppState& state, const std::string& path);
+// The slides the clickers page through: the track's when one is open, else the lesson's stops.
+std::size_t slideCount(const AppState& state);
+std::size_t slideIndex(const AppState& state);
+// Shows slide k (clamped): a stop of the open lesson, or of a track (opening its lesson).
+void goToSlide(AppState& state, std::size_t k);
 void closeLesson(AppState& state);
 // Shows stop k (0-based, clamped); brings the lesson's points and options back first when the
 // user changed them (the stops are operations of the lesson's own run).

@@ -19,11 +19,82 @@ bool between(Vec2 a, Vec2 b, Vec2 p) {
 
 }  // namespace
 
+const char* toString(ConstrainOpType t) {
+    switch (t) {
+        case ConstrainOpType::Walk: return "Walk";
+        case ConstrainOpType::SloanFlip: return "SloanFlip";
+        case ConstrainOpType::SloanWait: return "SloanWait";
+        case ConstrainOpType::Mark: return "Mark";
+        case ConstrainOpType::Reflag: return "Reflag";
+        case ConstrainOpType::Unmark: return "Unmark";
+        case ConstrainOpType::InCircleTest: return "InCircleTest";
+        case ConstrainOpType::Flip: return "Flip";
+    }
+    return "?";
+}
+
 Constrainer::Constrainer(Mesh& mesh, std::int32_t firstVirtual)
     : m_mesh(mesh), m_firstVirtual(firstVirtual) {
-    m_cornerOf.assign(mesh.G.size(), kNone);
-    for (std::int32_t c = 0; c < mesh.numCorners(); ++c) m_cornerOf[mesh.V[c]] = c;
+    rebuildIndex();
     m_flag.assign(mesh.V.size(), 0);
+}
+
+void Constrainer::rebuildIndex() {
+    m_cornerOf.assign(m_mesh.G.size(), kNone);
+    for (std::int32_t c = 0; c < m_mesh.numCorners(); ++c) m_cornerOf[m_mesh.V[c]] = c;
+}
+
+void Constrainer::setV(std::int32_t c, std::int32_t v) {
+    if (m_record) m_record->changes.push_back({2 * c, m_mesh.V[c], v});
+    m_mesh.V[c] = v;
+}
+
+void Constrainer::setO(std::int32_t c, std::int32_t o) {
+    if (m_record) m_record->changes.push_back({2 * c + 1, m_mesh.O[c], o});
+    m_mesh.O[c] = o;
+}
+
+void Constrainer::setFlag(std::int32_t c, std::uint8_t f) {
+    if (m_flag[c] == f) return;
+    if (m_record) m_record->flagChanges.push_back({c, m_flag[c], f});
+    m_flag[c] = f;
+}
+
+ConstrainOp* Constrainer::beginOp(ConstrainOpType type, std::int32_t a, std::int32_t b, int sign) {
+    if (!m_record) return nullptr;
+    ConstrainOp op;
+    op.type = type;
+    op.a = a;
+    op.b = b;
+    op.sign = static_cast<std::int8_t>(sign);
+    op.segmentA = m_segA;
+    op.segmentB = m_segB;
+    op.firstChange = static_cast<std::uint32_t>(m_record->changes.size());
+    op.firstFlag = static_cast<std::uint32_t>(m_record->flagChanges.size());
+    m_record->ops.push_back(op);
+    return &m_record->ops.back();
+}
+
+void Constrainer::endOp() {
+    if (!m_record) return;
+    ConstrainOp& op = m_record->ops.back();
+    op.numChanges = static_cast<std::uint32_t>(m_record->changes.size()) - op.firstChange;
+    op.numFlags = static_cast<std::uint32_t>(m_record->flagChanges.size()) - op.firstFlag;
+}
+
+void Constrainer::undo(const ConstraintRecord& record, std::size_t from) {
+    for (std::size_t i = record.ops.size(); i-- > from;) {
+        const ConstrainOp& op = record.ops[i];
+        for (std::uint32_t k = op.numFlags; k-- > 0;) {
+            const FlagChange& f = record.flagChanges[op.firstFlag + k];
+            m_flag[f.corner] = f.before;
+        }
+        for (std::uint32_t k = op.numChanges; k-- > 0;) {
+            const CellChange& ch = record.changes[op.firstChange + k];
+            (ch.isO() ? m_mesh.O : m_mesh.V)[ch.corner()] = ch.before;
+        }
+    }
+    rebuildIndex();
 }
 
 // The corner facing the edge u-w (in the triangle where it runs w -> ... seen from u's corner
@@ -103,24 +174,25 @@ bool Constrainer::crossedEdges(std::int32_t a, std::int32_t b, std::vector<Edge>
 
 // Flip the edge opposite c (as the inserter does); the constrained flags follow their edges.
 void Constrainer::flip(std::int32_t c) {
-    auto& V = m_mesh.V;
-    auto& O = m_mesh.O;
+    const auto& V = m_mesh.V;
+    const auto& O = m_mesh.O;
     const std::int32_t d = O[c];
     const std::int32_t cn = next(c), cp = prev(c), dn = next(d), dp = prev(d);
     const std::int32_t P = V[c], A = V[cn], B = V[cp], D = V[d];
     const std::int32_t ocn = O[cn], odn = O[dn];
     const std::uint8_t fcn = m_flag[cn], fdn = m_flag[dn];
-    V[cp] = D;
-    V[dp] = P;
-    O[c] = odn;
-    if (odn != kNone) O[odn] = c;
-    O[d] = ocn;
-    if (ocn != kNone) O[ocn] = d;
-    O[cn] = dn;
-    O[dn] = cn;
-    m_flag[c] = fdn;
-    m_flag[d] = fcn;
-    m_flag[cn] = m_flag[dn] = 0;
+    setV(cp, D);
+    setV(dp, P);
+    setO(c, odn);
+    if (odn != kNone) setO(odn, c);
+    setO(d, ocn);
+    if (ocn != kNone) setO(ocn, d);
+    setO(cn, dn);
+    setO(dn, cn);
+    setFlag(c, fdn);
+    setFlag(d, fcn);
+    setFlag(cn, 0);
+    setFlag(dn, 0);
     m_cornerOf[P] = c;
     m_cornerOf[A] = cn;
     m_cornerOf[D] = d;
@@ -142,12 +214,16 @@ void Constrainer::flipOut(std::int32_t a, std::int32_t b, std::vector<Edge> edge
         const std::int32_t c = edgeCorner(u, w);
         const std::int32_t P = m_mesh.V[c], D = m_mesh.V[m_mesh.O[c]];
         if (orient2d(G[P], G[D], G[u]) * orient2d(G[P], G[D], G[w]) >= 0) {
+            beginOp(ConstrainOpType::SloanWait, c, kNone);
+            endOp();
             queue.push_back({u, w});
             continue;
         }
-        flip(c);
         const bool stillCrosses = P != a && P != b && D != a && D != b &&
                                   orient2d(G[a], G[b], G[P]) * orient2d(G[a], G[b], G[D]) < 0;
+        beginOp(ConstrainOpType::SloanFlip, c, stillCrosses ? 1 : 0);
+        flip(c);
+        endOp();
         if (stillCrosses) {
             queue.push_back({P, D});
         } else {
@@ -159,8 +235,11 @@ void Constrainer::flipOut(std::int32_t a, std::int32_t b, std::vector<Edge> edge
 void Constrainer::mark(std::int32_t a, std::int32_t b) {
     const std::int32_t c = edgeCorner(a, b);
     if (c == kNone) throw std::logic_error("constrain: the segment is not an edge after the flips");
-    m_flag[c] = 1;
-    m_flag[m_mesh.O[c]] = 1;
+    if (m_flag[c] == 255) throw std::logic_error("constrain: an edge in 255 constraints");
+    beginOp(ConstrainOpType::Mark, a, b);
+    setFlag(c, static_cast<std::uint8_t>(m_flag[c] + 1));
+    setFlag(m_mesh.O[c], m_flag[c]);
+    endOp();
 }
 
 // Lawson's flips from the new edges: an unconstrained edge between two finite triangles whose
@@ -176,13 +255,18 @@ void Constrainer::restore(std::vector<Edge> stack) {
         const std::int32_t P = m_mesh.V[c], A = m_mesh.V[next(c)], B = m_mesh.V[prev(c)];
         const std::int32_t D = m_mesh.V[d];
         if (isVirtual(P) || isVirtual(A) || isVirtual(B) || isVirtual(D)) continue;
-        if (incircle(G[P], G[A], G[B], G[D]) <= 0) continue;
+        const int inside = incircle(G[P], G[A], G[B], G[D]);
+        beginOp(ConstrainOpType::InCircleTest, c, d, inside);
+        endOp();
+        if (inside <= 0) continue;
+        beginOp(ConstrainOpType::Flip, c, d);
         flip(c);
+        endOp();
         stack.insert(stack.end(), {{P, A}, {A, D}, {D, B}, {B, P}});
     }
 }
 
-ConstrainOutcome Constrainer::insert(std::int32_t a, std::int32_t b) {
+ConstrainOutcome Constrainer::insert(std::int32_t a, std::int32_t b, ConstraintRecord* record) {
     ConstrainOutcome out;
     const auto n = static_cast<std::int32_t>(m_cornerOf.size());
     if (a == b) {
@@ -202,14 +286,141 @@ ConstrainOutcome Constrainer::insert(std::int32_t a, std::int32_t b) {
         crossed.clear();
         if (!crossedEdges(from, b, crossed, stop, out)) return out;
     }
+    struct Recording {  // the record is this call's only, even when it throws
+        Constrainer& self;
+        ~Recording() { self.m_record = nullptr; }
+    } recording{*this};
+    beginRecording(record, a, b);
     for (std::int32_t from = a, stop = kNone; from != b; from = stop) {
         crossed.clear();
         crossedEdges(from, b, crossed, stop, out);
+        if (ConstrainOp* walk = beginOp(ConstrainOpType::Walk, from, stop))
+            walk->count = static_cast<std::int32_t>(crossed.size());
+        endOp();
         std::vector<Edge> fresh;
         flipOut(from, stop, crossed, fresh);
         mark(from, stop);
         restore(std::move(fresh));
     }
+    return out;
+}
+
+// The edges from a to b along the segment, vertex to vertex; false when one is missing or not
+// constrained.
+bool Constrainer::pieces(std::int32_t a, std::int32_t b, std::vector<Edge>& out) const {
+    for (std::int32_t from = a; from != b;) {
+        std::int32_t corner = kNone, stop = kNone;
+        if (!firstCrossing(from, b, corner, stop) || stop == kNone) return false;
+        const std::int32_t c = edgeCorner(from, stop);
+        if (c == kNone || !m_flag[c]) return false;
+        out.push_back({from, stop});
+        from = stop;
+    }
+    return true;
+}
+
+ConstrainOutcome Constrainer::remove(std::int32_t a, std::int32_t b, ConstraintRecord* record) {
+    ConstrainOutcome out;
+    const auto n = static_cast<std::int32_t>(m_cornerOf.size());
+    for (const std::int32_t v : {a, b}) {
+        if (v < 0 || v >= n || isVirtual(v) || m_cornerOf[v] == kNone) {
+            out.result = ConstrainResult::NotInMesh;
+            return out;
+        }
+    }
+    std::vector<Edge> edges;
+    if (a == b || !pieces(a, b, edges)) {
+        out.result = a == b ? ConstrainResult::SameVertex : ConstrainResult::NotConstrained;
+        return out;
+    }
+    struct Recording {  // the record is this call's only, even when it throws
+        Constrainer& self;
+        ~Recording() { self.m_record = nullptr; }
+    } recording{*this};
+    beginRecording(record, a, b);
+    std::vector<Edge> freed;
+    for (const auto& [u, w] : edges) {
+        const std::int32_t c = edgeCorner(u, w);
+        beginOp(ConstrainOpType::Unmark, u, w);
+        setFlag(c, static_cast<std::uint8_t>(m_flag[c] - 1));
+        setFlag(m_mesh.O[c], m_flag[c]);
+        endOp();
+        if (m_flag[c] == 0) freed.push_back({u, w});
+    }
+    restore(std::move(freed));
+    return out;
+}
+
+void Constrainer::beginRecording(ConstraintRecord* record, std::int32_t a, std::int32_t b) {
+    m_record = record;
+    m_segA = a;
+    m_segB = b;
+}
+
+VertexRemoval Constrainer::removeVertex(Remover& remover, std::int32_t v, RemovalRecord* removal,
+                                        ConstraintRecord* record) {
+    VertexRemoval out;
+    struct Held {
+        std::int32_t u, w;
+        std::uint8_t count;
+    };
+    std::vector<Held> held;  // every constrained edge once, by its vertices
+    for (std::int32_t c = 0; c < m_mesh.numCorners(); ++c) {
+        const std::int32_t o = m_mesh.O[c];
+        if (!m_flag[c] || (o != kNone && o < c)) continue;
+        const std::int32_t u = m_mesh.V[next(c)], w = m_mesh.V[prev(c)];
+        if (u == v || w == v) {
+            out.refused = true;
+            out.constrained = {u, w};
+            return out;
+        }
+        held.push_back({u, w, m_flag[c]});
+    }
+    std::vector<std::int32_t> rim;  // v's neighbours: the hole's new edges all join two of them
+    if (v >= 0 && v < static_cast<std::int32_t>(m_cornerOf.size()) && !isVirtual(v) &&
+        m_cornerOf[v] != kNone) {
+        const std::int32_t start = m_cornerOf[v];
+        std::int32_t c = start;
+        do {
+            rim.push_back(m_mesh.V[next(c)]);
+            c = next(m_mesh.O[next(c)]);
+        } while (c != start);
+    }
+    remover.meshChanged();
+    out.removed = remover.remove(v, removal);
+    rebuildIndex();
+    struct Recording {  // the record is this call's only, even when it throws
+        Constrainer& self;
+        ~Recording() { self.m_record = nullptr; }
+    } recording{*this};
+    beginRecording(record, v, kNone);
+    if (m_flag.size() < m_mesh.V.size()) m_flag.resize(m_mesh.V.size(), 0);
+    beginOp(ConstrainOpType::Reflag, v, kNone);
+    for (std::size_t c = 0; c < m_flag.size(); ++c) setFlag(static_cast<std::int32_t>(c), 0);
+    std::vector<Edge> around;
+    for (const Held& h : held) {
+        const std::int32_t c = edgeCorner(h.u, h.w);
+        if (c == kNone) {  // Collapsed: no triangle is left to hold it
+            ++out.droppedConstraints;
+            continue;
+        }
+        setFlag(c, h.count);
+        setFlag(m_mesh.O[c], h.count);
+    }
+    endOp();
+    // The hole's new edges and its rim: every edge at a vertex of the rim.
+    if (out.removed == RemoveResult::Removed) {
+        for (const std::int32_t u : rim) {
+            if (isVirtual(u)) continue;
+            const std::int32_t start = m_cornerOf[u];
+            std::int32_t c = start;
+            do {
+                around.push_back({u, m_mesh.V[next(c)]});
+                c = next(m_mesh.O[next(c)]);
+            } while (c != start);
+        }
+    }
+    restore(std::move(around));
     return out;
 }
 

@@ -7,11 +7,13 @@
 // is kept for the repair (Sloan 1993: the queue empties). The segment is then an edge, marked
 // constrained on both its corners, and every new edge is flipped while it is not locally Delaunay
 // and not constrained. Constrained edges are never flipped and the in-circle test ignores them, so
-// the result is the constrained Delaunay triangulation. Not yet recorded operations: the flips
-// here are plain cell writes.
+// the result is the constrained Delaunay triangulation. With a record, every walk, flip, mark
+// and in-circle test is a recorded operation whose V, O and flag changes undo it bit for bit.
 #pragma once
 
+#include "core/engine/inserter.h"
 #include "core/engine/mesh.h"
+#include "core/engine/remover.h"
 
 #include <cstdint>
 #include <utility>
@@ -20,10 +22,57 @@
 namespace dlab {
 
 enum class ConstrainResult : std::uint8_t {
-    Inserted,    // the segment (or its pieces between the vertices on it) are constrained edges
-    SameVertex,  // a == b
-    NotInMesh,   // a or b is not a vertex of the mesh (or is the ghost vertex)
-    Crosses,     // the segment crosses the constrained edge `crossed` (nothing changed)
+    Inserted,        // the segment (or its pieces between the vertices on it) are constrained edges
+    SameVertex,      // a == b
+    NotInMesh,       // a or b is not a vertex of the mesh (or is the ghost vertex)
+    Crosses,         // the segment crosses the constrained edge `crossed` (nothing changed)
+    NotConstrained,  // remove: the segment is not a chain of constrained edges (nothing changed)
+};
+
+enum class ConstrainOpType : std::uint8_t {
+    Walk,          // the piece a-b walked (b: the segment's end or a vertex on it): `count` edges
+                   // cross it
+    SloanFlip,     // the crossed edge opposite corner a flipped (b: its new edge still crosses)
+    SloanWait,     // the crossed edge opposite corner a: its quadrilateral is not convex, later
+    Mark,          // the edge a-b (vertices) is now constrained, flagged on both its corners
+    Reflag,        // vertex a removed: the constrained flags put back on their edges' corners
+    Unmark,        // the edge a-b (vertices) is one constraint less (free once none is left)
+    InCircleTest,  // the repair: the edge opposite corner a tested against corner b's vertex
+    Flip,          // the repair flipped the edge opposite corner a
+};
+const char* toString(ConstrainOpType t);
+
+// A constrained flag of one corner changed.
+struct FlagChange {
+    std::int32_t corner;
+    std::uint8_t before, after;
+};
+
+// One recorded operation; its changes are changes[firstChange, +numChanges) and
+// flagChanges[firstFlag, +numFlags).
+struct ConstrainOp {
+    ConstrainOpType type = ConstrainOpType::Walk;
+    std::int8_t sign = 0;
+    std::int32_t a = kNone, b = kNone;
+    std::int32_t segmentA = kNone, segmentB = kNone;  // the segment being inserted
+    std::int32_t count = 0;                           // Walk: the edges the piece crosses
+    std::uint32_t firstChange = 0, numChanges = 0;
+    std::uint32_t firstFlag = 0, numFlags = 0;
+};
+
+// The record of one or more constraint insertions, in order.
+struct ConstraintRecord {
+    std::vector<ConstrainOp> ops;
+    std::vector<CellChange> changes;
+    std::vector<FlagChange> flagChanges;
+};
+
+// What removeVertex did.
+struct VertexRemoval {
+    RemoveResult removed = RemoveResult::NotInMesh;  // the Remover's answer, when it ran
+    bool refused = false;  // a constrained edge ends at the vertex: nothing changed
+    std::pair<std::int32_t, std::int32_t> constrained{-1, -1};  // that edge
+    std::int32_t droppedConstraints = 0;  // Collapsed: the constrained edges left with no mesh
 };
 
 struct ConstrainOutcome {
@@ -36,8 +85,25 @@ public:
     // The mesh: the exact mode's closed form (ghost vertex and those past it at firstVirtual).
     Constrainer(Mesh& mesh, std::int32_t firstVirtual);
 
-    ConstrainOutcome insert(std::int32_t a, std::int32_t b);
-    // Is the edge opposite corner c constrained?
+    // Constrains the segment a-b; with a record, every operation is appended to it.
+    ConstrainOutcome insert(std::int32_t a, std::int32_t b, ConstraintRecord* record = nullptr);
+    // Takes the constraint a-b away: each of its pieces (the edges between the vertices on it)
+    // counts one constraint less; those left with none are free, and Lawson's flips make the mesh
+    // around them constrained Delaunay again. NotConstrained when a-b was not inserted.
+    ConstrainOutcome remove(std::int32_t a, std::int32_t b, ConstraintRecord* record = nullptr);
+    // Removes vertex v with `remover` (its ear flips and merge recorded in `removal`) and keeps
+    // every constraint: refused when a constrained edge ends at v (take the constraint away
+    // first); else the flags go back on their edges (a Reflag op) and Lawson's flips make the
+    // edges around the hole constrained Delaunay (recorded in `record`). To undo: this record's
+    // ops, then the removal's, then refresh().
+    VertexRemoval removeVertex(Remover& remover, std::int32_t v, RemovalRecord* removal,
+                               ConstraintRecord* record);
+    // The mesh was changed by another editor (the Remover's undo): the index is rebuilt.
+    void refresh() { rebuildIndex(); }
+    // Reverts the record's ops from the last back to op `from` (V, O and the flags exactly as
+    // before them).
+    void undo(const ConstraintRecord& record, std::size_t from = 0);
+    // Is the edge opposite corner c constrained? (flags()[c]: by how many inserted segments)
     bool isConstrained(std::int32_t c) const { return m_flag[c] != 0; }
     const std::vector<std::uint8_t>& flags() const { return m_flag; }
 
@@ -53,11 +119,22 @@ private:
     void restore(std::vector<Edge> stack);
     void flip(std::int32_t c);
     void mark(std::int32_t a, std::int32_t b);
+    void setV(std::int32_t c, std::int32_t v);
+    void setO(std::int32_t c, std::int32_t o);
+    void setFlag(std::int32_t c, std::uint8_t f);
+    ConstrainOp* beginOp(ConstrainOpType type, std::int32_t a, std::int32_t b, int sign = 0);
+    void endOp();
+    void rebuildIndex();
+
+    bool pieces(std::int32_t a, std::int32_t b, std::vector<Edge>& out) const;
+    void beginRecording(ConstraintRecord* record, std::int32_t a, std::int32_t b);
 
     Mesh& m_mesh;
     std::int32_t m_firstVirtual;
     std::vector<std::int32_t> m_cornerOf;
-    std::vector<std::uint8_t> m_flag;  // per corner: the edge opposite it is constrained
+    std::vector<std::uint8_t> m_flag;  // per corner: how many constraints hold the edge opposite
+    ConstraintRecord* m_record = nullptr;  // where the current call records, if anywhere
+    std::int32_t m_segA = kNone, m_segB = kNone;
 };
 
 }  // namespace dlab

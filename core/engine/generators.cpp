@@ -1,13 +1,16 @@
 // Point-set generators (deterministic for a seed on every platform).
 #include "core/engine/generators.h"
 
+#include "core/engine/mesh_build.h"
 #include "core/engine/order.h"
+#include "core/engine/predicates.h"
 
 #include <algorithm>
 #include <bit>
 #include <cmath>
 #include <iterator>
 #include <numbers>
+#include <stdexcept>
 
 namespace dlab {
 
@@ -263,6 +266,31 @@ std::vector<Vec2> generatePoints(Generator kind, std::size_t n, std::uint64_t se
         default: break;
     }
     return pts;
+}
+
+Mesh flipWorstCase(std::size_t n) {
+    if (n < 6 || n % 2 != 0 || n > (std::size_t{1} << 16))
+        throw std::invalid_argument(
+            "the flip worst case takes an even number of points, 6 to 65536");
+    const auto m = static_cast<std::int32_t>(n / 2);
+    // Bow i * (m - 1 - i) peaks at (m - 1)^2 / 4; the chains are 6 peaks apart, points 2 apart.
+    const double peak = static_cast<double>(m - 1) * (m - 1) / 4.0;
+    const double height = 6.0 * std::ceil(peak), step = 2.0 * std::ceil(peak);
+    Mesh mesh;
+    for (std::int32_t i = 0; i < m; ++i)  // lower chain: vertices 0 .. m-1
+        mesh.G.push_back({i * step, static_cast<double>(i) * (m - 1 - i)});
+    for (std::int32_t i = 0; i < m; ++i)  // upper chain: vertices m .. 2m-1
+        mesh.G.push_back({i * step, height - static_cast<double>(i) * (m - 1 - i)});
+    auto add = [&mesh](std::int32_t a, std::int32_t b, std::int32_t c) {
+        if (orient2d(mesh.G[a], mesh.G[b], mesh.G[c]) < 0) std::swap(b, c);
+        mesh.V.insert(mesh.V.end(), {a, b, c});
+    };
+    for (std::int32_t i = 0; i + 1 < m; ++i) add(m, i, i + 1);              // upper first to lower
+    for (std::int32_t j = 0; j + 1 < m; ++j) add(m - 1, m + j, m + j + 1);  // lower last to upper
+    for (std::int32_t j = 1; j + 1 < m; ++j) add(m, m + j, m + j + 1);      // upper cap
+    for (std::int32_t i = 1; i + 1 < m; ++i) add(0, i, i + 1);              // lower cap
+    computeOpposites(mesh);
+    return mesh;
 }
 
 std::vector<Vec2> demoPoints() {

@@ -2,6 +2,7 @@
 #pragma once
 
 #include "core/engine/geometry.h"
+#include "core/engine/mesh.h"
 
 #include <cstdint>
 #include <optional>
@@ -43,6 +44,17 @@ std::string generatorNames();  // "uniform, clusters, ..." for help texts
 std::vector<Generator> allGenerators();
 
 std::vector<Vec2> generatePoints(Generator kind, std::size_t n, std::uint64_t seed);
+
+// A triangulation of n points that Lawson's flip algorithm needs quadratically many flips to make
+// Delaunay (n even, at least 6: n / 2 points on each of two chains). The chains run side by side
+// and bow towards each other, so every point of one sees every point of the other and no edge
+// joins two points of one chain across the middle. Between the chains the mesh is two fans: the
+// upper chain's first point joined to every lower point, the lower chain's last point to every
+// upper point; the caps outside the chains are fans too. The Delaunay triangulation joins each
+// point to the nearest ones across, and each flip between the chains moves one cell of the
+// lattice path such a triangulation is, so on the order of n^2 / 8 flips. Integer coordinates
+// (exact), counter-clockwise triangles, O computed.
+Mesh flipWorstCase(std::size_t n);
 
 // The built-in demo: 12 points that show a locate walk, splits, flips and a point on an edge.
 std::vector<Vec2> demoPoints();

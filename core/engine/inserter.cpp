@@ -145,7 +145,9 @@ void countOp(InsertStats& s, const Op& op, int dir) {
     switch (op.type) {
         case OpType::LocateStep: s.walkSteps += dir; break;
         case OpType::SplitEdge: s.edgeSplits += dir; break;
-        case OpType::InCircleTest: s.inCircleTests += dir; break;
+        case OpType::InCircleTest:  // an edge on the boundary has nothing to test
+            if (op.b != kNone) s.inCircleTests += dir;
+            break;
         case OpType::Flip: s.flips += dir; break;
         case OpType::SkipDuplicate: s.duplicates += dir; break;
         case OpType::Inserted: s.inserted += dir; break;

@@ -68,6 +68,8 @@ public:
     // Reverts the record's ops from the last back to op `from` (V and O exactly as before them).
     void undo(const RemovalRecord& record, std::size_t from = 0);
 
+    // Another editor of the same mesh (the Constrainer) changed it: the index is rebuilt.
+    void meshChanged() { m_stale = true; }
     // A corner at vertex v, kNone when no triangle uses it.
     std::int32_t cornerAt(std::int32_t v);
     // Finite vertices some triangle uses.

@@ -377,7 +377,8 @@ bool acceptsAnswer(const Answer& expected, std::string_view typedIn) {
         case Answer::Kind::Edge: {
             std::vector<std::string> w;
             for (std::string& x : words(typed)) {
-                if (!isOneOf(x, {"edge", "from", "to", "and", "between", "the"}))
+                if (!isOneOf(x,
+                             {"edge", "from", "to", "and", "between", "the", "vertices", "vertex"}))
                     w.push_back(std::move(x));
             }
             const auto is = [&](const std::string& x, bool first) {
@@ -458,6 +459,10 @@ constexpr QuantityInfo kQuantities[] = {
     {"changed_corners",
      "corners whose V or O cell the last operation changed (back-pointers in neighbours too)"},
     {"min_angle", "the smallest angle of the real triangles, in whole degrees"},
+    {"flips_per_point", "flips so far per point inserted, to the nearest whole number"},
+    {"incircle_det",
+     "the in-circle determinant of the test just made (or next): rows (x, y, x² + y²) of the "
+     "triangle's vertices minus the point; positive: the point is inside the circle"},
     {"pixel_outcome",
      "the latest ID-buffer locate: hit (the pixel's triangle holds the point), miss (a walk "
      "from it) or empty (no triangle painted there: a walk from the last insertion)"},
@@ -579,6 +584,12 @@ public:
         if (name == "next_locate_steps") return integer(nextLocateSteps());
         if (name == "changed_corners") return integer(changedCorners());
         if (name == "min_angle") return integer(minAngle());
+        if (name == "flips_per_point") {
+            if (realVertices() == 0) throw Unavailable{"no point is inserted yet"};
+            return integer(
+                std::llround(static_cast<double>(st.flips) / static_cast<double>(realVertices())));
+        }
+        if (name == "incircle_det") return incircleDeterminant();
         if (name == "pixel_outcome") return pixelOutcome();
         if (name == "circumcenter") return circumcenterOfSelection();
         if (name == "pixel") return pixel();
@@ -587,6 +598,26 @@ public:
 
 private:
     const Mesh& mesh() const { return m_ins.mesh(); }
+    // The determinant the in-circle test decides by the sign of, as a student works it by hand
+    // (exact for small integer coordinates, where its sign is the exact predicate's).
+    Answer incircleDeterminant() const {
+        const auto f = liftingMapAt(m_ins, m_j.position() ? &last() : nullptr);
+        if (!f) throw Unavailable{"no in-circle test of a real triangle here"};
+        long double r[3][3];
+        for (int k = 0; k < 3; ++k) {
+            const long double x = static_cast<long double>(f->triangle[k].x) - f->point.x,
+                              y = static_cast<long double>(f->triangle[k].y) - f->point.y;
+            r[k][0] = x;
+            r[k][1] = y;
+            r[k][2] = x * x + y * y;
+        }
+        const long double det = r[0][0] * (r[1][1] * r[2][2] - r[1][2] * r[2][1]) -
+                                r[0][1] * (r[1][0] * r[2][2] - r[1][2] * r[2][0]) +
+                                r[0][2] * (r[1][0] * r[2][1] - r[1][1] * r[2][0]);
+        if (det != std::nearbyint(det) || std::fabs(det) > 1e15L || (det > 0) != (f->sign > 0))
+            throw Unavailable{"the determinant is not a small whole number here"};
+        return integer(static_cast<std::int64_t>(det));
+    }
     Answer vertexAnswer(std::int64_t v) const {
         Answer a = integer(v);
         a.labelA = vertexLabel(m_ins, static_cast<std::int32_t>(v));
@@ -652,7 +683,11 @@ private:
         std::size_t q = m_j.position();
         if (q > 0 && endsInsertion(m_j.ops()[q - 1].type)) --q;  // the insertion that just ended
         std::int64_t n = 0;
-        while (q > 0 && !endsInsertion(m_j.ops()[q - 1].type)) n += m_j.ops()[--q].type == type;
+        while (q > 0 && !endsInsertion(m_j.ops()[q - 1].type)) {
+            const Op& op = m_j.ops()[--q];
+            // An edge on the boundary comes off the stack with nothing to test: not a test.
+            n += op.type == type && (type != OpType::InCircleTest || op.b != kNone);
+        }
         return n;
     }
     Answer latestLocate(bool wantHint) const {
@@ -877,8 +912,12 @@ std::vector<std::string> quantityUnits(std::string_view name) {
         {"position", {"operations", "operation", "ops", "op"}},
         {"flips", {"flips", "flip", "times", "time"}},
         {"insertion_flips", {"flips", "flip", "times", "time"}},
-        {"tests", {"tests", "test", "times", "time"}},
-        {"insertion_tests", {"tests", "test", "times", "time"}},
+        {"tests",
+         {"in-circle tests", "incircle tests", "in circle tests", "tests", "test", "times",
+          "time"}},
+        {"insertion_tests",
+         {"in-circle tests", "incircle tests", "in circle tests", "tests", "test", "times",
+          "time"}},
         {"queue", {"edges", "edge"}},
         {"walk_steps", {"steps", "step"}},
         {"locate_steps", {"steps", "step"}},
@@ -1106,6 +1145,109 @@ public:
     void text(const std::string& s, int line) {
         std::string why;
         if (!parseLessonText(s, &why)) fail(line, why);
+    }
+
+    // objectives = ["...", ...]: one line each, Markdown-light, at most 8.
+    std::vector<std::string> objectives(const toml::table& t, bool required) {
+        std::vector<std::string> out;
+        const toml::node* n = t.get("objectives");
+        if (!n) {
+            if (required) fail(1, "the track needs \"objectives\" = [\"...\", ...]");
+            return out;
+        }
+        const toml::array* a = n->as_array();
+        if (!a || a->empty() || a->size() > 8)
+            fail(lineOf(*n), "\"objectives\" must be a list of 1 to 8 sentences (strings)");
+        for (const toml::node& e : *a) {
+            const int line = lineOf(e) ? lineOf(e) : lineOf(*n);
+            if (!e.is_string() || trimmed(e.as_string()->get()).empty())
+                fail(line, "\"objectives\" must hold sentences (strings that are not empty)");
+            const std::string o = trimmed(e.as_string()->get());
+            if (o.find('\n') != std::string::npos) fail(line, "an objective is one line");
+            text(o, line);
+            out.push_back(o);
+        }
+        return out;
+    }
+
+    // A track: [[item]] lesson / stops / minutes, each lesson loaded and its stops checked.
+    Track track(std::string_view source, const std::string& path) {
+        Track T;
+        T.file = path;
+        if (source.size() > kMaxLessonFileBytes) fail(0, "track file too large (at most 1 MiB)");
+        toml::table root;
+        try {
+            root = toml::parse(source, path);
+        } catch (const toml::parse_error& e) {
+            fail(static_cast<int>(e.source().begin.line),
+                 "not valid TOML: " + std::string(e.description()));
+        }
+        checkKeys(root, {"title", "summary", "kind", "objectives", "minutes", "item"},
+                  "at the top level of a track");
+        if (string(root, "kind").value_or("") != "track") fail(1, "a track says kind = \"track\"");
+        T.title = string(root, "title").value_or("");
+        if (trimmed(T.title).empty()) fail(1, "the track needs a \"title\"");
+        T.summary = string(root, "summary").value_or("");
+        T.objectives = objectives(root, true);
+        const auto minutes = integer(root, "minutes", 1, 300);
+        if (!minutes) fail(1, "the track needs \"minutes\": the lecture's length");
+        T.minutes = static_cast<int>(*minutes);
+        const toml::node* items = root.get("item");
+        const toml::array* a = items ? items->as_array() : nullptr;
+        if (!a || !a->is_array_of_tables() || a->empty())
+            fail(items ? lineOf(*items) : 1, "a track lists its stops as [[item]] tables");
+        int total = 0;
+        for (const toml::node& n : *a) {
+            T.items.push_back(trackItem(*n.as_table(), path));
+            total += T.items.back().minutes;
+            if (total > T.minutes)
+                fail(T.items.back().line, "the items' minutes add up to " + std::to_string(total) +
+                                              " here, more than the track's " +
+                                              std::to_string(T.minutes));
+        }
+        if (T.slides() > kMaxLessonStops) fail(1, "too many stops in the track");
+        return T;
+    }
+
+    TrackItem trackItem(const toml::table& t, const std::string& path) {
+        TrackItem item;
+        item.line = lineOf(t);
+        checkKeys(t, {"lesson", "stops", "minutes"}, "in an [[item]]");
+        const auto written = string(t, "lesson");
+        if (!written) fail(item.line, "an [[item]] needs \"lesson\" (a lesson file)");
+        item.written = *written;
+        item.lesson = resolveLessonFile(path, *written, lineOf(*t.get("lesson")));
+        const auto minutes = integer(t, "minutes", 1, 300);
+        if (!minutes) fail(item.line, "an [[item]] needs \"minutes\"");
+        item.minutes = static_cast<int>(*minutes);
+        Lesson lesson;
+        try {
+            lesson = loadLesson(item.lesson);
+        } catch (const LessonError& e) {
+            fail(item.line, "lesson " + *written + ": " + e.what());
+        }
+        if (lesson.objectives.empty() || lesson.minutes == 0)
+            fail(item.line, "lesson " + *written +
+                                " states no objectives or minutes (objectives = [...], minutes = "
+                                "N): a lesson in a track needs both");
+        const toml::node* stops = t.get("stops");
+        const toml::array* list = stops ? stops->as_array() : nullptr;
+        if (!list || list->empty())
+            fail(stops ? lineOf(*stops) : item.line, "an [[item]] needs \"stops\" = [1, 2, ...]");
+        for (const toml::node& e : *list) {
+            const int line = lineOf(e) ? lineOf(e) : lineOf(*stops);
+            const auto k = e.value<std::int64_t>();
+            if (!e.is_integer() || !k || *k < 1 ||
+                *k > static_cast<std::int64_t>(lesson.stops.size()))
+                fail(line, "lesson " + *written + " has stops 1 to " +
+                               std::to_string(lesson.stops.size()) + ": no stop " +
+                               (e.is_integer() ? std::to_string(*k) : std::string("there")));
+            if (!item.stops.empty() && static_cast<std::size_t>(*k - 1) <= item.stops.back())
+                fail(line, "an item's stops go forward: " + std::to_string(*k) + " after " +
+                               std::to_string(item.stops.back() + 1));
+            item.stops.push_back(static_cast<std::size_t>(*k - 1));
+        }
+        return item;
     }
 
     void options(const toml::table& t, InsertOptions& o) {
@@ -1370,9 +1512,12 @@ public:
             fail(static_cast<int>(e.source().begin.line),
                  "not valid TOML: " + std::string(e.description()));
         }
+        if (string(root, "kind").value_or("") == "track")
+            fail(lineOf(*root.get("kind")),
+                 "this is a track (kind = \"track\"): stops of other lessons, not a lesson");
         checkKeys(root,
-                  {"title", "summary", "kind", "text", "points", "points_file", "triangles",
-                   "options", "stop"},
+                  {"title", "summary", "kind", "text", "objectives", "minutes", "points",
+                   "points_file", "triangles", "options", "stop"},
                   "at the top level");
         L.title = string(root, "title").value_or("");
         if (trimmed(L.title).empty()) fail(1, "the lesson needs a \"title\"");
@@ -1382,6 +1527,8 @@ public:
                 fail(lineOf(*root.get("kind")), "kind must be \"lesson\" or \"assignment\"");
             L.assignment = *k == "assignment";
         }
+        L.objectives = objectives(root, false);
+        L.minutes = static_cast<int>(integer(root, "minutes", 1, 300).value_or(0));
         if (auto x = string(root, "text")) {
             text(*x, lineOf(*root.get("text")));
             L.text = *x;
@@ -1547,6 +1694,48 @@ private:
 
 Lesson parseLesson(std::string_view text, const std::string& path) {
     return LessonReader(path).lesson(text, path);
+}
+
+std::size_t Track::slides() const {
+    std::size_t n = 0;
+    for (const TrackItem& i : items) n += i.stops.size();
+    return n;
+}
+
+bool isTrackFile(const std::string& path) {
+    try {
+        const std::string text = readRegularFile(path, kMaxLessonFileBytes);
+        const toml::table root = toml::parse(text, path);
+        const toml::node* kind = root.get("kind");
+        return kind && kind->value<std::string>() == "track";
+    } catch (const std::exception&) {
+        return false;
+    }
+}
+
+Track loadTrack(const std::string& path) {
+    std::string text;
+    try {
+        text = readRegularFile(path, kMaxLessonFileBytes);
+    } catch (const InputError& e) {
+        throw LessonError(path, 0, 0, e.message());
+    }
+    return LessonReader(path).track(text, path);
+}
+
+std::vector<std::pair<std::size_t, std::size_t>> trackSlides(const Track& track) {
+    std::vector<std::pair<std::size_t, std::size_t>> out;
+    for (std::size_t i = 0; i < track.items.size(); ++i)
+        for (std::size_t k : track.items[i].stops) out.emplace_back(i, k);
+    return out;
+}
+
+std::string objectivesText(const std::vector<std::string>& objectives) {
+    if (objectives.empty()) return "";
+    // One paragraph: a slide's first column has little room to spare.
+    std::string out = "**Objectives:**";
+    for (std::size_t k = 0; k < objectives.size(); ++k) out += (k ? "; " : " ") + objectives[k];
+    return out + ".\n\n";
 }
 
 Lesson loadLesson(const std::string& path) {
@@ -1788,6 +1977,9 @@ LessonPlan planLesson(const Lesson& lesson) {
         selected = selectAtStop(lesson, k, *ins, selected);
         plan.stops.push_back(stopStateAt(lesson, k, *ins, journal, selected));
     }
+    // The objectives come first, above the first stop's text.
+    if (!plan.stops.empty())
+        plan.stops[0].text = objectivesText(lesson.objectives) + plan.stops[0].text;
     runUntil(journal, *ins, {}, std::numeric_limits<std::size_t>::max());
     plan.totalOps = journal.position();
     // Past the history's budget the rest of the run is only counted.

@@ -7,6 +7,9 @@
 //   title = "The corner table"
 //   summary = "G, V and O for two triangles."
 //   kind = "lesson"                 # or "assignment": points and text only, no stops needed
+//   objectives = ["Say when an edge is legal", "Run a flip cascade by hand"]   # shown first
+//   minutes = 12                    # its length in class (1 to 300); a lesson in a track
+//                                   # needs objectives and minutes
 //   points = [[0, 0], [4, 0], [4, 3], [0, 3]]   # or points_file = "square.csv", beside the lesson
 //   triangles = [[0, 1, 2], [0, 2, 3]]  # optional: a start triangulation (0-based ids into
 //                                   # points, counter-clockwise, valid as checkMesh finds it);
@@ -33,6 +36,20 @@
 //   expect = { located = "hit", walk_steps = 0 }  # checked against the engine at the stop
 //   figure = "lifting-map"          # a drawing beside the text (kFigureNames)
 //   needs = ["vertex:4", "panel:corner-table"]  # what the slide must show (see below)
+//
+// A track file (kind = "track") plays stops of several lessons in order: one lecture made of
+// the lessons' own stops, each checked as part of its lesson.
+//
+//   title = "Delaunay in one lecture"
+//   kind = "track"
+//   summary = "..."
+//   objectives = ["..."]            # required: shown on the track's first slide
+//   minutes = 50                    # the lecture's length: the items' minutes add up to at most it
+//
+//   [[item]]
+//   lesson = "04b_delaunay_foundations.toml"   # beside the track, as points_file is
+//   stops = [1, 2, 4]               # 1-based stop numbers of that lesson, increasing
+//   minutes = 6                     # required
 //
 // The answer is computed by the engine at the stop, never typed into the file. Text, question
 // and hint may embed engine values: {{walk_steps}}, {{test_edge}}, {{V[c.n]}} (a quantity or a
@@ -137,6 +154,8 @@ struct Lesson {
     std::string file;  // as given to loadLesson
     std::string title, summary;
     std::string text;  // the lesson's own text (an assignment's instructions), Markdown-light
+    std::vector<std::string> objectives;  // what a student can do after it (shown first)
+    int minutes = 0;                      // its length in class; 0: not stated
     bool assignment = false;
     InsertOptions options;
     std::vector<Vec2> points;
@@ -157,6 +176,39 @@ inline constexpr std::size_t kMaxLessonFileBytes = 1 << 20;
 Lesson loadLesson(const std::string& path);
 // The same from text; `path` names the file in messages and anchors points_file.
 Lesson parseLesson(std::string_view text, const std::string& path);
+
+// The objectives as the first slide shows them above the stop's text (Markdown-light); empty
+// when there are none.
+std::string objectivesText(const std::vector<std::string>& objectives);
+
+// ---- Tracks: one lecture made of stops of several lessons ---------------------------------------
+
+struct TrackItem {
+    std::string lesson;              // resolved path of the lesson file
+    std::string written;             // as the track names it
+    std::vector<std::size_t> stops;  // 0-based, increasing
+    int minutes = 0;
+    int line = 0;  // line of its [[item]] header
+};
+
+struct Track {
+    std::string file;
+    std::string title, summary;
+    std::vector<std::string> objectives;
+    int minutes = 0;  // the lecture's length
+    std::vector<TrackItem> items;
+    std::size_t slides() const;  // stops over all items
+};
+
+// Whether the file is a track (kind = "track"): valid TOML with that key. False on anything
+// else (loadLesson then says what is wrong with it).
+bool isTrackFile(const std::string& path);
+// Reads and checks a track: its keys, each item's lesson (loaded and checked: it exists, beside
+// the track, states objectives and minutes), stop numbers that exist, minutes on every item
+// adding up to at most the track's. Throws LessonError naming the track's file and line.
+Track loadTrack(const std::string& path);
+// The track's slides in order: (item, 0-based stop of its lesson).
+std::vector<std::pair<std::size_t, std::size_t>> trackSlides(const Track& track);
 
 // Resolves a points file named in a lesson: relative, no "..", inside the lesson's folder after
 // following symlinks, an existing regular file. Returns the resolved path or throws

@@ -23,6 +23,7 @@ struct Overlays {
     bool voronoi = false;
     bool pendingPoints = true;     // points not inserted yet
     bool virtualTriangles = true;  // super-triangle (super mode) while the run is in progress
+    bool violations = true;        // what validate() finds: broken rules, edges not Delaunay yet
     bool legend = false;           // what each colour and line means (L; always on slides)
 };
 
@@ -45,6 +46,7 @@ inline constexpr OverlaySwitch kOverlaySwitches[] = {
     {"voronoi", &Overlays::voronoi, true},
     {"pending-points", &Overlays::pendingPoints, true},
     {"virtual-triangles", &Overlays::virtualTriangles, true},
+    {"violations", &Overlays::violations, true},
     {"legend", &Overlays::legend, false},
 };
 

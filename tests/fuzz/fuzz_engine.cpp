@@ -13,12 +13,15 @@
 //     bits), a change of scale (huge and tiny together), a finer cloud point.
 // Integer lattices scaled by powers of two keep collinear and cocircular sets exactly so.
 // After the insertion checks, vertices are removed from the closed mesh (the state before
-// Finalize) in an order drawn from the seed and the probe, each removal checked exactly, then all
-// of them undone bit for bit.
+// Finalize) in an order drawn from the seed and the probe, each removal checked exactly; in the
+// exact mode segments between the vertices left are then constrained (recorded), each checked
+// valid and constrained Delaunay; then the constraints and the removals are undone bit for bit.
 #include "tests/fuzz/fuzz_common.h"
 
+#include "core/engine/constrainer.h"
 #include "core/engine/halves.h"
 #include "core/engine/inserter.h"
+#include "core/engine/predicates.h"
 #include "core/engine/remover.h"
 #include "core/teaching/trace.h"
 #include "tests/exact_check.h"
@@ -302,8 +305,47 @@ void checkRemoval(const Case& c, const Mesh& closed, const std::vector<std::int3
     require(err.empty(), "the exact GMP check accepts the mesh after a removal", what + ": " + err);
 }
 
+// Constrains up to 12 drawn segments between the vertices left (exact mode's closed mesh), each
+// recorded and checked: a valid corner table, every segment refused only for a constrained edge
+// it crosses, every unconstrained edge between finite triangles locally Delaunay. Then all undone:
+// the mesh as it was, bit for bit.
+void checkConstraints(const Case& c, Mesh& closed, const std::vector<std::int32_t>& left,
+                      std::uint64_t state) {
+    const std::string what = describe(c) + ", constraints";
+    const auto n = static_cast<std::int32_t>(c.points.size());
+    if (left.size() < 3 || closed.numTriangles() == 0) return;
+    const Snapshot before = snap(closed);
+    Constrainer con(closed, n);
+    ConstraintRecord record;
+    ValidateOptions vo;
+    vo.firstVirtual = n;
+    vo.delaunay = false;
+    for (int k = 0; k < 12; ++k) {
+        state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+        const std::int32_t a = left[(state >> 33) % left.size()];
+        const std::int32_t b = left[(state >> 13) % left.size()];
+        const ConstrainOutcome out = con.insert(a, b, &record);
+        require(out.result != ConstrainResult::NotInMesh, "a vertex left can be constrained", what);
+        const auto bad = validate(closed, vo);
+        if (!bad.empty())
+            fail("a constraint leaves a valid corner table", what + ": " + bad[0].message);
+        for (std::int32_t e = 0; e < closed.numCorners(); ++e) {
+            const std::int32_t o = closed.O[e];
+            if (o == kNone || con.isConstrained(e)) continue;
+            const std::int32_t P = closed.V[e], A = closed.V[next(e)], B = closed.V[prev(e)];
+            const std::int32_t D = closed.V[o];
+            if (P >= n || A >= n || B >= n || D >= n) continue;
+            require(incircle(closed.G[P], closed.G[A], closed.G[B], closed.G[D]) <= 0,
+                    "every unconstrained edge is locally Delaunay", what);
+        }
+    }
+    con.undo(record);
+    require(snap(closed) == before, "undoing every constraint restores the mesh bit for bit", what);
+}
+
 // Removes vertices of the closed mesh in a drawn order (about two in three), checking each
-// removal, then undoes them all: the closed mesh again, bit for bit.
+// removal, constrains segments between those left (exact mode), then undoes the constraints and
+// the removals: the closed mesh again, bit for bit.
 void checkRemovals(const Case& c, Mesh closed) {
     const std::string what = describe(c) + ", removals";
     const auto n = static_cast<std::int32_t>(c.points.size());
@@ -328,6 +370,7 @@ void checkRemovals(const Case& c, Mesh closed) {
                 "a vertex of the mesh is removed, none other", what);
         checkRemoval(c, closed, left, left.size() <= 40 || k % 4 == 0 || k + 1 == order.size());
     }
+    if (c.options.boundary == Boundary::Exact) checkConstraints(c, closed, left, state);
     remover.undo(record);
     require(snap(closed) == start, "undoing every removal restores the closed mesh bit for bit",
             what);

@@ -22,6 +22,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -470,18 +471,24 @@ bool queuedEdgeOnScreen(const Scene& s, const Engine::QueuedTest& q, ImVec2& pa,
     return true;
 }
 
-// The edges on the flip stack, dashed, each with its place in the stack in a disc at its middle:
-// 1 is the top, the edge the engine tests next (the Queue tab lists them alike).
+// The edges on the flip stack, dashed (grey where an entry now names a hull edge: it comes off
+// with nothing to test), each edge once however often it is on the stack, and each entry's place
+// in the stack in a disc on its edge: 1 is the top, the edge the engine tests next (the Flip
+// queue section lists them alike); a second entry of one edge sits beside the first's disc.
 void DrawFlipQueue(const Scene& s, float w) {
     const std::vector<Engine::QueuedTest> queue = s.e.pendingTests();
     if (queue.empty()) return;
-    const ImU32 col = s.use(Mark::QueuedEdge);
     std::vector<ImVec2> ends(2 * queue.size());
     std::vector<bool> shown(queue.size());
+    std::vector<int> repeat(queue.size(), 0);  // earlier entries (nearer the top) of the same edge
+    std::map<std::pair<std::int32_t, std::int32_t>, int> seen;
     for (std::size_t i = 0; i < queue.size(); ++i) {
+        const VertexEdge e = queue[i].edge;
+        repeat[i] = seen[{std::min(e.a, e.b), std::max(e.a, e.b)}]++;
         shown[i] = queuedEdgeOnScreen(s, queue[i], ends[2 * i], ends[2 * i + 1]);
         const ImVec2 pa = ends[2 * i], pb = ends[2 * i + 1];
-        if (!shown[i] || !s.room(200)) continue;  // dashes: at most ~2 screen diagonals of them
+        if (!shown[i] || repeat[i] > 0 || !s.room(200)) continue;  // ~2 screen diagonals of dashes
+        const ImU32 col = s.use(queue[i].far == kNone ? Mark::QueuedOnHull : Mark::QueuedEdge);
         if (s.onCanvas(std::min(pa.x, pb.x), std::min(pa.y, pb.y), std::max(pa.x, pb.x),
                        std::max(pa.y, pb.y), w)) {
             DashedLine(s.dl, pa, pb, col, w);
@@ -498,13 +505,15 @@ void DrawFlipQueue(const Scene& s, float w) {
     for (std::size_t i = queue.size(); i-- > 0;) {
         if (!shown[i]) continue;
         const ImVec2 pa = ends[2 * i], pb = ends[2 * i + 1];
-        const ImVec2 mid((pa.x + pb.x) / 2, (pa.y + pb.y) / 2);
-        if (!s.onCanvas(mid.x - r, mid.y - r, mid.x + r, mid.y + r) || !s.room(80)) continue;
         std::snprintf(buf, sizeof buf, "%zu", i + 1);
         const ImVec2 ts = font->CalcTextSizeA(fs, 1e9f, 0, buf);
         const float rr = std::max(r, ts.x / 2 + 3);
+        const float dx = pb.x - pa.x, dy = pb.y - pa.y, len = std::hypot(dx, dy);
+        const float shift = len > 0 ? repeat[i] * (2 * rr + 3) / len : 0;  // along the edge
+        const ImVec2 mid(pa.x + dx * (0.5f + shift), pa.y + dy * (0.5f + shift));
+        if (!s.onCanvas(mid.x - r, mid.y - r, mid.x + r, mid.y + r) || !s.room(80)) continue;
         s.dl->AddCircleFilled(mid, rr + 1.5f, IM_COL32(255, 255, 255, 255));
-        s.dl->AddCircleFilled(mid, rr, badge);
+        s.dl->AddCircleFilled(mid, rr, queue[i].far == kNone ? s.use(Mark::QueuedOnHull) : badge);
         s.dl->AddText(font, fs, ImVec2(mid.x - ts.x / 2, mid.y - ts.y / 2),
                       IM_COL32(255, 255, 255, 255), buf);
         s.labels.add(mid, ImVec2(2 * rr - 4, 2 * rr));  // corner labels keep clear of it

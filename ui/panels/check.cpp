@@ -243,6 +243,24 @@ void ShowDiffControls(AppState& st) {
                             static_cast<long long>(mc.diff.cocircular));
 }
 
+// The triangles whose three vertices exist, in the file's order, with O as the check finds it
+// among them: what can be drawn of a mesh some of whose triangles name missing vertices.
+Inserter::StartMesh drawableTriangles(const Mesh& mesh, const CheckOptions& options) {
+    Mesh shown;
+    shown.G = mesh.G;
+    for (std::size_t t = 0; t + 2 < mesh.V.size(); t += 3) {
+        bool exists = true;
+        for (std::size_t k = 0; k < 3; ++k)
+            exists = exists && mesh.V[t + k] >= 0 && mesh.V[t + k] < mesh.numVertices();
+        if (exists) shown.V.insert(shown.V.end(), mesh.V.begin() + t, mesh.V.begin() + t + 3);
+    }
+    shown.O.assign(shown.V.size(), kNone);
+    CheckOptions o = options;
+    o.hasOpposites = false;
+    CheckReport r = checkMesh(shown, o);
+    return Inserter::StartMesh{std::move(shown.V), std::move(r.opposites)};
+}
+
 }  // namespace
 
 bool openMeshFile(AppState& st, const std::string& path) {
@@ -258,13 +276,16 @@ bool openMeshFile(AppState& st, const std::string& path) {
     o.indexBase = im.indexBase;
     CheckReport report = checkMesh(im.mesh, o);
     const bool triangulation = report.isTriangulation();
-    // Triangles naming vertices that do not exist cannot be shown: then only the points are.
-    const bool showable = report.count(Kind::VertexRange) == 0;
+    // Triangles naming vertices that do not exist cannot be drawn: the others are shown.
+    const std::size_t missing = report.count(Kind::VertexRange);
     Inserter::StartMesh start;
-    if (showable) {
+    if (missing == 0) {
         start.V = im.mesh.V;
         start.O = report.opposites;
+    } else {
+        start = drawableTriangles(im.mesh, o);
     }
+    const std::size_t shown = start.V.size() / 3;
     std::string error;
     std::vector<Vec2> previous = st.engine.points();
     if (!st.engine.resetRepair(im.mesh.G, std::move(start), triangulation, error)) {
@@ -297,10 +318,14 @@ bool openMeshFile(AppState& st, const std::string& path) {
                                     ? ""
                                     : "; step through Lawson's flip algorithm to repair it"
                               : "; shown as it is: these problems block a repair by flips"));
-    if (!showable)
+    if (missing != 0)
         st.log(
             Message::Level::Warning,
-            path + ": some triangles name vertices that do not exist: only the points are shown");
+            path + ": " + std::to_string(missing) +
+                (missing == 1 ? " triangle names" : " triangles name") +
+                " a vertex that does not exist (listed in the Check tab, not drawn); the other " +
+                std::to_string(shown) +
+                " are shown, numbered in their order in the file without those");
     return true;
 }
 

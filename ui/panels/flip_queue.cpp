@@ -20,7 +20,7 @@ std::string queueRowText(const Inserter& ins, std::size_t number, const Engine::
     };
     return std::to_string(number) + ". edge " + vertexName(ins, q.edge.a) + "-" +
            vertexName(ins, q.edge.b) + " (triangles " + triangle(q.near) + " | " + triangle(q.far) +
-           ")";
+           (q.far == kNone ? "): nothing to test" : ")");
 }
 
 void ShowFlipQueue(AppState& st) {

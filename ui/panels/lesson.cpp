@@ -148,22 +148,26 @@ PanelFn SlideTab(const Lesson& lesson, std::size_t k) {
 }
 
 // The slide's top rows: the way between stops, the title, and the operation on show.
-void SlideHeader(AppState& st, std::size_t k, std::size_t n) {
+// A handout's picture (st.handoutSlides) has no buttons: the title and the banner.
+void SlideHeader(AppState& st) {
     const Lesson& lesson = *st.lessonPlayer.lesson;
-    if (ImGui::Button("<") && k > 0) goToStop(st, k - 1);
-    RecordItem(st, "lesson-previous");  // the same buttons as the panel's
-    ImGui::SameLine();
-    ImGui::Text("%zu / %zu", k + 1, n);
-    ImGui::SameLine();
-    if (ImGui::Button(">") && k + 1 < n) goToStop(st, k + 1);
-    RecordItem(st, "lesson-next");
-    ImGui::SameLine();
-    if (ImGui::Button("Close")) {
-        closeLesson(st);
-        return;
+    const std::size_t k = slideIndex(st), n = slideCount(st);  // a track's slides, or the stops
+    if (!st.handoutSlides) {
+        if (ImGui::Button("<") && k > 0) goToSlide(st, k - 1);
+        RecordItem(st, "lesson-previous");  // the same buttons as the panel's
+        ImGui::SameLine();
+        ImGui::Text("%zu / %zu", k + 1, n);
+        ImGui::SameLine();
+        if (ImGui::Button(">") && k + 1 < n) goToSlide(st, k + 1);
+        RecordItem(st, "lesson-next");
+        ImGui::SameLine();
+        if (ImGui::Button("Close")) {
+            closeLesson(st);
+            return;
+        }
+        RecordItem(st, "lesson-close");
+        ImGui::SameLine();
     }
-    RecordItem(st, "lesson-close");
-    ImGui::SameLine();
     ImGui::PushFont(fonts().bold);
     ImGui::TextWrapped("%s", lesson.title.c_str());
     ImGui::PopFont();
@@ -253,7 +257,7 @@ void LiftingFigure(const AppState& st) {
 void ShowSlide(AppState& st) {
     LessonState& L = st.lessonPlayer;
     const std::size_t n = L.lesson->stops.size(), k = std::min(L.progress.stop, n - 1);
-    SlideHeader(st, k, n);
+    SlideHeader(st);
     if (!L.lesson) return;  // closed
     const LessonStop& stop = L.lesson->stops[k];
     const ImGuiWindowFlags still =
@@ -261,7 +265,7 @@ void ShowSlide(AppState& st) {
     const ImVec2 avail = ImGui::GetContentRegionAvail();
     const float gap = ImGui::GetStyle().ItemSpacing.x;
     // A slide with a side tab gives the column more room.
-    const PanelFn tab = SlideTab(*L.lesson, k);
+    const PanelFn tab = st.handoutSlides ? nullptr : SlideTab(*L.lesson, k);
     const float sideW = std::clamp(avail.x * (tab ? 0.48f : 0.4f), std::min(300.0f, avail.x * 0.5f),
                                    avail.x * 0.6f);
     ImGui::BeginChild("##slidecanvas", ImVec2(avail.x - sideW - gap, avail.y), false, still);
@@ -269,7 +273,7 @@ void ShowSlide(AppState& st) {
     DrawDebugOverlays(st);
     ShowCanvasLegend(st);
     ShowCanvasNotice(st);
-    ShowTimeline(st);
+    if (!st.handoutSlides) ShowTimeline(st);  // a handout's picture: canvas and text
     ImGui::EndChild();
     ImGui::SameLine(0, gap);
     ImGui::BeginChild("##slideside", ImVec2(sideW, avail.y), false, still);
@@ -302,13 +306,14 @@ void ShowSlide(AppState& st) {
     }
     const float y0 = ImGui::GetCursorScreenPos().y;
     const float x0 = ImGui::GetCursorScreenPos().x;
-    Question(st, stop, k);
+    if (!st.handoutSlides) Question(st, stop, k);  // a handout prints the question below
     // The cursor waits one item spacing below the last item (and the text child above keeps one).
     const float spacing = ImGui::GetStyle().ItemSpacing.y;
     const float y1 = ImGui::GetCursorScreenPos().y - spacing;
-    L.slideQuestionHeight = stop.question.empty() ? 0.0f : y1 - y0 + 2 * spacing;
+    const bool asked = !stop.question.empty() && !st.handoutSlides;
+    L.slideQuestionHeight = asked ? y1 - y0 + 2 * spacing : 0.0f;
     // Not clipped (unlike RecordItem): tests check that the whole question is on the slide.
-    if (!stop.question.empty()) st.itemRects["slide-question"] = {x0, y0, x0 + sideW, y1};
+    if (asked) st.itemRects["slide-question"] = {x0, y0, x0 + sideW, y1};
     ImGui::EndChild();
 }
 
@@ -340,12 +345,17 @@ void AssignmentPanel(AppState& st) {
 // Previous, Next, the way back to the stop, Close. False when the lesson was closed.
 bool StopButtons(AppState& st, std::size_t k, std::size_t n) {
     const LessonState& L = st.lessonPlayer;
-    if (ImGui::Button("< Previous") && k > 0) goToStop(st, k - 1);
+    const std::size_t i = slideIndex(st), slides = slideCount(st);  // a track's, or = k, n
+    if (ImGui::Button("< Previous") && i > 0) goToSlide(st, i - 1);
     RecordItem(st, "lesson-previous");
     ImGui::SameLine();
-    ImGui::Text("Stop %zu of %zu", k + 1, n);
+    if (L.track) {
+        ImGui::Text("Slide %zu of %zu (stop %zu of %zu)", i + 1, slides, k + 1, n);
+    } else {
+        ImGui::Text("Stop %zu of %zu", k + 1, n);
+    }
     ImGui::SameLine();
-    if (ImGui::Button("Next >") && k + 1 < n) goToStop(st, k + 1);
+    if (ImGui::Button("Next >") && i + 1 < slides) goToSlide(st, i + 1);
     RecordItem(st, "lesson-next");
     ImGui::SameLine();
     if (lessonStateChanged(st)) {

@@ -107,6 +107,8 @@ void ShowViewMenu(AppState& st) {
     ImGui::MenuItem("Voronoi diagram", "V", &o.voronoi);
     ImGui::MenuItem("Queued points", nullptr, &o.pendingPoints);
     ImGui::MenuItem("Super-triangle (super mode)", nullptr, &o.virtualTriangles);
+    ImGui::MenuItem("Validation marks (broken rules, edges not Delaunay yet)", nullptr,
+                    &o.violations);
     ImGui::MenuItem("Legend", "L", &o.legend);
     ImGui::Separator();
     ImGui::MenuItem("Snap new points to grid", "G", &st.snapToGrid);
@@ -155,7 +157,8 @@ std::vector<std::pair<std::string, std::string>> findLessons() {
         if (entry.path().extension() != ".toml") continue;
         std::string title = entry.path().filename().string();
         try {
-            title = loadLesson(entry.path().string()).title;
+            const std::string p = entry.path().string();
+            title = isTrackFile(p) ? "Lecture: " + loadTrack(p).title : loadLesson(p).title;
         } catch (const std::exception&) {
             title += " (cannot be read)";
         }
@@ -170,7 +173,9 @@ void ShowLessonsMenu(AppState& st) {
     auto& list = st.dialogs.lessons;
     if (list.empty()) list = findLessons();
     for (const auto& [path, title] : list) {
-        const bool current = st.lessonPlayer.lesson && st.lessonPlayer.progress.lesson == path;
+        const LessonState& L = st.lessonPlayer;
+        const bool current =
+            L.track ? L.track->file == path : L.lesson && L.progress.lesson == path;
         if (ImGui::MenuItem(title.c_str(), nullptr, current)) openLesson(st, path);
     }
     if (list.empty()) ImGui::TextDisabled("no lessons in %s", DLAB_LESSONS_DIR);

@@ -46,7 +46,7 @@ void countOps(RunCounts& s, const Engine& e) {
                 break;
             case OpType::Split: ++s.splits; break;
             case OpType::SplitEdge: ++s.edgeSplits; break;
-            case OpType::InCircleTest: ++s.inCircleTests; break;
+            case OpType::InCircleTest: s.inCircleTests += op.b != kNone; break;
             case OpType::Flip:
                 ++s.flips;
                 ++s.flipsNow;
@@ -148,6 +148,8 @@ void validateNow(AppState& st) {
 // Delaunay yet, and that is expected.
 bool midInsertion(const Engine& e) {
     const Op* op = e.current();
+    if (op && e.repairs())
+        return op->type != OpType::Finalize;  // the flip algorithm's tests to come
     return op && !endsInsertion(op->type) && op->type != OpType::Finalize;
 }
 
@@ -193,7 +195,7 @@ bool markedByTheCanvas(const Engine& e, std::int32_t a, std::int32_t b) {
 
 void DrawViolationOverlay(AppState& st) {
     const StatisticsState& s = st.statistics;
-    if (!s.showViolations || s.validatedVersion != st.engine.version()) return;
+    if (!st.overlays.violations || s.validatedVersion != st.engine.version()) return;
     if (s.violations.empty() && s.hullDents.empty()) return;
     const Mesh& m = st.engine.mesh();
     const View& view = st.view;
@@ -219,7 +221,13 @@ void DrawViolationOverlay(AppState& st) {
         if (drawable(a) && drawable(b) && !(expected && markedByTheCanvas(st.engine, a, b)))
             dl->AddLine(toIm(view.toScreen(m.G[a])), toIm(view.toScreen(m.G[b])), col, w);
         float x = 0, y = 0;
-        if (cornerAnchor(st, c, x, y)) dl->AddCircle(ImVec2(x, y), 14, col, 0, 3);
+        if (v.kind == Violation::Kind::NotDelaunay && drawable(m.V[c])) {
+            // Around the vertex that lies inside the circle across the edge.
+            dl->AddCircle(toIm(view.toScreen(m.G[m.V[c]])), st.presentation ? 13.0f : 11.0f, col, 0,
+                          3);
+        } else if (cornerAnchor(st, c, x, y)) {
+            dl->AddCircle(ImVec2(x, y), 14, col, 0, 3);
+        }
     }
     // Each dent: the triangle the mesh misses there, shaded, and the hull edge that closes it.
     for (const auto& [a, b, c] : s.hullGaps) {
@@ -268,7 +276,7 @@ void CheckControls(AppState& st) {
     if (ImGui::Button("Validate now")) validateNow(st);
     RecordItem(st, "validate-now");
     SameLineIfFits(CheckboxWidth("show on canvas"));
-    ImGui::Checkbox("show on canvas", &s.showViolations);
+    ImGui::Checkbox("show on canvas", &st.overlays.violations);
 }
 
 // The violations, one line each (click: select the corner; hover: the message).
@@ -322,9 +330,10 @@ void ShowChecks(AppState& st) {
                       s.violations.size() >= 200 ? " (first 200)" : "");
         ColouredWrapped(col, buf);
         if (expected && onlyDelaunay)
-            ColouredWrapped(col,
-                            "expected mid-insertion: these edges are still to be tested and "
-                            "flipped");
+            ColouredWrapped(col, e.repairs() ? "expected while the flip algorithm runs: these "
+                                               "edges are still to be tested and flipped"
+                                             : "expected mid-insertion: these edges are still to "
+                                               "be tested and flipped");
     }
     const bool hullBad = !s.hullDents.empty() || s.hullReport.find("FAILS") != std::string::npos ||
                          s.hullReport.find("touches") != std::string::npos;

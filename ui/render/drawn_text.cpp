@@ -83,11 +83,15 @@ void readCommand(const ImDrawList& dl, const ImDrawCmd& cmd, int list,
         const ImDrawVert &a = vtx[b], &c = vtx[b + 2];
         const bool whole = uvKey(c.uv.x, c.uv.y) == uvKey(g.U1, g.V1);
         const float gh = g.Y1 - g.Y0;
-        if (whole && gh > 0 && inside(cmd.ClipRect, a.pos.x, a.pos.y, c.pos.x, c.pos.y)) {
-            const float scale = (c.pos.y - a.pos.y) / gh;
-            out.push_back({g.Codepoint, a.pos.y - g.Y0 * scale, a.pos.x - g.X0 * scale,
-                           g.AdvanceX * scale, it->second.spaceAdvance * scale, (c.pos.y - a.pos.y),
-                           list});
+        const float scale = gh > 0 ? (c.pos.y - a.pos.y) / gh : 0;
+        const float penX = a.pos.x - g.X0 * scale, advance = g.AdvanceX * scale;
+        // Inside the clip by its pen box: a glyph whose ink overhangs its pen position (a "T" at
+        // the start of a line) is still read whole.
+        if (whole && gh > 0 &&
+            inside(cmd.ClipRect, std::max(a.pos.x, penX), a.pos.y,
+                   std::min(c.pos.x, penX + advance), c.pos.y)) {
+            out.push_back({g.Codepoint, a.pos.y - g.Y0 * scale, penX, advance,
+                           it->second.spaceAdvance * scale, (c.pos.y - a.pos.y), list});
         }
         i += 6;
     }

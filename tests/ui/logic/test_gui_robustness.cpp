@@ -652,6 +652,10 @@ private:
         const std::string text = pick(kExpressions);
         note("console: '" + text + "'");
         closeHelp();
+        if (!st.itemRects.count("Expressions")) {  // a lesson's stop that hides the tab
+            m_log.back() += " (no Expressions tab on show)";
+            return "";
+        }
         m_h.clickItem("Expressions");
         m_h.frames(1);
         st.itemRects.erase("expr-input");

@@ -181,7 +181,7 @@ namespace {
 std::vector<std::string> lessonsWithStops() {
     std::vector<std::string> out;
     for (const auto& e : std::filesystem::directory_iterator(lessonPath(""))) {
-        if (e.path().extension() != ".toml") continue;
+        if (e.path().extension() != ".toml" || dlab::isTrackFile(e.path().string())) continue;
         if (!dlab::loadLesson(e.path().string()).stops.empty()) out.push_back(e.path().string());
     }
     std::sort(out.begin(), out.end());
@@ -319,8 +319,11 @@ TEST(LessonSlides, AStopsViewFitsItsVerticesAndItsTabIsShown) {
     EXPECT_GT(right.x - left.x, 0.7 * (canvas[2] - canvas[0]));
     EXPECT_LT(st.view.toScreen(G[1]).y, canvas[1]) << "vertex 1 is off the slide";
     EXPECT_FALSE(st.itemRects.count("slide-tab"));
-    // Its last stop shows the whole run, with the statistics in front.
-    dlab::ui::goToStop(st, st.lessonPlayer.lesson->stops.size() - 1);
+    // Its stop at the end of the run shows the whole run, with the statistics in front.
+    const auto& stops = st.lessonPlayer.lesson->stops;
+    std::size_t end = stops.size() - 1;
+    while (end > 0 && stops[end].tab != "statistics") --end;
+    dlab::ui::goToStop(st, end);
     st.itemRects.clear();
     h.frames(3);
     EXPECT_GE(st.view.toScreen(G[0]).y, canvas[1]);
@@ -420,7 +423,7 @@ TEST(LessonSlides, TheTextOfAFrameIsReadBackFromItsDrawLists) {
     st.presentation = true;
     ASSERT_TRUE(dlab::ui::openLesson(st, lessonPath("01_corner_table.toml")));
     const auto& stops = st.lessonPlayer.lesson->stops;
-    const auto last = stops.size() - 1;  // the corner table, corner 2 selected
+    const auto last = stops.size() - 2;  // the corner table, corner 2 selected (then a summary)
     ASSERT_EQ(stops[last].tab, "corner-table");
     dlab::ui::goToStop(st, last);
     h.frames(3);
@@ -451,6 +454,22 @@ TEST(LessonSlides, TheTextOfAFrameIsReadBackFromItsDrawLists) {
     h.frames(3);
     EXPECT_FALSE(dlab::answerOnSlide(
         corners, dlab::ui::drawnLines(dlab::ui::drawnText(ImGui::GetDrawData())), ""));
+}
+
+// A glyph whose ink reaches left of its pen position (a "T" opening a paragraph at the edge of
+// the text's clip rectangle) is read: the check of the slide sees the whole word.
+TEST(LessonSlides, ALineOpeningWithAnOverhangingLetterIsReadWhole) {
+    UiHarness h(1280, 720);
+    auto& st = h.state();
+    st.presentation = true;
+    ASSERT_TRUE(dlab::ui::openLesson(st, lessonPath("11_flip_algorithm.toml")));
+    dlab::ui::goToStop(st, 0);
+    h.frames(3);
+    std::string all;
+    for (const std::string& l : dlab::ui::drawnLines(dlab::ui::drawnText(ImGui::GetDrawData())))
+        all += l + "\n";
+    EXPECT_NE(all.find("\nThis time"), std::string::npos) << all;
+    EXPECT_EQ(all.find("\nhis time"), std::string::npos) << all;
 }
 
 // A stop looks the same whether the slides were paged to it or the lesson was reopened at it
@@ -504,4 +523,82 @@ TEST(LessonSlides, AResumedStopShowsWhatPagingToItShows) {
     for (const std::string& l : paged.lines) pa += l + "\n";
     for (const std::string& l : resumed.lines) pb += l + "\n";
     EXPECT_EQ(paged.lines, resumed.lines) << "paged:\n" << pa << "\nresumed:\n" << pb;
+}
+
+// ---- Tracks: one lecture made of stops of several lessons ---------------------------------------
+
+TEST(LessonTrack, PageDownPlaysTheLectureAcrossLessons) {
+    UiHarness h;
+    auto& st = h.state();
+    const std::string path = lessonPath("lecture.toml");
+    const dlab::Track track = dlab::loadTrack(path);
+    ASSERT_TRUE(dlab::ui::openLesson(st, path));
+    st.presentation = true;
+    h.frames(2);
+    ASSERT_TRUE(st.lessonPlayer.track);
+    EXPECT_EQ(dlab::ui::slideCount(st), track.slides());
+    // The track's objectives on its first slide, not the first lesson's.
+    const std::string& first = st.lessonPlayer.plan.stops[track.items[0].stops[0]].text;
+    EXPECT_EQ(first.rfind(dlab::objectivesText(track.objectives), 0), 0u) << first;
+    std::size_t k = 0;
+    for (const auto& [item, stop] : dlab::trackSlides(track)) {
+        SCOPED_TRACE("slide " + std::to_string(k + 1));
+        EXPECT_EQ(dlab::ui::slideIndex(st), k);
+        // The item's lesson is the one open, at the item's stop, its run at that stop.
+        EXPECT_EQ(st.lessonPlayer.progress.lesson, track.items[item].lesson);
+        EXPECT_EQ(st.lessonPlayer.progress.stop, stop);
+        EXPECT_EQ(st.engine.position(), st.lessonPlayer.plan.stops[stop].position);
+        h.press(dlab::ui::key::kPageDown);
+        ++k;
+    }
+    EXPECT_EQ(dlab::ui::slideIndex(st), track.slides() - 1) << "Page Down stops at the end";
+    // Page Up goes back across the boundary into the previous item's lesson.
+    const auto slides = dlab::trackSlides(track);
+    std::size_t boundary = 1;
+    while (slides[boundary].first == slides[boundary - 1].first) ++boundary;
+    dlab::ui::goToSlide(st, boundary);
+    h.press(dlab::ui::key::kPageUp);
+    EXPECT_EQ(dlab::ui::slideIndex(st), boundary - 1);
+    EXPECT_EQ(st.lessonPlayer.progress.lesson, track.items[slides[boundary - 1].first].lesson);
+    EXPECT_EQ(st.lessonPlayer.progress.stop, slides[boundary - 1].second);
+    // Opening a lesson by itself leaves the track.
+    ASSERT_TRUE(dlab::ui::openLesson(st, lessonPath("01_corner_table.toml")));
+    EXPECT_FALSE(st.lessonPlayer.track);
+    dlab::ui::closeLesson(st);
+}
+
+TEST(LessonSlides, AHandoutsPictureShowsTheCanvasAndTheTextOnly) {
+    UiHarness h(1280, 720);
+    auto& st = h.state();
+    st.presentation = true;
+    ASSERT_TRUE(dlab::ui::openLesson(st, lessonPath("05_flips.toml")));
+    // A stop with a question and a side tab (the statistics, which count its answer).
+    std::size_t k = 0;
+    const auto& stops = st.lessonPlayer.lesson->stops;
+    while (k < stops.size() && (stops[k].question.empty() || stops[k].tab.empty())) ++k;
+    if (k == stops.size()) k = 5;  // the flips question: its tab comes from an earlier stop
+    const auto drawn = [&] {
+        dlab::ui::goToStop(st, k);
+        st.itemRects.clear();  // what the frames below record, not what earlier ones did
+        h.frames(3);
+        std::string all;
+        for (const std::string& line :
+             dlab::ui::drawnLines(dlab::ui::drawnText(ImGui::GetDrawData())))
+            all += line + "\n";
+        return all;
+    };
+    const std::string slide = drawn();
+    EXPECT_NE(slide.find("Lessons"), std::string::npos) << "the menus, on a slide";
+    EXPECT_TRUE(st.itemRects.count("lesson-answer")) << slide;
+    st.handoutSlides = true;
+    const std::string picture = drawn();
+    for (const char* gone : {"Lessons", "Generate", "Check", "Hint", "Close"})
+        EXPECT_EQ(picture.find(gone), std::string::npos) << gone << " in\n" << picture;
+    EXPECT_FALSE(st.itemRects.count("lesson-answer"));
+    EXPECT_FALSE(st.itemRects.count("slide-tab"));
+    EXPECT_FALSE(st.itemRects.count("lesson-next"));
+    // The stop's own words are there.
+    EXPECT_NE(picture.find(st.lessonPlayer.lesson->title), std::string::npos) << picture;
+    st.handoutSlides = false;
+    dlab::ui::closeLesson(st);
 }
