@@ -487,13 +487,13 @@ void DrawFlipQueue(const Scene& s, float w) {
         repeat[i] = seen[{std::min(e.a, e.b), std::max(e.a, e.b)}]++;
         shown[i] = queuedEdgeOnScreen(s, queue[i], ends[2 * i], ends[2 * i + 1]);
         const ImVec2 pa = ends[2 * i], pb = ends[2 * i + 1];
-        if (!shown[i] || repeat[i] > 0 || !s.room(200)) continue;  // ~2 screen diagonals of dashes
+        if (!shown[i] || !s.room(200)) continue;  // dashes: at most ~2 screen diagonals of them
         const ImU32 col = s.use(queue[i].far == kNone ? Mark::QueuedOnHull : Mark::QueuedEdge);
         if (s.onCanvas(std::min(pa.x, pb.x), std::min(pa.y, pb.y), std::max(pa.x, pb.x),
                        std::max(pa.y, pb.y), w)) {
-            DashedLine(s.dl, pa, pb, col, w);
+            if (repeat[i] == 0) DashedLine(s.dl, pa, pb, col, w);  // an edge's dashes once
             recordMark(SlideMarkRole::QueuedEdge, queue[i].edge.a, queue[i].edge.b, pa.x, pa.y,
-                       pb.x, pb.y);
+                       pb.x, pb.y);  // every entry: the queue's count as drawn
         }
     }
     if (!s.st.overlays.queueOrder) return;
