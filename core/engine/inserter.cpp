@@ -1296,7 +1296,7 @@ void Inserter::run() {
             while (!m_stack.empty()) {
                 const std::int32_t e = m_stack.back();
                 m_stack.pop_back();
-                ++m_stats.inCircleTests;
+                m_stats.inCircleTests += m_mesh.O[e] != kNone;  // a boundary edge: nothing to test
                 if (inCircleSign(rec, e) > 0) {
                     flip(rec, e);
                     ++m_stats.flips;
