@@ -26,12 +26,12 @@ InsertStats pilotRun(const std::vector<Vec2>& points, const std::vector<std::int
 
 // The ops of a run besides its walk steps: Start and Finalize; Located, a split and Inserted per
 // point placed by a walk (exact mode's Start places three without one); Located and
-// SkipDuplicate per duplicate; the in-circle tests and flips.
+// SkipDuplicate per duplicate; the edges off the flip stack (tested or on the boundary) and flips.
 double opsBesidesWalk(const InsertStats& s, const InsertOptions& options) {
     const std::int64_t started = options.boundary == Boundary::Exact ? 3 : 0;
     const std::int64_t placed = std::max<std::int64_t>(s.inserted - started, 0);
     return 2.0 + 3.0 * static_cast<double>(placed) + 2.0 * static_cast<double>(s.duplicates) +
-           static_cast<double>(s.inCircleTests + s.flips);
+           static_cast<double>(s.inCircleTests + s.boundaryPops + s.flips);
 }
 
 }  // namespace

@@ -146,7 +146,7 @@ void countOp(InsertStats& s, const Op& op, int dir) {
         case OpType::LocateStep: s.walkSteps += dir; break;
         case OpType::SplitEdge: s.edgeSplits += dir; break;
         case OpType::InCircleTest:  // an edge on the boundary has nothing to test
-            if (op.b != kNone) s.inCircleTests += dir;
+            (op.b != kNone ? s.inCircleTests : s.boundaryPops) += dir;
             break;
         case OpType::Flip: s.flips += dir; break;
         case OpType::SkipDuplicate: s.duplicates += dir; break;
@@ -1296,7 +1296,7 @@ void Inserter::run() {
             while (!m_stack.empty()) {
                 const std::int32_t e = m_stack.back();
                 m_stack.pop_back();
-                m_stats.inCircleTests += m_mesh.O[e] != kNone;  // a boundary edge: nothing to test
+                ++(m_mesh.O[e] != kNone ? m_stats.inCircleTests : m_stats.boundaryPops);
                 if (inCircleSign(rec, e) > 0) {
                     flip(rec, e);
                     ++m_stats.flips;

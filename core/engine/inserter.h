@@ -188,11 +188,13 @@ struct InsertStats {
     std::int64_t inCircleTests = 0;
     std::int64_t walkSteps = 0;
     std::int64_t edgeSplits = 0;
+    std::int64_t boundaryPops = 0;  // edges off the flip stack on the boundary: nothing to test
     InsertStats& operator+=(const InsertStats& o) {
         inserted += o.inserted;
         duplicates += o.duplicates;
         flips += o.flips;
         inCircleTests += o.inCircleTests;
+        boundaryPops += o.boundaryPops;
         walkSteps += o.walkSteps;
         edgeSplits += o.edgeSplits;
         return *this;

@@ -204,8 +204,8 @@ Snapshot snap(const Mesh& m) { return {m.G, m.V, m.O}; }
 
 bool sameStats(const InsertStats& a, const InsertStats& b) {
     return a.inserted == b.inserted && a.duplicates == b.duplicates && a.flips == b.flips &&
-           a.inCircleTests == b.inCircleTests && a.walkSteps == b.walkSteps &&
-           a.edgeSplits == b.edgeSplits;
+           a.inCircleTests == b.inCircleTests && a.boundaryPops == b.boundaryPops &&
+           a.walkSteps == b.walkSteps && a.edgeSplits == b.edgeSplits;
 }
 
 std::string describe(const Case& c) {

@@ -67,7 +67,7 @@ std::size_t batchOps(const std::vector<dlab::Vec2>& pts, const dlab::InsertOptio
     const dlab::InsertStats& s = ins.stats();
     const std::int64_t placed = s.inserted - (o.boundary == dlab::Boundary::Exact ? 3 : 0);
     return static_cast<std::size_t>(2 + 3 * placed + 2 * s.duplicates + s.walkSteps +
-                                    s.inCircleTests + s.flips);
+                                    s.inCircleTests + s.boundaryPops + s.flips);
 }
 
 }  // namespace
