@@ -160,12 +160,12 @@ const RunCounts& UpdateRunCounts(AppState& st) {
     return st.statistics.counts;
 }
 
-void updateStatistics(AppState& st) {
-    StatisticsState& s = st.statistics;
-    s.frameMs.push_back(ImGui::GetIO().DeltaTime * 1000.0f);
-    if (s.frameMs.size() > StatisticsState::kFrames) s.frameMs.erase(s.frameMs.begin());
-    // validate() costs about 40 ns a corner: every frame of a running animation only for small
-    // meshes; larger ones when the run pauses or steps by hand.
+namespace {
+
+// validate() after every change: it costs about 40 ns a corner, so every frame of a running
+// animation only for small meshes; larger ones when the run pauses or steps by hand.
+void autoValidate(AppState& st) {
+    const StatisticsState& s = st.statistics;
     constexpr std::int32_t kWhileRunning = 60000;
     const std::int32_t corners = st.engine.mesh().numCorners();
     if (s.autoValidate && s.validatedVersion != st.engine.version() &&
@@ -173,6 +173,15 @@ void updateStatistics(AppState& st) {
         (corners <= kWhileRunning || !st.run.running)) {
         validateNow(st);
     }
+}
+
+}  // namespace
+
+void updateStatistics(AppState& st) {
+    StatisticsState& s = st.statistics;
+    s.frameMs.push_back(ImGui::GetIO().DeltaTime * 1000.0f);
+    if (s.frameMs.size() > StatisticsState::kFrames) s.frameMs.erase(s.frameMs.begin());
+    autoValidate(st);
 }
 
 namespace {
@@ -195,7 +204,9 @@ bool markedByTheCanvas(const Engine& e, std::int32_t a, std::int32_t b) {
 
 void DrawViolationOverlay(AppState& st) {
     const StatisticsState& s = st.statistics;
-    if (!st.overlays.violations || s.validatedVersion != st.engine.version()) return;
+    if (!st.overlays.violations) return;
+    autoValidate(st);  // the mesh may have changed since the frame began (a lesson's stop)
+    if (s.validatedVersion != st.engine.version()) return;
     if (s.violations.empty() && s.hullDents.empty()) return;
     const Mesh& m = st.engine.mesh();
     const View& view = st.view;
