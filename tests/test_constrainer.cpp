@@ -21,6 +21,16 @@ using dlab::testutil::distinct;
 
 namespace {
 
+// The exact Delaunay triangulation of pts in its closed form (ghost triangles around the hull):
+// what the Constrainer and the Remover work on.
+Mesh closedDelaunay(const std::vector<Vec2>& pts) {
+    Inserter ins(pts);
+    ins.run();
+    Mesh mesh = ins.takeMesh();
+    addGhosts(mesh);
+    return mesh;
+}
+
 // The integer points of a side x side square: collinear runs and cocircular squares everywhere.
 std::vector<Vec2> squareLattice(int side) {
     std::vector<Vec2> pts;
@@ -77,10 +87,7 @@ void insertRandomSegments(const std::vector<Vec2>& input, int count, std::uint64
     SCOPED_TRACE(label);
     const std::vector<Vec2> pts = distinct(input);
     const auto n = static_cast<std::int32_t>(pts.size());
-    Inserter ins(pts);
-    ins.run();
-    Mesh mesh = ins.takeMesh();
-    addGhosts(mesh);
+    Mesh mesh = closedDelaunay(pts);
     Constrainer con(mesh, n);
     std::mt19937_64 rng(seed);
     std::vector<std::pair<std::int32_t, std::int32_t>> inserted;
@@ -140,10 +147,7 @@ TEST(Constrainer, SegmentsThroughLatticeVerticesSplitThere) {
 
 TEST(Constrainer, CrossingSegmentsAreRefusedNamingTheConstrainedEdge) {
     const std::vector<Vec2> pts = {{0, 0}, {4, 0}, {4, 4}, {0, 4}, {1, 2}, {3, 2}};
-    Inserter ins(pts);
-    ins.run();
-    Mesh mesh = ins.takeMesh();
-    addGhosts(mesh);
+    Mesh mesh = closedDelaunay(pts);
     Constrainer con(mesh, 6);
     ASSERT_EQ(con.insert(0, 2).result, ConstrainResult::Inserted);
     const ConstrainOutcome out = con.insert(1, 3);
@@ -187,10 +191,7 @@ void replay(Mesh& m, std::vector<std::uint8_t>& flags, const ConstraintRecord& r
 void recordAndUndo(const std::vector<Vec2>& input, int count, std::uint64_t seed) {
     const std::vector<Vec2> pts = distinct(input);
     const auto n = static_cast<std::int32_t>(pts.size());
-    Inserter ins(pts);
-    ins.run();
-    Mesh mesh = ins.takeMesh();
-    addGhosts(mesh);
+    Mesh mesh = closedDelaunay(pts);
     Constrainer con(mesh, n);
     const Snapshot start = snapshot(mesh, con);
     ConstraintRecord record;
@@ -255,10 +256,7 @@ namespace {
 void insertThenRemove(const std::vector<Vec2>& input, int count, std::uint64_t seed) {
     const std::vector<Vec2> pts = distinct(input);
     const auto n = static_cast<std::int32_t>(pts.size());
-    Inserter ins(pts);
-    ins.run();
-    Mesh mesh = ins.takeMesh();
-    addGhosts(mesh);
+    Mesh mesh = closedDelaunay(pts);
     Constrainer con(mesh, n);
     std::mt19937_64 rng(seed);
     std::vector<std::pair<std::int32_t, std::int32_t>> inserted;
@@ -312,10 +310,7 @@ TEST(Constrainer, RemovedConstraintsLeaveTheConstrainedDelaunayTriangulationOfTh
 
 TEST(Constrainer, RemovingASegmentThatIsNoConstraintChangesNothing) {
     const std::vector<Vec2> pts = {{0, 0}, {4, 0}, {4, 4}, {0, 4}, {1, 2}, {3, 2}, {2, 2}};
-    Inserter ins(pts);
-    ins.run();
-    Mesh mesh = ins.takeMesh();
-    addGhosts(mesh);
+    Mesh mesh = closedDelaunay(pts);
     Constrainer con(mesh, 7);
     ASSERT_EQ(con.insert(4, 5).result, ConstrainResult::Inserted);  // pieces 4-6 and 6-5
     const Snapshot before = snapshot(mesh, con);
@@ -338,10 +333,7 @@ void removeVerticesKeepingConstraints(const std::vector<Vec2>& input, int segmen
                                       std::uint64_t seed) {
     const std::vector<Vec2> pts = distinct(input);
     const auto n = static_cast<std::int32_t>(pts.size());
-    Inserter ins(pts);
-    ins.run();
-    Mesh mesh = ins.takeMesh();
-    addGhosts(mesh);
+    Mesh mesh = closedDelaunay(pts);
     Constrainer con(mesh, n);
     Remover remover(mesh, n, Boundary::Exact);
     std::mt19937_64 rng(seed);

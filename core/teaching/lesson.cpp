@@ -1170,18 +1170,23 @@ public:
         return out;
     }
 
-    // A track: [[item]] lesson / stops / minutes, each lesson loaded and its stops checked.
-    Track track(std::string_view source, const std::string& path) {
-        Track T;
-        T.file = path;
-        if (source.size() > kMaxLessonFileBytes) fail(0, "track file too large (at most 1 MiB)");
-        toml::table root;
+    // The file's TOML, refused when too large or not valid TOML ("lesson" or "track" file).
+    toml::table parseToml(std::string_view source, const std::string& path, const char* what) {
+        if (source.size() > kMaxLessonFileBytes)
+            fail(0, std::string(what) + " file too large (at most 1 MiB)");
         try {
-            root = toml::parse(source, path);
+            return toml::parse(source, path);
         } catch (const toml::parse_error& e) {
             fail(static_cast<int>(e.source().begin.line),
                  "not valid TOML: " + std::string(e.description()));
         }
+    }
+
+    // A track: [[item]] lesson / stops / minutes, each lesson loaded and its stops checked.
+    Track track(std::string_view source, const std::string& path) {
+        Track T;
+        T.file = path;
+        toml::table root = parseToml(source, path, "track");
         checkKeys(root, {"title", "summary", "kind", "objectives", "minutes", "item"},
                   "at the top level of a track");
         if (string(root, "kind").value_or("") != "track") fail(1, "a track says kind = \"track\"");
@@ -1504,14 +1509,7 @@ public:
         L.file = path;
         m_source = source;
         L.options.order = OrderKind::Input;
-        if (source.size() > kMaxLessonFileBytes) fail(0, "lesson file too large (at most 1 MiB)");
-        toml::table root;
-        try {
-            root = toml::parse(source, path);
-        } catch (const toml::parse_error& e) {
-            fail(static_cast<int>(e.source().begin.line),
-                 "not valid TOML: " + std::string(e.description()));
-        }
+        toml::table root = parseToml(source, path, "lesson");
         if (string(root, "kind").value_or("") == "track")
             fail(lineOf(*root.get("kind")),
                  "this is a track (kind = \"track\"): stops of other lessons, not a lesson");
