@@ -42,6 +42,7 @@ Constrainer::Constrainer(Mesh& mesh, std::int32_t firstVirtual)
 void Constrainer::rebuildIndex() {
     m_cornerOf.assign(m_mesh.G.size(), kNone);
     for (std::int32_t c = 0; c < m_mesh.numCorners(); ++c) m_cornerOf[m_mesh.V[c]] = c;
+    m_stale = false;
 }
 
 void Constrainer::setV(std::int32_t c, std::int32_t v) {
@@ -82,9 +83,19 @@ void Constrainer::endOp() {
     op.numFlags = static_cast<std::uint32_t>(m_record->flagChanges.size()) - op.firstFlag;
 }
 
-void Constrainer::undo(const ConstraintRecord& record, std::size_t from) {
-    for (std::size_t i = record.ops.size(); i-- > from;) {
-        const ConstrainOp& op = record.ops[i];
+void Constrainer::replay(const ConstraintRecord& record, std::size_t i, bool forward) {
+    const ConstrainOp& op = record.ops[i];
+    if (forward) {
+        for (std::uint32_t k = 0; k < op.numChanges; ++k) {
+            const CellChange& ch = record.changes[op.firstChange + k];
+            (ch.isO() ? m_mesh.O : m_mesh.V)[ch.corner()] = ch.after;
+        }
+        for (std::uint32_t k = 0; k < op.numFlags; ++k) {
+            const FlagChange& f = record.flagChanges[op.firstFlag + k];
+            if (m_flag.size() <= static_cast<std::size_t>(f.corner)) m_flag.resize(f.corner + 1, 0);
+            m_flag[f.corner] = f.after;
+        }
+    } else {
         for (std::uint32_t k = op.numFlags; k-- > 0;) {
             const FlagChange& f = record.flagChanges[op.firstFlag + k];
             m_flag[f.corner] = f.before;
@@ -94,6 +105,11 @@ void Constrainer::undo(const ConstraintRecord& record, std::size_t from) {
             (ch.isO() ? m_mesh.O : m_mesh.V)[ch.corner()] = ch.before;
         }
     }
+    m_stale = true;
+}
+
+void Constrainer::undo(const ConstraintRecord& record, std::size_t from) {
+    for (std::size_t i = record.ops.size(); i-- > from;) replay(record, i, false);
     rebuildIndex();
 }
 
@@ -267,6 +283,7 @@ void Constrainer::restore(std::vector<Edge> stack) {
 }
 
 ConstrainOutcome Constrainer::insert(std::int32_t a, std::int32_t b, ConstraintRecord* record) {
+    if (m_stale) rebuildIndex();
     ConstrainOutcome out;
     const auto n = static_cast<std::int32_t>(m_cornerOf.size());
     if (a == b) {
@@ -320,6 +337,7 @@ bool Constrainer::pieces(std::int32_t a, std::int32_t b, std::vector<Edge>& out)
 }
 
 ConstrainOutcome Constrainer::remove(std::int32_t a, std::int32_t b, ConstraintRecord* record) {
+    if (m_stale) rebuildIndex();
     ConstrainOutcome out;
     const auto n = static_cast<std::int32_t>(m_cornerOf.size());
     for (const std::int32_t v : {a, b}) {
@@ -360,6 +378,7 @@ void Constrainer::beginRecording(ConstraintRecord* record, std::int32_t a, std::
 VertexRemoval Constrainer::removeVertex(Remover& remover, std::int32_t v, RemovalRecord* removal,
                                         ConstraintRecord* record) {
     VertexRemoval out;
+    if (m_stale) rebuildIndex();
     struct Held {
         std::int32_t u, w;
         std::uint8_t count;

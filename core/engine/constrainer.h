@@ -103,6 +103,9 @@ public:
     // Reverts the record's ops from the last back to op `from` (V, O and the flags exactly as
     // before them).
     void undo(const ConstraintRecord& record, std::size_t from = 0);
+    // Redoes (forward) or undoes recorded op i alone: V, O and the flags exactly as after /
+    // before it.
+    void replay(const ConstraintRecord& record, std::size_t i, bool forward);
     // Is the edge opposite corner c constrained? (flags()[c]: by how many inserted segments)
     bool isConstrained(std::int32_t c) const { return m_flag[c] != 0; }
     const std::vector<std::uint8_t>& flags() const { return m_flag; }
@@ -133,6 +136,7 @@ private:
     std::int32_t m_firstVirtual;
     std::vector<std::int32_t> m_cornerOf;
     std::vector<std::uint8_t> m_flag;  // per corner: how many constraints hold the edge opposite
+    bool m_stale = false;              // m_cornerOf must be rebuilt (after replay)
     ConstraintRecord* m_record = nullptr;  // where the current call records, if anywhere
     std::int32_t m_segA = kNone, m_segB = kNone;
 };

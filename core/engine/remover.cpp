@@ -105,23 +105,33 @@ void Remover::endOp(RemoveOp op) {
     m_record->ops.push_back(op);
 }
 
-void Remover::undo(const RemovalRecord& record, std::size_t from) {
+void Remover::replay(const RemovalRecord& record, std::size_t i, bool forward) {
     auto& V = m_mesh.V;
     auto& O = m_mesh.O;
-    for (std::size_t i = record.ops.size(); i-- > from;) {
-        const RemoveOp& op = record.ops[i];
-        const std::size_t big =
-            3 * static_cast<std::size_t>(std::max(op.trianglesBefore, op.trianglesAfter));
-        V.resize(big, kNone);
-        O.resize(big, kNone);
+    const RemoveOp& op = record.ops[i];
+    const std::size_t big =
+        3 * static_cast<std::size_t>(std::max(op.trianglesBefore, op.trianglesAfter));
+    V.resize(big, kNone);
+    O.resize(big, kNone);
+    if (forward) {
+        for (std::uint32_t k = 0; k < op.numChanges; ++k) {
+            const CellChange& ch = record.changes[op.firstChange + k];
+            (ch.isO() ? O : V)[ch.corner()] = ch.after;
+        }
+    } else {
         for (std::uint32_t k = op.numChanges; k-- > 0;) {
             const CellChange& ch = record.changes[op.firstChange + k];
             (ch.isO() ? O : V)[ch.corner()] = ch.before;
         }
-        V.resize(3 * static_cast<std::size_t>(op.trianglesBefore));
-        O.resize(3 * static_cast<std::size_t>(op.trianglesBefore));
     }
+    const std::int32_t t = forward ? op.trianglesAfter : op.trianglesBefore;
+    V.resize(3 * static_cast<std::size_t>(t));
+    O.resize(3 * static_cast<std::size_t>(t));
     m_stale = true;
+}
+
+void Remover::undo(const RemovalRecord& record, std::size_t from) {
+    for (std::size_t i = record.ops.size(); i-- > from;) replay(record, i, false);
 }
 
 // ============================================================================================

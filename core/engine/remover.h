@@ -67,6 +67,8 @@ public:
     RemoveResult remove(std::int32_t v, RemovalRecord* record = nullptr);
     // Reverts the record's ops from the last back to op `from` (V and O exactly as before them).
     void undo(const RemovalRecord& record, std::size_t from = 0);
+    // Redoes (forward) or undoes recorded op i alone: V and O exactly as after / before it.
+    void replay(const RemovalRecord& record, std::size_t i, bool forward);
 
     // Another editor of the same mesh (the Constrainer) changed it: the index is rebuilt.
     void meshChanged() { m_stale = true; }

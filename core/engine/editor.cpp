@@ -1,0 +1,240 @@
+// Edits of a finished triangulation as recorded operations: record, step, seek.
+#include "core/engine/editor.h"
+
+#include "core/engine/text_util.h"
+
+#include <algorithm>
+#include <charconv>
+#include <string>
+
+namespace dlab {
+
+const char* toString(EditKind k) {
+    switch (k) {
+        case EditKind::RemoveVertex: return "remove vertex";
+        case EditKind::Constrain: return "constrain";
+        case EditKind::Unconstrain: return "unconstrain";
+    }
+    return "?";
+}
+
+std::string describe(const Edit& edit) {
+    if (edit.kind == EditKind::RemoveVertex) return "remove vertex " + std::to_string(edit.a);
+    return std::string(toString(edit.kind)) + " " + std::to_string(edit.a) + "-" +
+           std::to_string(edit.b);
+}
+
+namespace {
+
+// A non-negative integer, the whole of `s`.
+std::optional<std::int32_t> parseId(std::string_view s) {
+    std::int32_t v = 0;
+    const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
+    if (ec != std::errc{} || end != s.data() + s.size() || v < 0) return std::nullopt;
+    return v;
+}
+
+Mesh closedForm(const Mesh& finished) {
+    Mesh m = finished;
+    addGhosts(m);
+    return m;
+}
+
+}  // namespace
+
+std::optional<Edit> parseEdit(std::string_view typed) {
+    const std::string text = lowered(trimmed(typed));
+    static constexpr std::pair<std::string_view, EditKind> kWords[] = {
+        {"remove vertex ", EditKind::RemoveVertex},
+        {"remove ", EditKind::RemoveVertex},
+        {"unconstrain ", EditKind::Unconstrain},
+        {"constrain ", EditKind::Constrain}};
+    Edit edit;
+    std::string rest;
+    for (const auto& [word, kind] : kWords) {
+        if (std::string_view(text).substr(0, word.size()) == word) {
+            edit.kind = kind;
+            rest = trimmed(std::string_view(text).substr(word.size()));
+            break;
+        }
+    }
+    if (rest.empty()) return std::nullopt;
+    if (edit.kind == EditKind::RemoveVertex) {
+        const auto v = parseId(rest);
+        if (!v) return std::nullopt;
+        edit.a = *v;
+        return edit;
+    }
+    const std::size_t dash = rest.find('-');
+    if (dash == std::string::npos) return std::nullopt;
+    const auto a = parseId(trimmed(std::string_view(rest).substr(0, dash)));
+    const auto b = parseId(trimmed(std::string_view(rest).substr(dash + 1)));
+    if (!a || !b) return std::nullopt;
+    edit.a = *a;
+    edit.b = *b;
+    return edit;
+}
+
+Editor::Editor(const Mesh& finished)
+    : m_mesh(closedForm(finished)),
+      m_firstVirtual(finished.numVertices()),
+      m_remover(m_mesh, m_firstVirtual, Boundary::Exact),
+      m_constrainer(m_mesh, m_firstVirtual) {}
+
+std::size_t Editor::total() const {
+    std::size_t n = 0;
+    for (const Edit& e : m_edits) n += e.numOps();
+    return n;
+}
+
+std::size_t Editor::editStart(std::size_t k) const {
+    std::size_t n = 0;
+    for (std::size_t i = 0; i < k && i < m_edits.size(); ++i) n += m_edits[i].numOps();
+    return n;
+}
+
+std::size_t Editor::editsDone() const {
+    std::size_t k = 0, end = 0;
+    while (k < m_edits.size() && (end += m_edits[k].numOps()) <= m_pos) ++k;
+    return k;
+}
+
+EditStep Editor::stepAt(std::size_t position) const {
+    EditStep s;
+    std::size_t start = 0;
+    for (std::size_t k = 0; k < m_edits.size(); ++k) {
+        const Edit& e = m_edits[k];
+        if (position < start + e.numOps()) {
+            const std::size_t i = position - start;
+            s.edit = &e;
+            s.index = k;
+            if (i < e.removal.ops.size())
+                s.removal = &e.removal.ops[i];
+            else
+                s.constraint = &e.constraint.ops[i - e.removal.ops.size()];
+            return s;
+        }
+        start += e.numOps();
+    }
+    return s;
+}
+
+EditStep Editor::current() const { return m_pos == 0 ? EditStep{} : stepAt(m_pos - 1); }
+
+void Editor::replay(std::size_t position, bool forward) {
+    const EditStep s = stepAt(position);
+    const std::size_t i = position - editStart(s.index);
+    if (s.removal) {
+        m_remover.replay(s.edit->removal, i, forward);
+    } else {
+        m_constrainer.replay(s.edit->constraint, i - s.edit->removal.ops.size(), forward);
+    }
+}
+
+bool Editor::forward() {
+    if (m_pos >= total()) return false;
+    replay(m_pos++, true);
+    m_live = std::max(m_live, stepAt(m_pos - 1).index + 1);  // stepping into an edit redoes it
+    return true;
+}
+
+bool Editor::back() {
+    if (m_pos == 0) return false;
+    replay(--m_pos, false);
+    while (m_live > 0 && m_pos <= editStart(m_live - 1)) --m_live;  // back to its start: undone
+    return true;
+}
+
+void Editor::seek(std::size_t position) {
+    position = std::min(position, total());
+    while (m_pos < position) forward();
+    while (m_pos > position) back();
+}
+
+std::vector<std::pair<std::int32_t, std::int32_t>> Editor::constrainedEdges() const {
+    std::vector<std::pair<std::int32_t, std::int32_t>> edges;
+    for (std::int32_t c = 0; c < m_mesh.numCorners(); ++c) {
+        const std::int32_t o = m_mesh.O[c];
+        if (!isConstrained(c) || (o != kNone && o < c)) continue;
+        edges.push_back({m_mesh.V[next(c)], m_mesh.V[prev(c)]});
+    }
+    return edges;
+}
+
+namespace {
+
+std::string vertexName(std::int32_t v) { return "vertex " + std::to_string(v); }
+
+std::string edgeName(std::pair<std::int32_t, std::int32_t> e) {
+    return std::to_string(e.first) + "-" + std::to_string(e.second);
+}
+
+}  // namespace
+
+// Runs the edit on the mesh with its records; false (with nothing changed) when refused.
+bool Editor::record(Edit& edit, std::string& message) {
+    const std::int32_t n = m_firstVirtual;
+    const auto isVertex = [&](std::int32_t v) { return v >= 0 && v < n; };
+    if (!isVertex(edit.a) || (edit.kind != EditKind::RemoveVertex && !isVertex(edit.b))) {
+        message = "no such vertex: the mesh has vertices 0 to " + std::to_string(n - 1);
+        return false;
+    }
+    if (edit.kind == EditKind::RemoveVertex) {
+        const VertexRemoval r =
+            m_constrainer.removeVertex(m_remover, edit.a, &edit.removal, &edit.constraint);
+        if (r.refused) {
+            message = vertexName(edit.a) + " is an end of the constrained edge " +
+                      edgeName(r.constrained) + ": take that constraint away first";
+            return false;
+        }
+        if (r.removed == RemoveResult::NotInMesh) {
+            message = vertexName(edit.a) + " is not in the mesh (removed, or a duplicate)";
+            return false;
+        }
+        message = "removed " + vertexName(edit.a) + ": " + std::to_string(edit.removal.ops.size()) +
+                  " operations";
+        if (r.removed == RemoveResult::Collapsed) message += "; the points left make no triangle";
+        return true;
+    }
+    const ConstrainOutcome out = edit.kind == EditKind::Constrain
+                                     ? m_constrainer.insert(edit.a, edit.b, &edit.constraint)
+                                     : m_constrainer.remove(edit.a, edit.b, &edit.constraint);
+    const std::string seg = "segment " + edgeName({edit.a, edit.b});
+    switch (out.result) {
+        case ConstrainResult::Inserted:
+            message = (edit.kind == EditKind::Constrain ? "constrained " : "unconstrained ") + seg +
+                      ": " + std::to_string(edit.constraint.ops.size()) + " operations";
+            return true;
+        case ConstrainResult::SameVertex: message = "a segment needs two different vertices"; break;
+        case ConstrainResult::NotInMesh:
+            message = seg + ": an end is not a vertex of the mesh (removed, or a duplicate)";
+            break;
+        case ConstrainResult::Crosses:
+            message = seg + " crosses the constrained edge " + edgeName(out.crossed) +
+                      ": constrained edges may not cross";
+            break;
+        case ConstrainResult::NotConstrained: message = seg + " is not a constraint"; break;
+    }
+    return false;
+}
+
+bool Editor::add(Edit edit, std::string& message) {
+    // The edits undone are dropped; those kept are all done first (one in progress, or one added
+    // and not yet stepped, is finished at once).
+    m_edits.resize(m_live);
+    seek(total());
+    edit.removal = {};
+    edit.constraint = {};
+    m_remover.meshChanged();
+    if (!record(edit, message)) return false;
+    m_edits.push_back(std::move(edit));
+    m_live = m_edits.size();
+    const Edit& e = m_edits.back();
+    // Back to the start of the edit: its ops are stepped from there.
+    for (std::size_t i = e.constraint.ops.size(); i-- > 0;)
+        m_constrainer.replay(e.constraint, i, false);
+    for (std::size_t i = e.removal.ops.size(); i-- > 0;) m_remover.replay(e.removal, i, false);
+    return true;
+}
+
+}  // namespace dlab

@@ -1,0 +1,230 @@
+// Edits of a finished triangulation: removals and constraints recorded as ops, stepped forwards
+// and backwards bit for bit, checked constrained Delaunay in GMP after each, refusals that change
+// nothing, and a new edit in the middle of the history dropping the ones after it.
+#include "core/engine/editor.h"
+#include "core/engine/inserter.h"
+#include "tests/exact_check.h"
+
+#include <gtest/gtest.h>
+
+#include <random>
+#include <string>
+
+using namespace dlab;
+
+namespace {
+
+Mesh finishedDelaunay(const std::vector<Vec2>& pts) {
+    Inserter ins(pts);
+    ins.run();
+    return ins.takeMesh();
+}
+
+std::vector<Vec2> randomPoints(int n, unsigned seed) {
+    std::mt19937 rng(seed);
+    std::uniform_int_distribution<int> d(0, 60);  // small integers: cocircular and collinear runs
+    std::vector<Vec2> pts;
+    for (int i = 0; i < n; ++i) pts.push_back({double(d(rng)), double(d(rng))});
+    return pts;
+}
+
+// The closed mesh is valid (O its own inverse, edges matched) and every unconstrained edge
+// between finite triangles is locally Delaunay (GMP).
+std::string checkEdited(const Editor& ed) {
+    const Mesh& m = ed.mesh();
+    const std::int32_t n = ed.firstVirtual();
+    for (std::int32_t c = 0; c < m.numCorners(); ++c) {
+        const std::int32_t o = m.O[c];
+        if (o < 0 || o >= m.numCorners() || m.O[o] != c)
+            return "corner " + std::to_string(c) + ": O is not its own inverse";
+        if (m.V[next(c)] != m.V[prev(o)] || m.V[prev(c)] != m.V[next(o)])
+            return "corner " + std::to_string(c) + ": its edge is not its opposite's";
+        if (ed.isConstrained(c) != ed.isConstrained(o))
+            return "corner " + std::to_string(c) + ": the flag differs across its edge";
+        const std::int32_t t = tri(c);
+        const std::int32_t a = m.V[3 * t], b = m.V[3 * t + 1], d = m.V[3 * t + 2];
+        if (a >= n || b >= n || d >= n) continue;
+        if (orientGmp(m.G[a], m.G[b], m.G[d]) <= 0)
+            return "triangle " + std::to_string(t) + " is not counter-clockwise";
+        if (m.V[o] >= n || ed.isConstrained(c)) continue;
+        if (incircleGmp(m.G[a], m.G[b], m.G[d], m.G[m.V[o]]) > 0)
+            return "edge opposite corner " + std::to_string(c) + " is not Delaunay";
+    }
+    return "";
+}
+
+struct Snapshot {
+    std::vector<std::int32_t> V, O;
+    std::vector<std::pair<std::int32_t, std::int32_t>> constrained;
+    bool operator==(const Snapshot&) const = default;
+};
+
+Snapshot snap(const Editor& ed) { return {ed.mesh().V, ed.mesh().O, ed.constrainedEdges()}; }
+
+}  // namespace
+
+TEST(Editor, EveryEditStepsForwardsAndBackBitForBitAndStaysConstrainedDelaunay) {
+    for (unsigned seed = 1; seed <= 6; ++seed) {
+        const std::vector<Vec2> pts = randomPoints(120, seed);
+        Editor ed(finishedDelaunay(pts));
+        std::vector<Snapshot> atEnd{snap(ed)};  // after 0, 1, 2... edits
+        std::mt19937 rng(seed * 7919);
+        std::uniform_int_distribution<std::int32_t> vertex(0, 119);
+        int kept = 0;
+        for (int k = 0; k < 40; ++k) {
+            Edit edit;
+            const int kind = k % 3;
+            edit.kind = kind == 0 ? EditKind::RemoveVertex : EditKind::Constrain;
+            edit.a = vertex(rng);
+            edit.b = vertex(rng);
+            if (kind == 2 && !ed.constrainedEdges().empty()) {
+                edit.kind = EditKind::Unconstrain;
+                const auto& cs = ed.edits();
+                for (auto it = cs.rbegin(); it != cs.rend(); ++it) {
+                    if (it->kind != EditKind::Constrain) continue;
+                    edit.a = it->a;
+                    edit.b = it->b;
+                    break;
+                }
+            }
+            const Snapshot before = snap(ed);
+            std::string message;
+            const bool ok = ed.add(edit, message);
+            ASSERT_FALSE(message.empty());
+            ASSERT_EQ(snap(ed), before) << "seed " << seed << ", " << describe(edit) << ": "
+                                        << message << " (the mesh must be back at its start)";
+            if (!ok) {
+                EXPECT_EQ(ed.position(), ed.total());
+                continue;
+            }
+            ++kept;
+            ASSERT_EQ(ed.edits().size(), static_cast<std::size_t>(kept));
+            ASSERT_EQ(ed.position(), ed.editStart(ed.edits().size() - 1));
+            while (ed.forward()) {
+                ASSERT_NE(ed.current().edit, nullptr);
+            }
+            ASSERT_EQ(checkEdited(ed), "") << "seed " << seed << " after " << describe(edit);
+            atEnd.push_back(snap(ed));
+        }
+        EXPECT_GT(kept, 10) << "seed " << seed;
+        // Back to the start op by op, then to the end of every edit: bit for bit.
+        for (std::size_t e = atEnd.size() - 1; e-- > 0;) {
+            while (ed.position() > ed.editStart(e)) ASSERT_TRUE(ed.back());
+            ASSERT_EQ(snap(ed), atEnd[e]) << "seed " << seed << ", back before edit " << e;
+        }
+        EXPECT_FALSE(ed.back());
+        for (std::size_t e = 0; e + 1 < atEnd.size(); ++e) {
+            ed.seek(ed.editEnd(e));
+            ASSERT_EQ(snap(ed), atEnd[e + 1]) << "seed " << seed << ", after edit " << e;
+        }
+    }
+}
+
+TEST(Editor, RemovingDownToTwoPointsLeavesNoTriangleAndStepsBack) {
+    const std::vector<Vec2> pts{{0, 0}, {4, 0}, {4, 4}, {0, 4}, {2, 2}, {1, 3}};
+    Editor ed(finishedDelaunay(pts));
+    const Snapshot start = snap(ed);
+    std::string message;
+    for (std::int32_t v : {4, 0, 5, 2}) {
+        ASSERT_TRUE(ed.add(makeEdit(EditKind::RemoveVertex, v), message)) << message;
+        ed.seek(ed.total());
+        EXPECT_EQ(checkEdited(ed), "") << "after removing " << v;
+    }
+    EXPECT_EQ(ed.mesh().numTriangles(), 0) << "two points make no triangle";
+    EXPECT_NE(message.find("no triangle"), std::string::npos) << message;
+    ed.seek(0);
+    EXPECT_EQ(snap(ed), start);
+}
+
+TEST(Editor, RefusedEditsChangeNothingAndSayWhy) {
+    // A 3x3 lattice: the segments 1-3 and 0-4 cross at (0.5, 0.5).
+    std::vector<Vec2> pts;
+    for (int y = 0; y < 3; ++y) {
+        for (int x = 0; x < 3; ++x) pts.push_back({double(x), double(y)});
+    }
+    Editor ed(finishedDelaunay(pts));
+    std::string message;
+    ASSERT_TRUE(ed.add(makeEdit(EditKind::Constrain, 1, 3), message)) << message;
+    ed.seek(ed.total());
+    const Snapshot constrained = snap(ed);
+    ASSERT_EQ(constrained.constrained.size(), 1u);
+    const std::size_t ops = ed.total();
+
+    EXPECT_FALSE(ed.add(makeEdit(EditKind::Constrain, 0, 4), message));
+    EXPECT_NE(message.find("crosses the constrained edge"), std::string::npos) << message;
+    EXPECT_FALSE(ed.add(makeEdit(EditKind::RemoveVertex, 1), message));
+    EXPECT_NE(message.find("take that constraint away first"), std::string::npos) << message;
+    EXPECT_FALSE(ed.add(makeEdit(EditKind::RemoveVertex, 9), message));
+    EXPECT_NE(message.find("no such vertex"), std::string::npos) << message;
+    EXPECT_FALSE(ed.add(makeEdit(EditKind::Unconstrain, 0, 8), message));
+    EXPECT_NE(message.find("is not a constraint"), std::string::npos) << message;
+    EXPECT_FALSE(ed.add(makeEdit(EditKind::Constrain, 2, 2), message));
+    EXPECT_EQ(snap(ed), constrained);
+    EXPECT_EQ(ed.total(), ops);
+
+    // Taken away, the constraint no longer blocks the removal of 1.
+    ASSERT_TRUE(ed.add(makeEdit(EditKind::Unconstrain, 1, 3), message)) << message;
+    ASSERT_TRUE(ed.add(makeEdit(EditKind::RemoveVertex, 1), message)) << message;
+    ed.seek(ed.total());
+    EXPECT_TRUE(ed.constrainedEdges().empty());
+    EXPECT_EQ(checkEdited(ed), "");
+    EXPECT_FALSE(ed.add(makeEdit(EditKind::RemoveVertex, 1), message));
+    EXPECT_NE(message.find("not in the mesh"), std::string::npos) << message;
+}
+
+TEST(Editor, AnEditInTheMiddleOfTheHistoryDropsTheEditsAfterIt) {
+    const std::vector<Vec2> pts = randomPoints(60, 3);
+    Editor ed(finishedDelaunay(pts));
+    std::string message;
+    std::vector<std::int32_t> removed;
+    for (std::int32_t v = 0; removed.size() < 3 && v < 60; ++v) {
+        if (ed.add(makeEdit(EditKind::RemoveVertex, v), message)) {
+            removed.push_back(v);
+            ed.seek(ed.total());
+        }
+    }
+    ASSERT_EQ(ed.edits().size(), 3u);
+    // Half-way through the second removal: a new edit finishes it and drops the third, undone.
+    ed.seek(ed.editStart(1) + 1);
+    EXPECT_EQ(ed.editsKept(), 2u);
+    ASSERT_TRUE(ed.add(makeEdit(EditKind::RemoveVertex, 59), message)) << message;
+    ASSERT_EQ(ed.edits().size(), 3u);
+    EXPECT_EQ(ed.edits()[1].a, removed[1]);
+    EXPECT_EQ(ed.edits()[2].a, 59);
+    EXPECT_EQ(ed.position(), ed.editStart(2));
+    EXPECT_EQ(ed.editsDone(), 2u);
+    // Added and not yet stepped, it is kept by the next edit, which finishes it first.
+    ASSERT_TRUE(ed.add(makeEdit(EditKind::RemoveVertex, 58), message)) << message;
+    ASSERT_EQ(ed.edits().size(), 4u);
+    EXPECT_EQ(ed.position(), ed.editStart(3));
+    // Stepped back to its start, an edit is undone: the next edit drops it.
+    ed.seek(ed.editStart(2));
+    EXPECT_EQ(ed.editsKept(), 2u);
+    ed.seek(ed.editStart(3) - 1);  // stepping into an edit redoes it
+    EXPECT_EQ(ed.editsKept(), 3u);
+    ASSERT_TRUE(ed.add(makeEdit(EditKind::RemoveVertex, 57), message)) << message;
+    ASSERT_EQ(ed.edits().size(), 4u);
+    EXPECT_EQ(ed.edits()[2].a, 59);
+    EXPECT_EQ(ed.edits()[3].a, 57);
+    ed.seek(ed.total());
+    EXPECT_EQ(checkEdited(ed), "");
+}
+
+TEST(Editor, EditsReadBackAsTheyAreWritten) {
+    for (const char* text : {"remove vertex 5", "constrain 2-7", "unconstrain 12-3"}) {
+        const auto e = parseEdit(text);
+        ASSERT_TRUE(e) << text;
+        EXPECT_EQ(describe(*e), text);
+    }
+    const auto loose = parseEdit("  Remove 5 ");
+    ASSERT_TRUE(loose);
+    EXPECT_EQ(loose->kind, EditKind::RemoveVertex);
+    EXPECT_EQ(loose->a, 5);
+    const auto spaced = parseEdit("constrain 2 - 7");
+    ASSERT_TRUE(spaced);
+    EXPECT_EQ(spaced->b, 7);
+    for (const char* bad : {"", "remove", "remove -1", "remove x", "constrain 2", "constrain 2-",
+                            "flip 2-7", "remove 5 6"}) {
+        EXPECT_FALSE(parseEdit(bad)) << bad;
+    }
+}
