@@ -41,6 +41,8 @@ struct RenderArgs {
     int stop = 1;
     std::string slides;
     bool handout = false;
+    std::vector<std::string> edits;  // after the run's end, in order
+    long long editSteps = -1;        // ops of the last edit done (-1: all)
     EngineFlags engine;
 };
 
@@ -233,11 +235,32 @@ void applyOverlays(ui::Overlays& ov, const std::vector<std::string>& overlays) {
     }
 }
 
+// --edit: each edit after the run's end, done in full but the last, which is done up to
+// --edit-steps of its ops (all without).
+void applyEdits(ui::Engine& engine, const RenderArgs& args) {
+    for (std::size_t k = 0; k < args.edits.size(); ++k) {
+        const auto edit = parseEdit(args.edits[k]);
+        if (!edit) {
+            fail("--edit \"" + args.edits[k] +
+                     "\": expected \"remove vertex V\", \"constrain A-B\" or \"unconstrain A-B\"",
+                 2);
+        }
+        std::string message;
+        if (!engine.edit(*edit, message)) fail("--edit \"" + args.edits[k] + "\": " + message, 2);
+        const std::size_t start = engine.position();
+        const bool last = k + 1 == args.edits.size();
+        engine.seek(last && args.editSteps >= 0 ? start + static_cast<std::size_t>(args.editSteps)
+                                                : engine.recorded());
+    }
+}
+
 // Without a lesson (which decides the position and the selection itself): --to-end or --steps,
 // then --select.
 void moveAndSelect(ui::AppState& state, const RenderArgs& args) {
     if (!args.lesson.empty()) return;
-    if (args.toEnd) {
+    if (!args.edits.empty()) {
+        applyEdits(state.engine, args);
+    } else if (args.toEnd) {
         while (!state.engine.toEnd(1 << 20)) {}
     } else if (args.steps >= 0) {
         state.engine.seek(static_cast<std::size_t>(args.steps));
@@ -345,6 +368,14 @@ void addRender(CLI::App& app) {
                           "N >= 0"));
     cmd->add_flag("--to-end", args->toEnd, "Run to the end before the screenshot")->excludes(steps);
     cmd->add_option("--size", args->size, "Window size WIDTHxHEIGHT")->capture_default_str();
+    auto* edits = cmd->add_option("--edit", args->edits,
+                                  "An edit after the run's end (repeatable, in order): \"remove "
+                                  "vertex V\", \"constrain A-B\", \"unconstrain A-B\"")
+                      ->excludes(steps);
+    cmd->add_option("--edit-steps", args->editSteps,
+                    "Operations of the last --edit done before the screenshot (all without)")
+        ->needs(edits)
+        ->check(CLI::Range(0LL, 1LL << 40));
     cmd->add_option("--select", args->select, "Select this corner (inspector, highlights)")
         ->check(CLI::Validator(
             [](std::string& v) {

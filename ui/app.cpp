@@ -344,9 +344,12 @@ void plainShortcut(AppState& state, const KeyPress& k) {
     if (k.key == key::kEscape && !ImGui::IsPopupOpen("", ImGuiPopupFlags_AnyPopupId)) {
         if (state.showHelp)
             state.showHelp = false;
+        else if (state.toolFirstVertex != kNone)
+            state.toolFirstVertex = kNone;  // a segment half picked
         else
             state.select(kNone);
     }
+    if (k.key == key::kDelete && !slideMode(state)) RemoveSelectedVertex(state);
     if (stepShortcut(state, k)) return;
     for (char op : {'n', 'p', 'o', 'l', 'r', 's', 'u'}) {
         if (k.key == key::letter(op)) state.moveSelection(op);

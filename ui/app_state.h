@@ -237,10 +237,11 @@ struct GifRequest {
 };
 
 struct FileState {
-    std::string autosavePath;     // empty: no autosave (tests, --no-autosave)
-    std::vector<Vec2> autosaved;  // the points the autosave file holds now
-    bool autosaveTooBig = false;  // said once: too many points to autosave
-    std::string recoveryPath;     // an autosave left by a session that did not exit cleanly
+    std::string autosavePath;                 // empty: no autosave (tests, --no-autosave)
+    std::vector<Vec2> autosaved;              // the points the autosave file holds now
+    std::vector<std::string> autosavedEdits;  // and the edits after the run (editTexts)
+    bool autosaveTooBig = false;              // said once: too many points to autosave
+    std::string recoveryPath;  // an autosave left by a session that did not exit cleanly
     std::size_t recoveryPoints = 0;
     std::string recoverySource;
     std::string notice;                // a file error, shown over the canvas until dismissed
@@ -279,6 +280,11 @@ struct AppState {
     bool showHelp = false;
     bool presentation = false;   // large fonts, high contrast, no clutter
     bool handoutSlides = false;  // slides for a handout: no menus, buttons, answer box, side tab
+    // What a click on the canvas does: queue a point, or edit the finished mesh (remove the
+    // vertex clicked; constrain or free the segment between the two vertices clicked).
+    enum class CanvasTool : std::uint8_t { AddPoints, RemoveVertex, Constrain, Unconstrain };
+    CanvasTool tool = CanvasTool::AddPoints;
+    std::int32_t toolFirstVertex = kNone;  // a segment's first vertex, clicked
     bool snapToGrid = false;
     double gridStep = 10.0;
     bool quitRequested = false;

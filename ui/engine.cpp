@@ -56,6 +56,14 @@ std::size_t estimateRunOps(const std::vector<Vec2>& points, const std::vector<st
     }
 }
 
+std::vector<std::string> editTexts(const Engine& engine) {
+    std::vector<std::string> out;
+    if (const Editor* ed = engine.editor()) {
+        for (const Edit& e : ed->edits()) out.push_back(describe(e));
+    }
+    return out;
+}
+
 std::size_t estimateRunOps(const std::vector<Vec2>& points, const InsertOptions& options) {
     InsertOptions cpu = options;
     if (needsGl(cpu.locator)) cpu.locator = LocatorKind::IdBufferCpu;
@@ -122,6 +130,7 @@ bool Engine::resetWith(std::vector<Vec2> points, const InsertOptions& options, s
         return false;
     }
     m_journal.reset();
+    m_editor.reset();
     ++m_run;
     m_ins = std::move(ins);
     m_idBufferGl = gl;
@@ -199,19 +208,34 @@ void Engine::runWithoutHistory() {
 }
 
 bool Engine::forward() {
-    if (!m_journal || !m_journal->forward()) return false;
-    capHistory();
+    if (m_journal && !m_journal->atEnd()) {
+        if (!m_journal->forward()) return false;
+        capHistory();
+    } else if (!m_editor || !m_editor->forward()) {
+        return false;
+    }
     bump();
     return true;
 }
 
 bool Engine::back() {
-    if (!m_journal || !m_journal->back()) return false;
+    if (m_editor && m_editor->position() > 0) {
+        m_editor->back();
+    } else if (!m_journal || !m_journal->back()) {
+        return false;
+    }
     bump();
     return true;
 }
 
 bool Engine::forwardInsertion() {
+    if (m_editor && atRunEnd()) {  // in the edits: to the end of the next one
+        const std::size_t k = m_editor->editsDone();
+        if (k >= m_editor->edits().size()) return false;
+        m_editor->seek(m_editor->editEnd(k));
+        bump();
+        return true;
+    }
     if (!m_journal) return false;
     const std::size_t steps =
         dlab::forwardInsertion(*m_journal, *m_ins, static_cast<std::size_t>(-1)).steps;
@@ -221,6 +245,11 @@ bool Engine::forwardInsertion() {
 }
 
 bool Engine::backInsertion() {
+    if (editing()) {  // to the start of the edit in progress (or the last one done)
+        m_editor->seek(m_editor->editStart(m_editor->current().index));
+        bump();
+        return true;
+    }
     if (!m_journal) return false;
     const std::size_t steps =
         dlab::backInsertion(*m_journal, *m_ins, static_cast<std::size_t>(-1)).steps;
@@ -228,8 +257,38 @@ bool Engine::backInsertion() {
     return steps > 0;
 }
 
+bool Engine::edit(Edit edit, std::string& message) {
+    if (!m_journal) {
+        message =
+            "this run has no history (" + m_batchReason + "): edits are stepped, they need one";
+        return false;
+    }
+    if (m_options.boundary != Boundary::Exact || m_ins->repairs()) {
+        message = m_ins->repairs() ? "an opened mesh cannot be edited: triangulate its points"
+                                   : "edits need the exact boundary (the super-triangle's "
+                                     "triangles are gone at the end): choose boundary exact";
+        return false;
+    }
+    if (!m_editor) {
+        seekRun(static_cast<std::size_t>(-1));  // the run's end: the edits start from it
+        if (!m_ins->done()) {
+            message = "the run has not reached its end: run it to the end first";
+            return false;
+        }
+        if (m_ins->mesh().numTriangles() == 0) {
+            message = "no triangle to edit: the points are collinear or fewer than three";
+            return false;
+        }
+        m_editor = std::make_unique<Editor>(m_ins->mesh());
+    }
+    seekRun(runLength());
+    const bool ok = m_editor->add(std::move(edit), message);
+    bump();
+    return ok;
+}
+
 bool Engine::hits(const Breakpoint& bp) const {
-    return m_journal && dlab::hits(bp, *m_journal, *m_ins);
+    return m_journal && !editing() && dlab::hits(bp, *m_journal, *m_ins);
 }
 
 void Engine::toStart() { seek(0); }
@@ -241,7 +300,7 @@ bool Engine::toEnd(std::size_t maxOps) {
     return atEnd();
 }
 
-void Engine::seek(std::size_t position) {
+void Engine::seekRun(std::size_t position) {
     if (!m_journal || position == m_journal->position()) return;
     // Recording stops at the op limit; a seek beyond it (the End key) finishes the run.
     m_journal->seek(std::min(position, std::max(m_journal->recorded(), m_opLimit)));
@@ -249,17 +308,38 @@ void Engine::seek(std::size_t position) {
     bump();
 }
 
-std::size_t Engine::position() const { return m_journal ? m_journal->position() : 0; }
-std::size_t Engine::recorded() const { return m_journal ? m_journal->recorded() : 0; }
-bool Engine::atEnd() const { return m_journal ? m_journal->atEnd() : true; }
-const Op* Engine::current() const { return m_journal ? m_journal->current() : nullptr; }
+void Engine::seek(std::size_t position) {
+    if (m_editor) {
+        const std::size_t run = runLength();
+        const std::size_t edits = position > run ? position - run : 0;
+        if (edits != m_editor->position()) {
+            if (edits > 0) seekRun(run);
+            m_editor->seek(edits);
+            bump();
+        }
+        if (edits > 0) return;
+    }
+    seekRun(position);
+}
+
+bool Engine::atRunEnd() const { return m_journal ? m_journal->atEnd() : true; }
+std::size_t Engine::position() const {
+    return (m_journal ? m_journal->position() : 0) + (m_editor ? m_editor->position() : 0);
+}
+std::size_t Engine::recorded() const { return runLength() + (m_editor ? m_editor->total() : 0); }
+bool Engine::atEnd() const {
+    return atRunEnd() && (!m_editor || m_editor->position() == m_editor->total());
+}
+const Op* Engine::current() const {
+    return m_journal && !editing() ? m_journal->current() : nullptr;
+}
 
 std::size_t Engine::insertionsDone() const {
     return static_cast<std::size_t>(m_ins->stats().inserted + m_ins->stats().duplicates);
 }
 
 std::span<const Op> Engine::currentInsertion() const {
-    if (!m_journal) return {};
+    if (!m_journal || editing()) return {};
     const auto& ops = m_journal->ops();
     const std::size_t end = m_journal->position();
     std::size_t begin = end;
@@ -338,6 +418,15 @@ const std::vector<Engine::PointState>& Engine::pointStates() const {
     }
     for (std::int32_t i : m_ins->skipped()) {
         if (i >= 0 && i < n) m_states[i] = PointState::Skipped;
+    }
+    if (editing()) {  // the vertices the edits took out
+        std::vector<char> used(static_cast<std::size_t>(n), 0);
+        for (const std::int32_t v : mesh().V) {
+            if (v >= 0 && v < n) used[v] = 1;
+        }
+        for (std::int32_t i = 0; i < n; ++i) {
+            if (!used[i] && m_states[i] == PointState::Inserted) m_states[i] = PointState::Removed;
+        }
     }
     return m_states;
 }

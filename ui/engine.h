@@ -3,6 +3,7 @@
 // The Inserter/Journal are the only things that change the mesh; this class only drives them.
 #pragma once
 
+#include "core/engine/editor.h"
 #include "core/engine/inserter.h"
 #include "core/teaching/breakpoint.h"
 
@@ -82,7 +83,8 @@ public:
     const std::vector<Vec2>& points() const { return m_points; }
     const InsertOptions& options() const { return m_options; }
     const Inserter& inserter() const { return *m_ins; }
-    const Mesh& mesh() const { return m_ins->mesh(); }
+    // The mesh at the position: the run's, or past its end the edited one (editing()).
+    const Mesh& mesh() const { return editing() ? m_editor->mesh() : m_ins->mesh(); }
     const Journal* journal() const { return m_journal.get(); }
     bool batch() const { return m_journal == nullptr; }
     // Why this run has no stepping, in the words of the message log ("" while it has).
@@ -101,9 +103,12 @@ public:
     // Steps forward until the end or until `maxOps` ops were done. True at the end.
     bool toEnd(std::size_t maxOps);
     void seek(std::size_t position);
+    // Positions run over the run's ops, then the edits' (recorded() counts both).
     std::size_t position() const;
     std::size_t recorded() const;
     bool atEnd() const;
+    // At the run's last op (the edits, if any, follow).
+    bool atRunEnd() const;
     const Op* current() const;  // the op just performed, nullptr at the start or in batch mode
     // Whether the breakpoint holds at the current position (false in batch mode).
     bool hits(const Breakpoint& bp) const;
@@ -111,6 +116,28 @@ public:
     // Predicate calls past the floating-point filter (orient2d, incircle) that this run made up
     // to the current position; in batch mode, the whole run's.
     std::array<std::uint64_t, 2> exactFallbacks() const;
+
+    // ---- Edits after the run (core/engine/editor.h) ------------------------------------------
+    // Removes a vertex, or adds or takes away a constrained segment, as recorded ops after the
+    // run's end (and after the edits kept): the position goes there and the edit's ops are
+    // stepped from it like the run's, forwards and back. False, with nothing changed, when it is
+    // refused or the run cannot be edited (the super-triangle, an opened mesh, no triangle);
+    // `message` says what happened either way.
+    bool edit(Edit edit, std::string& message);
+    const Editor* editor() const { return m_editor.get(); }
+    // Past the run's end, into the edits: the mesh shown is the editor's (closed: its ghost
+    // triangles are virtual, as while the run inserts).
+    bool editing() const { return m_editor && m_editor->position() > 0; }
+    // The edit op just done (no edit at the run's end or before it).
+    EditStep currentEdit() const { return editing() ? m_editor->current() : EditStep{}; }
+    // Whether the mesh shown has virtual triangles (the ghosts or the super-triangle's): while
+    // the run inserts, and while edits are shown.
+    bool showsVirtual() const { return !m_ins->done() || editing(); }
+    bool isVirtual(std::int32_t v) const { return m_ins->isVirtual(v); }
+    bool isVirtualTriangle(std::int32_t t) const {
+        const Mesh& m = mesh();
+        return isVirtual(m.V[3 * t]) || isVirtual(m.V[3 * t + 1]) || isVirtual(m.V[3 * t + 2]);
+    }
 
     // ---- Derived from the ops of the insertion in progress ------------------------------------
     // Ops from the first op of the current insertion up to the current position (empty between
@@ -133,7 +160,8 @@ public:
     // The input point being inserted, kNone between insertions.
     std::int32_t currentVertex() const { return m_ins->currentVertex(); }
     // What each input point is now: waiting, being inserted, a vertex, or a skipped duplicate.
-    enum class PointState : std::uint8_t { Pending, Current, Inserted, Skipped };
+    // Removed: taken out of the mesh by an edit.
+    enum class PointState : std::uint8_t { Pending, Current, Inserted, Skipped, Removed };
     const std::vector<PointState>& pointStates() const;  // cached per version()
 
     // A one-line warning the engine has for the user (the history was dropped); empty when none.
@@ -148,6 +176,9 @@ private:
     void capHistory();
     // Runs the rest of the run in one batch, counting its exact fallbacks into m_batchExact.
     void finishInBatch();
+    // The run's ops (the edits' positions follow them); the journal's seek.
+    std::size_t runLength() const { return m_journal ? m_journal->recorded() : 0; }
+    void seekRun(std::size_t position);
 
     std::vector<Vec2> m_points;
     InsertOptions m_options;
@@ -155,6 +186,7 @@ private:
     GpuIdBuffer* m_idBufferGl = nullptr;  // owned by m_ins
     std::unique_ptr<Inserter> m_ins;
     std::unique_ptr<Journal> m_journal;
+    std::unique_ptr<Editor> m_editor;  // the edits after the run's end, once there is one
     std::vector<std::int32_t> m_rank;  // position of each input point in the insertion order
     std::uint64_t m_version = 0;
     std::uint64_t m_run = 0;
@@ -166,6 +198,10 @@ private:
     std::size_t m_estimatedOps = 0;
     std::array<std::uint64_t, 2> m_batchExact{};  // exactFallbacks() in batch mode
 };
+
+// Every edit on the run's timeline as a user writes it ("remove vertex 5"), in order: what sessions
+// and the autosave keep.
+std::vector<std::string> editTexts(const Engine& engine);
 
 // The operations a recorded run of these points in this order (input ids in insertion order)
 // makes, from Start to Finalize: counted on batch runs of the first points of the order (exact

@@ -180,8 +180,14 @@ bool Editor::record(Edit& edit, std::string& message) {
         return false;
     }
     if (edit.kind == EditKind::RemoveVertex) {
-        const VertexRemoval r =
-            m_constrainer.removeVertex(m_remover, edit.a, &edit.removal, &edit.constraint);
+        VertexRemoval r;
+        if (constrainedEdges().empty()) {  // no flag to put back, nothing but Delaunay to keep
+            m_remover.meshChanged();
+            r.removed = m_remover.remove(edit.a, &edit.removal);
+            m_constrainer.refresh();
+        } else {
+            r = m_constrainer.removeVertex(m_remover, edit.a, &edit.removal, &edit.constraint);
+        }
         if (r.refused) {
             message = vertexName(edit.a) + " is an end of the constrained edge " +
                       edgeName(r.constrained) + ": take that constraint away first";

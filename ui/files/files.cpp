@@ -191,12 +191,12 @@ bool saveSessionFile(AppState& st, const std::string& path) {
 Mesh exportableMesh(const Engine& e) {
     const Mesh& m = e.mesh();
     const Inserter& ins = e.inserter();
-    if (ins.done()) return m;
+    if (!e.showsVirtual()) return m;
     Mesh out;
     out.G.assign(m.G.begin(),
                  m.G.begin() + std::min<std::ptrdiff_t>(m.numVertices(), ins.firstVirtual()));
     for (std::int32_t t = 0; t < m.numTriangles(); ++t) {
-        if (ins.isVirtualTriangle(t)) continue;
+        if (e.isVirtualTriangle(t)) continue;
         out.V.insert(out.V.end(), m.V.begin() + 3 * t, m.V.begin() + 3 * t + 3);
     }
     computeOpposites(out);
@@ -237,7 +237,7 @@ bool exportMesh(AppState& st, const std::string& path, MeshFormat format) {
     if (ok) {
         st.log(Message::Level::Info,
                "exported " + std::to_string(m.numTriangles()) + " triangles to " + what +
-                   (st.engine.inserter().done()
+                   (!st.engine.showsVirtual()
                         ? ""
                         : " (the mesh at this step, virtual triangles left out)"));
     }
@@ -260,9 +260,9 @@ struct SvgScene {
     }
     glm::dvec2 at(Vec2 p) const { return st.view.toScreen(p) - st.view.origin; }
     bool drawable(std::int32_t v) const {
-        const Inserter& ins = st.engine.inserter();
-        if (v < 0 || v >= st.engine.mesh().numVertices()) return false;
-        if (ins.done() || !ins.isVirtual(v)) return true;
+        const Engine& e = st.engine;
+        if (v < 0 || v >= e.mesh().numVertices()) return false;
+        if (!e.showsVirtual() || !e.isVirtual(v)) return true;
         return st.engine.options().boundary == Boundary::Super &&
                st.overlays.virtualTriangles;  // ghosts have no place
     }
@@ -390,6 +390,7 @@ void writePoints(const SvgScene& s) {
                 break;
             case Engine::PointState::Current: style = "fill=\"#f07800\""; break;
             case Engine::PointState::Skipped: style = "fill=\"#c81e1e\""; break;
+            case Engine::PointState::Removed: continue;  // no longer in the mesh
         }
         char buf[200];
         std::snprintf(buf, sizeof buf,
@@ -553,8 +554,10 @@ void saveAutosave(AppState& st) {
         return;
     }
     f.autosaveTooBig = false;
-    if (pts == f.autosaved) return;
+    std::vector<std::string> edits = editTexts(st.engine);
+    if (pts == f.autosaved && edits == f.autosavedEdits) return;
     f.autosaved = pts;  // also on failure: one warning per change, not one per frame
+    f.autosavedEdits = std::move(edits);
     try {
         const std::string body = sessionText(st);
         writeTextFile(f.autosavePath, [&](std::ostream& os) { os << body; });

@@ -234,6 +234,7 @@ struct Session {
     std::int32_t corner = kNone;
     std::optional<Overlays> overlays;
     std::vector<BreakpointEntry> breakpoints;
+    std::vector<Edit> edits;  // after the run's end, in order
     std::string live;
     std::vector<std::pair<std::string, bool>> watches;
     bool hasExpect = false;
@@ -389,6 +390,20 @@ std::vector<BreakpointEntry> parseBreakpoints(const Json& bps) {
     return out;
 }
 
+// The edits after the run: "remove vertex 5", "constrain 2-7", "unconstrain 2-7".
+std::vector<Edit> parseEdits(const Json& edits) {
+    if (!edits.is_array()) fail("/edits", "expected an array of edits (\"remove vertex 5\")");
+    std::vector<Edit> out;
+    for (std::size_t k = 0; k < edits.size(); ++k) {
+        const std::string where = "/edits/" + std::to_string(k);
+        const auto e = parseEdit(text(edits[k], where));
+        if (!e)
+            fail(where, "expected \"remove vertex V\", \"constrain A-B\" or \"unconstrain A-B\"");
+        out.push_back(*e);
+    }
+    return out;
+}
+
 // A watch: {"text": a comparison, "enabled": true or false (true when absent)}.
 std::pair<std::string, bool> parseWatch(const Json& w, const std::string& where) {
     if (!w.is_object() || !member(w, "text"))
@@ -434,6 +449,7 @@ Session parseSession(const Json& j, PointsAside& aside) {
     if (const Json* sel = member(j, "selection")) parseSelection(*sel, s);
     if (const Json* ov = member(j, "overlays")) s.overlays = parseOverlays(*ov);
     if (const Json* bps = member(j, "breakpoints")) s.breakpoints = parseBreakpoints(*bps);
+    if (const Json* ed = member(j, "edits")) s.edits = parseEdits(*ed);
     if (const Json* ex = member(j, "expressions")) parseExpressions(*ex, s);
     if (const Json* ex = member(j, "expect")) parseExpect(*ex, s);
     return s;
@@ -484,6 +500,9 @@ std::string sessionText(const AppState& st) {
         if (b.enabled) bps.push_back(toString(b.bp));
     }
     j["breakpoints"] = bps;
+    OrderedJson edits = OrderedJson::array();
+    for (const std::string& text : editTexts(e)) edits.push_back(text);
+    if (!edits.empty()) j["edits"] = edits;
     OrderedJson watches = OrderedJson::array();
     for (const WatchEntry& w : st.expressions.watches)
         watches.push_back({{"text", w.text}, {"enabled", w.enabled}});
@@ -652,6 +671,12 @@ bool loadSessionText(AppState& st, std::string_view textIn, const std::string& n
                      : why);
         return false;
     }
+    for (const Edit& edit : s.edits) {  // the edits after the run, then the saved step
+        std::string said;
+        if (!eng.edit(edit, said))
+            st.log(Message::Level::Warning, name + ": " + describe(edit) + " refused: " + said);
+    }
+    if (!s.edits.empty()) eng.seek(s.position);
     if (!previous.empty()) {
         st.undoPoints.push_back(std::move(previous));
         st.redoPoints.clear();

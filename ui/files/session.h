@@ -11,6 +11,7 @@
 //    "position": 57,                              (operations done)
 //    "view": {"center": [x, y], "scale": s}, "selection": {"corner": 7},
 //    "overlays": {...}, "breakpoints": ["flip", "insert:5"],
+//    "edits": ["remove vertex 5", "constrain 2-7"],  (after the run's end; "position" counts them)
 //    "expressions": {"live": "c.n.o", "watches": [{"text": "o(o(c)) == c", "enabled": true}]},
 //    "expect": {"position": 57, "op": "Flip", "triangles": 12, "vertices": 14,
 //               "fingerprint": "0123456789abcdef"}}

@@ -72,7 +72,7 @@ struct MeshScan {
         : m(engine.mesh()),
           xy(screen),
           ghostMode(engine.inserter().options().boundary == Boundary::Exact),
-          running(!engine.inserter().done()),
+          running(engine.showsVirtual()),
           drawVirtual(style.drawVirtual),
           hideVirtual(running && (ghostMode || !drawVirtual)),
           firstVirtual(engine.inserter().firstVirtual()),
@@ -261,7 +261,8 @@ void MeshRenderer::drawRasterAll(const Engine& engine, bool masked) {
 // another run, no history, the end of the run (virtual triangles go), or most tiles dirty.
 bool MeshRenderer::patchRaster(const Engine& engine) {
     const Journal* journal = engine.journal();
-    if (!journal || engine.run() != m_run || m_running != !engine.inserter().done()) return false;
+    if (!journal || engine.editor() || engine.run() != m_run || m_running != engine.showsVirtual())
+        return false;
     if (m_rasterW != rasterSize(m_view.size.x) || m_rasterH != rasterSize(m_view.size.y))
         return false;
     if (!markChanges(engine)) return false;

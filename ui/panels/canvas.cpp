@@ -189,7 +189,7 @@ struct Scene {
     }
 
     ImVec2 screen(std::int32_t v) const { return toIm(view.toScreen(m.G[v])); }
-    bool virtualTri(std::int32_t t) const { return running && ins.isVirtualTriangle(t); }
+    bool virtualTri(std::int32_t t) const { return running && e.isVirtualTriangle(t); }
     bool room(unsigned vertices) const { return canvasHasRoom(st, dl, vertices); }
     // Labels leave this much room for the points, drawn after them (on top).
     unsigned pointReserve() const {
@@ -802,6 +802,10 @@ void DrawPoints(const Scene& s, std::int32_t draggedPoint, Vec2 dragTo) {
                 idCol = s.use(Mark::NextPoint);
                 DrawNextPoint(s.dl, q, r, idCol);
                 break;
+            case Engine::PointState::Removed:
+                idCol = s.use(Mark::RemovedPoint);
+                s.dl->AddCircle(q, r + 1, idCol, 0, 1.5f);
+                break;
             case Engine::PointState::Skipped:
                 idCol = s.use(Mark::SkippedPoint);
                 s.dl->AddLine(ImVec2(q.x - r, q.y - r), ImVec2(q.x + r, q.y + r), idCol, 2);
@@ -893,7 +897,7 @@ Scene makeScene(AppState& st, ImDrawList* dl) {
                  st.view,
                  dl,
                  palette(st.presentation),
-                 !e.inserter().done(),
+                 e.showsVirtual(),
                  e.options().boundary == Boundary::Exact};
 }
 
@@ -944,7 +948,9 @@ void handleInput(AppState& st, CanvasCache& cache, bool hovered) {
         cache.pressedOnCorner = st.selection.hoveredCorner != kNone;
         cache.dragPoint = pendingPointAt(st, mouse);
         cache.drag = cache.dragPoint != kNone ? CanvasCache::Drag::Pending : CanvasCache::Drag::Pan;
-        if (cache.pressedOnCorner && cache.dragPoint == kNone) {
+        // An edit tool takes the click for a vertex, not the corner beside it.
+        if (cache.pressedOnCorner && cache.dragPoint == kNone &&
+            st.tool == AppState::CanvasTool::AddPoints) {
             st.select(st.selection.hoveredCorner);
             st.selection.jumpToCorner = st.selection.corner;
             cache.drag = CanvasCache::Drag::None;
@@ -969,6 +975,8 @@ void handleInput(AppState& st, CanvasCache& cache, bool hovered) {
                 st.log(Message::Level::Info,
                        "point " + std::to_string(cache.dragPoint) +
                            " is queued: drag it to move it, right-click to remove it");
+            } else if (EditClick(st, mouse)) {
+                // an edit tool's click: a vertex removed or a segment's end picked
             } else if (!st.engine.batch()) {
                 pts.push_back(world);  // a click on empty canvas queues a new point
                 if (st.editPoints(std::move(pts))) {
@@ -1156,6 +1164,7 @@ void DrawMeshLayers(AppState& st, CanvasCache& cache, const Scene& scene, ImVec2
     if (st.overlays.voronoi) DrawVoronoi(scene);
     if (DrawGhostTriangles(st, scene.dl)) scene.use(Mark::GhostBand);
     DrawCheckOverlay(st, scene.dl);
+    DrawEditOverlay(st, scene.dl);
     DrawOpOverlay(scene);
 }
 

@@ -47,6 +47,13 @@ constexpr std::array<Look, kMarkCount> kLooks{{
     {Mark::OnlyInMesh, Shape::Line, IM_COL32(205, 30, 40, 255), "edge only in this mesh"},
     {Mark::OnlyInDelaunay, Shape::Dashed, IM_COL32(20, 140, 60, 255),
      "edge only in the Delaunay triangulation"},
+    {Mark::ConstrainedEdge, Shape::Line, IM_COL32(90, 40, 150, 255),
+     "constrained edge: never flipped"},
+    {Mark::EditSegment, Shape::Dashed, IM_COL32(90, 40, 150, 255), "segment being constrained"},
+    {Mark::CrossingEdge, Shape::Line, IM_COL32(230, 90, 20, 255),
+     "edge crossing the segment: flipped out"},
+    {Mark::EarTriangle, Shape::Fill, IM_COL32(205, 235, 200, 255), "ear tested (removal)"},
+    {Mark::RemovedPoint, Shape::Ring, IM_COL32(160, 160, 170, 255), "vertex removed by an edit"},
 }};
 
 constexpr bool inMarkOrder() {

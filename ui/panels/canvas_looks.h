@@ -45,6 +45,11 @@ enum class Mark : std::uint8_t {
     MeshPicked,       // the problem picked in the Check tab
     OnlyInMesh,       // an edge the mesh has and the Delaunay triangulation has not (Check)
     OnlyInDelaunay,   // an edge the Delaunay triangulation has and the mesh has not (Check)
+    ConstrainedEdge,  // an edge an edit constrained: never flipped
+    EditSegment,      // the segment an edit constrains or frees
+    CrossingEdge,     // an edge that crosses the segment: Sloan's flips take it out
+    EarTriangle,      // vertex removal: the ear tested (a triangle of the result when it is one)
+    RemovedPoint,     // a vertex an edit removed
     Count
 };
 inline constexpr std::size_t kMarkCount = static_cast<std::size_t>(Mark::Count);

@@ -153,7 +153,7 @@ bool ShowCornerRow(AppState& st, const OpChanges& changes, std::int32_t c, float
     const bool hovered = ImGui::IsItemHovered();
     ImGui::TableSetColumnIndex(1);
     ImGui::Text("%d", t);
-    const bool virtualVertex = !ins.done() && ins.isVirtual(m.V[c]);
+    const bool virtualVertex = st.engine.showsVirtual() && ins.isVirtual(m.V[c]);
     ChangedCell(st, c, 2, changes.beforeV, m.V[c], virtualVertex, rowH);
     ChangedCell(st, c, 3, changes.beforeO, m.O[c], virtualVertex, rowH);
     ImGui::TableSetColumnIndex(4);

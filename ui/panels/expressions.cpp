@@ -29,9 +29,8 @@ constexpr std::int32_t kWatchAllCorners = 6000;  // six standard watches over 60
 
 ExprContext contextOf(const Engine& e) {
     ExprContext ctx;
-    const Inserter& ins = e.inserter();
-    if (!ins.done()) {
-        ctx.firstVirtual = ins.firstVirtual();
+    if (e.showsVirtual()) {
+        ctx.firstVirtual = e.inserter().firstVirtual();
         ctx.ghost = e.options().boundary == Boundary::Exact;
     }
     return ctx;
@@ -347,7 +346,7 @@ void DrawExpressionOverlay(AppState& st) {
     };
     auto vertexOk = [&](std::int32_t v) {
         return v >= 0 && v < m.numVertices() &&
-               !(st.engine.inserter().isVirtual(v) && !st.engine.inserter().done());
+               !(st.engine.isVirtual(v) && st.engine.showsVirtual());
     };
     ImFont* font = fonts().ui;
     const float fs = ImGui::GetFontSize();

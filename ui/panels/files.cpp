@@ -101,7 +101,7 @@ void DialogFields(AppState& st, const DialogInfo& d) {
         ImGui::RadioButton("OFF", &f.meshFormat, 1);
         ImGui::SameLine();
         ImGui::RadioButton("OBJ", &f.meshFormat, 2);
-        if (!st.engine.inserter().done()) {
+        if (st.engine.showsVirtual()) {
             ImGui::TextDisabled(
                 "The run is not finished: the mesh at this step is exported, without its virtual "
                 "triangles.");

@@ -15,7 +15,7 @@ std::string queueRowText(const Inserter& ins, std::size_t number, const Engine::
     const auto triangle = [&](std::int32_t t) {
         if (t == kNone) return std::string("hull");
         std::string s = std::to_string(t);
-        if (ins.isVirtualTriangle(t) && !ins.done()) s += exact ? " ghost" : " super";
+        if (!ins.done() && ins.isVirtualTriangle(t)) s += exact ? " ghost" : " super";
         return s;
     };
     return std::to_string(number) + ". edge " + vertexName(ins, q.edge.a) + "-" +

@@ -20,7 +20,7 @@ namespace {
 
 // The hull edge u -> w of ghost triangle t (the world's left of it is outside) and the corners
 // of t at u and at w; false when t is no ghost triangle.
-bool ghostHullEdge(const Inserter& ins, std::int32_t t, std::int32_t& cu, std::int32_t& cw) {
+bool ghostHullEdge(const Engine& ins, std::int32_t t, std::int32_t& cu, std::int32_t& cw) {
     const Mesh& m = ins.mesh();
     if (t < 0 || t >= m.numTriangles()) return false;
     int k = 0;
@@ -33,7 +33,7 @@ bool ghostHullEdge(const Inserter& ins, std::int32_t t, std::int32_t& cu, std::i
 
 // The unit screen normal of ghost triangle t's hull edge, towards the outside; false when none.
 bool outwardNormal(const AppState& st, std::int32_t t, glm::dvec2& n) {
-    const Inserter& ins = st.engine.inserter();
+    const Engine& ins = st.engine;
     std::int32_t cu, cw;
     if (!ghostHullEdge(ins, t, cu, cw)) return false;
     const Mesh& m = ins.mesh();
@@ -66,10 +66,10 @@ glm::dvec2 wedgeSide(const AppState& st, glm::dvec2 n, std::int32_t c) {
 
 bool ghostWedge(const AppState& st, std::int32_t t, ImVec2& a, ImVec2& b, ImVec2& da, ImVec2& db) {
     const Engine& e = st.engine;
-    if (e.batch() || e.inserter().done() || e.options().boundary != Boundary::Exact) return false;
+    if (e.batch() || !e.showsVirtual() || e.options().boundary != Boundary::Exact) return false;
     std::int32_t cu, cw;
     glm::dvec2 n;
-    if (!ghostHullEdge(e.inserter(), t, cu, cw) || !outwardNormal(st, t, n)) return false;
+    if (!ghostHullEdge(e, t, cu, cw) || !outwardNormal(st, t, n)) return false;
     const Mesh& m = e.mesh();
     // The ghost triangle across the edge (w, ghost) is opposite u's corner, and conversely.
     const glm::dvec2 su = wedgeSide(st, n, cw), sw = wedgeSide(st, n, cu);
@@ -118,8 +118,7 @@ void LabelSuperVertices(AppState& st, ImDrawList* dl, LabelBoxes& labels) {
 bool DrawGhostTriangles(AppState& st, ImDrawList* dl) {
     const Engine& e = st.engine;
     if (e.batch() || !st.overlays.virtualTriangles) return false;
-    const Inserter& ins = e.inserter();
-    if (ins.done()) return false;
+    if (!e.showsVirtual()) return false;
     if (e.options().boundary == Boundary::Super) {
         return false;
     }
@@ -139,7 +138,7 @@ bool DrawGhostTriangles(AppState& st, ImDrawList* dl) {
     int drawn = 0;
     for (std::int32_t t = 0; t < m.numTriangles() && drawn < kMostBands; ++t) {
         ImVec2 a, b, da, db;
-        if (t == target || !ins.isVirtualTriangle(t) || !ghostWedge(st, t, a, b, da, db)) continue;
+        if (t == target || !e.isVirtualTriangle(t) || !ghostWedge(st, t, a, b, da, db)) continue;
         const ImVec2 p[4] = {a, b, ImVec2(b.x + db.x * band, b.y + db.y * band),
                              ImVec2(a.x + da.x * band, a.y + da.y * band)};
         dl->AddConvexPolyFilled(p, 4, fill);

@@ -47,8 +47,7 @@ bool containsClosed(const Mesh& m, std::int32_t t, Vec2 q) {
 }
 
 bool realTriangle(const Engine& e, std::int32_t t) {
-    const Inserter& ins = e.inserter();
-    return t >= 0 && t < e.mesh().numTriangles() && (ins.done() || !ins.isVirtualTriangle(t));
+    return t >= 0 && t < e.mesh().numTriangles() && (!e.showsVirtual() || !e.isVirtualTriangle(t));
 }
 
 // A buffer pixel's colour as the view shows it: false colour, or the encoded colour.

@@ -110,7 +110,7 @@ void ShowInspector(AppState& st) {
     ShowOperatorButtons(st);
     ShowCornerValues(m, c);
     const Vec2 g = m.G[m.V[c]];
-    const bool ghost = !st.engine.inserter().done() && st.engine.inserter().isVirtual(m.V[c]) &&
+    const bool ghost = st.engine.showsVirtual() && st.engine.isVirtual(m.V[c]) &&
                        st.engine.options().boundary == Boundary::Exact;
     if (ghost)
         ImGui::TextDisabled("vertex %d is the ghost vertex: it has no coordinates", m.V[c]);

@@ -193,4 +193,15 @@ struct SideTab {
     const char* shortName = nullptr;  // the label when the labels do not all fit (1280 x 720)
 };
 
+// edits.cpp: edits after the run. The canvas tools' names (AppState::CanvasTool order); the
+// constrained edges and the edit op in progress drawn as its record says; the op in words for
+// the caption ("" when none); an edit made, logged and played; Delete on the selected corner's
+// vertex; a click with an edit tool (false: the tool adds points, the click is not one for it).
+extern const char* const kCanvasToolNames[4];
+void DrawEditOverlay(AppState& state, ImDrawList* dl);
+std::string editOpText(const Engine& engine);
+void ApplyEdit(AppState& state, Edit edit);
+void RemoveSelectedVertex(AppState& state);
+bool EditClick(AppState& state, ImVec2 mouse);
+
 }  // namespace dlab::ui

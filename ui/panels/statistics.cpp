@@ -76,9 +76,8 @@ void checkHull(const Engine& e, StatisticsState& s) {
     s.hullGaps.clear();
     s.hullReport.clear();
     const Mesh& m = e.mesh();
-    const Inserter& ins = e.inserter();
-    const bool running = !ins.done();
-    auto real = [&](std::int32_t t) { return !running || !ins.isVirtualTriangle(t); };
+    const bool running = e.showsVirtual();
+    auto real = [&](std::int32_t t) { return !running || !e.isVirtualTriangle(t); };
     std::unordered_map<std::int32_t, std::int32_t>
         nextOnHull;  // boundary edge a -> b (interior on the left)
     std::vector<std::uint8_t> used(static_cast<std::size_t>(m.numVertices()), 0);
@@ -137,9 +136,14 @@ void validateNow(AppState& st) {
     const Engine& e = st.engine;
     ValidateOptions o;
     o.maxViolations = 200;
-    if (!e.inserter().done() && e.options().boundary == Boundary::Exact)
+    if (e.showsVirtual() && e.options().boundary == Boundary::Exact)
         o.firstVirtual = e.inserter().firstVirtual();
     s.violations = validate(e.mesh(), o);
+    if (e.editing()) {  // a constrained edge need not be Delaunay: it is never flipped
+        std::erase_if(s.violations, [&](const Violation& v) {
+            return v.kind == Violation::Kind::NotDelaunay && e.editor()->isConstrained(v.corner);
+        });
+    }
     checkHull(e, s);
     s.validatedVersion = e.version();
 }
@@ -147,6 +151,10 @@ void validateNow(AppState& st) {
 // Between Split and Inserted the new vertex's edges are still being tested: some are not
 // Delaunay yet, and that is expected.
 bool midInsertion(const Engine& e) {
+    if (e.editing()) {  // an edit's flips to come
+        const Editor& ed = *e.editor();
+        return ed.position() < ed.editEnd(ed.current().index);
+    }
     const Op* op = e.current();
     if (op && e.repairs())
         return op->type != OpType::Finalize;  // the flip algorithm's tests to come
@@ -219,10 +227,10 @@ void DrawViolationOverlay(AppState& st) {
     const ImU32 col = useLook(st, expected ? Mark::NotYetDelaunay : Mark::Violation);
     const ImU32 broken = lookOf(Mark::Violation).colour;
     const float w = (st.presentation ? 7.0f : 5.0f) * (expected ? 0.6f : 1.0f);
-    const Inserter& ins = st.engine.inserter();
+    const Engine& e = st.engine;
     auto drawable = [&](std::int32_t v) {
         return v >= 0 && v < m.numVertices() &&
-               (ins.done() || !ins.isVirtual(v) || st.engine.options().boundary == Boundary::Super);
+               (!e.showsVirtual() || !e.isVirtual(v) || e.options().boundary == Boundary::Super);
     };
     for (const Violation& v : s.violations) {
         const std::int32_t c = v.corner;
@@ -369,9 +377,9 @@ Totals runTotals(AppState& st) {
              batch ? bs.inserted : c.inserted,
              batch ? bs.duplicates : c.duplicates,
              0};
-    if (!ins.done()) {
+    if (e.showsVirtual()) {
         for (std::int32_t k = 0; k < e.mesh().numTriangles(); ++k)
-            t.virtualTriangles += ins.isVirtualTriangle(k);
+            t.virtualTriangles += e.isVirtualTriangle(k);
     }
     return t;
 }

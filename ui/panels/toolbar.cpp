@@ -277,6 +277,28 @@ void ShowModes(AppState& state) {
     if (changed) state.setUserOptions(o);
 }
 
+// What a click on the canvas does: queue a point, or an edit of the finished mesh.
+void ShowCanvasTool(AppState& st) {
+    const float width = ImGui::CalcTextSize("constrain segment").x + Scaled(40);
+    SameLineOrWrap(ImGui::CalcTextSize("Click").x + width);
+    ImGui::AlignTextToFramePadding();
+    ImGui::TextUnformatted("Click");
+    ImGui::SameLine(0, ImGui::GetStyle().ItemInnerSpacing.x);
+    ImGui::SetNextItemWidth(width);
+    int tool = static_cast<int>(st.tool);
+    if (ImGui::Combo("##tool", &tool, kCanvasToolNames, IM_ARRAYSIZE(kCanvasToolNames))) {
+        st.tool = static_cast<AppState::CanvasTool>(tool);
+        st.toolFirstVertex = kNone;
+    }
+    RecordItem(st, "tool");
+    if (ImGui::IsItemHovered())
+        ImGui::SetTooltip(
+            "What a click on the canvas does. add points: queue a new point. The others edit the "
+            "finished mesh, each edit stepped like the run:\nremove vertex: the vertex clicked "
+            "(or Delete: the selected corner's vertex)\nconstrain segment / free segment: the "
+            "segment between the two vertices clicked");
+}
+
 }  // namespace
 
 void ShowToolbar(AppState& state) {
@@ -284,6 +306,7 @@ void ShowToolbar(AppState& state) {
     SameLineOrWrap(ButtonWidth("Breakpoints (00)"));
     ShowBreakpointsButton(state);
     ShowModes(state);
+    ShowCanvasTool(state);
 }
 
 namespace {
@@ -316,6 +339,7 @@ std::string captionText(const AppState& state) {
                std::to_string(e.points().size()) + " points (" + e.batchReason() + ")";
     }
     if (const Op* op = e.current()) return opPrefix(e, *op) + describe(*op, e.inserter());
+    if (e.editing()) return opLabel(e.position()) + " " + editOpText(e);
     return std::to_string(e.points().size()) +
            " points ready: press Right (or >) to take the first step. F1 lists every shortcut.";
 }
@@ -329,7 +353,7 @@ void ShowCaption(AppState& state) {
         ImGui::TextColored(opColour(op->type), "%s", opPrefix(e, *op).c_str());
         ImGui::SameLine(0, 0);
         ImGui::TextWrapped("%s", describe(*op, e.inserter()).c_str());
-    } else if (e.batch()) {
+    } else if (e.batch() || e.editing()) {
         ImGui::TextWrapped("%s", captionText(state).c_str());
     } else {
         ImGui::TextDisabled("%s", captionText(state).c_str());
@@ -345,7 +369,8 @@ void ShowCaption(AppState& state) {
 
 std::string timelineText(const Engine& e) {
     if (e.batch()) return pointCountsText(e);
-    const bool complete = e.recorded() > 0 && e.journal()->ops().back().type == OpType::Finalize;
+    const bool complete = e.recorded() > 0 && e.atRunEnd() &&
+                          (e.editor() || e.journal()->ops().back().type == OpType::Finalize);
     std::string s = "op " + std::to_string(e.position());
     if (complete)
         s += " of " + std::to_string(e.recorded());
@@ -353,7 +378,11 @@ std::string timelineText(const Engine& e) {
         s += " of " + std::to_string(e.recorded()) + " recorded so far";
     else
         s += " (recorded as you step)";
-    return s + "   |   " + pointCountsText(e);
+    s += "   |   " + pointCountsText(e);
+    if (const Editor* ed = e.editor(); ed && !ed->edits().empty())
+        s += ", " + std::to_string(ed->editsDone()) + " of " + std::to_string(ed->edits().size()) +
+             (ed->edits().size() == 1 ? " edit done" : " edits done");
+    return s;
 }
 
 void ShowTimeline(AppState& state) {

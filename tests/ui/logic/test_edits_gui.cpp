@@ -1,0 +1,231 @@
+// Edits after the run, driven as a user drives them: Delete on a selected corner's vertex, the
+// canvas tools' clicks on vertices, each edit's ops stepped with the arrow keys and undone bit for
+// bit, the caption reading the op's record, refusals in the message log, and sessions that keep
+// the edits.
+#include "core/engine/mesh.h"
+#include "core/engine/predicates.h"
+#include "tests/ui/ui_harness.h"
+#include "ui/files/session.h"
+#include "ui/panels/panels.h"
+#include "ui/platform/keys.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+using dlab::kNone;
+using dlab::test::UiHarness;
+namespace key = dlab::ui::key;
+namespace ui = dlab::ui;
+
+namespace {
+
+struct Cells {
+    std::vector<std::int32_t> V, O;
+    bool operator==(const Cells&) const = default;
+};
+Cells cells(const ui::Engine& e) { return {e.mesh().V, e.mesh().O}; }
+
+void toRunEnd(UiHarness& h) {
+    h.press(key::kEnd);
+    h.frames(3);
+    ASSERT_TRUE(h.state().engine.atEnd());
+    ASSERT_FALSE(h.state().run.running);
+}
+
+bool logged(const ui::AppState& st, const std::string& words) {
+    return std::any_of(st.messages.begin(), st.messages.end(), [&](const ui::Message& m) {
+        return m.text.find(words) != std::string::npos;
+    });
+}
+
+bool usesVertex(const dlab::Mesh& m, std::int32_t v) {
+    return std::find(m.V.begin(), m.V.end(), v) != m.V.end();
+}
+
+// Where vertex v is on the screen.
+void screenOf(UiHarness& h, std::int32_t v, float& x, float& y) {
+    const auto q = h.state().view.toScreen(h.state().engine.points()[v]);
+    x = static_cast<float>(q.x);
+    y = static_cast<float>(q.y);
+}
+
+// An interior vertex of the demo's mesh (no ghost triangle at it).
+std::int32_t interiorVertex(const ui::Engine& e) {
+    const dlab::Mesh& m = e.mesh();
+    for (std::int32_t v = 0; v < static_cast<std::int32_t>(e.points().size()); ++v) {
+        bool onHull = false, used = false;
+        for (std::int32_t c = 0; c < m.numCorners(); ++c) {
+            if (m.V[c] != v) continue;
+            used = true;
+            onHull |= m.O[dlab::next(c)] == kNone || m.O[dlab::prev(c)] == kNone;
+        }
+        if (used && !onHull) return v;
+    }
+    return kNone;
+}
+
+}  // namespace
+
+TEST(EditsInTheGui, DeleteRemovesTheSelectedVertexStepByStepAndLeftUndoesItBitForBit) {
+    UiHarness h;
+    auto& e = h.state().engine;
+    toRunEnd(h);
+    const std::size_t runEnd = e.position();
+    const Cells before = cells(e);
+    const std::int32_t v = interiorVertex(e);
+    ASSERT_NE(v, kNone);
+    std::int32_t c = 0;
+    while (e.mesh().V[c] != v) ++c;
+    h.state().select(c);
+    h.press(key::kDelete);
+    EXPECT_TRUE(logged(h.state(), "removed vertex " + std::to_string(v))) << v;
+    h.state().run.running = false;  // step it by hand
+    h.frames(1);
+    ASSERT_NE(e.editor(), nullptr);
+    const std::size_t total = e.recorded();
+    ASSERT_GT(total, runEnd + 1) << "a removal is several ops: ear tests, flips, a merge";
+    e.seek(runEnd);
+    h.frames(1);
+    std::size_t flips = 0;
+    while (e.position() < total) {
+        h.press(key::kRight);
+        ASSERT_TRUE(e.editing());
+        const std::string caption = ui::captionText(h.state());
+        EXPECT_NE(caption.find("remove vertex " + std::to_string(v)), std::string::npos) << caption;
+        const dlab::EditStep s = e.currentEdit();
+        ASSERT_NE(s.removal, nullptr);
+        if (s.removal->type == dlab::RemoveOpType::Flip) {
+            ++flips;
+            EXPECT_NE(caption.find("flip "), std::string::npos) << caption;
+        }
+    }
+    EXPECT_GT(flips, 0u);
+    EXPECT_FALSE(usesVertex(e.mesh(), v));
+    EXPECT_EQ(e.pointStates()[v], ui::Engine::PointState::Removed);
+    dlab::ValidateOptions o;
+    o.firstVirtual = e.inserter().firstVirtual();
+    EXPECT_TRUE(dlab::validate(e.mesh(), o).empty()) << "valid and Delaunay after the removal";
+    while (e.position() > runEnd) h.press(key::kLeft);
+    EXPECT_FALSE(e.editing());
+    EXPECT_EQ(cells(e), before);
+    EXPECT_EQ(e.pointStates()[v], ui::Engine::PointState::Inserted);
+}
+
+TEST(EditsInTheGui, TheConstrainToolTakesTheTwoVerticesClickedAndRefusesACrossing) {
+    UiHarness h;
+    auto& st = h.state();
+    auto& e = st.engine;
+    toRunEnd(h);
+    st.tool = ui::AppState::CanvasTool::Constrain;
+    h.frames(1);
+    // The two hull vertices farthest apart: their segment crosses the mesh.
+    const auto& pts = e.points();
+    std::int32_t a = 0, b = 1;
+    double far = -1;
+    for (std::int32_t i = 0; i < static_cast<std::int32_t>(pts.size()); ++i) {
+        for (std::int32_t j = i + 1; j < static_cast<std::int32_t>(pts.size()); ++j) {
+            if (!usesVertex(e.mesh(), i) || !usesVertex(e.mesh(), j)) continue;
+            const double d = std::hypot(pts[i].x - pts[j].x, pts[i].y - pts[j].y);
+            if (d > far) {
+                far = d;
+                a = i;
+                b = j;
+            }
+        }
+    }
+    float x, y;
+    screenOf(h, a, x, y);
+    h.click(x, y);
+    EXPECT_EQ(st.toolFirstVertex, a);
+    screenOf(h, b, x, y);
+    h.click(x, y);
+    EXPECT_EQ(st.toolFirstVertex, kNone);
+    ASSERT_NE(e.editor(), nullptr);
+    ASSERT_EQ(e.editor()->edits().size(), 1u);
+    EXPECT_EQ(e.editor()->edits()[0].kind, dlab::EditKind::Constrain);
+    h.press(key::kEnd);
+    h.frames(3);
+    const auto edges = e.editor()->constrainedEdges();
+    ASSERT_FALSE(edges.empty());
+    const bool endsAtA = std::any_of(edges.begin(), edges.end(), [&](const auto& ed) {
+        return ed.first == a || ed.second == a;
+    });
+    EXPECT_TRUE(endsAtA);
+    // A segment across it is refused, named, and changes nothing.
+    const Cells constrained = cells(e);
+    std::int32_t p = kNone, q = kNone;
+    for (std::int32_t i = 0; i < static_cast<std::int32_t>(pts.size()) && q == kNone; ++i) {
+        for (std::int32_t j = 0; j < static_cast<std::int32_t>(pts.size()); ++j) {
+            if (i == a || i == b || j == a || j == b || !usesVertex(e.mesh(), i) ||
+                !usesVertex(e.mesh(), j))
+                continue;
+            const dlab::Vec2 A = pts[a], B = pts[b], P = pts[i], Q = pts[j];
+            if (dlab::orient2d(A, B, P) * dlab::orient2d(A, B, Q) < 0 &&
+                dlab::orient2d(P, Q, A) * dlab::orient2d(P, Q, B) < 0) {
+                p = i;
+                q = j;
+                break;
+            }
+        }
+    }
+    ASSERT_NE(q, kNone) << "the demo has a segment across " << a << "-" << b;
+    screenOf(h, p, x, y);
+    h.click(x, y);
+    screenOf(h, q, x, y);
+    h.click(x, y);
+    EXPECT_TRUE(logged(st, "crosses the constrained edge")) << p << "-" << q;
+    EXPECT_EQ(cells(e), constrained);
+    EXPECT_EQ(e.editor()->edits().size(), 1u);
+}
+
+TEST(EditsInTheGui, ASessionKeepsTheEditsAndTheStepInsideThem) {
+    std::string text;
+    Cells mid;
+    std::size_t runEnd = 0;
+    std::int32_t v = kNone;
+    {  // one GUI at a time (ImGui's context is global)
+        UiHarness h;
+        auto& e = h.state().engine;
+        toRunEnd(h);
+        runEnd = e.position();
+        std::string message;
+        v = interiorVertex(e);
+        ASSERT_TRUE(e.edit(dlab::makeEdit(dlab::EditKind::RemoveVertex, v), message)) << message;
+        e.seek(runEnd + 2);
+        text = ui::sessionText(h.state());
+        mid = cells(e);
+    }
+    EXPECT_NE(text.find("\"remove vertex " + std::to_string(v) + "\""), std::string::npos);
+    {
+        UiHarness other;
+        std::string error;
+        ASSERT_TRUE(ui::loadSessionText(other.state(), text, "edits.json", error)) << error;
+        const auto& f = other.state().engine;
+        EXPECT_EQ(f.position(), runEnd + 2);
+        EXPECT_TRUE(f.editing());
+        EXPECT_EQ(cells(f), mid);
+    }
+    // A session naming an edit it cannot read is refused with the place of the error.
+    std::string bad = text;
+    bad.replace(bad.find("remove vertex"), 13, "erase vertex");
+    UiHarness third;
+    std::string error;
+    EXPECT_FALSE(ui::loadSessionText(third.state(), bad, "bad.json", error));
+    EXPECT_NE(error.find("edits"), std::string::npos) << error;
+}
+
+TEST(EditsInTheGui, TheSuperTriangleRunRefusesEditsAndSaysWhy) {
+    UiHarness h;
+    auto& st = h.state();
+    dlab::InsertOptions o = st.engine.options();
+    o.boundary = dlab::Boundary::Super;
+    ASSERT_TRUE(st.setOptions(o));
+    toRunEnd(h);
+    std::string message;
+    EXPECT_FALSE(st.engine.edit(dlab::makeEdit(dlab::EditKind::RemoveVertex, 0), message));
+    EXPECT_NE(message.find("exact"), std::string::npos) << message;
+    EXPECT_EQ(st.engine.editor(), nullptr);
+}
