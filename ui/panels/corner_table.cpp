@@ -3,6 +3,7 @@
 // the triangles it touched are marked, and a million rows scroll smoothly (ImGuiListClipper).
 // Also the G tab: vertex coordinates.
 #include "ui/gui.h"
+#include "ui/panels/canvas_looks.h"
 #include "ui/panels/panels.h"
 
 #include <imgui.h>
@@ -52,27 +53,49 @@ void ShowGoToCorner(AppState& st) {
     if (ImGui::IsItemHovered()) ImGui::SetTooltip("Scroll to the cells each operation changes");
     ImGui::SameLine();
     ImGui::TextDisabled("%d corners   l(c) = o(n(c)), r(c) = o(p(c))", m.numCorners());
+    if (const Editor* ed = st.engine.editing() ? st.engine.editor() : nullptr;
+        ed && !ed->constrainedEdges().empty()) {
+        ImGui::SameLine();
+        ImGui::TextColored(ImGui::ColorConvertU32ToFloat4(lookOf(Mark::ConstrainedEdge).colour),
+                           "O* = constrained edge");
+    }
 }
 
 // The current op's changes; when following the run, a new step scrolls to its first change.
 OpChanges collectOpChanges(AppState& st) {
     const Engine& e = st.engine;
     OpChanges out;
+    // The op's cells: the run's op, or the edit's (its removal's or its constraint's record).
+    const std::vector<CellChange>* changes = nullptr;
+    std::uint32_t first = 0, count = 0;
     if (const Op* op = e.current(); op && e.journal()) {
-        const auto& changes = e.journal()->changes();
-        for (std::uint32_t i = 0; i < op->numChanges; ++i) {
-            const CellChange& ch = changes[op->firstChange + i];
-            // The first record of a cell holds its value before the op.
-            (ch.isO() ? out.beforeO : out.beforeV).emplace(ch.corner(), ch.before);
-            out.touched.push_back(tri(ch.corner()));
-        }
-        std::sort(out.touched.begin(), out.touched.end());
-        out.touched.erase(std::unique(out.touched.begin(), out.touched.end()), out.touched.end());
-        // Follow the run: after each step, bring the first changed cell into view.
-        if (st.selection.followOp && e.version() != st.tableVersion && op->numChanges > 0) {
-            st.selection.jumpToCorner = changes[op->firstChange].corner();
-        }
+        changes = &e.journal()->changes();
+        first = op->firstChange;
+        count = op->numChanges;
+    } else if (const EditStep s = e.currentEdit(); s.removal) {
+        changes = &s.edit->removal.changes;
+        first = s.removal->firstChange;
+        count = s.removal->numChanges;
+    } else if (s.constraint) {
+        changes = &s.edit->constraint.changes;
+        first = s.constraint->firstChange;
+        count = s.constraint->numChanges;
     }
+    const std::int32_t corners = e.mesh().numCorners();
+    std::int32_t firstCell = kNone;
+    for (std::uint32_t i = 0; changes && i < count; ++i) {
+        const CellChange& ch = (*changes)[first + i];
+        if (ch.corner() >= corners) continue;  // a row a removal took away
+        if (firstCell == kNone) firstCell = ch.corner();
+        // The first record of a cell holds its value before the op.
+        (ch.isO() ? out.beforeO : out.beforeV).emplace(ch.corner(), ch.before);
+        out.touched.push_back(tri(ch.corner()));
+    }
+    std::sort(out.touched.begin(), out.touched.end());
+    out.touched.erase(std::unique(out.touched.begin(), out.touched.end()), out.touched.end());
+    // Follow the run: after each step, bring the first changed cell into view.
+    if (st.selection.followOp && e.version() != st.tableVersion && firstCell != kNone)
+        st.selection.jumpToCorner = firstCell;
     st.tableVersion = e.version();
     return out;
 }
@@ -116,7 +139,11 @@ void ChangedCell(AppState& st, std::int32_t c, int column, const BeforeValues& b
         cellMax(at.x + cellW + pad.x, at.y - pad.y + rowH);
     const auto it = before.find(c);
     if (it != before.end()) ImGui::TableSetBgColor(ImGuiTableBgTarget_CellBg, kChangedCell);
-    if (column == 2 && virtualVertex) {
+    const Editor* ed = st.engine.editing() ? st.engine.editor() : nullptr;
+    if (column == 3 && ed && ed->isConstrained(c)) {  // the edge opposite c is constrained
+        ImGui::TextColored(ImGui::ColorConvertU32ToFloat4(lookOf(Mark::ConstrainedEdge).colour),
+                           "%d*", value);
+    } else if (column == 2 && virtualVertex) {
         ImGui::Text(st.engine.options().boundary == Boundary::Exact ? "%d (ghost)" : "%d (super)",
                     value);
         // For tests: the text's width against its cell's.
