@@ -172,41 +172,45 @@ TEST(Editor, RefusedEditsChangeNothingAndSayWhy) {
     EXPECT_NE(message.find("not in the mesh"), std::string::npos) << message;
 }
 
-TEST(Editor, AnEditInTheMiddleOfTheHistoryDropsTheEditsAfterIt) {
+TEST(Editor, ANewEditGoesAfterEveryEditAndTakeLastUndoesOnlyTheLast) {
     const std::vector<Vec2> pts = randomPoints(60, 3);
     Editor ed(finishedDelaunay(pts));
     std::string message;
     std::vector<std::int32_t> removed;
+    std::vector<Snapshot> after;  // after 1, 2, 3 removals
     for (std::int32_t v = 0; removed.size() < 3 && v < 60; ++v) {
         if (ed.add(makeEdit(EditKind::RemoveVertex, v), message)) {
             removed.push_back(v);
             ed.seek(ed.total());
+            after.push_back(snap(ed));
         }
     }
     ASSERT_EQ(ed.edits().size(), 3u);
-    // Half-way through the second removal: a new edit finishes it and drops the third, undone.
+    // Stepping back anywhere drops nothing: a new edit finishes them all and goes after them.
     ed.seek(ed.editStart(1) + 1);
-    EXPECT_EQ(ed.editsKept(), 2u);
     ASSERT_TRUE(ed.add(makeEdit(EditKind::RemoveVertex, 59), message)) << message;
-    ASSERT_EQ(ed.edits().size(), 3u);
-    EXPECT_EQ(ed.edits()[1].a, removed[1]);
-    EXPECT_EQ(ed.edits()[2].a, 59);
-    EXPECT_EQ(ed.position(), ed.editStart(2));
-    EXPECT_EQ(ed.editsDone(), 2u);
-    // Added and not yet stepped, it is kept by the next edit, which finishes it first.
-    ASSERT_TRUE(ed.add(makeEdit(EditKind::RemoveVertex, 58), message)) << message;
     ASSERT_EQ(ed.edits().size(), 4u);
+    EXPECT_EQ(ed.edits()[3].a, 59);
     EXPECT_EQ(ed.position(), ed.editStart(3));
-    // Stepped back to its start, an edit is undone: the next edit drops it.
-    ed.seek(ed.editStart(2));
-    EXPECT_EQ(ed.editsKept(), 2u);
-    ed.seek(ed.editStart(3) - 1);  // stepping into an edit redoes it
-    EXPECT_EQ(ed.editsKept(), 3u);
-    ASSERT_TRUE(ed.add(makeEdit(EditKind::RemoveVertex, 57), message)) << message;
-    ASSERT_EQ(ed.edits().size(), 4u);
-    EXPECT_EQ(ed.edits()[2].a, 59);
-    EXPECT_EQ(ed.edits()[3].a, 57);
+    EXPECT_EQ(snap(ed), after[2]) << "the mesh after the three removals, before the fourth";
+    EXPECT_EQ(ed.editsDone(), 3u);
+    // Added and not yet stepped, an edit is kept by the next one, which finishes it first.
+    ASSERT_TRUE(ed.add(makeEdit(EditKind::RemoveVertex, 58), message)) << message;
+    ASSERT_EQ(ed.edits().size(), 5u);
+    EXPECT_EQ(ed.editsDone(), 4u);
+    // takeLast undoes the last edit only, from anywhere, and gives it back as asked.
     ed.seek(ed.total());
+    const auto last = ed.takeLast();
+    ASSERT_TRUE(last);
+    EXPECT_EQ(last->a, 58);
+    EXPECT_TRUE(last->removal.ops.empty());
+    EXPECT_EQ(ed.edits().size(), 4u);
+    EXPECT_EQ(ed.position(), ed.total());
+    ed.seek(1);
+    ASSERT_TRUE(ed.takeLast());
+    EXPECT_EQ(ed.position(), 1u) << "before the edit taken out: the position stays";
+    ed.seek(ed.total());
+    EXPECT_EQ(snap(ed), after[2]);
     EXPECT_EQ(checkEdited(ed), "");
 }
 

@@ -90,10 +90,45 @@ bool AppState::loadPointsWith(std::vector<Vec2> points, std::string sourceName,
     return true;
 }
 
+namespace {
+
+// The edits after the run, made again on a run of new points. Only where no point was removed:
+// a removal renumbers the points after it, and the edits name points by number.
+void redoEditsOnNewRun(AppState& st, const std::vector<std::string>& edits, bool idsKept,
+                       std::size_t position) {
+    if (edits.empty()) return;
+    if (!idsKept) {
+        st.log(Message::Level::Warning,
+               std::to_string(edits.size()) +
+                   " edit(s) after the run dropped: a point removed renumbers the points after it");
+        return;
+    }
+    for (const std::string& text : edits) {
+        const auto edit = parseEdit(text);
+        std::string message;
+        if (!edit || !st.engine.edit(*edit, message))
+            st.log(Message::Level::Warning, text + " no longer applies: " + message);
+    }
+    st.engine.seek(position);
+}
+
+// A run of new points at the same step, with the edits after the run made again.
+bool resetKeepingEdits(AppState& st, std::vector<Vec2> points, std::string& error) {
+    Engine& e = st.engine;
+    const std::vector<std::string> edits = editTexts(e);
+    const bool idsKept = points.size() >= e.points().size();
+    const std::size_t position = e.position();
+    if (!e.resetAt(std::move(points), e.options(), position, error)) return false;
+    redoEditsOnNewRun(st, edits, idsKept, position);
+    return true;
+}
+
+}  // namespace
+
 bool AppState::editPoints(std::vector<Vec2> points) {
     std::string error;
     std::vector<Vec2> previous = engine.points();
-    if (!engine.resetAt(std::move(points), engine.options(), engine.position(), error)) {
+    if (!resetKeepingEdits(*this, std::move(points), error)) {
         log(Message::Level::Error, "edit refused: " + error);
         return false;
     }
@@ -106,12 +141,12 @@ bool AppState::editPoints(std::vector<Vec2> points) {
 namespace {
 
 // Undo and redo: the points on top of `from` come back; the points now go onto `to`.
-bool swapPoints(Engine& engine, std::vector<std::vector<Vec2>>& from,
+bool swapPoints(AppState& st, std::vector<std::vector<Vec2>>& from,
                 std::vector<std::vector<Vec2>>& to) {
     if (from.empty()) return false;
     std::string error;
-    std::vector<Vec2> now = engine.points();
-    if (!engine.resetAt(from.back(), engine.options(), engine.position(), error)) return false;
+    std::vector<Vec2> now = st.engine.points();
+    if (!resetKeepingEdits(st, from.back(), error)) return false;
     from.pop_back();
     to.push_back(std::move(now));
     return true;
@@ -145,24 +180,36 @@ std::string editText(const std::vector<Vec2>& before, const std::vector<Vec2>& a
 }  // namespace
 
 bool AppState::undoEdit() {
+    // The edits after the run are newer than any edit of the points (which restarts the run).
+    if (const Editor* ed = engine.editor(); ed && !ed->edits().empty()) {
+        std::string message;
+        const bool ok = engine.undoEdit(message);
+        log(Message::Level::Info, message);
+        return ok;
+    }
     if (undoPoints.empty()) {
         log(Message::Level::Info, "nothing to undo: no edit of the points");
         return false;
     }
     const std::string what = editText(undoPoints.back(), engine.points());
-    if (!swapPoints(engine, undoPoints, redoPoints)) return false;
+    if (!swapPoints(*this, undoPoints, redoPoints)) return false;
     selection = {};
     log(Message::Level::Info, "undone: " + what);
     return true;
 }
 
 bool AppState::redoEdit() {
+    std::string message;
+    if (engine.redoEdit(message)) {
+        log(Message::Level::Info, message);
+        return true;
+    }
     if (redoPoints.empty()) {
         log(Message::Level::Info, "nothing to redo: no edit of the points");
         return false;
     }
     const std::string what = editText(engine.points(), redoPoints.back());
-    if (!swapPoints(engine, redoPoints, undoPoints)) return false;
+    if (!swapPoints(*this, redoPoints, undoPoints)) return false;
     selection = {};
     log(Message::Level::Info, "redone: " + what);
     return true;

@@ -131,6 +131,7 @@ bool Engine::resetWith(std::vector<Vec2> points, const InsertOptions& options, s
     }
     m_journal.reset();
     m_editor.reset();
+    m_undoneEdits.clear();
     ++m_run;
     m_ins = std::move(ins);
     m_idBufferGl = gl;
@@ -283,7 +284,35 @@ bool Engine::edit(Edit edit, std::string& message) {
     }
     seekRun(runLength());
     const bool ok = m_editor->add(std::move(edit), message);
+    if (ok) m_undoneEdits.clear();
     bump();
+    return ok;
+}
+
+bool Engine::undoEdit(std::string& message) {
+    std::optional<Edit> last = m_editor ? m_editor->takeLast() : std::nullopt;
+    if (!last) {
+        message = "no edit to undo";
+        return false;
+    }
+    message = "undone: " + describe(*last);
+    m_undoneEdits.push_back(std::move(*last));
+    bump();
+    return true;
+}
+
+bool Engine::redoEdit(std::string& message) {
+    if (m_undoneEdits.empty()) {
+        message = "no edit to redo";
+        return false;
+    }
+    std::vector<Edit> undone = std::move(m_undoneEdits);
+    Edit again = std::move(undone.back());
+    undone.pop_back();
+    const std::string what = describe(again);
+    const bool ok = edit(std::move(again), message);
+    m_undoneEdits = std::move(undone);  // the others stay to redo
+    if (ok) message = "redone: " + what;
     return ok;
 }
 

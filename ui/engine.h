@@ -125,6 +125,11 @@ public:
     // `message` says what happened either way.
     bool edit(Edit edit, std::string& message);
     const Editor* editor() const { return m_editor.get(); }
+    // Ctrl+Z / Ctrl+Y of edits: the last edit taken out of the timeline (the position goes back
+    // to its start when past it), or the last one taken out made again; false when there is
+    // none. A new edit forgets the ones taken out. `message` says what was done.
+    bool undoEdit(std::string& message);
+    bool redoEdit(std::string& message);
     // Past the run's end, into the edits: the mesh shown is the editor's (closed: its ghost
     // triangles are virtual, as while the run inserts).
     bool editing() const { return m_editor && m_editor->position() > 0; }
@@ -187,6 +192,7 @@ private:
     std::unique_ptr<Inserter> m_ins;
     std::unique_ptr<Journal> m_journal;
     std::unique_ptr<Editor> m_editor;  // the edits after the run's end, once there is one
+    std::vector<Edit> m_undoneEdits;   // taken out by undoEdit, newest last
     std::vector<std::int32_t> m_rank;  // position of each input point in the insertion order
     std::uint64_t m_version = 0;
     std::uint64_t m_run = 0;

@@ -134,14 +134,12 @@ void Editor::replay(std::size_t position, bool forward) {
 bool Editor::forward() {
     if (m_pos >= total()) return false;
     replay(m_pos++, true);
-    m_live = std::max(m_live, stepAt(m_pos - 1).index + 1);  // stepping into an edit redoes it
     return true;
 }
 
 bool Editor::back() {
     if (m_pos == 0) return false;
     replay(--m_pos, false);
-    while (m_live > 0 && m_pos <= editStart(m_live - 1)) --m_live;  // back to its start: undone
     return true;
 }
 
@@ -225,22 +223,29 @@ bool Editor::record(Edit& edit, std::string& message) {
 }
 
 bool Editor::add(Edit edit, std::string& message) {
-    // The edits undone are dropped; those kept are all done first (one in progress, or one added
-    // and not yet stepped, is finished at once).
-    m_edits.resize(m_live);
-    seek(total());
+    seek(total());  // every edit before it done, one in progress finished
     edit.removal = {};
     edit.constraint = {};
     m_remover.meshChanged();
     if (!record(edit, message)) return false;
     m_edits.push_back(std::move(edit));
-    m_live = m_edits.size();
     const Edit& e = m_edits.back();
     // Back to the start of the edit: its ops are stepped from there.
     for (std::size_t i = e.constraint.ops.size(); i-- > 0;)
         m_constrainer.replay(e.constraint, i, false);
     for (std::size_t i = e.removal.ops.size(); i-- > 0;) m_remover.replay(e.removal, i, false);
     return true;
+}
+
+std::optional<Edit> Editor::takeLast() {
+    if (m_edits.empty()) return std::nullopt;
+    const std::size_t start = editStart(m_edits.size() - 1);
+    if (m_pos > start) seek(start);
+    Edit last = std::move(m_edits.back());
+    m_edits.pop_back();
+    last.removal = {};
+    last.constraint = {};
+    return last;
 }
 
 }  // namespace dlab

@@ -62,13 +62,16 @@ public:
     // |G| (firstVirtual()), joined to every hull edge.
     explicit Editor(const Mesh& finished);
 
-    // Records an edit after the edits kept: those stepped back over to their start are dropped
-    // (undone, as a new edit in a text editor drops its redo); an edit in progress, or added and
-    // not yet stepped, is finished first. The mesh is then put back as it was before the new
-    // edit and position() is its first op, to step through with forward(). A refused edit (a vertex that is no
-    // vertex, a segment crossing a constraint, a vertex on a constrained edge...) changes
-    // nothing and returns false; `message` says what happened either way, in a user's words.
+    // Records an edit after every edit (the edits before it are done first, one in progress is
+    // finished). The mesh is then put back as it was before the new edit and position() is its
+    // first op, to step through with forward(). Stepping never drops an edit; takeLast() does. A
+    // refused edit (a vertex that is no vertex, a segment crossing a constraint, a vertex on a
+    // constrained edge...) changes nothing and returns false; `message` says what happened
+    // either way, in a user's words.
     bool add(Edit edit, std::string& message);
+    // Undoes the last edit and takes it out of the history (the position goes back to its start
+    // when past it); the edit as it was asked for, to add again, or nullopt when there is none.
+    std::optional<Edit> takeLast();
 
     bool forward();  // one op; false at the end
     bool back();     // one op back; false at the start
@@ -80,8 +83,6 @@ public:
     std::size_t editEnd(std::size_t k) const { return editStart(k) + m_edits[k].numOps(); }
     // The edits whose every op is done (position() at or past their end).
     std::size_t editsDone() const;
-    // The edits a new edit keeps (the others are undone: redone by stepping forward).
-    std::size_t editsKept() const { return m_live; }
 
     const Mesh& mesh() const { return m_mesh; }
     std::int32_t firstVirtual() const { return m_firstVirtual; }
@@ -107,9 +108,6 @@ private:
     Constrainer m_constrainer;
     std::vector<Edit> m_edits;
     std::size_t m_pos = 0;
-    // Edits a new one keeps: every edit before the position, one in progress, and the newest
-    // added (until stepped back over to its start).
-    std::size_t m_live = 0;
 };
 
 }  // namespace dlab

@@ -266,7 +266,8 @@ void ApplyEdit(AppState& st, Edit edit) {
         return;
     }
     st.select(kNone);  // the corners name other triangles now
-    st.log(Message::Level::Info, message + "; it plays now (Left steps back through it)");
+    st.log(Message::Level::Info,
+           message + "; it plays now (Left steps back through it, Ctrl+Z undoes it)");
     st.run.running = true;
     st.run.toEnd = false;
 }

@@ -49,8 +49,46 @@ constexpr GeneratorChoice kGenerators[] = {
 
 }  // namespace
 
+namespace {
+
+bool isPolyPath(const std::string& path) {
+    std::string ext = std::filesystem::path(path).extension().string();
+    for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    return ext == ".poly";
+}
+
+// A planar straight-line graph: its points run with the user's options (the exact boundary: its
+// segments are constrained on it), and each segment is an edit after the run, stepped like it.
+bool loadPolyFile(AppState& st, const std::string& path) {
+    PolyFile poly = readPolyFile(path);
+    for (const std::string& w : poly.points.warnings) st.log(Message::Level::Warning, w);
+    if (!poly.segments.empty() && st.userOptions.boundary != Boundary::Exact) {
+        st.userOptions.boundary = Boundary::Exact;
+        st.log(Message::Level::Info, path + ": segments are constrained on the exact boundary");
+    }
+    if (!st.loadUserPoints(std::move(poly.points.points), path)) return false;
+    std::size_t constrained = 0;
+    for (const auto& [a, b] : poly.segments) {
+        std::string message;
+        if (st.engine.edit(makeEdit(EditKind::Constrain, a, b), message))
+            ++constrained;
+        else
+            st.log(Message::Level::Warning, path + ": segment " + std::to_string(a) + "-" +
+                                                std::to_string(b) + " refused: " + message);
+    }
+    st.engine.seek(0);  // from the start: the insertions, then the segments
+    if (!poly.segments.empty())
+        st.log(Message::Level::Info, path + ": " + std::to_string(constrained) + " of " +
+                                         std::to_string(poly.segments.size()) +
+                                         " segments constrained after the run (End plays it all)");
+    return true;
+}
+
+}  // namespace
+
 bool loadPointFile(AppState& st, const std::string& path) {
     try {
+        if (isPolyPath(path)) return loadPolyFile(st, path);
         PointSet set = readPointsFile(path);
         for (const std::string& w : set.warnings) st.log(Message::Level::Warning, w);
         return st.loadUserPoints(std::move(set.points), path);

@@ -5,6 +5,7 @@
 #include "core/engine/mesh.h"
 #include "core/engine/predicates.h"
 #include "tests/ui/ui_harness.h"
+#include "ui/files/files.h"
 #include "ui/files/session.h"
 #include "ui/panels/panels.h"
 #include "ui/platform/keys.h"
@@ -13,6 +14,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <fstream>
 #include <string>
 
 using dlab::kNone;
@@ -228,4 +230,78 @@ TEST(EditsInTheGui, TheSuperTriangleRunRefusesEditsAndSaysWhy) {
     EXPECT_FALSE(st.engine.edit(dlab::makeEdit(dlab::EditKind::RemoveVertex, 0), message));
     EXPECT_NE(message.find("exact"), std::string::npos) << message;
     EXPECT_EQ(st.engine.editor(), nullptr);
+}
+
+TEST(EditsInTheGui, CtrlZTakesTheLastEditOutAndCtrlYMakesItAgain) {
+    UiHarness h;
+    auto& e = h.state().engine;
+    toRunEnd(h);
+    const Cells before = cells(e);
+    const std::int32_t v = interiorVertex(e);
+    std::string message;
+    ASSERT_TRUE(e.edit(dlab::makeEdit(dlab::EditKind::RemoveVertex, v), message)) << message;
+    e.seek(e.recorded());
+    const Cells removed = cells(e);
+    h.press(key::letter('Z'), false, true);
+    EXPECT_TRUE(logged(h.state(), "undone: remove vertex " + std::to_string(v)));
+    EXPECT_TRUE(e.editor()->edits().empty());
+    EXPECT_EQ(cells(e), before);
+    EXPECT_TRUE(e.atEnd());
+    h.press(key::letter('Y'), false, true);
+    EXPECT_TRUE(logged(h.state(), "redone: remove vertex " + std::to_string(v)));
+    ASSERT_EQ(e.editor()->edits().size(), 1u);
+    e.seek(e.recorded());
+    EXPECT_EQ(cells(e), removed);
+}
+
+TEST(EditsInTheGui, AddingAPointKeepsTheEditsAfterTheRun) {
+    UiHarness h;
+    auto& st = h.state();
+    auto& e = st.engine;
+    toRunEnd(h);
+    const std::int32_t v = interiorVertex(e);
+    std::string message;
+    ASSERT_TRUE(e.edit(dlab::makeEdit(dlab::EditKind::RemoveVertex, v), message)) << message;
+    e.seek(e.recorded());
+    std::vector<dlab::Vec2> pts = e.points();
+    dlab::Vec2 lo = pts[0], hi = pts[0];
+    for (const auto& p : pts) {
+        lo = {std::min(lo.x, p.x), std::min(lo.y, p.y)};
+        hi = {std::max(hi.x, p.x), std::max(hi.y, p.y)};
+    }
+    pts.push_back({lo.x + 0.37 * (hi.x - lo.x), lo.y + 0.61 * (hi.y - lo.y)});
+    ASSERT_TRUE(st.editPoints(pts));
+    ASSERT_NE(e.editor(), nullptr);
+    ASSERT_EQ(e.editor()->edits().size(), 1u);
+    EXPECT_EQ(e.editor()->edits()[0].a, v);
+    e.seek(e.recorded());
+    EXPECT_FALSE(usesVertex(e.mesh(), v));
+    EXPECT_TRUE(usesVertex(e.mesh(), static_cast<std::int32_t>(pts.size()) - 1));
+}
+
+TEST(EditsInTheGui, APolyFileOpensItsPointsThenConstrainsItsSegments) {
+    dlab::test::TempDir dir("poly_gui");
+    const std::string path = dir / "square.poly";
+    {
+        std::ofstream f(path);
+        f << "5 2 0 0\n1 0 0\n2 10 0\n3 10 10\n4 0 10\n5 3 6\n"
+          << "3 0\n1 1 3\n2 4 5\n3 2 5\n0\n";
+    }
+    UiHarness h;
+    auto& st = h.state();
+    ASSERT_TRUE(ui::openFile(st, path)) << st.files.notice;
+    auto& e = st.engine;
+    EXPECT_EQ(e.position(), 0u) << "it starts from the first insertion";
+    ASSERT_NE(e.editor(), nullptr);
+    ASSERT_EQ(e.editor()->edits().size(), 2u);
+    e.seek(e.recorded());
+    const auto edges = e.editor()->constrainedEdges();
+    auto has = [&](std::int32_t a, std::int32_t b) {
+        return std::any_of(edges.begin(), edges.end(), [&](const auto& ed) {
+            return (ed.first == a && ed.second == b) || (ed.first == b && ed.second == a);
+        });
+    };
+    EXPECT_TRUE(has(0, 2)) << "segment 1-3 of the file, 1-based";
+    EXPECT_TRUE(has(3, 4));
+    EXPECT_TRUE(logged(st, "segment 1-4 refused")) << "2-5 of the file crosses 1-3";
 }
