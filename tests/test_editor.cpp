@@ -232,3 +232,53 @@ TEST(Editor, EditsReadBackAsTheyAreWritten) {
         EXPECT_FALSE(parseEdit(bad)) << bad;
     }
 }
+
+// Edits made after stepping anywhere and after taking edits out give the mesh that the same
+// edits give made one after another on a fresh editor.
+TEST(Editor, EditsAfterSteppingAndTakingOutMatchAFreshEditor) {
+    for (unsigned seed = 1; seed <= 4; ++seed) {
+        const std::vector<Vec2> pts = randomPoints(80, seed + 100);
+        const Mesh finished = finishedDelaunay(pts);
+        Editor ed(finished);
+        std::mt19937 rng(seed);
+        std::uniform_int_distribution<std::int32_t> vertex(0, 79);
+        for (int k = 0; k < 60; ++k) {
+            ed.seek(std::uniform_int_distribution<std::size_t>(0, ed.total())(rng));
+            if (rng() % 4 == 0) ed.takeLast();
+            const EditKind kind = rng() % 2 ? EditKind::RemoveVertex : EditKind::Constrain;
+            std::string message;
+            ed.add(makeEdit(kind, vertex(rng), vertex(rng)), message);
+            ed.seek(ed.total());
+            ASSERT_EQ(checkEdited(ed), "") << "seed " << seed << ", step " << k;
+            Editor fresh(finished);
+            for (const Edit& e : ed.edits()) {
+                ASSERT_TRUE(fresh.add(makeEdit(e.kind, e.a, e.b), message)) << message;
+                fresh.seek(fresh.total());
+            }
+            ASSERT_EQ(snap(fresh), snap(ed)) << "seed " << seed << ", step " << k;
+        }
+    }
+}
+
+// A removal taken out puts its vertex back: a segment from it is then constrained as on a mesh
+// that never lost it.
+TEST(Editor, AVertexWhoseRemovalWasTakenOutTakesASegment) {
+    const std::vector<Vec2> pts = randomPoints(50, 7);
+    const Mesh finished = finishedDelaunay(pts);
+    std::string message;
+    for (std::int32_t v = 0; v < 50; ++v) {
+        Editor ed(finished);
+        if (!ed.add(makeEdit(EditKind::RemoveVertex, v), message)) continue;
+        ed.seek(ed.total());
+        ASSERT_TRUE(ed.takeLast());
+        const std::int32_t w = (v + 25) % 50;
+        Editor fresh(finished);
+        const bool want = fresh.add(makeEdit(EditKind::Constrain, v, w), message);
+        ASSERT_EQ(ed.add(makeEdit(EditKind::Constrain, v, w), message), want)
+            << v << ": " << message;
+        ed.seek(ed.total());
+        fresh.seek(fresh.total());
+        ASSERT_EQ(snap(ed), snap(fresh)) << "segment " << v << "-" << w;
+        ASSERT_EQ(checkEdited(ed), "");
+    }
+}

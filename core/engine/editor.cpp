@@ -226,7 +226,7 @@ bool Editor::add(Edit edit, std::string& message) {
     seek(total());  // every edit before it done, one in progress finished
     edit.removal = {};
     edit.constraint = {};
-    m_remover.meshChanged();
+    m_remover.meshChanged();  // stepping changed the mesh behind both editors' indexes
     if (!record(edit, message)) return false;
     m_edits.push_back(std::move(edit));
     const Edit& e = m_edits.back();

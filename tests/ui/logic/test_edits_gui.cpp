@@ -305,3 +305,41 @@ TEST(EditsInTheGui, APolyFileOpensItsPointsThenConstrainsItsSegments) {
     EXPECT_TRUE(has(3, 4));
     EXPECT_TRUE(logged(st, "segment 1-4 refused")) << "2-5 of the file crosses 1-3";
 }
+
+// The README's two pictures of edits mid-way, as the engine makes them on the demo.
+TEST(EditsInTheGui, TheReadmePicturesOfEditsShowWhatTheEngineDid) {
+    UiHarness h;
+    auto& e = h.state().engine;
+    dlab::InsertOptions o = e.options();  // dtlab render's: BRIO order, seed 1
+    o.order = dlab::OrderKind::Brio;
+    o.seed = 1;
+    ASSERT_TRUE(h.state().setOptions(o));
+    toRunEnd(h);
+    const std::size_t runEnd = e.position();
+    std::string message;
+    ASSERT_TRUE(e.edit(dlab::makeEdit(dlab::EditKind::RemoveVertex, 8), message)) << message;
+    e.seek(runEnd + 2);
+    const std::string removal = ui::captionText(h.state());
+    EXPECT_NE(removal.find("remove vertex 8, ear test at 5: triangle 10-5-3 is no ear"),
+              std::string::npos)
+        << removal;
+    const auto& G = e.mesh().G;
+    for (std::int32_t inside : {2, 4, 9})
+        EXPECT_GT(dlab::incircle(G[10], G[5], G[3], G[inside]), 0) << inside;
+    ASSERT_TRUE(h.state().undoEdit());
+    ASSERT_TRUE(e.edit(dlab::makeEdit(dlab::EditKind::Constrain, 0, 6), message)) << message;
+    e.seek(runEnd + 4);
+    const std::string constraint = ui::captionText(h.state());
+    EXPECT_NE(constraint.find("constrain 0-6, the crossing edge 8-3 has a quadrilateral that is "
+                              "not convex: it waits"),
+              std::string::npos)
+        << constraint;
+    bool made03 = false, made08 = false;
+    const dlab::Mesh& m = e.mesh();
+    for (std::int32_t c = 0; c < m.numCorners(); ++c) {
+        const std::int32_t u = m.V[dlab::next(c)], w = m.V[dlab::prev(c)];
+        made03 |= (u == 0 && w == 3) || (u == 3 && w == 0);
+        made08 |= (u == 0 && w == 8) || (u == 8 && w == 0);
+    }
+    EXPECT_TRUE(made03 && made08) << "Sloan's flips made 0-3 and 0-8";
+}
