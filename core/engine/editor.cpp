@@ -227,6 +227,7 @@ bool Editor::add(Edit edit, std::string& message) {
     edit.removal = {};
     edit.constraint = {};
     m_remover.meshChanged();  // stepping changed the mesh behind both editors' indexes
+    m_constrainer.refresh();
     if (!record(edit, message)) return false;
     m_edits.push_back(std::move(edit));
     const Edit& e = m_edits.back();
