@@ -19,6 +19,7 @@
 #include "tests/fuzz/fuzz_common.h"
 
 #include "core/engine/constrainer.h"
+#include "core/engine/editor.h"
 #include "core/engine/halves.h"
 #include "core/engine/inserter.h"
 #include "core/engine/predicates.h"
@@ -376,6 +377,57 @@ void checkRemovals(const Case& c, Mesh closed) {
             what);
 }
 
+// The GUI's edits on the finished exact mesh: drawn removals and segments, each made after
+// stepping to a drawn position (and now and then after taking the last edit out), each checked
+// at its end (a valid table, every unconstrained edge locally Delaunay) and against a fresh
+// editor given the same edits; then everything stepped back: the closed mesh bit for bit.
+void checkEditor(const Case& c, const Mesh& finished) {
+    const std::string what = describe(c) + ", editor";
+    const auto n = static_cast<std::int32_t>(c.points.size());
+    if (finished.numTriangles() == 0 || n < 3) return;
+    Editor ed(finished);
+    const Snapshot start = snap(ed.mesh());
+    std::uint64_t state = c.options.seed * 2862933555777941757ULL + c.probe + 3037000493ULL;
+    auto draw = [&](std::uint64_t bound) {
+        state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+        return (state >> 33) % bound;
+    };
+    ValidateOptions vo;
+    vo.firstVirtual = n;
+    vo.delaunay = false;
+    for (int k = 0; k < 10; ++k) {
+        ed.seek(draw(ed.total() + 1));
+        if (draw(5) == 0) ed.takeLast();
+        const auto a = static_cast<std::int32_t>(draw(n)), b = static_cast<std::int32_t>(draw(n));
+        const EditKind kind = draw(2) ? EditKind::RemoveVertex : EditKind::Constrain;
+        std::string message;
+        ed.add(makeEdit(kind, a, b), message);
+        ed.seek(ed.total());
+        const Mesh& m = ed.mesh();
+        const auto bad = validate(m, vo);
+        if (!bad.empty()) fail("an edit leaves a valid corner table", what + ": " + bad[0].message);
+        for (std::int32_t e = 0; e < m.numCorners(); ++e) {
+            const std::int32_t o = m.O[e];
+            if (o == kNone || ed.isConstrained(e)) continue;
+            const std::int32_t P = m.V[e], A = m.V[next(e)], B = m.V[prev(e)], D = m.V[o];
+            if (P >= n || A >= n || B >= n || D >= n) continue;
+            require(incircle(m.G[P], m.G[A], m.G[B], m.G[D]) <= 0,
+                    "after an edit every unconstrained edge is locally Delaunay", what);
+        }
+    }
+    Editor fresh(finished);
+    for (const Edit& e : ed.edits()) {
+        std::string message;
+        require(fresh.add(makeEdit(e.kind, e.a, e.b), message),
+                "an edit kept is made again on a fresh editor", what);
+        fresh.seek(fresh.total());
+    }
+    require(snap(fresh.mesh()) == snap(ed.mesh()), "a fresh editor makes the same mesh", what);
+    ed.seek(0);
+    require(snap(ed.mesh()) == start, "stepping back every edit restores the mesh bit for bit",
+            what);
+}
+
 void runCase(const Case& c) {
     const std::string what = describe(c);
     const auto n = static_cast<std::int32_t>(c.points.size());
@@ -440,6 +492,7 @@ void runCase(const Case& c) {
     require(journal.position() == ops && ins.done(), "the journal replays to the end", what);
     require(snap(ins.mesh()) == end, "replaying every op gives the same end state", what);
     require(sameStats(ins.stats(), endStats), "replaying restores the statistics", what);
+    if (c.options.boundary == Boundary::Exact) checkEditor(c, ins.mesh());
 
     // The state before Finalize is the closed mesh (ghosts or super-triangle) removals work on.
     journal.seek(ops - 1);
