@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <random>
 #include <string>
 
@@ -281,4 +282,81 @@ TEST(Editor, AVertexWhoseRemovalWasTakenOutTakesASegment) {
         ASSERT_EQ(snap(ed), snap(fresh)) << "segment " << v << "-" << w;
         ASSERT_EQ(checkEdited(ed), "");
     }
+}
+
+namespace {
+
+bool usesVertex(const Mesh& m, std::int32_t v) {
+    return std::find(m.V.begin(), m.V.end(), v) != m.V.end();
+}
+
+}  // namespace
+
+TEST(Editor, AMovedVertexIsTakenOutThenPutInAtItsNewPlaceAndStepsBackBitForBit) {
+    int moved = 0, refused = 0;
+    for (unsigned seed = 1; seed <= 5; ++seed) {
+        const std::vector<Vec2> pts = randomPoints(70, seed + 200);
+        Editor ed(finishedDelaunay(pts));
+        const Mesh start = ed.mesh();
+        std::mt19937 rng(seed);
+        std::uniform_int_distribution<int> coord(0, 60);
+        for (int k = 0; k < 25; ++k) {
+            const std::int32_t v = static_cast<std::int32_t>(rng() % 70);
+            const Vec2 to{coord(rng) + 0.5 * (rng() % 2), double(coord(rng))};
+            const Mesh before = ed.mesh();
+            std::string message;
+            if (!ed.add(makeMove(v, to), message)) {
+                ++refused;
+                EXPECT_EQ(ed.mesh().G, before.G) << message;
+                EXPECT_EQ(ed.mesh().V, before.V) << message;
+                continue;
+            }
+            ++moved;
+            ed.seek(ed.total());
+            const Mesh& m = ed.mesh();
+            ASSERT_EQ(checkEdited(ed), "") << "seed " << seed << ": " << message;
+            EXPECT_EQ(m.G[v].x, to.x);
+            EXPECT_EQ(m.G[v].y, to.y);
+            EXPECT_TRUE(usesVertex(m, v));
+            for (std::int32_t u = 0; u < 70; ++u)
+                EXPECT_EQ(usesVertex(m, u), usesVertex(before, u)) << "vertex " << u;
+        }
+        ed.seek(0);
+        EXPECT_EQ(ed.mesh().G, start.G);
+        EXPECT_EQ(ed.mesh().V, start.V);
+        EXPECT_EQ(ed.mesh().O, start.O);
+    }
+    EXPECT_GT(moved, 40);
+    EXPECT_GT(refused, 0) << "some moves land outside the hull or on a vertex";
+}
+
+TEST(Editor, AVertexMovedOntoAConstrainedEdgeSplitsItAndBothHalvesStayConstrained) {
+    std::vector<Vec2> pts;
+    for (int y = 0; y < 5; ++y) {
+        for (int x = 0; x < 5; ++x) pts.push_back({double(x), double(y)});
+    }
+    Editor ed(finishedDelaunay(pts));
+    std::string message;
+    ASSERT_TRUE(ed.add(makeEdit(EditKind::Constrain, 5, 9), message)) << message;
+    ASSERT_TRUE(ed.add(makeMove(12, {2.5, 1}), message)) << message;
+    ed.seek(ed.total());
+    EXPECT_EQ(checkEdited(ed), "");
+    auto has = [&](std::int32_t a, std::int32_t b) {
+        for (const auto& [u, w] : ed.constrainedEdges())
+            if ((u == a && w == b) || (u == b && w == a)) return true;
+        return false;
+    };
+    EXPECT_TRUE(has(7, 12) && has(12, 8)) << "7-8 split at 12, both halves constrained";
+    EXPECT_FALSE(has(7, 8));
+    EXPECT_FALSE(ed.add(makeMove(13, {3, 3}), message));
+    EXPECT_NE(message.find("onto another vertex"), std::string::npos) << message;
+    EXPECT_FALSE(ed.add(makeMove(13, {9, 3}), message));
+    EXPECT_NE(message.find("strictly inside the hull"), std::string::npos) << message;
+    EXPECT_FALSE(ed.add(makeMove(13, {4, 2}), message)) << "on the hull's boundary";
+    EXPECT_FALSE(ed.add(makeMove(7, {1, 3}), message));
+    EXPECT_NE(message.find("take that constraint away first"), std::string::npos) << message;
+    const auto e = parseEdit(describe(ed.edits()[1]));
+    ASSERT_TRUE(e);
+    EXPECT_EQ(describe(*e), "move vertex 12 to 2.5, 1");
+    EXPECT_EQ(e->to.x, 2.5);
 }

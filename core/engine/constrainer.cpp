@@ -29,6 +29,10 @@ const char* toString(ConstrainOpType t) {
         case ConstrainOpType::Unmark: return "Unmark";
         case ConstrainOpType::InCircleTest: return "InCircleTest";
         case ConstrainOpType::Flip: return "Flip";
+        case ConstrainOpType::MoveVertex: return "MoveVertex";
+        case ConstrainOpType::Locate: return "Locate";
+        case ConstrainOpType::Split: return "Split";
+        case ConstrainOpType::SplitEdge: return "SplitEdge";
     }
     return "?";
 }
@@ -70,6 +74,7 @@ ConstrainOp* Constrainer::beginOp(ConstrainOpType type, std::int32_t a, std::int
     op.sign = static_cast<std::int8_t>(sign);
     op.segmentA = m_segA;
     op.segmentB = m_segB;
+    op.trianglesBefore = op.trianglesAfter = m_mesh.numTriangles();
     op.firstChange = static_cast<std::uint32_t>(m_record->changes.size());
     op.firstFlag = static_cast<std::uint32_t>(m_record->flagChanges.size());
     m_record->ops.push_back(op);
@@ -79,12 +84,20 @@ ConstrainOp* Constrainer::beginOp(ConstrainOpType type, std::int32_t a, std::int
 void Constrainer::endOp() {
     if (!m_record) return;
     ConstrainOp& op = m_record->ops.back();
+    op.trianglesAfter = m_mesh.numTriangles();
     op.numChanges = static_cast<std::uint32_t>(m_record->changes.size()) - op.firstChange;
     op.numFlags = static_cast<std::uint32_t>(m_record->flagChanges.size()) - op.firstFlag;
 }
 
 void Constrainer::replay(const ConstraintRecord& record, std::size_t i, bool forward) {
     const ConstrainOp& op = record.ops[i];
+    const auto corners = [](std::int32_t t) { return 3 * static_cast<std::size_t>(t); };
+    const std::size_t big = corners(std::max(op.trianglesBefore, op.trianglesAfter));
+    if (m_mesh.V.size() < big) {  // a split's new triangles, or those it took away again
+        m_mesh.V.resize(big, kNone);
+        m_mesh.O.resize(big, kNone);
+    }
+    if (m_flag.size() < big) m_flag.resize(big, 0);
     if (forward) {
         for (std::uint32_t k = 0; k < op.numChanges; ++k) {
             const CellChange& ch = record.changes[op.firstChange + k];
@@ -104,6 +117,11 @@ void Constrainer::replay(const ConstraintRecord& record, std::size_t i, bool for
             const CellChange& ch = record.changes[op.firstChange + k];
             (ch.isO() ? m_mesh.O : m_mesh.V)[ch.corner()] = ch.before;
         }
+    }
+    if (op.trianglesBefore != op.trianglesAfter) {
+        const std::size_t n = corners(forward ? op.trianglesAfter : op.trianglesBefore);
+        m_mesh.V.resize(n);
+        m_mesh.O.resize(n);
     }
     m_stale = true;
 }
@@ -373,6 +391,163 @@ void Constrainer::beginRecording(ConstraintRecord* record, std::int32_t a, std::
     m_record = record;
     m_segA = a;
     m_segB = b;
+}
+
+// ============================================================================================
+// [SECTION] A vertex put into the mesh
+// ============================================================================================
+
+// The finite triangle that holds p strictly inside (edge kNone) or on the open edge opposite
+// corner `edge` with a finite triangle across; false (and why) when p is on a vertex, on the
+// hull's boundary or outside it.
+bool Constrainer::locate(Vec2 p, std::int32_t& tri, std::int32_t& edge,
+                         PlaceResult& refused) const {
+    const auto& G = m_mesh.G;
+    const auto& V = m_mesh.V;
+    refused = PlaceResult::OutsideHull;
+    for (std::int32_t t = 0; t < m_mesh.numTriangles(); ++t) {
+        const std::int32_t a = V[3 * t], b = V[3 * t + 1], c = V[3 * t + 2];
+        if (isVirtual(a) || isVirtual(b) || isVirtual(c)) continue;
+        const int s[3] = {orient2d(G[b], G[c], p), orient2d(G[c], G[a], p),
+                          orient2d(G[a], G[b], p)};
+        if (s[0] < 0 || s[1] < 0 || s[2] < 0) continue;
+        const int zeros = (s[0] == 0) + (s[1] == 0) + (s[2] == 0);
+        if (zeros >= 2) {
+            refused = PlaceResult::OnVertex;
+            return false;
+        }
+        tri = t;
+        edge = kNone;
+        for (int k = 0; k < 3; ++k) {
+            if (s[k] == 0) edge = 3 * t + k;
+        }
+        if (edge == kNone) return true;
+        const std::int32_t o = m_mesh.O[edge];
+        return o != kNone && !isVirtual(V[o]);  // on a hull edge: the boundary
+    }
+    return false;
+}
+
+std::int32_t Constrainer::appendTriangles(int count) {
+    const std::int32_t first = m_mesh.numTriangles();
+    m_mesh.V.resize(m_mesh.V.size() + 3 * static_cast<std::size_t>(count), kNone);
+    m_mesh.O.resize(m_mesh.O.size() + 3 * static_cast<std::size_t>(count), kNone);
+    if (m_flag.size() < m_mesh.V.size()) m_flag.resize(m_mesh.V.size(), 0);
+    return first;
+}
+
+// (a, b, c) becomes (a, b, v), (b, c, v), (c, a, v): the outer edges keep their opposites and
+// constraints.
+void Constrainer::splitTriangle(std::int32_t t, std::int32_t v) {
+    const auto& V = m_mesh.V;
+    const std::int32_t a = V[3 * t], b = V[3 * t + 1], c = V[3 * t + 2];
+    const std::int32_t oa = m_mesh.O[3 * t], ob = m_mesh.O[3 * t + 1];
+    const std::uint8_t fa = m_flag[3 * t], fb = m_flag[3 * t + 1];
+    const std::int32_t t1 = appendTriangles(2), t2 = t1 + 1;
+    setV(3 * t + 2, v);
+    setV(3 * t1, b);
+    setV(3 * t1 + 1, c);
+    setV(3 * t1 + 2, v);
+    setV(3 * t2, c);
+    setV(3 * t2 + 1, a);
+    setV(3 * t2 + 2, v);
+    const auto link = [&](std::int32_t x, std::int32_t y) {
+        setO(x, y);
+        if (y != kNone) setO(y, x);
+    };
+    link(3 * t, 3 * t1 + 1);
+    link(3 * t + 1, 3 * t2);
+    link(3 * t1, 3 * t2 + 1);
+    link(3 * t1 + 2, oa);
+    link(3 * t2 + 2, ob);
+    setFlag(3 * t, 0);
+    setFlag(3 * t + 1, 0);
+    setFlag(3 * t1 + 2, fa);
+    setFlag(3 * t2 + 2, fb);
+    m_cornerOf[a] = 3 * t;
+    m_cornerOf[b] = 3 * t1;
+    m_cornerOf[c] = 3 * t2;
+    m_cornerOf[v] = 3 * t + 2;
+}
+
+// The edge A-B opposite corner c (apex X, and Y across) split at v: (X, A, B) becomes (X, A, v)
+// and (X, v, B), (Y, B, A) becomes (Y, B, v) and (Y, v, A); both halves keep A-B's constraints.
+void Constrainer::splitEdge(std::int32_t c, std::int32_t v) {
+    const auto& V = m_mesh.V;
+    const std::int32_t d = m_mesh.O[c];
+    const std::int32_t X = V[c], A = V[next(c)], B = V[prev(c)], Y = V[d];
+    const std::int32_t ocn = m_mesh.O[next(c)], odn = m_mesh.O[next(d)];
+    const std::uint8_t fe = m_flag[c], fcn = m_flag[next(c)], fdn = m_flag[next(d)];
+    const std::int32_t t1 = appendTriangles(2), t2 = t1 + 1;
+    setV(prev(c), v);
+    setV(prev(d), v);
+    setV(3 * t1, X);
+    setV(3 * t1 + 1, v);
+    setV(3 * t1 + 2, B);
+    setV(3 * t2, Y);
+    setV(3 * t2 + 1, v);
+    setV(3 * t2 + 2, A);
+    const auto link = [&](std::int32_t x, std::int32_t y) {
+        setO(x, y);
+        if (y != kNone) setO(y, x);
+    };
+    link(c, 3 * t2);
+    link(next(c), 3 * t1 + 2);
+    link(3 * t1, d);
+    link(3 * t1 + 1, ocn);
+    link(next(d), 3 * t2 + 2);
+    link(3 * t2 + 1, odn);
+    setFlag(3 * t2, fe);
+    setFlag(3 * t1, fe);
+    setFlag(next(c), 0);
+    setFlag(next(d), 0);
+    setFlag(3 * t1 + 2, 0);
+    setFlag(3 * t2 + 2, 0);
+    setFlag(3 * t1 + 1, fcn);
+    setFlag(3 * t2 + 1, fdn);
+    m_cornerOf[X] = c;
+    m_cornerOf[A] = next(c);
+    m_cornerOf[B] = 3 * t1 + 2;
+    m_cornerOf[Y] = d;
+    m_cornerOf[v] = prev(c);
+}
+
+PlaceResult Constrainer::insertVertex(std::int32_t v, ConstraintRecord* record) {
+    if (m_stale) rebuildIndex();
+    if (v < 0 || v >= m_mesh.numVertices() || isVirtual(v) ||
+        (v < static_cast<std::int32_t>(m_cornerOf.size()) && m_cornerOf[v] != kNone))
+        throw std::logic_error("insertVertex: the vertex must be finite and in no triangle");
+    std::int32_t t = kNone, edge = kNone;
+    PlaceResult refused{};
+    if (!locate(m_mesh.G[v], t, edge, refused)) return refused;
+    if (m_cornerOf.size() < m_mesh.G.size()) m_cornerOf.resize(m_mesh.G.size(), kNone);
+    struct Recording {  // the record is this call's only, even when it throws
+        Constrainer& self;
+        ~Recording() { self.m_record = nullptr; }
+    } recording{*this};
+    beginRecording(record, v, kNone);
+    ConstrainOp* op = beginOp(ConstrainOpType::Locate, v, t);
+    if (op) op->count = edge;
+    endOp();
+    std::vector<Edge> link;
+    if (edge == kNone) {
+        const auto& V = m_mesh.V;
+        link = {{V[3 * t], V[3 * t + 1]}, {V[3 * t + 1], V[3 * t + 2]}, {V[3 * t + 2], V[3 * t]}};
+        beginOp(ConstrainOpType::Split, v, t);
+        splitTriangle(t, v);
+    } else {
+        const auto& V = m_mesh.V;
+        const std::int32_t d = m_mesh.O[edge];
+        link = {{V[edge], V[next(edge)]},
+                {V[prev(edge)], V[edge]},
+                {V[d], V[next(d)]},
+                {V[prev(d)], V[d]}};
+        beginOp(ConstrainOpType::SplitEdge, v, edge);
+        splitEdge(edge, v);
+    }
+    endOp();
+    restore(std::move(link));
+    return PlaceResult::Placed;
 }
 
 VertexRemoval Constrainer::removeVertex(Remover& remover, std::int32_t v, RemovalRecord* removal,

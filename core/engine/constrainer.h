@@ -39,6 +39,12 @@ enum class ConstrainOpType : std::uint8_t {
     Unmark,        // the edge a-b (vertices) is one constraint less (free once none is left)
     InCircleTest,  // the repair: the edge opposite corner a tested against corner b's vertex
     Flip,          // the repair flipped the edge opposite corner a
+    MoveVertex,    // vertex a, taken out, takes its new place (G changes; the editor records it)
+    Locate,        // vertex a goes into triangle b (count: the corner facing the edge it is on,
+                   // -1 inside)
+    Split,         // triangle b split in three around vertex a
+    SplitEdge,     // the edge opposite corner b split at vertex a (its constraints kept on both
+                   // halves)
 };
 const char* toString(ConstrainOpType t);
 
@@ -52,6 +58,7 @@ struct FlagChange {
 // flagChanges[firstFlag, +numFlags).
 struct ConstrainOp {
     ConstrainOpType type = ConstrainOpType::Walk;
+    std::int32_t trianglesBefore = 0, trianglesAfter = 0;  // a split adds triangles
     std::int8_t sign = 0;
     std::int32_t a = kNone, b = kNone;
     std::int32_t segmentA = kNone, segmentB = kNone;  // the segment being inserted
@@ -73,6 +80,13 @@ struct VertexRemoval {
     bool refused = false;  // a constrained edge ends at the vertex: nothing changed
     std::pair<std::int32_t, std::int32_t> constrained{-1, -1};  // that edge
     std::int32_t droppedConstraints = 0;  // Collapsed: the constrained edges left with no mesh
+};
+
+// Where insertVertex put the vertex, or why not.
+enum class PlaceResult : std::uint8_t {
+    Placed,      // inside a triangle, or on an edge inside the hull
+    OnVertex,    // another vertex is there (nothing changed)
+    OutsideHull  // not strictly inside the hull of the others (nothing changed)
 };
 
 struct ConstrainOutcome {
@@ -98,6 +112,12 @@ public:
     // ops, then the removal's, then refresh().
     VertexRemoval removeVertex(Remover& remover, std::int32_t v, RemovalRecord* removal,
                                ConstraintRecord* record);
+    // Puts vertex v (no triangle uses it; its point is G[v]) into the mesh: the triangle that
+    // holds it split in three, or the edge it lies on in four (a constrained edge's halves keep
+    // its constraints), then Lawson's flips that skip constrained edges; recorded (Locate,
+    // Split or SplitEdge, the tests and flips). Only strictly inside the hull: on its boundary
+    // or outside, or on another vertex, nothing changes.
+    PlaceResult insertVertex(std::int32_t v, ConstraintRecord* record = nullptr);
     // The mesh was changed by another editor (the Remover's undo): the index is rebuilt.
     void refresh() { rebuildIndex(); }
     // Reverts the record's ops from the last back to op `from` (V, O and the flags exactly as
@@ -121,6 +141,10 @@ private:
     void flipOut(std::int32_t a, std::int32_t b, std::vector<Edge> queue, std::vector<Edge>& fresh);
     void restore(std::vector<Edge> stack);
     void flip(std::int32_t c);
+    bool locate(Vec2 p, std::int32_t& tri, std::int32_t& edge, PlaceResult& refused) const;
+    void splitTriangle(std::int32_t t, std::int32_t v);
+    void splitEdge(std::int32_t c, std::int32_t v);
+    std::int32_t appendTriangles(int count);
     void mark(std::int32_t a, std::int32_t b);
     void setV(std::int32_t c, std::int32_t v);
     void setO(std::int32_t c, std::int32_t o);

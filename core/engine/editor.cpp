@@ -1,10 +1,12 @@
 // Edits of a finished triangulation as recorded operations: record, step, seek.
 #include "core/engine/editor.h"
 
+#include "core/engine/numbers.h"
 #include "core/engine/text_util.h"
 
 #include <algorithm>
 #include <charconv>
+#include <cmath>
 #include <string>
 
 namespace dlab {
@@ -14,12 +16,20 @@ const char* toString(EditKind k) {
         case EditKind::RemoveVertex: return "remove vertex";
         case EditKind::Constrain: return "constrain";
         case EditKind::Unconstrain: return "unconstrain";
+        case EditKind::MoveVertex: return "move vertex";
     }
     return "?";
 }
 
 std::string describe(const Edit& edit) {
     if (edit.kind == EditKind::RemoveVertex) return "remove vertex " + std::to_string(edit.a);
+    if (edit.kind == EditKind::MoveVertex) {
+        std::string s = "move vertex " + std::to_string(edit.a) + " to ";
+        appendShortest(s, edit.to.x);
+        s += ", ";
+        appendShortest(s, edit.to.y);
+        return s;
+    }
     return std::string(toString(edit.kind)) + " " + std::to_string(edit.a) + "-" +
            std::to_string(edit.b);
 }
@@ -34,6 +44,31 @@ std::optional<std::int32_t> parseId(std::string_view s) {
     return v;
 }
 
+// A finite number, the whole of `s` (shortest decimals read back bit for bit).
+std::optional<double> parseNumber(std::string_view s) {
+    const std::string t = trimmed(s);
+    double x = 0;
+    const ParseResult r = parseDouble(t.data(), t.data() + t.size(), x);
+    if (r.ec != std::errc{} || r.ptr != t.data() + t.size() || !std::isfinite(x))
+        return std::nullopt;
+    return x;
+}
+
+// "5 to 3.5, 7": the vertex and its new place.
+std::optional<Edit> parseMove(std::string_view rest, Edit edit) {
+    const std::size_t to = rest.find(" to ");
+    const std::size_t comma = rest.find(',');
+    if (to == std::string_view::npos || comma == std::string_view::npos || comma < to)
+        return std::nullopt;
+    const auto v = parseId(trimmed(rest.substr(0, to)));
+    const auto x = parseNumber(rest.substr(to + 4, comma - to - 4));
+    const auto y = parseNumber(rest.substr(comma + 1));
+    if (!v || !x || !y) return std::nullopt;
+    edit.a = *v;
+    edit.to = {*x, *y};
+    return edit;
+}
+
 Mesh closedForm(const Mesh& finished) {
     Mesh m = finished;
     addGhosts(m);
@@ -45,10 +80,9 @@ Mesh closedForm(const Mesh& finished) {
 std::optional<Edit> parseEdit(std::string_view typed) {
     const std::string text = lowered(trimmed(typed));
     static constexpr std::pair<std::string_view, EditKind> kWords[] = {
-        {"remove vertex ", EditKind::RemoveVertex},
-        {"remove ", EditKind::RemoveVertex},
-        {"unconstrain ", EditKind::Unconstrain},
-        {"constrain ", EditKind::Constrain}};
+        {"move vertex ", EditKind::MoveVertex},     {"move ", EditKind::MoveVertex},
+        {"remove vertex ", EditKind::RemoveVertex}, {"remove ", EditKind::RemoveVertex},
+        {"unconstrain ", EditKind::Unconstrain},    {"constrain ", EditKind::Constrain}};
     Edit edit;
     std::string rest;
     for (const auto& [word, kind] : kWords) {
@@ -59,6 +93,7 @@ std::optional<Edit> parseEdit(std::string_view typed) {
         }
     }
     if (rest.empty()) return std::nullopt;
+    if (edit.kind == EditKind::MoveVertex) return parseMove(rest, edit);
     if (edit.kind == EditKind::RemoveVertex) {
         const auto v = parseId(rest);
         if (!v) return std::nullopt;
@@ -126,9 +161,11 @@ void Editor::replay(std::size_t position, bool forward) {
     const std::size_t i = position - editStart(s.index);
     if (s.removal) {
         m_remover.replay(s.edit->removal, i, forward);
-    } else {
-        m_constrainer.replay(s.edit->constraint, i - s.edit->removal.ops.size(), forward);
+        return;
     }
+    if (s.constraint->type == ConstrainOpType::MoveVertex)
+        m_mesh.G[s.edit->a] = forward ? s.edit->to : s.edit->from;
+    m_constrainer.replay(s.edit->constraint, i - s.edit->removal.ops.size(), forward);
 }
 
 bool Editor::forward() {
@@ -170,31 +207,82 @@ std::string edgeName(std::pair<std::int32_t, std::int32_t> e) {
 }  // namespace
 
 // Runs the edit on the mesh with its records; false (with nothing changed) when refused.
+// The removal of edit.a, recorded in the edit (the constraints kept when there are any).
+VertexRemoval Editor::removeRecorded(Edit& edit, std::string& message) {
+    VertexRemoval r;
+    if (constrainedEdges().empty()) {  // no flag to put back, nothing but Delaunay to keep
+        m_remover.meshChanged();
+        r.removed = m_remover.remove(edit.a, &edit.removal);
+        m_constrainer.refresh();
+    } else {
+        r = m_constrainer.removeVertex(m_remover, edit.a, &edit.removal, &edit.constraint);
+    }
+    if (r.refused) {
+        message = vertexName(edit.a) + " is an end of the constrained edge " +
+                  edgeName(r.constrained) + ": take that constraint away first";
+    } else if (r.removed == RemoveResult::NotInMesh) {
+        message = vertexName(edit.a) + " is not in the mesh (removed, or a duplicate)";
+    }
+    return r;
+}
+
+// Steps the recorded edit back to its start (its ops undone, the moved vertex back in place).
+void Editor::unrecord(const Edit& e) {
+    for (std::size_t i = e.constraint.ops.size(); i-- > 0;) {
+        if (e.constraint.ops[i].type == ConstrainOpType::MoveVertex) m_mesh.G[e.a] = e.from;
+        m_constrainer.replay(e.constraint, i, false);
+    }
+    for (std::size_t i = e.removal.ops.size(); i-- > 0;) m_remover.replay(e.removal, i, false);
+}
+
+// A move: the removal, the vertex's new place (a MoveVertex op), then its insertion there.
+bool Editor::recordMove(Edit& edit, std::string& message) {
+    const std::int32_t v = edit.a;
+    if (!std::isfinite(edit.to.x) || !std::isfinite(edit.to.y)) {
+        message = "a vertex moves to a point with finite coordinates";
+        return false;
+    }
+    const VertexRemoval r = removeRecorded(edit, message);
+    if (r.refused || r.removed == RemoveResult::NotInMesh) return false;
+    edit.from = m_mesh.G[v];
+    ConstrainOp op;
+    op.type = ConstrainOpType::MoveVertex;
+    op.a = v;
+    op.trianglesBefore = op.trianglesAfter = m_mesh.numTriangles();
+    op.firstChange = static_cast<std::uint32_t>(edit.constraint.changes.size());
+    op.firstFlag = static_cast<std::uint32_t>(edit.constraint.flagChanges.size());
+    edit.constraint.ops.push_back(op);
+    m_mesh.G[v] = edit.to;
+    const PlaceResult placed = r.removed == RemoveResult::Removed
+                                   ? m_constrainer.insertVertex(v, &edit.constraint)
+                                   : PlaceResult::OutsideHull;
+    if (placed == PlaceResult::Placed) {
+        message = "moved " + vertexName(v) + ": " + std::to_string(edit.numOps()) + " operations";
+        return true;
+    }
+    unrecord(edit);
+    m_remover.meshChanged();
+    m_constrainer.refresh();
+    message =
+        placed == PlaceResult::OnVertex
+            ? vertexName(v) + " cannot move onto another vertex"
+            : vertexName(v) + " moves only to a point strictly inside the hull of the other points";
+    return false;
+}
+
+// Runs the edit on the mesh with its records; false (with nothing changed) when refused.
 bool Editor::record(Edit& edit, std::string& message) {
     const std::int32_t n = m_firstVirtual;
     const auto isVertex = [&](std::int32_t v) { return v >= 0 && v < n; };
-    if (!isVertex(edit.a) || (edit.kind != EditKind::RemoveVertex && !isVertex(edit.b))) {
+    const bool segment = edit.kind == EditKind::Constrain || edit.kind == EditKind::Unconstrain;
+    if (!isVertex(edit.a) || (segment && !isVertex(edit.b))) {
         message = "no such vertex: the mesh has vertices 0 to " + std::to_string(n - 1);
         return false;
     }
+    if (edit.kind == EditKind::MoveVertex) return recordMove(edit, message);
     if (edit.kind == EditKind::RemoveVertex) {
-        VertexRemoval r;
-        if (constrainedEdges().empty()) {  // no flag to put back, nothing but Delaunay to keep
-            m_remover.meshChanged();
-            r.removed = m_remover.remove(edit.a, &edit.removal);
-            m_constrainer.refresh();
-        } else {
-            r = m_constrainer.removeVertex(m_remover, edit.a, &edit.removal, &edit.constraint);
-        }
-        if (r.refused) {
-            message = vertexName(edit.a) + " is an end of the constrained edge " +
-                      edgeName(r.constrained) + ": take that constraint away first";
-            return false;
-        }
-        if (r.removed == RemoveResult::NotInMesh) {
-            message = vertexName(edit.a) + " is not in the mesh (removed, or a duplicate)";
-            return false;
-        }
+        const VertexRemoval r = removeRecorded(edit, message);
+        if (r.refused || r.removed == RemoveResult::NotInMesh) return false;
         message = "removed " + vertexName(edit.a) + ": " + std::to_string(edit.removal.ops.size()) +
                   " operations";
         if (r.removed == RemoveResult::Collapsed) message += "; the points left make no triangle";
@@ -230,11 +318,7 @@ bool Editor::add(Edit edit, std::string& message) {
     m_constrainer.refresh();
     if (!record(edit, message)) return false;
     m_edits.push_back(std::move(edit));
-    const Edit& e = m_edits.back();
-    // Back to the start of the edit: its ops are stepped from there.
-    for (std::size_t i = e.constraint.ops.size(); i-- > 0;)
-        m_constrainer.replay(e.constraint, i, false);
-    for (std::size_t i = e.removal.ops.size(); i-- > 0;) m_remover.replay(e.removal, i, false);
+    unrecord(m_edits.back());  // back to the start of the edit: its ops are stepped from there
     return true;
 }
 

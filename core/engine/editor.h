@@ -24,12 +24,14 @@ enum class EditKind : std::uint8_t {
     RemoveVertex,  // a: the vertex
     Constrain,     // a-b: the segment made a constrained edge (or a chain of them)
     Unconstrain,   // a-b: a constrained segment taken away
+    MoveVertex,    // a to `to`: taken out, then put in at its new place (inside the hull)
 };
 const char* toString(EditKind k);
 
 struct Edit {
     EditKind kind = EditKind::RemoveVertex;
     std::int32_t a = kNone, b = kNone;
+    Vec2 from{}, to{};            // MoveVertex: the vertex's place before and after
     RemovalRecord removal;        // RemoveVertex: the ear tests, flips and merge
     ConstraintRecord constraint;  // the constraint ops (after the removal's, for RemoveVertex)
     std::size_t numOps() const { return removal.ops.size() + constraint.ops.size(); }
@@ -41,8 +43,14 @@ inline Edit makeEdit(EditKind kind, std::int32_t a, std::int32_t b = kNone) {
     e.b = b;
     return e;
 }
-// "remove vertex 5", "constrain 2-7", "unconstrain 2-7": the edit as a user says it (and as
-// sessions and `dtlab render --edit` read it back).
+inline Edit makeMove(std::int32_t v, Vec2 to) {
+    Edit e = makeEdit(EditKind::MoveVertex, v);
+    e.to = to;
+    return e;
+}
+// "remove vertex 5", "constrain 2-7", "unconstrain 2-7", "move vertex 5 to 3.5, 7" (shortest
+// decimals: bit for bit): the edit as a user says it (and as sessions and `dtlab render --edit`
+// read it back).
 std::string describe(const Edit& edit);
 // Reads that form back (also "remove 5"); nullopt when it is none of them.
 std::optional<Edit> parseEdit(std::string_view text);
@@ -101,6 +109,9 @@ private:
     EditStep stepAt(std::size_t position) const;  // the op at 0-based position
     void replay(std::size_t position, bool forward);
     bool record(Edit& edit, std::string& message);
+    VertexRemoval removeRecorded(Edit& edit, std::string& message);
+    bool recordMove(Edit& edit, std::string& message);
+    void unrecord(const Edit& edit);
 
     Mesh m_mesh;
     std::int32_t m_firstVirtual;
