@@ -281,10 +281,17 @@ struct AppState {
     bool presentation = false;   // large fonts, high contrast, no clutter
     bool handoutSlides = false;  // slides for a handout: no menus, buttons, answer box, side tab
     // What a click on the canvas does: queue a point, or edit the finished mesh (remove the
-    // vertex clicked; constrain or free the segment between the two vertices clicked).
-    enum class CanvasTool : std::uint8_t { AddPoints, RemoveVertex, Constrain, Unconstrain };
+    // vertex clicked; constrain or free the segment between the two vertices clicked; move the
+    // vertex clicked to the point clicked next).
+    enum class CanvasTool : std::uint8_t {
+        AddPoints,
+        RemoveVertex,
+        Constrain,
+        Unconstrain,
+        MoveVertex
+    };
     CanvasTool tool = CanvasTool::AddPoints;
-    std::int32_t toolFirstVertex = kNone;  // a segment's first vertex, clicked
+    std::int32_t toolFirstVertex = kNone;  // a segment's first vertex, or the vertex to move
     bool snapToGrid = false;
     double gridStep = 10.0;
     bool quitRequested = false;

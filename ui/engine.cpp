@@ -426,6 +426,16 @@ std::vector<Engine::QueuedTest> Engine::pendingTests() const {
     return tests;
 }
 
+const std::vector<Vec2>& Engine::shownPoints() const {
+    if (!editing()) return m_points;
+    if (m_shownVersion != m_version) {
+        const auto& G = m_editor->mesh().G;
+        m_shown.assign(G.begin(), G.begin() + static_cast<std::ptrdiff_t>(m_points.size()));
+        m_shownVersion = m_version;
+    }
+    return m_shown;
+}
+
 const std::vector<Engine::PointState>& Engine::pointStates() const {
     if (m_statesVersion == m_version) return m_states;
     m_statesVersion = m_version;

@@ -81,6 +81,9 @@ public:
     GpuIdBuffer* idBufferGl() const { return m_idBufferGl; }
 
     const std::vector<Vec2>& points() const { return m_points; }
+    // Where each point is now: as given, or past the run its place after the edits that moved
+    // it (the edited mesh's G); cached per version().
+    const std::vector<Vec2>& shownPoints() const;
     const InsertOptions& options() const { return m_options; }
     const Inserter& inserter() const { return *m_ins; }
     // The mesh at the position: the run's, or past its end the edited one (editing()).
@@ -196,6 +199,8 @@ private:
     std::vector<std::int32_t> m_rank;  // position of each input point in the insertion order
     std::uint64_t m_version = 0;
     std::uint64_t m_run = 0;
+    mutable std::vector<Vec2> m_shown;  // shownPoints() while editing
+    mutable std::uint64_t m_shownVersion = ~std::uint64_t{0};
     mutable std::vector<PointState> m_states;
     mutable std::uint64_t m_statesVersion = ~std::uint64_t{0};
     std::string m_notice;

@@ -765,7 +765,7 @@ void DrawLabels(const Scene& s, std::int32_t& hoveredCorner, ImVec2 mouse, bool 
 
 void DrawPoints(const Scene& s, std::int32_t draggedPoint, Vec2 dragTo) {
     const auto& states = s.e.pointStates();
-    const auto& pts = s.e.points();
+    const auto& pts = s.e.shownPoints();
     // Many points: the GL renderer draws the inserted and queued ones; here only the point in
     // progress and (at most 2000) skipped duplicates, so the draw list stays small.
     const bool few = pts.size() <= kFewPoints;
@@ -975,7 +975,7 @@ void handleInput(AppState& st, CanvasCache& cache, bool hovered) {
                 st.log(Message::Level::Info,
                        "point " + std::to_string(cache.dragPoint) +
                            " is queued: drag it to move it, right-click to remove it");
-            } else if (EditClick(st, mouse)) {
+            } else if (EditClick(st, mouse, world)) {
                 // an edit tool's click: a vertex removed or a segment's end picked
             } else if (!st.engine.batch()) {
                 pts.push_back(world);  // a click on empty canvas queues a new point
@@ -1172,7 +1172,7 @@ void DrawMeshLayers(AppState& st, CanvasCache& cache, const Scene& scene, ImVec2
 // all), the labels and the ends of the queued edges.
 std::vector<BusyPoint> busy(const Scene& s) {
     std::vector<BusyPoint> out;
-    const auto& pts = s.e.points();
+    const auto& pts = s.e.shownPoints();
     const std::size_t step = std::max<std::size_t>(1, pts.size() / 20000);
     for (std::size_t i = 0; i < pts.size(); i += step) {
         const ImVec2 q = toIm(s.view.toScreen(pts[i]));
@@ -1194,7 +1194,7 @@ std::int32_t DrawLabelsAndPoints(AppState& st, const CanvasCache& cache, Scene& 
     std::int32_t hoveredCorner = kNone;
     if (st.overlays.vertexIds && e.points().size() <= kFewPoints)
         scene.vertexLabelAt =
-            placeVertexLabels(scene.labels, st.view, e.points(), fonts().mono,
+            placeVertexLabels(scene.labels, st.view, e.shownPoints(), fonts().mono,
                               ImGui::GetFontSize() * 0.9f, st.presentation ? 5.5f : 4.0f);
     LabelSuperVertices(st, scene.dl, scene.labels);
     DrawLabels(scene, hoveredCorner, ImGui::GetIO().MousePos, hovered);

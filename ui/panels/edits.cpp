@@ -4,6 +4,7 @@
 // canvas tools that make edits (remove the vertex clicked, constrain or free a segment between
 // two vertices clicked; Delete removes the selected corner's vertex).
 #include "core/engine/editor.h"
+#include "core/engine/numbers.h"
 #include "core/engine/voronoi.h"
 #include "ui/panels/canvas_looks.h"
 #include "ui/panels/panels.h"
@@ -148,6 +149,26 @@ void DrawConstraintOp(AppState& st, ImDrawList* dl, const Edit& edit, const Cons
             CircleThrough(st, dl, m.V[op.a], m.V[next(op.a)], m.V[prev(op.a)],
                           op.sign > 0 ? Mark::CircleFlip : Mark::CircleKeep);
             break;
+        case ConstrainOpType::MoveVertex: {
+            const ImU32 col = useLook(st, Mark::EditSegment);
+            const ImVec2 from = toIm(st.view.toScreen(edit.from)), to = screenOf(st, edit.a);
+            dl->AddLine(from, to, col, 2.5f);
+            dl->AddCircle(from, 7.0f, useLook(st, Mark::RemovedPoint), 0, 2.0f);
+            break;
+        }
+        case ConstrainOpType::Locate:
+            if (op.b >= 0 && op.b < m.numTriangles())
+                FillTriangle(st, dl, m.V[3 * op.b], m.V[3 * op.b + 1], m.V[3 * op.b + 2],
+                             Mark::WalkNow);
+            break;
+        case ConstrainOpType::Split:
+        case ConstrainOpType::SplitEdge:
+            for (std::int32_t c = 0; c < m.numCorners(); ++c) {
+                if (m.V[c] == op.a)
+                    FillTriangle(st, dl, m.V[3 * tri(c)], m.V[3 * tri(c) + 1], m.V[3 * tri(c) + 2],
+                                 Mark::NewTriangles);
+            }
+            break;
         case ConstrainOpType::Mark:
         case ConstrainOpType::Unmark:
         case ConstrainOpType::Reflag: break;
@@ -156,8 +177,8 @@ void DrawConstraintOp(AppState& st, ImDrawList* dl, const Edit& edit, const Cons
 
 }  // namespace
 
-const char* const kCanvasToolNames[4] = {"add points", "remove vertex", "constrain segment",
-                                         "free segment"};
+const char* const kCanvasToolNames[5] = {"add points", "remove vertex", "constrain segment",
+                                         "free segment", "move vertex"};
 
 void DrawEditOverlay(AppState& st, ImDrawList* dl) {
     const Engine& e = st.engine;
@@ -181,6 +202,35 @@ void DrawEditOverlay(AppState& st, ImDrawList* dl) {
     if (s.removal) DrawRemovalOp(st, dl, *s.edit, *s.removal);
     if (s.constraint) DrawConstraintOp(st, dl, *s.edit, *s.constraint);
 }
+
+namespace {
+
+// The ops that put a moved vertex in at its new place, in words.
+std::string placeText(const Edit& edit, const ConstrainOp& op) {
+    const std::string v = std::to_string(op.a);
+    switch (op.type) {
+        case ConstrainOpType::MoveVertex: {
+            std::string s = v + " is out of the mesh: it takes its new place (";
+            appendShortest(s, edit.to.x);
+            s += ", ";
+            appendShortest(s, edit.to.y);
+            return s + ")";
+        }
+        case ConstrainOpType::Locate:
+            return v +
+                   (op.count == kNone ? " lies inside triangle "
+                                      : " lies on an edge of triangle ") +
+                   std::to_string(op.b);
+        case ConstrainOpType::Split:
+            return "triangle " + std::to_string(op.b) + " split in three around " + v +
+                   "; its edges wait for their in-circle tests";
+        case ConstrainOpType::SplitEdge:
+            return "the edge " + v + " lies on split in two (a constraint on it holds both halves)";
+        default: return toString(op.type);
+    }
+}
+
+}  // namespace
 
 std::string editOpText(const Engine& e) {
     const EditStep s = e.currentEdit();
@@ -254,6 +304,7 @@ std::string editOpText(const Engine& e) {
             out += "flip " + edge(f.oldA, f.oldB) + " to " + edge(f.newA, f.newB);
             break;
         }
+        default: out += placeText(*s.edit, op); break;
     }
     return out;
 }
@@ -289,7 +340,7 @@ void RemoveSelectedVertex(AppState& st) {
 
 std::int32_t vertexUnder(const AppState& st, ImVec2 mouse) {
     const auto& states = st.engine.pointStates();
-    const auto& pts = st.engine.points();
+    const auto& pts = st.engine.shownPoints();
     std::int32_t best = kNone;
     float bestD = 12.0f * 12.0f;
     for (std::size_t i = 0; i < pts.size(); ++i) {
@@ -304,9 +355,14 @@ std::int32_t vertexUnder(const AppState& st, ImVec2 mouse) {
     return best;
 }
 
-bool EditClick(AppState& st, ImVec2 mouse) {
+bool EditClick(AppState& st, ImVec2 mouse, Vec2 world) {
     using Tool = AppState::CanvasTool;
     if (st.tool == Tool::AddPoints) return false;
+    if (st.tool == Tool::MoveVertex && st.toolFirstVertex != kNone) {  // where it goes
+        ApplyEdit(st, makeMove(st.toolFirstVertex, world));
+        st.toolFirstVertex = kNone;
+        return true;
+    }
     const std::int32_t v = vertexUnder(st, mouse);
     if (v == kNone) {
         st.log(Message::Level::Info, std::string(kCanvasToolNames[static_cast<int>(st.tool)]) +
@@ -317,8 +373,11 @@ bool EditClick(AppState& st, ImVec2 mouse) {
         ApplyEdit(st, makeEdit(EditKind::RemoveVertex, v));
     } else if (st.toolFirstVertex == kNone || st.toolFirstVertex == v) {
         st.toolFirstVertex = v;
-        st.log(Message::Level::Info, "segment from " + std::to_string(v) +
-                                         ": click the vertex at its other end (Esc cancels)");
+        st.log(Message::Level::Info,
+               st.tool == Tool::MoveVertex
+                   ? "vertex " + std::to_string(v) + ": click where it goes (Esc cancels)"
+                   : "segment from " + std::to_string(v) +
+                         ": click the vertex at its other end (Esc cancels)");
     } else {
         const EditKind kind =
             st.tool == Tool::Constrain ? EditKind::Constrain : EditKind::Unconstrain;

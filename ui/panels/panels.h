@@ -197,11 +197,11 @@ struct SideTab {
 // constrained edges and the edit op in progress drawn as its record says; the op in words for
 // the caption ("" when none); an edit made, logged and played; Delete on the selected corner's
 // vertex; a click with an edit tool (false: the tool adds points, the click is not one for it).
-extern const char* const kCanvasToolNames[4];
+extern const char* const kCanvasToolNames[5];
 void DrawEditOverlay(AppState& state, ImDrawList* dl);
 std::string editOpText(const Engine& engine);
 void ApplyEdit(AppState& state, Edit edit);
 void RemoveSelectedVertex(AppState& state);
-bool EditClick(AppState& state, ImVec2 mouse);
+bool EditClick(AppState& state, ImVec2 mouse, Vec2 world);
 
 }  // namespace dlab::ui

@@ -296,7 +296,9 @@ void ShowCanvasTool(AppState& st) {
             "What a click on the canvas does. add points: queue a new point. The others edit the "
             "finished mesh, each edit stepped like the run:\nremove vertex: the vertex clicked "
             "(or Delete: the selected corner's vertex)\nconstrain segment / free segment: the "
-            "segment between the two vertices clicked");
+            "segment between the two vertices clicked\nmove vertex: the vertex clicked, then where "
+            "it goes "
+            "(inside the hull of the others)");
 }
 
 }  // namespace

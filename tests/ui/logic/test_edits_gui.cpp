@@ -343,3 +343,39 @@ TEST(EditsInTheGui, TheReadmePicturesOfEditsShowWhatTheEngineDid) {
     }
     EXPECT_TRUE(made03 && made08) << "Sloan's flips made 0-3 and 0-8";
 }
+
+TEST(EditsInTheGui, TheMoveToolTakesAVertexThenItsNewPlaceAndTheCanvasDrawsItThere) {
+    UiHarness h;
+    auto& st = h.state();
+    auto& e = st.engine;
+    toRunEnd(h);
+    const std::int32_t v = interiorVertex(e);
+    ASSERT_NE(v, kNone);
+    st.tool = ui::AppState::CanvasTool::MoveVertex;
+    h.frames(1);
+    float x, y;
+    screenOf(h, v, x, y);
+    h.click(x, y);
+    EXPECT_EQ(st.toolFirstVertex, v);
+    // Halfway to another interior-ish point: the centroid of the points.
+    dlab::Vec2 c{0, 0};
+    for (const auto& p : e.points()) c = {c.x + p.x, c.y + p.y};
+    c = {c.x / e.points().size(), c.y / e.points().size()};
+    const auto q = st.view.toScreen(c);
+    h.click(static_cast<float>(q.x) + 7, static_cast<float>(q.y) - 5);
+    ASSERT_NE(e.editor(), nullptr);
+    ASSERT_EQ(e.editor()->edits().size(), 1u) << st.messages.back().text;
+    EXPECT_EQ(e.editor()->edits()[0].kind, dlab::EditKind::MoveVertex);
+    h.press(key::kEnd);
+    h.frames(3);
+    const dlab::Vec2 to = e.editor()->edits()[0].to;
+    EXPECT_EQ(e.mesh().G[v].x, to.x);
+    EXPECT_EQ(e.shownPoints()[v].x, to.x) << "the point is drawn at its new place";
+    EXPECT_EQ(e.points()[v].x, e.editor()->edits()[0].from.x) << "the input is not changed";
+    EXPECT_TRUE(usesVertex(e.mesh(), v));
+    dlab::ValidateOptions o;
+    o.firstVirtual = e.inserter().firstVirtual();
+    EXPECT_TRUE(dlab::validate(e.mesh(), o).empty());
+    const std::string text = ui::sessionText(st);
+    EXPECT_NE(text.find("\"move vertex " + std::to_string(v) + " to "), std::string::npos);
+}
