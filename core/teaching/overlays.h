@@ -18,6 +18,7 @@ struct Overlays {
     bool walk = true;            // the current locate's path and the line L
     bool flipQueue = true;       // edges still to test
     bool queueOrder = true;      // and their order (1 = tested next); lessons name it to show it
+    bool queuePushed = false;    // or the order they were pushed in (1 = first; the last is next)
     bool flipped = true;         // edges flipped by the current insertion
     bool circumcircles = false;  // every triangle's circumcircle
     bool voronoi = false;
@@ -41,6 +42,7 @@ inline constexpr OverlaySwitch kOverlaySwitches[] = {
     {"walk", &Overlays::walk, true},
     {"flip-queue", &Overlays::flipQueue, true},
     {"flip-queue-order", &Overlays::queueOrder, true},
+    {"flip-queue-pushed", &Overlays::queuePushed, true},
     {"flipped", &Overlays::flipped, true},
     {"circumcircles", &Overlays::circumcircles, true},
     {"voronoi", &Overlays::voronoi, true},

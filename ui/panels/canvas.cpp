@@ -23,6 +23,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -471,10 +472,23 @@ bool queuedEdgeOnScreen(const Scene& s, const Engine::QueuedTest& q, ImVec2& pa,
     return true;
 }
 
+// The point at `t` along a -> b, or (when that is within `clear` pixels of `point`) the nearest
+// of a few others along the edge that is not.
+ImVec2 clearOfPoint(ImVec2 a, ImVec2 b, float t, float clear, std::optional<ImVec2> point) {
+    const auto at = [&](float u) { return ImVec2(a.x + (b.x - a.x) * u, a.y + (b.y - a.y) * u); };
+    if (!point) return at(t);
+    for (const float d : {0.0f, -0.15f, 0.15f, -0.25f, 0.25f}) {
+        const ImVec2 p = at(t + d);
+        if (std::hypot(p.x - point->x, p.y - point->y) >= clear) return p;
+    }
+    return at(t);
+}
+
 // The edges on the flip stack, dashed (grey where an entry now names a hull edge: it comes off
 // with nothing to test), each edge once however often it is on the stack, and each entry's place
 // in the stack in a disc on its edge: 1 is the top, the edge the engine tests next (the Flip
-// queue section lists them alike); a second entry of one edge sits beside the first's disc.
+// queue section lists them alike), or in push order 1 is the bottom, the entry pushed first; a
+// second entry of one edge sits beside the first's disc.
 void DrawFlipQueue(const Scene& s, float w) {
     const std::vector<Engine::QueuedTest> queue = s.e.pendingTests();
     if (queue.empty()) return;
@@ -496,21 +510,26 @@ void DrawFlipQueue(const Scene& s, float w) {
                        pb.x, pb.y);  // every entry: the queue's count as drawn
         }
     }
-    if (!s.st.overlays.queueOrder) return;
-    const ImU32 badge = s.use(Mark::QueueOrder);
+    // Numbered in test order (1 = the top), or else in push order (1 = the bottom, pushed first).
+    const bool testOrder = s.st.overlays.queueOrder;
+    if (!testOrder && !s.st.overlays.queuePushed) return;
+    const ImU32 badge = s.use(testOrder ? Mark::QueueOrder : Mark::QueuePushed);
     ImFont* font = fonts().ui;
     const float fs = ImGui::GetFontSize() * 0.8f, r = fs * 0.72f;
     char buf[24];
+    const std::int32_t v = s.e.currentVertex();  // its point is drawn over the discs
+    const std::optional<ImVec2> now =
+        v >= 0 && v < s.m.numVertices() ? std::optional<ImVec2>(s.screen(v)) : std::nullopt;
     // The last first, so that the next edge's disc is on top where discs meet.
     for (std::size_t i = queue.size(); i-- > 0;) {
         if (!shown[i]) continue;
         const ImVec2 pa = ends[2 * i], pb = ends[2 * i + 1];
-        std::snprintf(buf, sizeof buf, "%zu", i + 1);
+        std::snprintf(buf, sizeof buf, "%zu", testOrder ? i + 1 : queue.size() - i);
         const ImVec2 ts = font->CalcTextSizeA(fs, 1e9f, 0, buf);
         const float rr = std::max(r, ts.x / 2 + 3);
         const float dx = pb.x - pa.x, dy = pb.y - pa.y, len = std::hypot(dx, dy);
         const float shift = len > 0 ? repeat[i] * (2 * rr + 3) / len : 0;  // along the edge
-        const ImVec2 mid(pa.x + dx * (0.5f + shift), pa.y + dy * (0.5f + shift));
+        const ImVec2 mid = clearOfPoint(pa, pb, 0.5f + shift, rr + 12, now);
         if (!s.onCanvas(mid.x - r, mid.y - r, mid.x + r, mid.y + r) || !s.room(80)) continue;
         s.dl->AddCircleFilled(mid, rr + 1.5f, IM_COL32(255, 255, 255, 255));
         s.dl->AddCircleFilled(mid, rr, queue[i].far == kNone ? s.use(Mark::QueuedOnHull) : badge);

@@ -21,6 +21,7 @@ constexpr std::array<Look, kMarkCount> kLooks{{
     {Mark::NewEdge, Shape::Line, IM_COL32(32, 128, 32, 255), "edge the split made"},
     {Mark::QueuedEdge, Shape::Dashed, IM_COL32(135, 60, 205, 255), "edge still to test"},
     {Mark::QueueOrder, Shape::Badge, IM_COL32(135, 60, 205, 255), "order of the tests (1 = next)"},
+    {Mark::QueuePushed, Shape::Badge, IM_COL32(135, 60, 205, 255), "order pushed (1 = first)"},
     {Mark::QueuedOnHull, Shape::Dashed, IM_COL32(150, 150, 160, 255),
      "on the stack, a hull edge: nothing to test"},
     {Mark::NextPoint, Shape::Diamond, IM_COL32(0, 150, 215, 255), "point being inserted, or next"},
@@ -73,7 +74,7 @@ void DrawSample(ImDrawList* dl, const Look& look, ImVec2 a, ImVec2 b) {
             for (float x = a.x; x < b.x; x += 8)
                 dl->AddLine(ImVec2(x, c.y), ImVec2(std::min(b.x, x + 5), c.y), col, 2.5f);
             if (look.shape == Shape::Dashed) break;
-            if (look.mark == Mark::QueueOrder) {  // the disc its number sits in
+            if (look.mark == Mark::QueueOrder || look.mark == Mark::QueuePushed) {  // its disc
                 dl->AddCircleFilled(c, h * 0.42f, col);
                 dl->AddCircleFilled(c, h * 0.12f, IM_COL32(255, 255, 255, 255));
             } else {  // a label on a filled box

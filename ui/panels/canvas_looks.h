@@ -24,6 +24,7 @@ enum class Mark : std::uint8_t {
     NewEdge,          // the edges a split made at the new vertex
     QueuedEdge,       // edges on the flip stack
     QueueOrder,       // their places on the stack, numbered in test order (1 = next)
+    QueuePushed,      // their places on the stack, numbered in push order (1 = pushed first)
     QueuedOnHull,     // a stack entry that now names a boundary edge: nothing to test there
     NextPoint,        // the point being inserted
     QueuedPoint,      // points not inserted yet
