@@ -38,6 +38,7 @@ constexpr std::array<Look, kMarkCount> kLooks{{
      "vertex in the circle across an edge: not Delaunay yet"},
     {Mark::Violation, Shape::Line, IM_COL32(230, 0, 0, 255), "broken rule (validate)"},
     {Mark::HullDent, Shape::Fill, IM_COL32(230, 0, 0, 90), "hull dent: triangle missing"},
+    {Mark::HullEdgeMissing, Shape::Dashed, IM_COL32(230, 0, 0, 255), "hull edge the mesh lacks"},
     {Mark::ExpressionPath, Shape::Arrow, IM_COL32(214, 0, 120, 255), "expression's path"},
     {Mark::StudentTriangle, Shape::Line, IM_COL32(200, 0, 160, 255),
      "student's triangle, not ours"},

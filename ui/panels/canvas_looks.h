@@ -39,6 +39,7 @@ enum class Mark : std::uint8_t {
     NotYetDelaunay,   // an edge validate() finds not Delaunay mid-insertion: tests to come
     Violation,        // a broken rule validate() reports (Statistics)
     HullDent,         // the triangle the mesh misses where its hull turns right (Statistics)
+    HullEdgeMissing,  // the hull edge that closes such a dent: the mesh lacks it (Statistics)
     ExpressionPath,   // the typed expression's moves between corners (Expressions)
     StudentTriangle,  // a student's triangle that is not ours (Trace)
     MeshNotDelaunay,  // an opened mesh's edge that is not Delaunay now, with its circle (Check)
