@@ -22,6 +22,7 @@ struct Overlays {
     bool flipped = true;         // edges flipped by the current insertion
     bool circumcircles = false;  // every triangle's circumcircle
     bool voronoi = false;
+    bool idBufferGrid = false;     // the ID buffer's pixels: their borders and centres
     bool pendingPoints = true;     // points not inserted yet
     bool virtualTriangles = true;  // super-triangle (super mode) while the run is in progress
     bool violations = true;        // what validate() finds: broken rules, edges not Delaunay yet
@@ -46,6 +47,7 @@ inline constexpr OverlaySwitch kOverlaySwitches[] = {
     {"flipped", &Overlays::flipped, true},
     {"circumcircles", &Overlays::circumcircles, true},
     {"voronoi", &Overlays::voronoi, true},
+    {"idbuffer-grid", &Overlays::idBufferGrid, true},
     {"pending-points", &Overlays::pendingPoints, true},
     {"virtual-triangles", &Overlays::virtualTriangles, true},
     {"violations", &Overlays::violations, true},

@@ -57,6 +57,7 @@ struct CanvasCache {
     // what the legend should not cover.
     MarksDrawn drawn;
     std::vector<BusyPoint> busy;
+    IdBufferCopy idCopy;  // a GL ID buffer read back for the pixel grid
 };
 
 namespace {
@@ -1143,6 +1144,39 @@ CanvasMesh& updateCanvasMesh(AppState& st, CanvasCache& cache, const MeshStyle& 
     return mesh;
 }
 
+// The ID buffer's pixels on the canvas (the idbuffer-grid overlay): each pixel's border and its
+// centre, the point whose triangle the pixel holds, and the pixel under the point being inserted
+// outlined. The ids stay in the ID-buffer panel: which triangle holds a centre is for the reader.
+void DrawIdBufferGrid(const Scene& s, IdBufferCopy& copy) {
+    IdBufferFrame f;
+    if (!readIdBuffer(s.e, f, copy) || f.width < 2 || f.height < 2) return;
+    const Vec2 c0 = f.centre(0, 0), c1 = f.centre(1, 1);
+    const double dx = c1.x - c0.x, dy = c1.y - c0.y;
+    // Only while a pixel is large enough on screen to tell its centre from its border.
+    if (!(dx > 0) || !(dy > 0) || std::min(dx, dy) * s.view.scale < 12) return;
+    if (!s.room(static_cast<unsigned>(4 * (f.width + f.height + 2) + 40 * f.width * f.height)))
+        return;
+    const double x0 = c0.x - dx / 2, y0 = c0.y - dy / 2;
+    const auto at = [&](double x, double y) { return toIm(s.view.toScreen(Vec2{x, y})); };
+    const ImU32 col = s.use(Mark::IdPixel);
+    const ImU32 faint = (col & 0x00FFFFFFu) | (150u << 24);
+    for (int i = 0; i <= f.width; ++i)
+        s.dl->AddLine(at(x0 + i * dx, y0), at(x0 + i * dx, y0 + f.height * dy), faint, 1.5f);
+    for (int j = 0; j <= f.height; ++j)
+        s.dl->AddLine(at(x0, y0 + j * dy), at(x0 + f.width * dx, y0 + j * dy), faint, 1.5f);
+    const float r = s.st.presentation ? 4.0f : 3.0f;
+    for (int j = 0; j < f.height; ++j)
+        for (int i = 0; i < f.width; ++i)
+            s.dl->AddCircleFilled(toIm(s.view.toScreen(f.centre(i, j))), r, col);
+    const std::int32_t v = s.e.currentVertex();
+    if (v < 0 || v >= s.m.numVertices()) return;
+    const Vec2 q = s.m.G[v];
+    const long i = std::lround((q.x - c0.x) / dx), j = std::lround((q.y - c0.y) / dy);
+    if (i < 0 || j < 0 || i >= f.width || j >= f.height) return;
+    const ImVec2 a = at(x0 + i * dx, y0 + (j + 1) * dy), b = at(x0 + (i + 1) * dx, y0 + j * dy);
+    s.dl->AddRect(a, b, s.use(Mark::IdPixelNow), 0, 0, s.st.presentation ? 4.0f : 3.0f);
+}
+
 void DrawCircumcircles(const Scene& scene) {
     for (std::int32_t t = 0; t < scene.m.numTriangles(); ++t) {
         Vec2 c;
@@ -1173,6 +1207,7 @@ void DrawMeshLayers(AppState& st, CanvasCache& cache, const Scene& scene, ImVec2
     }
     if (st.overlays.circumcircles) DrawCircumcircles(scene);
     if (st.overlays.voronoi) DrawVoronoi(scene);
+    if (st.overlays.idBufferGrid) DrawIdBufferGrid(scene, cache.idCopy);
     if (DrawGhostTriangles(st, scene.dl)) scene.use(Mark::GhostBand);
     DrawCheckOverlay(st, scene.dl);
     DrawOpOverlay(scene);

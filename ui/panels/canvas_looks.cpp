@@ -33,6 +33,8 @@ constexpr std::array<Look, kMarkCount> kLooks{{
     {Mark::CornerMove, Shape::Arrow, IM_COL32(120, 70, 20, 255), "last corner operator"},
     {Mark::Circumcircle, Shape::Ring, IM_COL32(150, 150, 200, 160), "circumcircle"},
     {Mark::Voronoi, Shape::Line, IM_COL32(90, 160, 40, 255), "Voronoi edge"},
+    {Mark::IdPixel, Shape::Dot, IM_COL32(0, 130, 120, 255), "ID-buffer pixel, a dot at its centre"},
+    {Mark::IdPixelNow, Shape::Line, IM_COL32(205, 95, 0, 255), "pixel under the point to insert"},
     {Mark::GhostBand, Shape::Fill, IM_COL32(150, 155, 170, 90), "outside the hull (ghost)"},
     {Mark::NotYetDelaunay, Shape::Ring, IM_COL32(245, 110, 150, 255),
      "vertex in the circle across an edge: not Delaunay yet"},

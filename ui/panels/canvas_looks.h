@@ -35,6 +35,8 @@ enum class Mark : std::uint8_t {
     CornerMove,       // the last corner operator applied (inspector)
     Circumcircle,     // every triangle's circumcircle (the overlay)
     Voronoi,          // the Voronoi diagram (the overlay)
+    IdPixel,          // the ID buffer's pixels: borders and centres (the overlay)
+    IdPixelNow,       // the ID-buffer pixel under the point being inserted
     GhostBand,        // exact mode: the half-plane beyond each hull edge (ghost triangle)
     NotYetDelaunay,   // an edge validate() finds not Delaunay mid-insertion: tests to come
     Violation,        // a broken rule validate() reports (Statistics)

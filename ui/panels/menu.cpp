@@ -106,6 +106,7 @@ void ShowViewMenu(AppState& st) {
     ImGui::MenuItem("Flipped edges", nullptr, &o.flipped);
     ImGui::MenuItem("Circumcircles", "C", &o.circumcircles);
     ImGui::MenuItem("Voronoi diagram", "V", &o.voronoi);
+    ImGui::MenuItem("ID-buffer pixels (their centres)", nullptr, &o.idBufferGrid);
     ImGui::MenuItem("Queued points", nullptr, &o.pendingPoints);
     ImGui::MenuItem("Super-triangle (super mode)", nullptr, &o.virtualTriangles);
     ImGui::MenuItem("Validation marks (broken rules, edges not Delaunay yet)", nullptr,
