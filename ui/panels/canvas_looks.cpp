@@ -21,7 +21,7 @@ constexpr std::array<Look, kMarkCount> kLooks{{
     {Mark::NewEdge, Shape::Line, IM_COL32(32, 128, 32, 255), "edge the split made"},
     {Mark::QueuedEdge, Shape::Dashed, IM_COL32(135, 60, 205, 255), "edge still to test"},
     {Mark::QueueOrder, Shape::Badge, IM_COL32(135, 60, 205, 255), "order of the tests (1 = next)"},
-    {Mark::QueuePushed, Shape::Badge, IM_COL32(135, 60, 205, 255), "order pushed (1 = first)"},
+    {Mark::QueuePushed, Shape::Badge, IM_COL32(95, 35, 160, 255), "order pushed (1 = first)"},
     {Mark::QueuedOnHull, Shape::Dashed, IM_COL32(150, 150, 160, 255),
      "on the stack, a hull edge: nothing to test"},
     {Mark::NextPoint, Shape::Diamond, IM_COL32(0, 150, 215, 255), "point being inserted, or next"},
