@@ -291,6 +291,7 @@ const ImVec4 kGood(0.05f, 0.45f, 0.15f, 1), kBad(0.8f, 0.1f, 0.1f, 1),
 void CheckControls(AppState& st) {
     StatisticsState& s = st.statistics;
     ImGui::TextUnformatted("Checks of the current mesh (exact)");
+    if (slideMode(st)) return;  // a slide shows what they found, not how to run them
     ImGui::Checkbox("after every change", &s.autoValidate);
     if (ImGui::IsItemHovered())
         ImGui::SetTooltip("validate() after each step, for meshes up to %d corners",
@@ -488,12 +489,21 @@ void FrameTimes(AppState& st) {
 void ShowStatistics(AppState& st) {
     ImGui::BeginChild("##statsbody", ImVec2(0, 0), false);  // scrolls when the column is short
     ImGui::BeginGroup();
-    // What a debugging user looks for first: does the mesh hold its invariants at this step.
-    ShowChecks(st);
-    ImGui::Separator();
-    CountsTable(st);
-    FlipsPlot(st);
-    if (!slideMode(st)) FrameTimes(st);  // the app's own timings: not for a class
+    // What a debugging user looks for first: does the mesh hold its invariants at this step. A
+    // slide shows the run's counts first, which its text speaks of, and the checks below them.
+    if (slideMode(st)) {
+        ImGui::TextUnformatted("Counts of the run");
+        CountsTable(st);
+        FlipsPlot(st);
+        ImGui::Separator();
+        ShowChecks(st);
+    } else {
+        ShowChecks(st);
+        ImGui::Separator();
+        CountsTable(st);
+        FlipsPlot(st);
+        FrameTimes(st);
+    }
     ImGui::EndGroup();
     // Not clipped (unlike RecordItem): tests check that nothing is wider than the panel.
     const ImVec2 lo = ImGui::GetItemRectMin(), hi = ImGui::GetItemRectMax();
