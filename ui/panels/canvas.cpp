@@ -425,8 +425,9 @@ std::vector<ImVec2> clipPolygon(std::vector<ImVec2> poly, ImVec2 lo, ImVec2 hi) 
 }
 
 // An in-circle test against ghost triangle t: its "circle" is the open half-plane beyond the
-// hull edge u -> w (plus the open edge itself). Drawn as that: the hull edge, the line through
-// it (dashed) and the half-plane lightly shaded, clipped to the canvas.
+// hull edge u -> w (plus the open edge itself). Drawn as that: the half-plane lightly shaded and
+// the line through the edge dashed beyond it, clipped to the canvas; the edge keeps the colour of
+// the edge under test.
 void DrawHalfPlane(const Scene& s, std::int32_t t, ImU32 col, float w) {
     std::int32_t u, v;
     int k;
@@ -445,10 +446,13 @@ void DrawHalfPlane(const Scene& s, std::int32_t t, ImU32 col, float w) {
         {a, b, ImVec2(b.x + n.x * far, b.y + n.y * far), ImVec2(a.x + n.x * far, a.y + n.y * far)},
         lo, hi);
     if (shade.size() >= 3 && s.room(static_cast<unsigned>(shade.size()) * 2 + 8))
-        s.dl->AddConvexPolyFilled(shade.data(), static_cast<int>(shade.size()),
-                                  (col & 0x00FFFFFFu) | (36u << 24));
-    if (s.room(200)) DashedLine(s.dl, a, b, col, w * 0.6f);
-    s.edge(u, v, col, w * 1.6f);
+        s.dl->AddConvexPolyFilled(shade.data(), static_cast<int>(shade.size()), col);
+    // The half-plane's border: the hull edge's line beyond the edge under test (left as it is).
+    const ImU32 line = col | 0xFF000000u;
+    if (s.room(400)) {
+        DashedLine(s.dl, a, pu, line, w * 0.6f);
+        DashedLine(s.dl, pv, b, line, w * 0.6f);
+    }
 }
 
 // Where queued edge q is drawn on the screen: from pa to pb. An edge to the ghost vertex (exact
@@ -570,14 +574,17 @@ void DrawOpOverlay(const Scene& s) {
         case OpType::InCircleTest: {
             const std::int32_t a = op->a, b = op->b;
             if (a < 0 || a >= m.numCorners()) break;
-            s.edge(m.V[next(a)], m.V[prev(a)], s.use(Mark::TestEdge), w * 1.6f, false,
-                   SlideMarkRole::TestEdge);
+            // An edge to the ghost vertex has no segment to draw: no legend entry for it then.
+            const std::int32_t ea = m.V[next(a)], eb = m.V[prev(a)];
+            if (!(s.ghostMode && s.running && (s.ins.isVirtual(ea) || s.ins.isVirtual(eb))))
+                s.edge(ea, eb, s.use(Mark::TestEdge), w * 1.6f, false, SlideMarkRole::TestEdge);
             if (b == kNone || b >= m.numCorners()) break;
-            const ImU32 col = s.use(op->sign > 0 ? Mark::CircleFlip : Mark::CircleKeep);
+            const bool flip = op->sign > 0;
             const std::int32_t t = tri(b);
             if (s.ghostTri(t)) {
-                DrawHalfPlane(s, t, col, w);
+                DrawHalfPlane(s, t, s.use(flip ? Mark::HalfPlaneFlip : Mark::HalfPlaneKeep), w);
             } else {
+                const ImU32 col = s.use(flip ? Mark::CircleFlip : Mark::CircleKeep);
                 Vec2 c;
                 double r;
                 if (circumcircle(m, t, c, r) && s.circle(c, r, col, w)) {

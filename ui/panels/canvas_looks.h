@@ -20,6 +20,8 @@ enum class Mark : std::uint8_t {
     TestEdge,         // the edge under the in-circle test
     CircleFlip,       // the test's circle (or half-plane): the new point is inside, flip
     CircleKeep,       // the test's circle: the new point is not inside, keep the edge
+    HalfPlaneFlip,    // a ghost triangle's test: the half-plane beyond its hull edge holds it
+    HalfPlaneKeep,    // a ghost triangle's test: the half-plane does not hold it, keep the edge
     FlippedEdge,      // edges flipped by this insertion so far
     NewEdge,          // the edges a split made at the new vertex
     QueuedEdge,       // edges on the flip stack
