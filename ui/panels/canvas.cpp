@@ -426,9 +426,9 @@ std::vector<ImVec2> clipPolygon(std::vector<ImVec2> poly, ImVec2 lo, ImVec2 hi) 
 
 // An in-circle test against ghost triangle t: its "circle" is the open half-plane beyond the
 // hull edge u -> w (plus the open edge itself). Drawn as that: the half-plane lightly shaded and
-// the line through the edge dashed beyond it, clipped to the canvas; the edge keeps the colour of
-// the edge under test.
-void DrawHalfPlane(const Scene& s, std::int32_t t, ImU32 col, float w) {
+// the line through the edge dashed beyond it, clipped to the canvas; the hull edge keeps the
+// colour of the edge under test when it is that edge, else it takes the half-plane's.
+void DrawHalfPlane(const Scene& s, std::int32_t t, ImU32 col, float w, bool edgeUnderTest) {
     std::int32_t u, v;
     int k;
     if (!s.hullEdge(t, u, v, k)) return;
@@ -453,6 +453,7 @@ void DrawHalfPlane(const Scene& s, std::int32_t t, ImU32 col, float w) {
         DashedLine(s.dl, a, pu, line, w * 0.6f);
         DashedLine(s.dl, pv, b, line, w * 0.6f);
     }
+    if (!edgeUnderTest) s.edge(u, v, line, w * 1.6f);  // the tested edge is a ghost one
 }
 
 // Where queued edge q is drawn on the screen: from pa to pb. An edge to the ghost vertex (exact
@@ -576,13 +577,16 @@ void DrawOpOverlay(const Scene& s) {
             if (a < 0 || a >= m.numCorners()) break;
             // An edge to the ghost vertex has no segment to draw: no legend entry for it then.
             const std::int32_t ea = m.V[next(a)], eb = m.V[prev(a)];
-            if (!(s.ghostMode && s.running && (s.ins.isVirtual(ea) || s.ins.isVirtual(eb))))
+            const bool realEdge =
+                !(s.ghostMode && s.running && (s.ins.isVirtual(ea) || s.ins.isVirtual(eb)));
+            if (realEdge)
                 s.edge(ea, eb, s.use(Mark::TestEdge), w * 1.6f, false, SlideMarkRole::TestEdge);
             if (b == kNone || b >= m.numCorners()) break;
             const bool flip = op->sign > 0;
             const std::int32_t t = tri(b);
             if (s.ghostTri(t)) {
-                DrawHalfPlane(s, t, s.use(flip ? Mark::HalfPlaneFlip : Mark::HalfPlaneKeep), w);
+                DrawHalfPlane(s, t, s.use(flip ? Mark::HalfPlaneFlip : Mark::HalfPlaneKeep), w,
+                              realEdge);
             } else {
                 const ImU32 col = s.use(flip ? Mark::CircleFlip : Mark::CircleKeep);
                 Vec2 c;
