@@ -1038,6 +1038,28 @@ TEST(LessonCheck, RefusesAnswersGivenAwayByTheTextOrTheBanner) {
     EXPECT_EQ(dtlab("lesson check " + p.string()).status, 1);
 }
 
+// The flip queue numbered in test order shows the edge tested next as 1: a stop asking for it
+// must number the queue in push order (the reader applies the stack's rule) or not at all.
+TEST(LessonCheck, RefusesTheQueueInTestOrderWhereTheNextTestIsAsked) {
+    const auto problemsWith = [](const std::string& overlays) {
+        const fs::path p = scratchDir() / "lessons" / "queueorder.toml";
+        write(p, kHead + "[[stop]]\nrun_to = \"split\"\n" + overlays +
+                     "text = \"A split.\"\nquestion = \"Which edge is tested first?\"\n"
+                     "answer = \"next_test_edge\"\n");
+        const Lesson lesson = loadLesson(p.string());
+        std::vector<std::string> out;
+        for (const LessonError& e : lessonProblems(lesson, planLesson(lesson)))
+            if (e.message().find("flip-queue-order") != std::string::npos) out.push_back(e.what());
+        return out;
+    };
+    const auto ordered = problemsWith("overlays = [\"flip-queue\", \"flip-queue-order\"]\n");
+    ASSERT_EQ(ordered.size(), 1u);
+    EXPECT_NE(ordered[0].find("queueorder.toml:3: stop 1"), std::string::npos) << ordered[0];
+    EXPECT_EQ(problemsWith("").size(), 1u) << "no overlays named: the defaults number the queue";
+    EXPECT_TRUE(problemsWith("overlays = [\"flip-queue\", \"flip-queue-pushed\"]\n").empty());
+    EXPECT_TRUE(problemsWith("overlays = [\"flip-queue-order\"]\n").empty()) << "no queue drawn";
+}
+
 TEST(LessonCheck, AnswerOnTheRenderedSlideInAnyPhrasingItTakes) {
     Answer corners;
     corners.kind = Answer::Kind::Integer;

@@ -70,6 +70,7 @@ TEST(SlideCheck, ReadsThePanelsATextRefersTo) {
     EXPECT_FALSE(panelOnSlide("corner-table", {"v | x | y | state", "0 | 0 | 100 | vertex"}));
     EXPECT_TRUE(panelOnSlide("vertex-table", {"v | x | y | state"}));
     EXPECT_TRUE(panelOnSlide("statistics", {"Checks of the current mesh (exact)"}));
+    EXPECT_TRUE(panelOnSlide("statistics", {"Counts of the run"}));
     EXPECT_FALSE(panelOnSlide("statistics", {"the statistics say"}));
 }
 

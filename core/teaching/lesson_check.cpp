@@ -298,6 +298,19 @@ void checkFont(const Lesson& lesson, int stop, const std::string& what, const st
                          "characters (- for a minus sign, -> for an arrow)");
 }
 
+// Whether stop k shows the flip queue numbered in test order (the flip-queue-order overlay): as
+// the player does, the overlays of the last stop up to k that names some, or the defaults.
+bool showsTestOrder(const Lesson& lesson, std::size_t k) {
+    std::size_t named = k + 1;
+    while (named > 0 && lesson.stops[named - 1].overlays.empty()) --named;
+    if (named == 0) return Overlays{}.flipQueue && Overlays{}.queueOrder;
+    const std::vector<std::string>& o = lesson.stops[named - 1].overlays;
+    const auto has = [&](const char* name) {
+        return std::find(o.begin(), o.end(), name) != o.end();
+    };
+    return has("flip-queue") && has("flip-queue-order");
+}
+
 }  // namespace
 
 std::vector<LessonError> lessonProblems(const Lesson& lesson, const LessonPlan& plan) {
@@ -313,6 +326,13 @@ std::vector<LessonError> lessonProblems(const Lesson& lesson, const LessonPlan& 
         checkFont(lesson, stop, "hint", s.hint, s.hintLine, out);
         if (!st.answer) continue;
         const std::string said = st.answer->display();
+        if (trimmed(s.answer) == "next_test_edge" && showsTestOrder(lesson, k)) {
+            out.emplace_back(lesson.file, s.line, stop,
+                             "the flip queue is numbered in test order (flip-queue-order): its 1 "
+                             "is the answer (" +
+                                 said +
+                                 "); number it in push order (flip-queue-pushed) or not at all");
+        }
         if (answerAppearsIn(*st.answer, st.text)) {
             out.emplace_back(lesson.file, s.textLine, stop,
                              "the answer (" + said +

@@ -18,9 +18,11 @@ struct Overlays {
     bool walk = true;            // the current locate's path and the line L
     bool flipQueue = true;       // edges still to test
     bool queueOrder = true;      // and their order (1 = tested next); lessons name it to show it
+    bool queuePushed = false;    // or the order they were pushed in (1 = first; the last is next)
     bool flipped = true;         // edges flipped by the current insertion
     bool circumcircles = false;  // every triangle's circumcircle
     bool voronoi = false;
+    bool idBufferGrid = false;     // the ID buffer's pixels: their borders and centres
     bool pendingPoints = true;     // points not inserted yet
     bool virtualTriangles = true;  // super-triangle (super mode) while the run is in progress
     bool violations = true;        // what validate() finds: broken rules, edges not Delaunay yet
@@ -41,9 +43,11 @@ inline constexpr OverlaySwitch kOverlaySwitches[] = {
     {"walk", &Overlays::walk, true},
     {"flip-queue", &Overlays::flipQueue, true},
     {"flip-queue-order", &Overlays::queueOrder, true},
+    {"flip-queue-pushed", &Overlays::queuePushed, true},
     {"flipped", &Overlays::flipped, true},
     {"circumcircles", &Overlays::circumcircles, true},
     {"voronoi", &Overlays::voronoi, true},
+    {"idbuffer-grid", &Overlays::idBufferGrid, true},
     {"pending-points", &Overlays::pendingPoints, true},
     {"virtual-triangles", &Overlays::virtualTriangles, true},
     {"violations", &Overlays::violations, true},

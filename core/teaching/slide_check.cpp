@@ -193,7 +193,9 @@ bool panelOnSlide(std::string_view panel, const std::vector<std::string>& lines)
         return any([](const std::string& l) {
             return startsWith(cellWords(l), {"v", "x", "y", "state"});
         });
-    if (panel == "statistics") return has("Checks of the current mesh");
+    if (panel == "statistics")
+        return has("Checks of the current mesh") ||
+               has("Counts of the run");  // a slide: counts first
     if (panel == "idbuffer")
         return any([](const std::string& l) {
                    return l.rfind("idbuffer", 0) == 0 && l.find(" pixels") != std::string::npos;

@@ -267,9 +267,13 @@ TEST(GuiCanvas, InCircleTestAgainstAGhostTriangleDrawsTheHullEdgeAndItsHalfPlane
     const std::int32_t u = m.V[3 * t + (k + 1) % 3], w = m.V[3 * t + (k + 2) % 3];
     const auto& view = st.view;
     const glm::dvec2 pu = view.toScreen(m.G[u]), pw = view.toScreen(m.G[w]);
-    const std::array<int, 3> col =
-        op->sign > 0 ? std::array<int, 3>{215, 40, 40} : std::array<int, 3>{30, 150, 60};
-    // The hull edge itself, solid, in the test's colour.
+    // The hull edge itself, solid: the edge under test's orange when the test is of that edge,
+    // else (an edge to the ghost vertex, which has no segment) in the test's colour.
+    const bool hullEdgeTested =
+        !ins.isVirtual(m.V[dlab::next(op->a)]) && !ins.isVirtual(m.V[dlab::prev(op->a)]);
+    const std::array<int, 3> col = hullEdgeTested ? std::array<int, 3>{240, 120, 0}
+                                   : op->sign > 0 ? std::array<int, 3>{215, 40, 40}
+                                                  : std::array<int, 3>{30, 150, 60};
     int onEdge = 0;
     for (double s = 0.3; s <= 0.71; s += 0.1) {
         const glm::dvec2 p = pu + (pw - pu) * s;

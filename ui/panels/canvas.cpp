@@ -23,6 +23,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -56,6 +57,7 @@ struct CanvasCache {
     // what the legend should not cover.
     MarksDrawn drawn;
     std::vector<BusyPoint> busy;
+    IdBufferCopy idCopy;  // a GL ID buffer read back for the pixel grid
 };
 
 namespace {
@@ -423,9 +425,10 @@ std::vector<ImVec2> clipPolygon(std::vector<ImVec2> poly, ImVec2 lo, ImVec2 hi) 
 }
 
 // An in-circle test against ghost triangle t: its "circle" is the open half-plane beyond the
-// hull edge u -> w (plus the open edge itself). Drawn as that: the hull edge, the line through
-// it (dashed) and the half-plane lightly shaded, clipped to the canvas.
-void DrawHalfPlane(const Scene& s, std::int32_t t, ImU32 col, float w) {
+// hull edge u -> w (plus the open edge itself). Drawn as that: the half-plane lightly shaded and
+// the line through the edge dashed beyond it, clipped to the canvas; the hull edge keeps the
+// colour of the edge under test when it is that edge, else it takes the half-plane's.
+void DrawHalfPlane(const Scene& s, std::int32_t t, ImU32 col, float w, bool edgeUnderTest) {
     std::int32_t u, v;
     int k;
     if (!s.hullEdge(t, u, v, k)) return;
@@ -443,10 +446,14 @@ void DrawHalfPlane(const Scene& s, std::int32_t t, ImU32 col, float w) {
         {a, b, ImVec2(b.x + n.x * far, b.y + n.y * far), ImVec2(a.x + n.x * far, a.y + n.y * far)},
         lo, hi);
     if (shade.size() >= 3 && s.room(static_cast<unsigned>(shade.size()) * 2 + 8))
-        s.dl->AddConvexPolyFilled(shade.data(), static_cast<int>(shade.size()),
-                                  (col & 0x00FFFFFFu) | (36u << 24));
-    if (s.room(200)) DashedLine(s.dl, a, b, col, w * 0.6f);
-    s.edge(u, v, col, w * 1.6f);
+        s.dl->AddConvexPolyFilled(shade.data(), static_cast<int>(shade.size()), col);
+    // The half-plane's border: the hull edge's line beyond the edge under test (left as it is).
+    const ImU32 line = col | 0xFF000000u;
+    if (s.room(400)) {
+        DashedLine(s.dl, a, pu, line, w * 0.6f);
+        DashedLine(s.dl, pv, b, line, w * 0.6f);
+    }
+    if (!edgeUnderTest) s.edge(u, v, line, w * 1.6f);  // the tested edge is a ghost one
 }
 
 // Where queued edge q is drawn on the screen: from pa to pb. An edge to the ghost vertex (exact
@@ -471,10 +478,23 @@ bool queuedEdgeOnScreen(const Scene& s, const Engine::QueuedTest& q, ImVec2& pa,
     return true;
 }
 
+// The point at `t` along a -> b, or (when that is within `clear` pixels of `point`) the nearest
+// of a few others along the edge that is not.
+ImVec2 clearOfPoint(ImVec2 a, ImVec2 b, float t, float clear, std::optional<ImVec2> point) {
+    const auto at = [&](float u) { return ImVec2(a.x + (b.x - a.x) * u, a.y + (b.y - a.y) * u); };
+    if (!point) return at(t);
+    for (const float d : {0.0f, -0.15f, 0.15f, -0.25f, 0.25f}) {
+        const ImVec2 p = at(t + d);
+        if (std::hypot(p.x - point->x, p.y - point->y) >= clear) return p;
+    }
+    return at(t);
+}
+
 // The edges on the flip stack, dashed (grey where an entry now names a hull edge: it comes off
 // with nothing to test), each edge once however often it is on the stack, and each entry's place
 // in the stack in a disc on its edge: 1 is the top, the edge the engine tests next (the Flip
-// queue section lists them alike); a second entry of one edge sits beside the first's disc.
+// queue section lists them alike), or in push order 1 is the bottom, the entry pushed first; a
+// second entry of one edge sits beside the first's disc.
 void DrawFlipQueue(const Scene& s, float w) {
     const std::vector<Engine::QueuedTest> queue = s.e.pendingTests();
     if (queue.empty()) return;
@@ -496,21 +516,26 @@ void DrawFlipQueue(const Scene& s, float w) {
                        pb.x, pb.y);  // every entry: the queue's count as drawn
         }
     }
-    if (!s.st.overlays.queueOrder) return;
-    const ImU32 badge = s.use(Mark::QueueOrder);
+    // Numbered in test order (1 = the top), or else in push order (1 = the bottom, pushed first).
+    const bool testOrder = s.st.overlays.queueOrder;
+    if (!testOrder && !s.st.overlays.queuePushed) return;
+    const ImU32 badge = s.use(testOrder ? Mark::QueueOrder : Mark::QueuePushed);
     ImFont* font = fonts().ui;
     const float fs = ImGui::GetFontSize() * 0.8f, r = fs * 0.72f;
     char buf[24];
+    const std::int32_t v = s.e.currentVertex();  // its point is drawn over the discs
+    const std::optional<ImVec2> now =
+        v >= 0 && v < s.m.numVertices() ? std::optional<ImVec2>(s.screen(v)) : std::nullopt;
     // The last first, so that the next edge's disc is on top where discs meet.
     for (std::size_t i = queue.size(); i-- > 0;) {
         if (!shown[i]) continue;
         const ImVec2 pa = ends[2 * i], pb = ends[2 * i + 1];
-        std::snprintf(buf, sizeof buf, "%zu", i + 1);
+        std::snprintf(buf, sizeof buf, "%zu", testOrder ? i + 1 : queue.size() - i);
         const ImVec2 ts = font->CalcTextSizeA(fs, 1e9f, 0, buf);
         const float rr = std::max(r, ts.x / 2 + 3);
         const float dx = pb.x - pa.x, dy = pb.y - pa.y, len = std::hypot(dx, dy);
         const float shift = len > 0 ? repeat[i] * (2 * rr + 3) / len : 0;  // along the edge
-        const ImVec2 mid(pa.x + dx * (0.5f + shift), pa.y + dy * (0.5f + shift));
+        const ImVec2 mid = clearOfPoint(pa, pb, 0.5f + shift, rr + 12, now);
         if (!s.onCanvas(mid.x - r, mid.y - r, mid.x + r, mid.y + r) || !s.room(80)) continue;
         s.dl->AddCircleFilled(mid, rr + 1.5f, IM_COL32(255, 255, 255, 255));
         s.dl->AddCircleFilled(mid, rr, queue[i].far == kNone ? s.use(Mark::QueuedOnHull) : badge);
@@ -550,14 +575,20 @@ void DrawOpOverlay(const Scene& s) {
         case OpType::InCircleTest: {
             const std::int32_t a = op->a, b = op->b;
             if (a < 0 || a >= m.numCorners()) break;
-            s.edge(m.V[next(a)], m.V[prev(a)], s.use(Mark::TestEdge), w * 1.6f, false,
-                   SlideMarkRole::TestEdge);
+            // An edge to the ghost vertex has no segment to draw: no legend entry for it then.
+            const std::int32_t ea = m.V[next(a)], eb = m.V[prev(a)];
+            const bool realEdge =
+                !(s.ghostMode && s.running && (s.ins.isVirtual(ea) || s.ins.isVirtual(eb)));
+            if (realEdge)
+                s.edge(ea, eb, s.use(Mark::TestEdge), w * 1.6f, false, SlideMarkRole::TestEdge);
             if (b == kNone || b >= m.numCorners()) break;
-            const ImU32 col = s.use(op->sign > 0 ? Mark::CircleFlip : Mark::CircleKeep);
+            const bool flip = op->sign > 0;
             const std::int32_t t = tri(b);
             if (s.ghostTri(t)) {
-                DrawHalfPlane(s, t, col, w);
+                DrawHalfPlane(s, t, s.use(flip ? Mark::HalfPlaneFlip : Mark::HalfPlaneKeep), w,
+                              realEdge);
             } else {
+                const ImU32 col = s.use(flip ? Mark::CircleFlip : Mark::CircleKeep);
                 Vec2 c;
                 double r;
                 if (circumcircle(m, t, c, r) && s.circle(c, r, col, w)) {
@@ -1132,6 +1163,39 @@ CanvasMesh& updateCanvasMesh(AppState& st, CanvasCache& cache, const MeshStyle& 
     return mesh;
 }
 
+// The ID buffer's pixels on the canvas (the idbuffer-grid overlay): each pixel's border and its
+// centre, the point whose triangle the pixel holds, and the pixel under the point being inserted
+// outlined. The ids stay in the ID-buffer panel: which triangle holds a centre is for the reader.
+void DrawIdBufferGrid(const Scene& s, IdBufferCopy& copy) {
+    IdBufferFrame f;
+    if (!readIdBuffer(s.e, f, copy) || f.width < 2 || f.height < 2) return;
+    const Vec2 c0 = f.centre(0, 0), c1 = f.centre(1, 1);
+    const double dx = c1.x - c0.x, dy = c1.y - c0.y;
+    // Only while a pixel is large enough on screen to tell its centre from its border.
+    if (!(dx > 0) || !(dy > 0) || std::min(dx, dy) * s.view.scale < 12) return;
+    if (!s.room(static_cast<unsigned>(4 * (f.width + f.height + 2) + 40 * f.width * f.height)))
+        return;
+    const double x0 = c0.x - dx / 2, y0 = c0.y - dy / 2;
+    const auto at = [&](double x, double y) { return toIm(s.view.toScreen(Vec2{x, y})); };
+    const ImU32 col = s.use(Mark::IdPixel);
+    const ImU32 faint = (col & 0x00FFFFFFu) | (150u << 24);
+    for (int i = 0; i <= f.width; ++i)
+        s.dl->AddLine(at(x0 + i * dx, y0), at(x0 + i * dx, y0 + f.height * dy), faint, 1.5f);
+    for (int j = 0; j <= f.height; ++j)
+        s.dl->AddLine(at(x0, y0 + j * dy), at(x0 + f.width * dx, y0 + j * dy), faint, 1.5f);
+    const float r = s.st.presentation ? 4.0f : 3.0f;
+    for (int j = 0; j < f.height; ++j)
+        for (int i = 0; i < f.width; ++i)
+            s.dl->AddCircleFilled(toIm(s.view.toScreen(f.centre(i, j))), r, col);
+    const std::int32_t v = s.e.currentVertex();
+    if (v < 0 || v >= s.m.numVertices()) return;
+    const Vec2 q = s.m.G[v];
+    const long i = std::lround((q.x - c0.x) / dx), j = std::lround((q.y - c0.y) / dy);
+    if (i < 0 || j < 0 || i >= f.width || j >= f.height) return;
+    const ImVec2 a = at(x0 + i * dx, y0 + (j + 1) * dy), b = at(x0 + (i + 1) * dx, y0 + j * dy);
+    s.dl->AddRect(a, b, s.use(Mark::IdPixelNow), 0, 0, s.st.presentation ? 4.0f : 3.0f);
+}
+
 void DrawCircumcircles(const Scene& scene) {
     for (std::int32_t t = 0; t < scene.m.numTriangles(); ++t) {
         Vec2 c;
@@ -1162,6 +1226,7 @@ void DrawMeshLayers(AppState& st, CanvasCache& cache, const Scene& scene, ImVec2
     }
     if (st.overlays.circumcircles) DrawCircumcircles(scene);
     if (st.overlays.voronoi) DrawVoronoi(scene);
+    if (st.overlays.idBufferGrid) DrawIdBufferGrid(scene, cache.idCopy);
     if (DrawGhostTriangles(st, scene.dl)) scene.use(Mark::GhostBand);
     DrawCheckOverlay(st, scene.dl);
     DrawEditOverlay(st, scene.dl);

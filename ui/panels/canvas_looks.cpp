@@ -17,10 +17,15 @@ constexpr std::array<Look, kMarkCount> kLooks{{
     {Mark::TestEdge, Shape::Line, IM_COL32(240, 120, 0, 255), "edge under test"},
     {Mark::CircleFlip, Shape::Ring, IM_COL32(215, 40, 40, 255), "circle holds the point: flip"},
     {Mark::CircleKeep, Shape::Ring, IM_COL32(30, 150, 60, 255), "circle misses the point: keep"},
+    {Mark::HalfPlaneFlip, Shape::Fill, IM_COL32(215, 40, 40, 45),
+     "beyond the hull edge, holds the point: flip"},
+    {Mark::HalfPlaneKeep, Shape::Fill, IM_COL32(30, 150, 60, 45),
+     "beyond the hull edge, misses the point: keep"},
     {Mark::FlippedEdge, Shape::Line, IM_COL32(215, 40, 40, 255), "edge made by a flip"},
     {Mark::NewEdge, Shape::Line, IM_COL32(32, 128, 32, 255), "edge the split made"},
     {Mark::QueuedEdge, Shape::Dashed, IM_COL32(135, 60, 205, 255), "edge still to test"},
     {Mark::QueueOrder, Shape::Badge, IM_COL32(135, 60, 205, 255), "order of the tests (1 = next)"},
+    {Mark::QueuePushed, Shape::Badge, IM_COL32(95, 35, 160, 255), "order pushed (1 = first)"},
     {Mark::QueuedOnHull, Shape::Dashed, IM_COL32(150, 150, 160, 255),
      "on the stack, a hull edge: nothing to test"},
     {Mark::NextPoint, Shape::Diamond, IM_COL32(0, 150, 215, 255), "point being inserted, or next"},
@@ -32,11 +37,14 @@ constexpr std::array<Look, kMarkCount> kLooks{{
     {Mark::CornerMove, Shape::Arrow, IM_COL32(120, 70, 20, 255), "last corner operator"},
     {Mark::Circumcircle, Shape::Ring, IM_COL32(150, 150, 200, 160), "circumcircle"},
     {Mark::Voronoi, Shape::Line, IM_COL32(90, 160, 40, 255), "Voronoi edge"},
+    {Mark::IdPixel, Shape::Dot, IM_COL32(0, 130, 120, 255), "ID-buffer pixel, a dot at its centre"},
+    {Mark::IdPixelNow, Shape::Line, IM_COL32(205, 95, 0, 255), "pixel under the point to insert"},
     {Mark::GhostBand, Shape::Fill, IM_COL32(150, 155, 170, 90), "outside the hull (ghost)"},
     {Mark::NotYetDelaunay, Shape::Ring, IM_COL32(245, 110, 150, 255),
      "vertex in the circle across an edge: not Delaunay yet"},
     {Mark::Violation, Shape::Line, IM_COL32(230, 0, 0, 255), "broken rule (validate)"},
     {Mark::HullDent, Shape::Fill, IM_COL32(230, 0, 0, 90), "hull dent: triangle missing"},
+    {Mark::HullEdgeMissing, Shape::Dashed, IM_COL32(230, 0, 0, 255), "hull edge the mesh lacks"},
     {Mark::ExpressionPath, Shape::Arrow, IM_COL32(214, 0, 120, 255), "expression's path"},
     {Mark::StudentTriangle, Shape::Line, IM_COL32(200, 0, 160, 255),
      "student's triangle, not ours"},
@@ -80,7 +88,7 @@ void DrawSample(ImDrawList* dl, const Look& look, ImVec2 a, ImVec2 b) {
             for (float x = a.x; x < b.x; x += 8)
                 dl->AddLine(ImVec2(x, c.y), ImVec2(std::min(b.x, x + 5), c.y), col, 2.5f);
             if (look.shape == Shape::Dashed) break;
-            if (look.mark == Mark::QueueOrder) {  // the disc its number sits in
+            if (look.mark == Mark::QueueOrder || look.mark == Mark::QueuePushed) {  // its disc
                 dl->AddCircleFilled(c, h * 0.42f, col);
                 dl->AddCircleFilled(c, h * 0.12f, IM_COL32(255, 255, 255, 255));
             } else {  // a label on a filled box

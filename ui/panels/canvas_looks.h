@@ -20,10 +20,13 @@ enum class Mark : std::uint8_t {
     TestEdge,         // the edge under the in-circle test
     CircleFlip,       // the test's circle (or half-plane): the new point is inside, flip
     CircleKeep,       // the test's circle: the new point is not inside, keep the edge
+    HalfPlaneFlip,    // a ghost triangle's test: the half-plane beyond its hull edge holds it
+    HalfPlaneKeep,    // a ghost triangle's test: the half-plane does not hold it, keep the edge
     FlippedEdge,      // edges flipped by this insertion so far
     NewEdge,          // the edges a split made at the new vertex
     QueuedEdge,       // edges on the flip stack
     QueueOrder,       // their places on the stack, numbered in test order (1 = next)
+    QueuePushed,      // their places on the stack, numbered in push order (1 = pushed first)
     QueuedOnHull,     // a stack entry that now names a boundary edge: nothing to test there
     NextPoint,        // the point being inserted
     QueuedPoint,      // points not inserted yet
@@ -34,10 +37,13 @@ enum class Mark : std::uint8_t {
     CornerMove,       // the last corner operator applied (inspector)
     Circumcircle,     // every triangle's circumcircle (the overlay)
     Voronoi,          // the Voronoi diagram (the overlay)
+    IdPixel,          // the ID buffer's pixels: borders and centres (the overlay)
+    IdPixelNow,       // the ID-buffer pixel under the point being inserted
     GhostBand,        // exact mode: the half-plane beyond each hull edge (ghost triangle)
     NotYetDelaunay,   // an edge validate() finds not Delaunay mid-insertion: tests to come
     Violation,        // a broken rule validate() reports (Statistics)
     HullDent,         // the triangle the mesh misses where its hull turns right (Statistics)
+    HullEdgeMissing,  // the hull edge that closes such a dent: the mesh lacks it (Statistics)
     ExpressionPath,   // the typed expression's moves between corners (Expressions)
     StudentTriangle,  // a student's triangle that is not ours (Trace)
     MeshNotDelaunay,  // an opened mesh's edge that is not Delaunay now, with its circle (Check)

@@ -47,17 +47,21 @@ void ShowFlipQueue(AppState& st) {
         ImGui::TextDisabled("No edge waits for its in-circle test.");
         return;
     }
-    if (!st.overlays.queueOrder) {  // a lesson asking for it (the flip-queue-order overlay)
+    // A lesson asking which comes next hides the test order (the flip-queue-order overlay), or
+    // shows the push order only (flip-queue-pushed): the stack's bottom first.
+    const bool pushed = !st.overlays.queueOrder;
+    if (pushed && !st.overlays.queuePushed) {
         ImGui::TextDisabled("Their order is hidden (View > Their order).");
         return;
     }
     ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
-    ImGui::TextWrapped(
-        "The next first: the top of the flip stack is 1 (a flip puts its two new "
-        "outer edges on top).");
+    ImGui::TextWrapped(pushed ? "In the order they were pushed: 1 went on the flip stack first."
+                              : "The next first: the top of the flip stack is 1 (a flip puts its "
+                                "two new outer edges on top).");
     ImGui::PopStyleColor();
-    for (std::size_t i = 0; i < queue.size(); ++i) {
-        const std::string row = queueRowText(e.inserter(), i + 1, queue[i]);
+    for (std::size_t k = 0; k < queue.size(); ++k) {
+        const std::size_t i = pushed ? queue.size() - 1 - k : k;  // queue[0] is the top
+        const std::string row = queueRowText(e.inserter(), k + 1, queue[i]);
         ImGui::PushID(static_cast<int>(i));
         if (ImGui::Selectable(row.c_str(), st.selection.corner == queue[i].corner))
             st.select(queue[i].corner);

@@ -140,9 +140,11 @@ void ShowViewMenu(AppState& st) {
     ImGui::MenuItem("Walk path and line L", nullptr, &o.walk);
     ImGui::MenuItem("Edges still to test", nullptr, &o.flipQueue);
     ImGui::MenuItem("Their order (1 = tested next)", nullptr, &o.queueOrder);
+    ImGui::MenuItem("The order they were pushed in (1 = first)", nullptr, &o.queuePushed);
     ImGui::MenuItem("Flipped edges", nullptr, &o.flipped);
     ImGui::MenuItem("Circumcircles", "C", &o.circumcircles);
     ImGui::MenuItem("Voronoi diagram", "V", &o.voronoi);
+    ImGui::MenuItem("ID-buffer pixels (their centres)", nullptr, &o.idBufferGrid);
     ImGui::MenuItem("Queued points", nullptr, &o.pendingPoints);
     ImGui::MenuItem("Super-triangle (super mode)", nullptr, &o.virtualTriangles);
     ImGui::MenuItem("Validation marks (broken rules, edges not Delaunay yet)", nullptr,

@@ -208,6 +208,18 @@ bool markedByTheCanvas(const Engine& e, std::int32_t a, std::int32_t b) {
     });
 }
 
+// A dashed segment, at most ~300 dashes however far it runs off the canvas.
+void DrawDashes(ImDrawList* dl, ImVec2 a, ImVec2 b, ImU32 col, float w) {
+    const float dx = b.x - a.x, dy = b.y - a.y, len = std::hypot(dx, dy);
+    if (!(len > 1e-3f)) return;
+    const float period = std::max(14.0f, len / 300), dash = period * 0.6f;
+    for (float t = 0; t < len; t += period) {
+        const float e = std::min(len, t + dash);
+        dl->AddLine(ImVec2(a.x + dx * t / len, a.y + dy * t / len),
+                    ImVec2(a.x + dx * e / len, a.y + dy * e / len), col, w);
+    }
+}
+
 }  // namespace
 
 void DrawViolationOverlay(AppState& st) {
@@ -224,8 +236,8 @@ void DrawViolationOverlay(AppState& st) {
         midInsertion(st.engine) &&
         std::all_of(s.violations.begin(), s.violations.end(),
                     [](const Violation& v) { return v.kind == Violation::Kind::NotDelaunay; });
-    const ImU32 col = useLook(st, expected ? Mark::NotYetDelaunay : Mark::Violation);
-    const ImU32 broken = lookOf(Mark::Violation).colour;
+    const Mark mark = expected ? Mark::NotYetDelaunay : Mark::Violation;
+    const ImU32 col = s.violations.empty() ? lookOf(mark).colour : useLook(st, mark);
     const float w = (st.presentation ? 7.0f : 5.0f) * (expected ? 0.6f : 1.0f);
     const Engine& e = st.engine;
     auto drawable = [&](std::int32_t v) {
@@ -248,15 +260,15 @@ void DrawViolationOverlay(AppState& st) {
             dl->AddCircle(ImVec2(x, y), 14, col, 0, 3);
         }
     }
-    // Each dent: the triangle the mesh misses there, shaded, and the hull edge that closes it.
+    // Each dent: the triangle the mesh misses there, shaded, and the hull edge that closes it,
+    // dashed (no edge of the mesh); the dent's vertex keeps its label clear.
     for (const auto& [a, b, c] : s.hullGaps) {
         if (!canvasHasRoom(st, dl, 100)) break;
         if (!drawable(a) || !drawable(b) || !drawable(c)) continue;
         const ImVec2 pa = toIm(view.toScreen(m.G[a])), pb = toIm(view.toScreen(m.G[b])),
                      pc = toIm(view.toScreen(m.G[c]));
         dl->AddTriangleFilled(pa, pb, pc, useLook(st, Mark::HullDent));
-        dl->AddLine(pa, pc, broken, st.presentation ? 3.0f : 2.0f);
-        dl->AddCircle(pb, 12, broken, 0, 3);
+        DrawDashes(dl, pa, pc, useLook(st, Mark::HullEdgeMissing), st.presentation ? 3.0f : 2.0f);
     }
     dl->PopClipRect();
 }
@@ -287,6 +299,7 @@ const ImVec4 kGood(0.05f, 0.45f, 0.15f, 1), kBad(0.8f, 0.1f, 0.1f, 1),
 void CheckControls(AppState& st) {
     StatisticsState& s = st.statistics;
     ImGui::TextUnformatted("Checks of the current mesh (exact)");
+    if (slideMode(st)) return;  // a slide shows what they found, not how to run them
     ImGui::Checkbox("after every change", &s.autoValidate);
     if (ImGui::IsItemHovered())
         ImGui::SetTooltip("validate() after each step, for meshes up to %d corners",
@@ -484,12 +497,21 @@ void FrameTimes(AppState& st) {
 void ShowStatistics(AppState& st) {
     ImGui::BeginChild("##statsbody", ImVec2(0, 0), false);  // scrolls when the column is short
     ImGui::BeginGroup();
-    // What a debugging user looks for first: does the mesh hold its invariants at this step.
-    ShowChecks(st);
-    ImGui::Separator();
-    CountsTable(st);
-    FlipsPlot(st);
-    if (!slideMode(st)) FrameTimes(st);  // the app's own timings: not for a class
+    // What a debugging user looks for first: does the mesh hold its invariants at this step. A
+    // slide shows the run's counts first, which its text speaks of, and the checks below them.
+    if (slideMode(st)) {
+        ImGui::TextUnformatted("Counts of the run");
+        CountsTable(st);
+        FlipsPlot(st);
+        ImGui::Separator();
+        ShowChecks(st);
+    } else {
+        ShowChecks(st);
+        ImGui::Separator();
+        CountsTable(st);
+        FlipsPlot(st);
+        FrameTimes(st);
+    }
     ImGui::EndGroup();
     // Not clipped (unlike RecordItem): tests check that nothing is wider than the panel.
     const ImVec2 lo = ImGui::GetItemRectMin(), hi = ImGui::GetItemRectMax();

@@ -203,8 +203,27 @@ TEST(Legend, IsAlwaysOnSlidesAndLeavesTheQuestionClear) {
     }
 }
 
-TEST(FlipQueue, ALessonShowsTheOrderOnlyWhereItNamesIt) {
-    // Lesson 5 asks which edge is tested first: its stop names the queue, not its order.
+// The disc numbered `n` on the canvas, and its distance in pixels to the edge (a, b) on screen.
+float discToEdge(const dlab::ui::AppState& st, const std::array<float, 4>& canvas,
+                 const std::string& n, dlab::ui::VertexEdge e) {
+    const auto& G = st.engine.mesh().G;
+    const auto pa = st.view.toScreen(G[e.a]), pb = st.view.toScreen(G[e.b]);
+    float best = 1e9f;
+    for (const auto& t : frameText()) {
+        if (t.text != n || !inside(t, canvas)) continue;
+        const double cx = (t.x0 + t.x1) / 2, cy = (t.y0 + t.y1) / 2;
+        const double dx = pb.x - pa.x, dy = pb.y - pa.y, len2 = dx * dx + dy * dy;
+        const double u =
+            len2 > 0 ? std::clamp(((cx - pa.x) * dx + (cy - pa.y) * dy) / len2, 0.0, 1.0) : 0;
+        best =
+            std::min(best, static_cast<float>(std::hypot(pa.x + u * dx - cx, pa.y + u * dy - cy)));
+    }
+    return best;
+}
+
+TEST(FlipQueue, ALessonAskingTheNextTestNumbersTheQueueInPushOrder) {
+    // Lesson 5 asks which edge is tested first: its stop numbers the queue in push order, so the
+    // edge tested next (the top of the stack) carries the highest number, not 1.
     UiHarness h(1280, 720);
     auto& st = h.state();
     st.presentation = true;
@@ -212,7 +231,8 @@ TEST(FlipQueue, ALessonShowsTheOrderOnlyWhereItNamesIt) {
     dlab::ui::goToStop(st, 1);
     st.overlays.vertexIds = false;
     h.frames(3);
-    ASSERT_GE(st.engine.inserter().flipStack().size(), 2u);
+    const auto queue = st.engine.pendingTests();  // queue[0]: the top, tested next
+    ASSERT_EQ(queue.size(), 3u);
     const auto canvas = h.rect("canvas");
     const auto lines = dlab::ui::drawnLines(frameText());
     const auto has = [&](dlab::ui::Mark m) {
@@ -221,14 +241,19 @@ TEST(FlipQueue, ALessonShowsTheOrderOnlyWhereItNamesIt) {
         });
     };
     EXPECT_TRUE(has(dlab::ui::Mark::QueuedEdge));
+    EXPECT_TRUE(has(dlab::ui::Mark::QueuePushed));
     EXPECT_FALSE(has(dlab::ui::Mark::QueueOrder));
-    for (const auto& t : frameText()) EXPECT_FALSE(isNumber(t.text) && inside(t, canvas)) << t.text;
-    // Named, the numbers come back.
+    EXPECT_LT(discToEdge(st, canvas, "3", queue[0].edge), 12) << "the last pushed, on the top";
+    EXPECT_LT(discToEdge(st, canvas, "1", queue[2].edge), 12) << "the first pushed, at the bottom";
+    // In test order the top is 1.
     st.overlays.queueOrder = true;
     h.frames(2);
-    int numbers = 0;
-    for (const auto& t : frameText()) numbers += isNumber(t.text) && inside(t, canvas);
-    EXPECT_EQ(numbers, static_cast<int>(st.engine.inserter().flipStack().size()));
+    EXPECT_LT(discToEdge(st, canvas, "1", queue[0].edge), 12);
+    EXPECT_LT(discToEdge(st, canvas, "3", queue[2].edge), 12);
+    // Neither: no numbers at all.
+    st.overlays.queueOrder = st.overlays.queuePushed = false;
+    h.frames(2);
+    for (const auto& t : frameText()) EXPECT_FALSE(isNumber(t.text) && inside(t, canvas)) << t.text;
 }
 
 TEST(Legend, EveryMarkHasItsOwnLook) {
@@ -281,6 +306,45 @@ std::int32_t toGhostWalk(dlab::ui::AppState& st) {
 }
 
 }  // namespace
+
+TEST(IdBufferGrid, ThePixelsOverTheMeshAndThePixelUnderTheNextPointOutlined) {
+    // Lesson 8's first stop asks which triangle the pixel under vertex 4 holds: the canvas draws
+    // the buffer's pixels (a dot at each centre) and outlines the pixel under vertex 4.
+    UiHarness h(1280, 720);
+    auto& st = h.state();
+    st.presentation = true;
+    ASSERT_TRUE(
+        dlab::ui::openLesson(st, std::string(DLAB_SOURCE_DIR) + "/lessons/08_idbuffer.toml"));
+    dlab::ui::goToStop(st, 0);
+    h.frames(3);
+    ASSERT_TRUE(st.overlays.idBufferGrid);
+    const std::int32_t v = st.engine.currentVertex();
+    ASSERT_EQ(v, 4);
+    const auto q = st.view.toScreen(st.engine.mesh().G[v]);
+    std::vector<ImVec2> outline;  // near vertex 4: not the legend's sample
+    for (const ImVec2& p : verticesOfColour(dlab::ui::lookOf(dlab::ui::Mark::IdPixelNow).colour))
+        if (std::hypot(p.x - q.x, p.y - q.y) < 150) outline.push_back(p);
+    ASSERT_GE(outline.size(), 4u);
+    float x0 = 1e9f, y0 = 1e9f, x1 = -1e9f, y1 = -1e9f;
+    for (const ImVec2& p : outline) {
+        x0 = std::min(x0, p.x), y0 = std::min(y0, p.y), x1 = std::max(x1, p.x),
+        y1 = std::max(y1, p.y);
+    }
+    EXPECT_TRUE(q.x > x0 && q.x < x1 && q.y > y0 && q.y < y1) << "vertex 4 in its outlined pixel";
+    // One pixel of the 8 x 8 buffer: an eighth of the points' box (81 x 79 units) each way.
+    EXPECT_NEAR((x1 - x0) / st.view.scale, 81.0 / 8, 1.0);
+    // 64 centres, each a dot of the grid's colour.
+    const auto dots = verticesOfColour(dlab::ui::lookOf(dlab::ui::Mark::IdPixel).colour);
+    EXPECT_GE(dots.size(), 64u * 3);
+    const auto lines = dlab::ui::drawnLines(frameText());
+    EXPECT_TRUE(std::any_of(lines.begin(), lines.end(), [](const std::string& l) {
+        return l.find(dlab::ui::lookOf(dlab::ui::Mark::IdPixel).meaning) != std::string::npos;
+    }));
+    // Off: nothing of it.
+    st.overlays.idBufferGrid = false;
+    h.frames(2);
+    EXPECT_TRUE(verticesOfColour(dlab::ui::lookOf(dlab::ui::Mark::IdPixelNow).colour).empty());
+}
 
 TEST(GhostTarget, TheWedgeTheWalkEntersIsHighlightedOutsideTheHull) {
     UiHarness h(1280, 720);
