@@ -6,6 +6,7 @@
 #include "core/engine/generators.h"
 #include "core/engine/predicates.h"
 #include "core/engine/triangulation_check.h"
+#include "core/teaching/breakpoint.h"
 
 #include "tests/run_dtlab.h"
 
@@ -17,7 +18,9 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <set>
+#include <sstream>
 
 using namespace dlab;
 namespace fs = std::filesystem;
@@ -480,6 +483,84 @@ TEST(LessonAnswers, QuantitiesFollowTheRecordedOps) {
     EXPECT_EQ(answer(r, "delaunay_violations").a, 0);
     EXPECT_EQ(answer(r, "op").text, "Finalize");
     EXPECT_NE(unavailable(r, "next_flip").find("the run is finished"), std::string::npos);
+}
+
+// previous_flipped_edge and previous_new_edge name the flip before the latest: at each flip
+// they are what flipped_edge and new_edge said at the flip before.
+TEST(LessonAnswers, PreviousFlipIsTheOneBeforeTheLatest) {
+    InsertOptions opt;
+    opt.order = OrderKind::Input;
+    LiveRun r = start(demoPoints(), opt);
+    Journal& j = *r.journal;
+    std::optional<Answer> removed, made;
+    int checked = 0;
+    while (const Op* op = j.forward()) {
+        if (op->type != OpType::Flip) continue;
+        if (removed) {
+            EXPECT_EQ(answer(r, "previous_flipped_edge").display(), removed->display());
+            EXPECT_EQ(answer(r, "previous_new_edge").display(), made->display());
+            ++checked;
+        } else {
+            EXPECT_NE(unavailable(r, "previous_new_edge").find("first"), std::string::npos);
+        }
+        removed = answer(r, "flipped_edge");
+        made = answer(r, "new_edge");
+    }
+    EXPECT_GT(checked, 3);
+}
+
+// most_flips is the most any insertion took (insertion_flips read as each one ends), and
+// most_flips_vertex the first point to take that many.
+TEST(LessonAnswers, MostFlipsIsTheLongestCascadeSoFar) {
+    InsertOptions opt;
+    opt.order = OrderKind::Input;
+    LiveRun r = start(demoPoints(), opt);
+    Journal& j = *r.journal;
+    EXPECT_FALSE(unavailable(r, "most_flips").empty());
+    std::int64_t most = -1, vertex = -1;
+    int insertions = 0;
+    while (const Op* op = j.forward()) {
+        if (op->type != OpType::Inserted) continue;
+        ++insertions;
+        const std::int64_t f = answer(r, "insertion_flips").a;
+        if (f > most) {
+            most = f;
+            vertex = op->vertex;
+        }
+        EXPECT_EQ(answer(r, "most_flips").a, most);
+        EXPECT_EQ(answer(r, "most_flips_vertex").a, vertex);
+    }
+    EXPECT_GT(insertions, 5);
+    EXPECT_GT(most, 1);  // the demo has a cascade: the check is not of zeros
+}
+
+// previous_test_edge names the test before the latest one of the same insertion: at each test
+// it is what test_edge said at the test before, and the first test of an insertion has none.
+TEST(LessonAnswers, PreviousTestIsTheOneBeforeTheLatestOfItsInsertion) {
+    InsertOptions opt;
+    opt.order = OrderKind::Input;
+    LiveRun r = start(demoPoints(), opt);
+    Journal& j = *r.journal;
+    std::optional<Answer> before;  // the test before, in this insertion
+    std::optional<std::int64_t> beforeSign;
+    int checked = 0, firsts = 0;
+    while (const Op* op = j.forward()) {
+        if (endsInsertion(op->type)) before.reset();
+        if (op->type != OpType::InCircleTest) continue;
+        if (before) {
+            EXPECT_EQ(answer(r, "previous_test_edge").display(), before->display());
+            EXPECT_EQ(answer(r, "previous_test_result").a, *beforeSign);
+            ++checked;
+        } else {
+            EXPECT_NE(unavailable(r, "previous_test_edge").find("first of its insertion"),
+                      std::string::npos);
+            ++firsts;
+        }
+        before = answer(r, "test_edge");
+        beforeSign = answer(r, "test_result").a;
+    }
+    EXPECT_GT(checked, 3);
+    EXPECT_GT(firsts, 3);
 }
 
 TEST(LessonAnswers, LocateHintStepsAndWhere) {
