@@ -1257,6 +1257,44 @@ TEST(LessonHandout, WritesTextAndQuestionsWithoutAnswers) {
     EXPECT_NE(dtlab("lesson handout " + lesson).status, 0) << "-o is required";
 }
 
+// An assignment has no stops: its handout is its own text, with the objectives and the minutes
+// the file states, in Markdown and in HTML.
+TEST(LessonHandout, AnAssignmentsHandoutHoldsItsTextObjectivesAndMinutes) {
+    const std::string lesson =
+        std::string(DLAB_SOURCE_DIR) + "/lessons/10_assignment_insertion.toml";
+    const Lesson l = loadLesson(lesson);
+    ASSERT_TRUE(l.assignment);
+    ASSERT_TRUE(l.stops.empty());
+    ASSERT_FALSE(l.text.empty());
+    ASSERT_FALSE(l.objectives.empty());
+    const fs::path dir = scratchDir() / "assignment";
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    const auto read = [](const fs::path& f) {
+        std::ifstream in(f);
+        return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    };
+    const Result r = dtlab("lesson handout " + lesson + " -o " + (dir / "a.md").string());
+    ASSERT_EQ(r.status, 0) << r.out;
+    const std::string md = read(dir / "a.md");
+    for (const std::string& o : l.objectives) EXPECT_NE(md.find(o), std::string::npos) << o;
+    EXPECT_NE(md.find(std::to_string(l.minutes) + " minutes"), std::string::npos);
+    // Every line of the text, as the file has it (Markdown-light is Markdown).
+    std::istringstream lines(l.text);
+    int seen = 0;
+    for (std::string line; std::getline(lines, line);) {
+        if (line.find_first_not_of(' ') == std::string::npos) continue;
+        EXPECT_NE(md.find(line), std::string::npos) << line;
+        ++seen;
+    }
+    EXPECT_GT(seen, 10);
+    const Result h = dtlab("lesson handout " + lesson + " -o " + (dir / "a.html").string());
+    ASSERT_EQ(h.status, 0) << h.out;
+    const std::string html = read(dir / "a.html");
+    for (const std::string& o : l.objectives) EXPECT_NE(html.find(o), std::string::npos) << o;
+    EXPECT_NE(html.find("<code>dtlab diff-trace"), std::string::npos);
+}
+
 TEST(LessonHandout, HtmlShowsEachStopsSlideAndNoAnswers) {
     const std::string lesson = std::string(DLAB_SOURCE_DIR) + "/lessons/07_super_triangle.toml";
     const fs::path dir = scratchDir() / "html";
