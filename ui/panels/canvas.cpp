@@ -179,6 +179,7 @@ struct Scene {
     // top-left; NaN: none): later labels avoid earlier ones (labels.cpp).
     mutable LabelBoxes labels{};
     mutable std::vector<ImVec2> vertexLabelAt{};
+    mutable std::size_t vertexLabelsFrom = 0, vertexLabelsTo = 0;  // their boxes in `labels`
     mutable std::optional<ImVec2> selectedLabelAt{};  // where the selected corner's label went
     mutable MarksDrawn drawn{};                       // the marks drawn so far (the legend's)
 
@@ -1016,13 +1017,14 @@ void ShowCanvasLegend(AppState& st) {
     const ImVec2 p0 = toIm(st.view.origin), p1 = toIm(st.view.origin + st.view.size);
     ImDrawList* dl = ImGui::GetWindowDrawList();
     dl->PushClipRect(p0, p1, true);
-    const ImVec4 box =
-        DrawCanvasLegend(dl, p0, p1, st.canvas->drawn,
-                         ImGui::GetFontSize() * (slideMode(st) ? 0.8f : 0.9f), st.canvas->busy);
+    const ImVec4 box = DrawCanvasLegend(dl, p0, p1, st.canvas->drawn,
+                                        ImGui::GetFontSize() * (slideMode(st) ? 0.8f : 0.9f),
+                                        st.canvas->busy, st.engine.points().size() <= kFewPoints);
     dl->PopClipRect();
-    if (box.z > box.x)
+    if (box.z > box.x) {
         st.itemRects["canvas-legend"] = {box.x, box.y, box.z, box.w};
-    else
+        recordMark(SlideMarkRole::Legend, -1, -1, box.x, box.y, box.z, box.w);
+    } else
         st.itemRects.erase("canvas-legend");
 }
 
@@ -1160,20 +1162,33 @@ void DrawMeshLayers(AppState& st, CanvasCache& cache, const Scene& scene, ImVec2
 }
 
 // What the legend should not cover: the points on the canvas (the one being inserted most of
-// all), the labels and the ends of the queued edges.
+// all) and the vertex labels, then the other labels and, with few points, the mesh's edges.
 std::vector<BusyPoint> busy(const Scene& s) {
     std::vector<BusyPoint> out;
     const auto& pts = s.e.points();
     const std::size_t step = std::max<std::size_t>(1, pts.size() / 20000);
+    const float r = s.st.presentation ? 5.5f : 4.0f;
     for (std::size_t i = 0; i < pts.size(); i += step) {
         const ImVec2 q = toIm(s.view.toScreen(pts[i]));
-        if (s.onCanvas(q.x, q.y, q.x, q.y, 0)) out.push_back({q, 1});
+        if (s.onCanvas(q.x, q.y, q.x, q.y, 0))
+            out.push_back({ImVec2(q.x - r, q.y - r), kBusyVertex, ImVec2(q.x + r, q.y + r)});
     }
-    for (const auto& b : s.labels.boxes)
-        out.push_back({ImVec2((b[0] + b[2]) / 2, (b[1] + b[3]) / 2), 1});
+    for (std::size_t k = 0; k < s.labels.boxes.size(); ++k) {
+        const auto& b = s.labels.boxes[k];
+        const bool vertex = k >= s.vertexLabelsFrom && k < s.vertexLabelsTo;
+        out.push_back({ImVec2(b[0], b[1]), vertex ? kBusyVertex : kBusyLabel, ImVec2(b[2], b[3])});
+    }
     if (const std::int32_t v = s.e.currentVertex();
         v >= 0 && v < static_cast<std::int32_t>(pts.size()))
-        out.push_back({toIm(s.view.toScreen(pts[v])), 1000});
+        out.push_back({toIm(s.view.toScreen(pts[v])), 10 * kBusyVertex});
+    if (pts.size() > kFewPoints) return out;
+    for (std::int32_t c = 0; c < s.m.numCorners(); ++c) {
+        const std::int32_t t = c / 3, o = s.m.O[c];
+        if (!s.drawable(t) || s.virtualTri(t)) continue;
+        const std::int32_t a = s.m.V[next(c)], b = s.m.V[prev(c)];
+        if (o >= 0 && s.drawable(o / 3) && !s.virtualTri(o / 3) && a > b) continue;  // once
+        out.push_back({s.screen(a), kBusyEdge, s.screen(b), true});
+    }
     return out;
 }
 
@@ -1183,10 +1198,12 @@ std::int32_t DrawLabelsAndPoints(AppState& st, const CanvasCache& cache, Scene& 
                                  bool hovered) {
     const Engine& e = st.engine;
     std::int32_t hoveredCorner = kNone;
+    scene.vertexLabelsFrom = scene.labels.boxes.size();
     if (st.overlays.vertexIds && e.points().size() <= kFewPoints)
         scene.vertexLabelAt =
             placeVertexLabels(scene.labels, st.view, e.points(), fonts().mono,
                               ImGui::GetFontSize() * 0.9f, st.presentation ? 5.5f : 4.0f);
+    scene.vertexLabelsTo = scene.labels.boxes.size();
     LabelSuperVertices(st, scene.dl, scene.labels);
     DrawLabels(scene, hoveredCorner, ImGui::GetIO().MousePos, hovered);
     st.selection.hoveredCorner = hoveredCorner;
