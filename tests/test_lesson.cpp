@@ -1388,6 +1388,23 @@ TEST(LessonFacts, LocatingLessonWalkLocatorTakesElevenSteps) {
     EXPECT_EQ(walk.stats().walkSteps, 11);
 }
 
+// Lesson 12 contrasts its BRIO walk with random order: the same points in random order walk
+// over five times as many steps, and flip about as often (both below 3 per point).
+TEST(LessonFacts, WhyFastLessonRandomOrderWalksOverFiveTimesAsFarAsBrio) {
+    Lesson lesson = loadLesson(std::string(DLAB_SOURCE_DIR) + "/lessons/12_why_fast.toml");
+    ASSERT_EQ(lesson.options.order, OrderKind::Brio);
+    ASSERT_EQ(lesson.options.locator, LocatorKind::Walk);
+    Inserter brio(lesson.points, lesson.options);
+    brio.run();
+    lesson.options.order = OrderKind::Random;
+    Inserter random(lesson.points, lesson.options);
+    random.run();
+    EXPECT_GT(random.stats().walkSteps, 5 * brio.stats().walkSteps);
+    const auto n = static_cast<std::int64_t>(lesson.points.size());
+    EXPECT_LT(brio.stats().flips, 3 * n);
+    EXPECT_LT(random.stats().flips, 3 * n);
+}
+
 TEST(LessonFacts, SuperTriangleLessonExactModeGivesThreeTrianglesAndAConvexHull) {
     Lesson lesson = loadLesson(std::string(DLAB_SOURCE_DIR) + "/lessons/07_super_triangle.toml");
     ASSERT_EQ(lesson.options.boundary, Boundary::Super);
