@@ -2,6 +2,7 @@
 // cells the current operation changed are highlighted (hover shows the old value), the rows of
 // the triangles it touched are marked, and a million rows scroll smoothly (ImGuiListClipper).
 // Also the G tab: vertex coordinates.
+#include "core/engine/numbers.h"
 #include "ui/gui.h"
 #include "ui/panels/panels.h"
 
@@ -227,12 +228,12 @@ void ShowVertexTable(AppState& st) {
                 if (ghost)
                     ImGui::TextDisabled("-");
                 else
-                    ImGui::Text("%.17g", m.G[v].x);
+                    ImGui::TextUnformatted(shortest(m.G[v].x).c_str());
                 ImGui::TableSetColumnIndex(2);
                 if (ghost)
                     ImGui::TextDisabled("-");
                 else
-                    ImGui::Text("%.17g", m.G[v].y);
+                    ImGui::TextUnformatted(shortest(m.G[v].y).c_str());
                 ImGui::TableSetColumnIndex(3);
                 if (virt) {
                     ImGui::TextDisabled(ghost ? "ghost (no coordinates)" : "super-triangle");
