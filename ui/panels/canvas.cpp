@@ -521,6 +521,21 @@ void DrawFlipQueue(const Scene& s, float w) {
     }
 }
 
+// The edges a split (or an edge split) made at the new vertex, when the current op is one.
+void DrawSplitEdges(const Scene& s, float w) {
+    const Op* op = s.e.current();
+    const Mesh& m = s.m;
+    if (!op || (op->type != OpType::Split && op->type != OpType::SplitEdge)) return;
+    if (op->vertex < 0 || op->vertex >= m.numVertices()) return;
+    for (std::int32_t t : {tri(op->a), op->trianglesBefore, op->trianglesBefore + 1}) {
+        if (t < 0 || t >= m.numTriangles()) continue;
+        for (int k = 0; k < 3; ++k) {
+            if (m.V[3 * t + k] == op->vertex)
+                s.edge(op->vertex, m.V[3 * t + (k + 1) % 3], s.use(Mark::NewEdge), w);
+        }
+    }
+}
+
 void DrawOpOverlay(const Scene& s) {
     const Op* op = s.e.current();
     const Mesh& m = s.m;
@@ -579,19 +594,7 @@ void DrawOpOverlay(const Scene& s) {
             }
             break;
         case OpType::Split:
-        case OpType::SplitEdge:
-            if (op->vertex >= 0 && op->vertex < m.numVertices()) {
-                // The new edges at the new vertex.
-                for (std::int32_t t : {tri(op->a), op->trianglesBefore, op->trianglesBefore + 1}) {
-                    if (t < 0 || t >= m.numTriangles()) continue;
-                    for (int k = 0; k < 3; ++k) {
-                        if (m.V[3 * t + k] == op->vertex) {
-                            s.edge(op->vertex, m.V[3 * t + (k + 1) % 3], s.use(Mark::NewEdge), w);
-                        }
-                    }
-                }
-            }
-            break;
+        case OpType::SplitEdge: DrawSplitEdges(s, w); break;
         default: break;
     }
 }
@@ -835,6 +838,8 @@ void DrawSelection(const Scene& s) {
     if (sel.corner != kNone && sel.corner < s.m.numCorners()) {
         const ImU32 selected = s.use(Mark::SelectedCorner);
         s.outlineTriangle(tri(sel.corner), selected, w);
+        // The split's new edges stay visible on the outline: green inside the selection's colour.
+        DrawSplitEdges(s, w * 0.45f);
         std::int32_t u, v;
         int k;
         if (s.hullEdge(tri(sel.corner), u, v, k)) s.edge(u, v, selected, w, true);
