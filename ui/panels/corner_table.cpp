@@ -210,10 +210,11 @@ void ShowVertexTable(AppState& st) {
     ImGui::PushFont(fonts().mono);
     if (ImGui::BeginTable("##vertices", 4, flags)) {
         ImGui::TableSetupScrollFreeze(0, 1);
-        ImGui::TableSetupColumn("v", ImGuiTableColumnFlags_WidthStretch, 0.6f);
-        ImGui::TableSetupColumn("x", ImGuiTableColumnFlags_WidthStretch, 1.5f);
-        ImGui::TableSetupColumn("y", ImGuiTableColumnFlags_WidthStretch, 1.5f);
-        ImGui::TableSetupColumn("state", ImGuiTableColumnFlags_WidthStretch, 1.0f);
+        // The state's longest words ("super-triangle") fit beside 17-digit coordinates.
+        ImGui::TableSetupColumn("v", ImGuiTableColumnFlags_WidthStretch, 0.5f);
+        ImGui::TableSetupColumn("x", ImGuiTableColumnFlags_WidthStretch, 1.3f);
+        ImGui::TableSetupColumn("y", ImGuiTableColumnFlags_WidthStretch, 1.3f);
+        ImGui::TableSetupColumn("state", ImGuiTableColumnFlags_WidthStretch, 1.45f);
         ImGui::TableHeadersRow();
         ImGuiListClipper clipper;
         clipper.Begin(m.numVertices());
@@ -236,7 +237,7 @@ void ShowVertexTable(AppState& st) {
                     ImGui::TextUnformatted(shortest(m.G[v].y).c_str());
                 ImGui::TableSetColumnIndex(3);
                 if (virt) {
-                    ImGui::TextDisabled(ghost ? "ghost (no coordinates)" : "super-triangle");
+                    ImGui::TextDisabled(ghost ? "ghost vertex" : "super-triangle");
                 } else {
                     static const char* const kNames[] = {"queued", "inserting", "vertex",
                                                          "duplicate"};
