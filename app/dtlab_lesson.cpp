@@ -327,7 +327,10 @@ std::string htmlInline(const std::string& text) {
 // What a handout shows: the lessons it plays (one, or a track's) and its pages in order.
 struct Handout {
     std::string title, summary;
-    std::vector<std::string> objectives;  // a track's (a lesson's are in its first stop)
+    // A track's, or a lesson's without stops (a lesson's are in its first stop otherwise).
+    std::vector<std::string> objectives;
+    int minutes = 0;    // 0: not stated
+    std::string intro;  // the lesson's own text (an assignment's instructions), before the pages
     std::vector<Lesson> lessons;
     std::vector<LessonPlan> plans;
     struct Page {
@@ -350,8 +353,12 @@ Handout loadHandout(const std::string& path) {
     if (!isTrackFile(path)) {
         h.lessons.push_back(loadLesson(path));
         h.plans.push_back(planLesson(h.lessons[0]));
-        h.title = h.lessons[0].title;
-        h.summary = h.lessons[0].summary;
+        const Lesson& l = h.lessons[0];
+        h.title = l.title;
+        h.summary = l.summary;
+        h.minutes = l.minutes;
+        h.intro = l.text;
+        if (l.stops.empty()) h.objectives = l.objectives;
         for (std::size_t k = 0; k < h.lessons[0].stops.size(); ++k) h.pages.push_back({0, k});
         return h;
     }
@@ -360,6 +367,7 @@ Handout loadHandout(const std::string& path) {
     h.title = track.title;
     h.summary = track.summary;
     h.objectives = track.objectives;
+    h.minutes = track.minutes;
     for (std::size_t i = 0; i < track.items.size(); ++i) {
         h.lessons.push_back(loadLesson(track.items[i].lesson));
         h.plans.push_back(planLesson(h.lessons.back()));
@@ -387,6 +395,8 @@ std::string handoutHtml(const Handout& ho, const std::string& pictures) {
          "display:inline-block;width:20em}</style></head><body>\n<h1>"
       << htmlEscaped(ho.title) << "</h1>\n<p>" << htmlEscaped(ho.summary) << "</p>\n"
       << htmlText(objectivesText(ho.objectives));
+    if (ho.minutes) h << "<p><em>" << ho.minutes << " minutes.</em></p>\n";
+    h << htmlText(ho.intro);
     int asked = 0;
     for (std::size_t n = 0; n < ho.pages.size(); ++n) {
         const Handout::Page& p = ho.pages[n];
@@ -412,6 +422,8 @@ std::string handoutMarkdown(const Handout& ho, const std::string& pictures) {
     std::ostringstream md;
     md << "# " << ho.title << "\n\n" << ho.summary << "\n";
     if (!ho.objectives.empty()) md << "\n" << trimmed(objectivesText(ho.objectives)) << "\n";
+    if (ho.minutes) md << "\n*" << ho.minutes << " minutes.*\n";
+    if (const std::string t = trimmed(ho.intro); !t.empty()) md << "\n" << t << "\n";
     int asked = 0;
     for (std::size_t n = 0; n < ho.pages.size(); ++n) {
         const Handout::Page& p = ho.pages[n];

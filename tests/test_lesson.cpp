@@ -6,6 +6,7 @@
 #include "core/engine/generators.h"
 #include "core/engine/predicates.h"
 #include "core/engine/triangulation_check.h"
+#include "core/teaching/breakpoint.h"
 
 #include "tests/run_dtlab.h"
 
@@ -17,7 +18,9 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <set>
+#include <sstream>
 
 using namespace dlab;
 namespace fs = std::filesystem;
@@ -480,6 +483,84 @@ TEST(LessonAnswers, QuantitiesFollowTheRecordedOps) {
     EXPECT_EQ(answer(r, "delaunay_violations").a, 0);
     EXPECT_EQ(answer(r, "op").text, "Finalize");
     EXPECT_NE(unavailable(r, "next_flip").find("the run is finished"), std::string::npos);
+}
+
+// previous_flipped_edge and previous_new_edge name the flip before the latest: at each flip
+// they are what flipped_edge and new_edge said at the flip before.
+TEST(LessonAnswers, PreviousFlipIsTheOneBeforeTheLatest) {
+    InsertOptions opt;
+    opt.order = OrderKind::Input;
+    LiveRun r = start(demoPoints(), opt);
+    Journal& j = *r.journal;
+    std::optional<Answer> removed, made;
+    int checked = 0;
+    while (const Op* op = j.forward()) {
+        if (op->type != OpType::Flip) continue;
+        if (removed) {
+            EXPECT_EQ(answer(r, "previous_flipped_edge").display(), removed->display());
+            EXPECT_EQ(answer(r, "previous_new_edge").display(), made->display());
+            ++checked;
+        } else {
+            EXPECT_NE(unavailable(r, "previous_new_edge").find("first"), std::string::npos);
+        }
+        removed = answer(r, "flipped_edge");
+        made = answer(r, "new_edge");
+    }
+    EXPECT_GT(checked, 3);
+}
+
+// most_flips is the most any insertion took (insertion_flips read as each one ends), and
+// most_flips_vertex the first point to take that many.
+TEST(LessonAnswers, MostFlipsIsTheLongestCascadeSoFar) {
+    InsertOptions opt;
+    opt.order = OrderKind::Input;
+    LiveRun r = start(demoPoints(), opt);
+    Journal& j = *r.journal;
+    EXPECT_FALSE(unavailable(r, "most_flips").empty());
+    std::int64_t most = -1, vertex = -1;
+    int insertions = 0;
+    while (const Op* op = j.forward()) {
+        if (op->type != OpType::Inserted) continue;
+        ++insertions;
+        const std::int64_t f = answer(r, "insertion_flips").a;
+        if (f > most) {
+            most = f;
+            vertex = op->vertex;
+        }
+        EXPECT_EQ(answer(r, "most_flips").a, most);
+        EXPECT_EQ(answer(r, "most_flips_vertex").a, vertex);
+    }
+    EXPECT_GT(insertions, 5);
+    EXPECT_GT(most, 1);  // the demo has a cascade: the check is not of zeros
+}
+
+// previous_test_edge names the test before the latest one of the same insertion: at each test
+// it is what test_edge said at the test before, and the first test of an insertion has none.
+TEST(LessonAnswers, PreviousTestIsTheOneBeforeTheLatestOfItsInsertion) {
+    InsertOptions opt;
+    opt.order = OrderKind::Input;
+    LiveRun r = start(demoPoints(), opt);
+    Journal& j = *r.journal;
+    std::optional<Answer> before;  // the test before, in this insertion
+    std::optional<std::int64_t> beforeSign;
+    int checked = 0, firsts = 0;
+    while (const Op* op = j.forward()) {
+        if (endsInsertion(op->type)) before.reset();
+        if (op->type != OpType::InCircleTest) continue;
+        if (before) {
+            EXPECT_EQ(answer(r, "previous_test_edge").display(), before->display());
+            EXPECT_EQ(answer(r, "previous_test_result").a, *beforeSign);
+            ++checked;
+        } else {
+            EXPECT_NE(unavailable(r, "previous_test_edge").find("first of its insertion"),
+                      std::string::npos);
+            ++firsts;
+        }
+        before = answer(r, "test_edge");
+        beforeSign = answer(r, "test_result").a;
+    }
+    EXPECT_GT(checked, 3);
+    EXPECT_GT(firsts, 3);
 }
 
 TEST(LessonAnswers, LocateHintStepsAndWhere) {
@@ -1198,6 +1279,44 @@ TEST(LessonHandout, WritesTextAndQuestionsWithoutAnswers) {
     EXPECT_NE(dtlab("lesson handout " + lesson).status, 0) << "-o is required";
 }
 
+// An assignment has no stops: its handout is its own text, with the objectives and the minutes
+// the file states, in Markdown and in HTML.
+TEST(LessonHandout, AnAssignmentsHandoutHoldsItsTextObjectivesAndMinutes) {
+    const std::string lesson =
+        std::string(DLAB_SOURCE_DIR) + "/lessons/10_assignment_insertion.toml";
+    const Lesson l = loadLesson(lesson);
+    ASSERT_TRUE(l.assignment);
+    ASSERT_TRUE(l.stops.empty());
+    ASSERT_FALSE(l.text.empty());
+    ASSERT_FALSE(l.objectives.empty());
+    const fs::path dir = scratchDir() / "assignment";
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    const auto read = [](const fs::path& f) {
+        std::ifstream in(f);
+        return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    };
+    const Result r = dtlab("lesson handout " + lesson + " -o " + (dir / "a.md").string());
+    ASSERT_EQ(r.status, 0) << r.out;
+    const std::string md = read(dir / "a.md");
+    for (const std::string& o : l.objectives) EXPECT_NE(md.find(o), std::string::npos) << o;
+    EXPECT_NE(md.find(std::to_string(l.minutes) + " minutes"), std::string::npos);
+    // Every line of the text, as the file has it (Markdown-light is Markdown).
+    std::istringstream lines(l.text);
+    int seen = 0;
+    for (std::string line; std::getline(lines, line);) {
+        if (line.find_first_not_of(' ') == std::string::npos) continue;
+        EXPECT_NE(md.find(line), std::string::npos) << line;
+        ++seen;
+    }
+    EXPECT_GT(seen, 10);
+    const Result h = dtlab("lesson handout " + lesson + " -o " + (dir / "a.html").string());
+    ASSERT_EQ(h.status, 0) << h.out;
+    const std::string html = read(dir / "a.html");
+    for (const std::string& o : l.objectives) EXPECT_NE(html.find(o), std::string::npos) << o;
+    EXPECT_NE(html.find("<code>dtlab diff-trace"), std::string::npos);
+}
+
 TEST(LessonHandout, HtmlShowsEachStopsSlideAndNoAnswers) {
     const std::string lesson = std::string(DLAB_SOURCE_DIR) + "/lessons/07_super_triangle.toml";
     const fs::path dir = scratchDir() / "html";
@@ -1289,6 +1408,23 @@ TEST(LessonFacts, LocatingLessonWalkLocatorTakesElevenSteps) {
     Inserter walk(lesson.points, lesson.options);
     walk.run();
     EXPECT_EQ(walk.stats().walkSteps, 11);
+}
+
+// Lesson 12 contrasts its BRIO walk with random order: the same points in random order walk
+// over five times as many steps, and flip about as often (both below 3 per point).
+TEST(LessonFacts, WhyFastLessonRandomOrderWalksOverFiveTimesAsFarAsBrio) {
+    Lesson lesson = loadLesson(std::string(DLAB_SOURCE_DIR) + "/lessons/12_why_fast.toml");
+    ASSERT_EQ(lesson.options.order, OrderKind::Brio);
+    ASSERT_EQ(lesson.options.locator, LocatorKind::Walk);
+    Inserter brio(lesson.points, lesson.options);
+    brio.run();
+    lesson.options.order = OrderKind::Random;
+    Inserter random(lesson.points, lesson.options);
+    random.run();
+    EXPECT_GT(random.stats().walkSteps, 5 * brio.stats().walkSteps);
+    const auto n = static_cast<std::int64_t>(lesson.points.size());
+    EXPECT_LT(brio.stats().flips, 3 * n);
+    EXPECT_LT(random.stats().flips, 3 * n);
 }
 
 TEST(LessonFacts, SuperTriangleLessonExactModeGivesThreeTrianglesAndAConvexHull) {

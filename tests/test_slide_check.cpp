@@ -105,6 +105,18 @@ TEST(SlideCheck, AVertexLabelMustBeDrawnInsideTheCanvasAndUncovered) {
     EXPECT_EQ(vertexLabelProblem(3, s, same), std::nullopt) << "a duplicate point is one dot";
 }
 
+TEST(SlideCheck, TheCanvasLegendMustNotCoverANamedVertexOrItsLabel) {
+    RenderedSlide s = slideWithVertex3();
+    s.marks.push_back(mark(SlideMarkRole::Legend, -1, -1, {300, 200, 500, 300}));  // elsewhere
+    EXPECT_EQ(vertexLabelProblem(3, s), std::nullopt);
+    s.marks.back().box = {60, 60, 102, 110};  // over the point, not the label
+    EXPECT_NE(vertexLabelProblem(3, s).value_or("").find("legend covers vertex 3"),
+              std::string::npos);
+    s.marks.back().box = {106, 60, 200, 90};  // over the label only
+    EXPECT_NE(vertexLabelProblem(3, s).value_or("").find("legend covers vertex 3"),
+              std::string::npos);
+}
+
 // A lesson planned here, its slide planted: the check compares the picture with the engine.
 TEST(SlideCheck, TheEdgeDrawnUnderTestAndTheQueueCountMatchTheEngine) {
     const std::string path = write("test_edge.toml", kHead + R"(

@@ -439,9 +439,13 @@ constexpr QuantityInfo kQuantities[] = {
     {"where", "where the latest locate found its point: inside, edge, vertex or outside-hull"},
     {"test_edge", "the edge of the latest in-circle test (two vertices)"},
     {"test_result", "the latest in-circle test: 1 flip, 0 cocircular, -1 Delaunay"},
+    {"previous_test_edge", "the edge of the in-circle test before the latest, in this insertion"},
+    {"previous_test_result", "that test's answer: 1 flip, 0 cocircular, -1 Delaunay"},
     {"next_flip", "the edge that flips next in this insertion, or none"},
     {"flipped_edge", "the edge the latest flip removed"},
     {"new_edge", "the edge the latest flip made"},
+    {"previous_flipped_edge", "the edge the flip before the latest removed"},
+    {"previous_new_edge", "the edge the flip before the latest made"},
     {"duplicates", "duplicate points skipped so far"},
     {"edge_splits", "edge splits so far"},
     {"hull_edges", "edges of the real triangles with no real triangle across"},
@@ -459,6 +463,8 @@ constexpr QuantityInfo kQuantities[] = {
     {"changed_corners",
      "corners whose V or O cell the last operation changed (back-pointers in neighbours too)"},
     {"min_angle", "the smallest angle of the real triangles, in whole degrees"},
+    {"most_flips", "the most flips one insertion has taken so far"},
+    {"most_flips_vertex", "the point whose insertion took the most flips (the first on a tie)"},
     {"flips_per_point", "flips so far per point inserted, to the nearest whole number"},
     {"incircle_det",
      "the in-circle determinant of the test just made (or next): rows (x, y, x² + y²) of the "
@@ -559,10 +565,14 @@ public:
             return atPosition(
                 q + 1, [&] { return edgeAnswer(mesh().V[next(op.a)], mesh().V[prev(op.a)]); });
         }
-        if (name == "flipped_edge" || name == "new_edge") {
-            const std::size_t q = latestIndex(OpType::Flip, "no flip yet");
+        if (std::optional<Answer> a = earlierOps(name)) return *a;
+        if (name == "flipped_edge" || name == "new_edge" || name == "previous_flipped_edge" ||
+            name == "previous_new_edge") {
+            const bool previous = name.starts_with("previous_");
+            const std::size_t q =
+                previous ? previousFlipIndex() : latestIndex(OpType::Flip, "no flip yet");
             const Op& op = m_j.ops()[q];
-            const bool old = name == "flipped_edge";
+            const bool old = name.ends_with("flipped_edge");
             return atPosition(q + 1, [&] {
                 const auto& V = mesh().V;
                 return old ? edgeAnswer(V[next(op.a)], V[next(op.b)])
@@ -669,6 +679,56 @@ private:
             if (m_j.ops()[q].type == type) return q;
         }
         throw Unavailable{none};
+    }
+    // The quantities about ops before the latest of their kind: the test before the latest,
+    // the insertion with the most flips; nullopt for other names.
+    std::optional<Answer> earlierOps(std::string_view name) {
+        if (name == "previous_test_edge" || name == "previous_test_result") {
+            const std::size_t q = previousTestIndex();
+            const Op& op = m_j.ops()[q];
+            if (name == "previous_test_result") return integer(op.sign);
+            return atPosition(
+                q + 1, [&] { return edgeAnswer(mesh().V[next(op.a)], mesh().V[prev(op.a)]); });
+        }
+        if (name == "most_flips" || name == "most_flips_vertex") {
+            const auto [flips, vertex] = mostFlips();
+            return name == "most_flips" ? integer(flips) : vertexAnswer(vertex);
+        }
+        return std::nullopt;
+    }
+    // The most flips one insertion took up to now, and its point.
+    std::pair<std::int64_t, std::int64_t> mostFlips() const {
+        std::int64_t most = -1, mostVertex = kNone, flips = 0;
+        for (std::size_t q = 0; q < m_j.position(); ++q) {
+            const Op& op = m_j.ops()[q];
+            if (op.type == OpType::Flip) ++flips;
+            if (!endsInsertion(op.type)) continue;
+            if (op.vertex != kNone && flips > most) {
+                most = flips;
+                mostVertex = op.vertex;
+            }
+            flips = 0;
+        }
+        if (mostVertex == kNone) throw Unavailable{"no insertion has ended yet"};
+        return {most, mostVertex};
+    }
+    // The flip before the latest one.
+    std::size_t previousFlipIndex() const {
+        std::size_t q = latestIndex(OpType::Flip, "no flip yet");
+        while (q-- > 0) {
+            if (m_j.ops()[q].type == OpType::Flip) return q;
+        }
+        throw Unavailable{"the latest flip is the first"};
+    }
+    // The in-circle test before the latest one, within the insertion of the latest.
+    std::size_t previousTestIndex() const {
+        std::size_t q = latestIndex(OpType::InCircleTest, "no in-circle test yet");
+        while (q-- > 0) {
+            const OpType t = m_j.ops()[q].type;
+            if (t == OpType::InCircleTest) return q;
+            if (endsInsertion(t)) break;
+        }
+        throw Unavailable{"the latest in-circle test is the first of its insertion"};
     }
     const Op& latest(OpType type, const char* none) const {
         return m_j.ops()[latestIndex(type, none)];

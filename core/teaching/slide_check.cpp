@@ -229,6 +229,12 @@ std::optional<std::string> vertexLabelProblem(std::int32_t v, const RenderedSlid
     }
     if (!label->box.within(canvas->box))
         return "the label of vertex " + id + " is cut off by the canvas's edge";
+    for (const SlideMark& m : slide.marks) {
+        if (m.role == SlideMarkRole::Legend &&
+            (m.box.meets(label->box, 0) || (dot && m.box.meets(dot->box, 0))))
+            return "the canvas's legend covers vertex " + id +
+                   " (zoom so that a corner of the canvas is free: view = { fit = [...] })";
+    }
     const SlideRun* own = labelRun(*label, id, slide);
     if (!own) return "the label of vertex " + id + " is not legible (cut off or drawn over)";
     if (const SlideRun* r = coveringRun(*label, own, slide))

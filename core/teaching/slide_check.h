@@ -47,6 +47,7 @@ enum class SlideMarkRole : std::uint8_t {
     QueuedEdge,     // an edge on the flip stack: a, b
     FlippedEdge,    // a, b
     TestCircle,     // the circle (or half-plane) of the in-circle test: a = its triangle
+    Legend,         // the canvas's legend box, drawn over the canvas
 };
 
 struct SlideMark {
@@ -84,7 +85,8 @@ std::vector<std::string> panelsNamedIn(std::string_view text);
 bool panelOnSlide(std::string_view panel, const std::vector<std::string>& lines);
 
 // Why vertex v's label is not legible on the slide, or nullopt when it is: a VertexLabel mark
-// for v, inside the canvas, its text read back there, no other run over it, and no other
+// for v, inside the canvas, neither it nor v's point under the canvas's legend, its text read
+// back there, no other run over it, and no other
 // vertex drawn on the same spot (unless `points` says it is a duplicate of v: the same point).
 std::optional<std::string> vertexLabelProblem(std::int32_t v, const RenderedSlide& slide,
                                               std::span<const Vec2> points = {});

@@ -181,6 +181,7 @@ struct Scene {
     // top-left; NaN: none): later labels avoid earlier ones (labels.cpp).
     mutable LabelBoxes labels{};
     mutable std::vector<ImVec2> vertexLabelAt{};
+    mutable std::size_t vertexLabelsFrom = 0, vertexLabelsTo = 0;  // their boxes in `labels`
     mutable std::optional<ImVec2> selectedLabelAt{};  // where the selected corner's label went
     mutable MarksDrawn drawn{};                       // the marks drawn so far (the legend's)
 
@@ -545,6 +546,21 @@ void DrawFlipQueue(const Scene& s, float w) {
     }
 }
 
+// The edges a split (or an edge split) made at the new vertex, when the current op is one.
+void DrawSplitEdges(const Scene& s, float w) {
+    const Op* op = s.e.current();
+    const Mesh& m = s.m;
+    if (!op || (op->type != OpType::Split && op->type != OpType::SplitEdge)) return;
+    if (op->vertex < 0 || op->vertex >= m.numVertices()) return;
+    for (std::int32_t t : {tri(op->a), op->trianglesBefore, op->trianglesBefore + 1}) {
+        if (t < 0 || t >= m.numTriangles()) continue;
+        for (int k = 0; k < 3; ++k) {
+            if (m.V[3 * t + k] == op->vertex)
+                s.edge(op->vertex, m.V[3 * t + (k + 1) % 3], s.use(Mark::NewEdge), w);
+        }
+    }
+}
+
 void DrawOpOverlay(const Scene& s) {
     const Op* op = s.e.current();
     const Mesh& m = s.m;
@@ -609,19 +625,7 @@ void DrawOpOverlay(const Scene& s) {
             }
             break;
         case OpType::Split:
-        case OpType::SplitEdge:
-            if (op->vertex >= 0 && op->vertex < m.numVertices()) {
-                // The new edges at the new vertex.
-                for (std::int32_t t : {tri(op->a), op->trianglesBefore, op->trianglesBefore + 1}) {
-                    if (t < 0 || t >= m.numTriangles()) continue;
-                    for (int k = 0; k < 3; ++k) {
-                        if (m.V[3 * t + k] == op->vertex) {
-                            s.edge(op->vertex, m.V[3 * t + (k + 1) % 3], s.use(Mark::NewEdge), w);
-                        }
-                    }
-                }
-            }
-            break;
+        case OpType::SplitEdge: DrawSplitEdges(s, w); break;
         default: break;
     }
 }
@@ -869,6 +873,8 @@ void DrawSelection(const Scene& s) {
     if (sel.corner != kNone && sel.corner < s.m.numCorners()) {
         const ImU32 selected = s.use(Mark::SelectedCorner);
         s.outlineTriangle(tri(sel.corner), selected, w);
+        // The split's new edges stay visible on the outline: green inside the selection's colour.
+        DrawSplitEdges(s, w * 0.45f);
         std::int32_t u, v;
         int k;
         if (s.hullEdge(tri(sel.corner), u, v, k)) s.edge(u, v, selected, w, true);
@@ -1055,13 +1061,14 @@ void ShowCanvasLegend(AppState& st) {
     const ImVec2 p0 = toIm(st.view.origin), p1 = toIm(st.view.origin + st.view.size);
     ImDrawList* dl = ImGui::GetWindowDrawList();
     dl->PushClipRect(p0, p1, true);
-    const ImVec4 box =
-        DrawCanvasLegend(dl, p0, p1, st.canvas->drawn,
-                         ImGui::GetFontSize() * (slideMode(st) ? 0.8f : 0.9f), st.canvas->busy);
+    const ImVec4 box = DrawCanvasLegend(dl, p0, p1, st.canvas->drawn,
+                                        ImGui::GetFontSize() * (slideMode(st) ? 0.8f : 0.9f),
+                                        st.canvas->busy, st.engine.points().size() <= kFewPoints);
     dl->PopClipRect();
-    if (box.z > box.x)
+    if (box.z > box.x) {
         st.itemRects["canvas-legend"] = {box.x, box.y, box.z, box.w};
-    else
+        recordMark(SlideMarkRole::Legend, -1, -1, box.x, box.y, box.z, box.w);
+    } else
         st.itemRects.erase("canvas-legend");
 }
 
@@ -1234,20 +1241,33 @@ void DrawMeshLayers(AppState& st, CanvasCache& cache, const Scene& scene, ImVec2
 }
 
 // What the legend should not cover: the points on the canvas (the one being inserted most of
-// all), the labels and the ends of the queued edges.
+// all) and the vertex labels, then the other labels and, with few points, the mesh's edges.
 std::vector<BusyPoint> busy(const Scene& s) {
     std::vector<BusyPoint> out;
     const auto& pts = s.e.shownPoints();
     const std::size_t step = std::max<std::size_t>(1, pts.size() / 20000);
+    const float r = s.st.presentation ? 5.5f : 4.0f;
     for (std::size_t i = 0; i < pts.size(); i += step) {
         const ImVec2 q = toIm(s.view.toScreen(pts[i]));
-        if (s.onCanvas(q.x, q.y, q.x, q.y, 0)) out.push_back({q, 1});
+        if (s.onCanvas(q.x, q.y, q.x, q.y, 0))
+            out.push_back({ImVec2(q.x - r, q.y - r), kBusyVertex, ImVec2(q.x + r, q.y + r)});
     }
-    for (const auto& b : s.labels.boxes)
-        out.push_back({ImVec2((b[0] + b[2]) / 2, (b[1] + b[3]) / 2), 1});
+    for (std::size_t k = 0; k < s.labels.boxes.size(); ++k) {
+        const auto& b = s.labels.boxes[k];
+        const bool vertex = k >= s.vertexLabelsFrom && k < s.vertexLabelsTo;
+        out.push_back({ImVec2(b[0], b[1]), vertex ? kBusyVertex : kBusyLabel, ImVec2(b[2], b[3])});
+    }
     if (const std::int32_t v = s.e.currentVertex();
         v >= 0 && v < static_cast<std::int32_t>(pts.size()))
-        out.push_back({toIm(s.view.toScreen(pts[v])), 1000});
+        out.push_back({toIm(s.view.toScreen(pts[v])), 10 * kBusyVertex});
+    if (pts.size() > kFewPoints) return out;
+    for (std::int32_t c = 0; c < s.m.numCorners(); ++c) {
+        const std::int32_t t = c / 3, o = s.m.O[c];
+        if (!s.drawable(t) || s.virtualTri(t)) continue;
+        const std::int32_t a = s.m.V[next(c)], b = s.m.V[prev(c)];
+        if (o >= 0 && s.drawable(o / 3) && !s.virtualTri(o / 3) && a > b) continue;  // once
+        out.push_back({s.screen(a), kBusyEdge, s.screen(b), true});
+    }
     return out;
 }
 
@@ -1257,10 +1277,12 @@ std::int32_t DrawLabelsAndPoints(AppState& st, const CanvasCache& cache, Scene& 
                                  bool hovered) {
     const Engine& e = st.engine;
     std::int32_t hoveredCorner = kNone;
+    scene.vertexLabelsFrom = scene.labels.boxes.size();
     if (st.overlays.vertexIds && e.points().size() <= kFewPoints)
         scene.vertexLabelAt =
             placeVertexLabels(scene.labels, st.view, e.shownPoints(), fonts().mono,
                               ImGui::GetFontSize() * 0.9f, st.presentation ? 5.5f : 4.0f);
+    scene.vertexLabelsTo = scene.labels.boxes.size();
     LabelSuperVertices(st, scene.dl, scene.labels);
     DrawLabels(scene, hoveredCorner, ImGui::GetIO().MousePos, hovered);
     st.selection.hoveredCorner = hoveredCorner;

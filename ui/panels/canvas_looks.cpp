@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <utility>
+#include <vector>
 
 namespace dlab::ui {
 
@@ -118,8 +120,72 @@ void DrawSample(ImDrawList* dl, const Look& look, ImVec2 a, ImVec2 b) {
 
 std::span<const Look> canvasLooks() { return kLooks; }
 
+namespace {
+
+// Whether the segment p -> q meets the box [a, b] (Liang-Barsky clipping).
+bool segmentMeetsBox(ImVec2 p, ImVec2 q, ImVec2 a, ImVec2 b) {
+    float t0 = 0, t1 = 1;
+    const float d[2] = {q.x - p.x, q.y - p.y};
+    const float from[2] = {p.x, p.y}, lo[2] = {a.x, a.y}, hi[2] = {b.x, b.y};
+    for (int k = 0; k < 2; ++k) {
+        if (d[k] == 0) {
+            if (from[k] < lo[k] || from[k] > hi[k]) return false;
+            continue;
+        }
+        float ta = (lo[k] - from[k]) / d[k], tb = (hi[k] - from[k]) / d[k];
+        if (ta > tb) std::swap(ta, tb);
+        t0 = std::max(t0, ta);
+        t1 = std::min(t1, tb);
+        if (t0 > t1) return false;
+    }
+    return true;
+}
+
+}  // namespace
+
+float coveredWeight(ImVec2 a, ImVec2 b, std::span<const BusyPoint> busy, float margin) {
+    const ImVec2 a2(a.x - margin, a.y - margin), b2(b.x + margin, b.y + margin);
+    float covered = 0;
+    for (const BusyPoint& p : busy) {
+        const bool meets =
+            p.edge ? segmentMeetsBox(p.at, p.to, a2, b2)
+                   : std::min(p.at.x, p.to.x) <= b2.x && std::max(p.at.x, p.to.x) >= a2.x &&
+                         std::min(p.at.y, p.to.y) <= b2.y && std::max(p.at.y, p.to.y) >= a2.y;
+        if (meets) covered += p.weight;
+    }
+    return covered;
+}
+
+ImVec2 placeLegend(ImVec2 lo, ImVec2 hi, ImVec2 size, std::span<const BusyPoint> busy,
+                   bool anywhere) {
+    const float left = lo.x + 6, right = std::max(left, hi.x - size.x - 6), top = lo.y + 6,
+                bottom = std::max(top, hi.y - size.y - 6), midX = (left + right) / 2,
+                midY = (top + bottom) / 2;
+    std::vector<ImVec2> places = {{right, top}, {right, bottom}, {left, top},    {left, bottom},
+                                  {midX, top},  {right, midY},   {midX, bottom}, {left, midY}};
+    if (anywhere) {
+        constexpr int kSteps = 8;
+        for (int i = 0; i <= kSteps; ++i) {
+            for (int j = 0; j <= kSteps; ++j)
+                places.emplace_back(left + (right - left) * static_cast<float>(j) / kSteps,
+                                    top + (bottom - top) * static_cast<float>(i) / kSteps);
+        }
+    }
+    ImVec2 best = places[0];
+    float least = -1;
+    for (const ImVec2& c : places) {
+        const float covered = coveredWeight(c, ImVec2(c.x + size.x, c.y + size.y), busy, 4);
+        if (least < 0 || covered < least) {
+            least = covered;
+            best = c;
+        }
+        if (least == 0) break;
+    }
+    return best;
+}
+
 ImVec4 DrawCanvasLegend(ImDrawList* dl, ImVec2 lo, ImVec2 hi, const MarksDrawn& drawn,
-                        float fontSize, std::span<const BusyPoint> busy) {
+                        float fontSize, std::span<const BusyPoint> busy, bool anywhere) {
     if (drawn.none()) return ImVec4(0, 0, 0, 0);
     ImFont* font = ImGui::GetFont();
     const float row = std::ceil(fontSize * 1.25f), sample = std::ceil(fontSize * 1.9f),
@@ -132,24 +198,7 @@ ImVec4 DrawCanvasLegend(ImDrawList* dl, ImVec2 lo, ImVec2 hi, const MarksDrawn& 
         ++rows;
     }
     const float w = pad * 3 + sample + textW, h = pad * 2 + row * static_cast<float>(rows);
-    // Top right, bottom right, top left, bottom left: the first that covers the least.
-    const float left = lo.x + 6, right = std::max(lo.x, hi.x - w - 6), top = lo.y + 6,
-                bottom = std::max(lo.y, hi.y - h - 6);
-    const ImVec2 corners[4] = {{right, top}, {right, bottom}, {left, top}, {left, bottom}};
-    ImVec2 a = corners[0];
-    float least = -1;
-    for (const ImVec2& c : corners) {
-        float covered = 0;
-        for (const BusyPoint& p : busy) {
-            if (p.at.x >= c.x - 8 && p.at.x <= c.x + w + 8 && p.at.y >= c.y - 8 &&
-                p.at.y <= c.y + h + 8)
-                covered += p.weight;
-        }
-        if (least < 0 || covered < least) {
-            least = covered;
-            a = c;
-        }
-    }
+    const ImVec2 a = placeLegend(lo, hi, ImVec2(w, h), busy, anywhere);
     const ImVec2 b(a.x + w, a.y + h);
     dl->AddRectFilled(a, b, IM_COL32(255, 255, 255, 230), 4);
     dl->AddRect(a, b, IM_COL32(170, 175, 190, 255), 4);

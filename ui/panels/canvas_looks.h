@@ -83,14 +83,31 @@ struct AppState;
 // layers drawn over the canvas by other panels (violations, expressions, a student's trace).
 ImU32 useLook(AppState& state, Mark mark);
 
-// Draws the legend of the marks drawn into dl, in the corner of the canvas [lo, hi] that covers
-// the least of what is drawn (`busy`: screen points, each with its weight; top right on a tie),
-// text at fontSize; returns its box (x0, y0, x1, y1), or an empty one when nothing was drawn.
+// What the legend should not cover: a screen box (a point, a label) with its weight, or a drawn
+// edge from `at` to `to` (when `edge`).
 struct BusyPoint {
     ImVec2 at;
     float weight = 1;
+    ImVec2 to = at;     // the box's other corner, or the edge's other end
+    bool edge = false;  // a segment, not a box
 };
+// The weights the canvas gives: a vertex and its label must stay visible; other labels and the
+// edges count for little.
+inline constexpr float kBusyVertex = 100, kBusyLabel = 3, kBusyEdge = 2;
+
+// Where a legend box of size `size` goes on the canvas [lo, hi]: the place that covers the least
+// weight of `busy` (a box or an edge it meets counts whole), 6 pixels in from the edge. The four
+// corners are tried first (top right first), then the middles of the sides, then, when `anywhere`,
+// a grid over the whole canvas; the first place of the least cover wins. Returns its top left.
+ImVec2 placeLegend(ImVec2 lo, ImVec2 hi, ImVec2 size, std::span<const BusyPoint> busy,
+                   bool anywhere);
+
+// The weight of `busy` a box [a, b] covers (each within `margin` pixels counts).
+float coveredWeight(ImVec2 a, ImVec2 b, std::span<const BusyPoint> busy, float margin);
+
+// Draws the legend of the marks drawn into dl, at placeLegend's place on the canvas [lo, hi],
+// text at fontSize; returns its box (x0, y0, x1, y1), or an empty one when nothing was drawn.
 ImVec4 DrawCanvasLegend(ImDrawList* dl, ImVec2 lo, ImVec2 hi, const MarksDrawn& drawn,
-                        float fontSize, std::span<const BusyPoint> busy);
+                        float fontSize, std::span<const BusyPoint> busy, bool anywhere);
 
 }  // namespace dlab::ui

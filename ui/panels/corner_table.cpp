@@ -2,6 +2,7 @@
 // cells the current operation changed are highlighted (hover shows the old value), the rows of
 // the triangles it touched are marked, and a million rows scroll smoothly (ImGuiListClipper).
 // Also the G tab: vertex coordinates.
+#include "core/engine/numbers.h"
 #include "ui/gui.h"
 #include "ui/panels/canvas_looks.h"
 #include "ui/panels/panels.h"
@@ -236,10 +237,11 @@ void ShowVertexTable(AppState& st) {
     ImGui::PushFont(fonts().mono);
     if (ImGui::BeginTable("##vertices", 4, flags)) {
         ImGui::TableSetupScrollFreeze(0, 1);
-        ImGui::TableSetupColumn("v", ImGuiTableColumnFlags_WidthStretch, 0.6f);
-        ImGui::TableSetupColumn("x", ImGuiTableColumnFlags_WidthStretch, 1.5f);
-        ImGui::TableSetupColumn("y", ImGuiTableColumnFlags_WidthStretch, 1.5f);
-        ImGui::TableSetupColumn("state", ImGuiTableColumnFlags_WidthStretch, 1.0f);
+        // The state's longest words ("super-triangle") fit beside 17-digit coordinates.
+        ImGui::TableSetupColumn("v", ImGuiTableColumnFlags_WidthStretch, 0.5f);
+        ImGui::TableSetupColumn("x", ImGuiTableColumnFlags_WidthStretch, 1.3f);
+        ImGui::TableSetupColumn("y", ImGuiTableColumnFlags_WidthStretch, 1.3f);
+        ImGui::TableSetupColumn("state", ImGuiTableColumnFlags_WidthStretch, 1.45f);
         ImGui::TableHeadersRow();
         ImGuiListClipper clipper;
         clipper.Begin(m.numVertices());
@@ -254,15 +256,15 @@ void ShowVertexTable(AppState& st) {
                 if (ghost)
                     ImGui::TextDisabled("-");
                 else
-                    ImGui::Text("%.17g", m.G[v].x);
+                    ImGui::TextUnformatted(shortest(m.G[v].x).c_str());
                 ImGui::TableSetColumnIndex(2);
                 if (ghost)
                     ImGui::TextDisabled("-");
                 else
-                    ImGui::Text("%.17g", m.G[v].y);
+                    ImGui::TextUnformatted(shortest(m.G[v].y).c_str());
                 ImGui::TableSetColumnIndex(3);
                 if (virt) {
-                    ImGui::TextDisabled(ghost ? "ghost (no coordinates)" : "super-triangle");
+                    ImGui::TextDisabled(ghost ? "ghost vertex" : "super-triangle");
                 } else {
                     static const char* const kNames[] = {"queued", "inserting", "vertex",
                                                          "duplicate"};

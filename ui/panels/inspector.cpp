@@ -1,6 +1,7 @@
 // The corner inspector: the selected corner's t, v, n, p, o, l, r, s, u and how each is
 // computed from V and O; buttons (and keys N P O L R S U) move the selection along an operator,
 // and the move is drawn as an arrow on the canvas.
+#include "core/engine/numbers.h"
 #include "ui/gui.h"
 #include "ui/panels/panels.h"
 
@@ -115,7 +116,8 @@ void ShowInspector(AppState& st) {
     if (ghost)
         ImGui::TextDisabled("vertex %d is the ghost vertex: it has no coordinates", m.V[c]);
     else
-        ImGui::TextDisabled("G[%d] = (%.17g, %.17g)", m.V[c], g.x, g.y);
+        ImGui::TextDisabled("G[%d] = (%s, %s)", m.V[c], shortest(g.x).c_str(),
+                            shortest(g.y).c_str());
     if (const CornerMove* mv = st.currentMove()) {
         ImGui::Text("last move: %d.%c = %d", mv->from, mv->op, mv->to);
     }

@@ -193,7 +193,7 @@ TEST(Legend, IsAlwaysOnSlidesAndLeavesTheQuestionClear) {
     EXPECT_TRUE(legend[0] >= canvas[0] && legend[2] <= canvas[2] && legend[1] >= canvas[1] &&
                 legend[3] <= canvas[3])
         << "inside the canvas";
-    // Compact: a corner of the canvas, not over the slide's text or question.
+    // Compact, on the canvas, not over the slide's text or question.
     EXPECT_LT((legend[2] - legend[0]) * (legend[3] - legend[1]),
               0.25f * (canvas[2] - canvas[0]) * (canvas[3] - canvas[1]));
     if (st.itemRects.count("slide-question")) {

@@ -3,9 +3,11 @@
 #include "tests/ui/ui_harness.h"
 #include "ui/files/settings.h"
 #include "ui/lesson_player.h"
+#include "ui/panels/canvas_looks.h"
 #include "ui/panels/labels.h"
 #include "ui/panels/panels.h"
 #include "ui/platform/keys.h"
+#include "ui/render/drawn_marks.h"
 #include "ui/render/drawn_text.h"
 
 #include <gtest/gtest.h>
@@ -263,7 +265,89 @@ void everyStopFits(int width, int height) {
     }
 }
 
+// The vertices' points and labels a legend box [x0, x1] x [y0, y1] would cover.
+std::vector<std::string> coveredBy(const dlab::SlideBox& box,
+                                   const std::vector<dlab::SlideMark>& marks) {
+    std::vector<std::string> out;
+    for (const dlab::SlideMark& m : marks) {
+        const bool point = m.role == dlab::SlideMarkRole::Vertex;
+        if ((point || m.role == dlab::SlideMarkRole::VertexLabel) && box.meets(m.box, 0))
+            out.push_back((point ? "vertex " : "the label of vertex ") + std::to_string(m.a));
+    }
+    return out;
+}
+
 }  // namespace
+
+// Where one corner of the canvas has room for the legend clear of every vertex and its label,
+// the legend covers none, on every stop of every lesson (it may go elsewhere than that corner).
+TEST(LessonSlides, TheLegendCoversNoVertexWhereACornerOfTheCanvasIsFree) {
+    UiHarness h(1280, 720);
+    auto& st = h.state();
+    st.presentation = true;
+    int legends = 0;
+    for (const std::string& path : lessonsWithStops()) {
+        ASSERT_TRUE(dlab::ui::openLesson(st, path)) << st.messages.back().text;
+        for (std::size_t k = 0; k < st.lessonPlayer.lesson->stops.size(); ++k) {
+            dlab::ui::goToStop(st, k);
+            h.frames(2);
+            std::vector<dlab::SlideMark> marks;
+            {
+                const dlab::ui::MarkRecording recording(marks);
+                h.frames(1);
+            }
+            const auto role = [&](dlab::SlideMarkRole r) {
+                return std::find_if(marks.begin(), marks.end(),
+                                    [&](const dlab::SlideMark& m) { return m.role == r; });
+            };
+            const auto legend = role(dlab::SlideMarkRole::Legend);
+            const auto canvas = role(dlab::SlideMarkRole::Canvas);
+            if (legend == marks.end() || canvas == marks.end()) continue;
+            ++legends;
+            const std::vector<std::string> covered = coveredBy(legend->box, marks);
+            if (covered.empty()) continue;
+            const dlab::SlideBox c = canvas->box, l = legend->box;
+            const float w = l.x1 - l.x0, ht = l.y1 - l.y0;
+            for (const float x : {c.x0 + 6, c.x1 - w - 6}) {
+                for (const float y : {c.y0 + 6, c.y1 - ht - 6}) {
+                    EXPECT_FALSE(coveredBy({x, y, x + w, y + ht}, marks).empty())
+                        << path << " stop " << k + 1 << ": the legend covers " << covered[0]
+                        << " while the corner at (" << x << ", " << y << ") is free";
+                }
+            }
+        }
+        dlab::ui::closeLesson(st);
+    }
+    EXPECT_GT(legends, 50);
+}
+
+// The legend's place: a free corner when one is free, the place covering the least otherwise.
+TEST(LessonSlides, TheLegendGoesWhereItCoversTheLeast) {
+    using dlab::ui::BusyPoint;
+    const ImVec2 lo(0, 0), hi(600, 400), size(200, 100);
+    const auto point = [](float x, float y) {
+        return BusyPoint{ImVec2(x - 5, y - 5), dlab::ui::kBusyVertex, ImVec2(x + 5, y + 5)};
+    };
+    // Vertices near the top-right, bottom-right and top-left corners: bottom left is free.
+    std::vector<BusyPoint> busy = {point(590, 10), point(590, 390), point(10, 10)};
+    ImVec2 at = dlab::ui::placeLegend(lo, hi, size, busy, true);
+    EXPECT_EQ(at.x, 6);
+    EXPECT_EQ(at.y, 400 - 100 - 6);
+    // Every corner taken: a free place elsewhere, with only an edge across it, if nothing freer.
+    busy.push_back(point(10, 390));
+    at = dlab::ui::placeLegend(lo, hi, size, busy, true);
+    EXPECT_EQ(dlab::ui::coveredWeight(at, ImVec2(at.x + size.x, at.y + size.y), busy, 4), 0);
+    busy.push_back({ImVec2(0, 200), dlab::ui::kBusyEdge, ImVec2(600, 200), true});
+    busy.push_back({ImVec2(300, 0), dlab::ui::kBusyEdge, ImVec2(300, 400), true});
+    at = dlab::ui::placeLegend(lo, hi, size, busy, true);
+    const float least = dlab::ui::coveredWeight(at, ImVec2(at.x + size.x, at.y + size.y), busy, 4);
+    EXPECT_EQ(least, 0) << "a quarter of the canvas between the edges is free";
+    // Only the corners with `anywhere` off (many points): the least covered of them.
+    const std::vector<BusyPoint> three = {point(590, 10), point(10, 10), point(12, 390)};
+    at = dlab::ui::placeLegend(lo, hi, size, three, false);
+    EXPECT_EQ(at.x, 600 - 200 - 6);
+    EXPECT_EQ(at.y, 400 - 100 - 6);
+}
 
 TEST(LessonSlides, EveryStopShowsItsWholeQuestionAt1280x720) { everyStopFits(1280, 720); }
 
