@@ -77,7 +77,9 @@ TEST(Breakpoint, TextRoundTripsForEveryKind) {
     for (const BreakKindInfo& k : breakKinds()) {
         EXPECT_EQ(&info(k.kind), &k);
         Breakpoint b{k.kind, std::nullopt};
-        if (k.param != BreakParam::None) b.param = k.kind == BreakKind::InCircle ? -1 : 17;
+        const bool sign = k.kind == BreakKind::InCircle || k.kind == BreakKind::EarTest ||
+                          k.kind == BreakKind::EditInCircle;
+        if (k.param != BreakParam::None) b.param = sign ? -1 : 17;
         const std::string text = toString(b);
         std::string error;
         const auto back = parseBreakpoint(text, &error);
