@@ -1688,7 +1688,7 @@ TEST(LessonEdits, StopsInsideAConstraintCountItsCrossingsFlipsAndRepair) {
 
 TEST(LessonEdits, TargetsAndEditsThatDoNotFitNameFileLineAndStop) {
     const ErrorCase cases[] = {
-        {kHead + "[[stop]]\nrun_to = \"ear-test\"\ntext = \"a\"\n", 4, 1,
+        {kHead + "[[stop]]\nrun_to = \"ear-test\"\ntext = \"a\"\n", 3, 1,
          "the lesson has no edits"},
         {kHead + "edits = [\"remove vertex 4\"]\n[[stop]]\nrun_to = \"ear-flip\"\ntext = "
                  "\"a\"\n[[stop]]\nrun_to = \"flip\"\ntext = \"b\"\n",

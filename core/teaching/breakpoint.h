@@ -27,7 +27,8 @@
 // Targets inside the lesson's edits after the run's end (core/engine/editor.h); they never hit
 // in the run itself (hitsEditAt reads the Editor's records):
 //
-//   edit:N        the end of edit N (1-based); edit:0 the run's end, before the first edit;
+//   edit:N        the end of edit N (1-based; a lesson's run_to goes there as to op:N); edit:0
+//                 the run's end, before the first edit;
 //                 edit alone: the end of any edit
 //   ear-test      a removal tested an ear; ear-test:1 an ear, ear-test:-1 no ear
 //   ear-flip      a removal flipped an ear off the vertex (its degree one less)

@@ -2085,11 +2085,17 @@ void runToEditTarget(const Lesson& lesson, std::size_t k, Editor& editor) {
                       "run_to edit:0 (the run's end) is before the previous stop");
         return;
     }
-    if (bp.kind == BreakKind::Edit && bp.param &&
-        static_cast<std::size_t>(*bp.param) > lesson.edits.size())
-        stopError(lesson, k, s.line,
-                  "run_to " + toString(bp) + ": the lesson has " +
-                      std::to_string(lesson.edits.size()) + " edits");
+    if (bp.kind == BreakKind::Edit && bp.param) {  // edit:N is a position, as op:N is
+        const auto n = static_cast<std::size_t>(*bp.param);
+        if (n > lesson.edits.size())
+            stopError(lesson, k, s.line,
+                      "run_to " + toString(bp) + ": the lesson has " +
+                          std::to_string(lesson.edits.size()) + " edits");
+        if (editor.editEnd(n - 1) < editor.position())
+            stopError(lesson, k, s.line, "run_to " + toString(bp) + " is before the previous stop");
+        editor.seek(editor.editEnd(n - 1));
+        return;
+    }
     for (int i = 0; i < s.count; ++i) {
         bool hit = false;
         while (!hit && editor.forward()) hit = hitsEditAt(bp, editor);
