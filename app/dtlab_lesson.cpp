@@ -83,6 +83,7 @@ bool checkLessonFile(const std::string& path, bool noSlides) {
                   << (lesson.assignment ? "assignment, " : "") << lesson.points.size()
                   << " points, " << lesson.stops.size() << " stops, " << questions(lesson)
                   << " questions, " << plan.totalOps << " operations"
+                  << (plan.editOps ? " + " + std::to_string(plan.editOps) + " of edits" : "")
                   << (lesson.minutes ? ", " + std::to_string(lesson.minutes) + " minutes" : "")
                   << ")\n";
         return true;
@@ -164,7 +165,10 @@ void showLesson(const std::string& path, bool tables, const std::vector<std::siz
                   << toString(lesson.options.order) << ", seed " << lesson.options.seed << "; "
                   << lesson.points.size() << " points"
                   << (lesson.pointsFile.empty() ? "" : " from " + escapeControls(lesson.pointsFile))
-                  << "; " << plan.totalOps << " operations\n";
+                  << "; " << plan.totalOps << " operations"
+                  << (plan.editOps ? " + " + std::to_string(plan.editOps) + " of edits" : "")
+                  << "\n";
+        for (const Edit& e : lesson.edits) std::cout << "edit: " << describe(e) << "\n";
         if (!lesson.text.empty())
             std::cout << "\n"
                       << escapeControlsKeepLines(lesson.text)

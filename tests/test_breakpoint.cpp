@@ -77,7 +77,9 @@ TEST(Breakpoint, TextRoundTripsForEveryKind) {
     for (const BreakKindInfo& k : breakKinds()) {
         EXPECT_EQ(&info(k.kind), &k);
         Breakpoint b{k.kind, std::nullopt};
-        if (k.param != BreakParam::None) b.param = k.kind == BreakKind::InCircle ? -1 : 17;
+        const bool sign = k.kind == BreakKind::InCircle || k.kind == BreakKind::EarTest ||
+                          k.kind == BreakKind::EditInCircle;
+        if (k.param != BreakParam::None) b.param = sign ? -1 : 17;
         const std::string text = toString(b);
         std::string error;
         const auto back = parseBreakpoint(text, &error);
@@ -373,4 +375,51 @@ TEST(Breakpoint, WholeInsertionsForwardAndBack) {
     j.seek(boundaries[1]);
     EXPECT_EQ(backInsertion(j, ins, 1u << 30).reason, StopReason::Start);
     EXPECT_EQ(j.position(), 0u);
+}
+
+TEST(Breakpoint, EditTargetsHitTheEditorsOpsAndNeverTheRun) {
+    InsertOptions o;
+    o.order = OrderKind::Input;
+    Inserter ins({{0, 0}, {6, 0}, {5, 4}, {1, 3}, {3, 1}}, o);
+    ins.run();
+    Editor ed(ins.mesh());
+    std::string message;
+    ASSERT_TRUE(ed.add(*parseEdit("remove vertex 4"), message)) << message;
+    ASSERT_TRUE(ed.add(*parseEdit("constrain 0-2"), message)) << message;
+    ed.seek(0);
+    EXPECT_TRUE(hitsEditAt(bp("edit:0"), ed));
+    EXPECT_FALSE(hitsEditAt(bp("edit"), ed));
+    const auto& removal = ed.edits()[0].removal.ops;
+    const auto& constraint = ed.edits()[1].constraint.ops;
+    int earFlips = 0, merges = 0, ends = 0, walks = 0, marks = 0, sloan = 0;
+    while (ed.forward()) {
+        earFlips += hitsEditAt(bp("ear-flip"), ed);
+        merges += hitsEditAt(bp("merge"), ed);
+        ends += hitsEditAt(bp("edit"), ed);
+        walks += hitsEditAt(bp("segment-walk"), ed);
+        marks += hitsEditAt(bp("constrain-mark"), ed);
+        sloan += hitsEditAt(bp("sloan-flip"), ed) + hitsEditAt(bp("sloan-wait"), ed);
+        if (ed.position() == ed.editEnd(0)) EXPECT_TRUE(hitsEditAt(bp("edit:1"), ed));
+        EXPECT_EQ(hitsEditAt(bp("edit:2"), ed), ed.position() == ed.total());
+    }
+    const auto count = [](const auto& ops, auto type) {
+        return static_cast<int>(
+            std::count_if(ops.begin(), ops.end(), [&](const auto& op) { return op.type == type; }));
+    };
+    EXPECT_EQ(earFlips, count(removal, RemoveOpType::Flip));
+    EXPECT_EQ(merges, 1);
+    EXPECT_EQ(ends, 2);
+    EXPECT_EQ(walks, count(constraint, ConstrainOpType::Walk));
+    EXPECT_EQ(marks, 1);
+    EXPECT_EQ(sloan, count(constraint, ConstrainOpType::SloanFlip) +
+                         count(constraint, ConstrainOpType::SloanWait));
+    // The run's journal never hits an edit target.
+    Inserter run({{0, 0}, {6, 0}, {5, 4}, {1, 3}, {3, 1}}, o);
+    Journal journal(run);
+    const Breakpoint flips = bp("ear-flip");
+    EXPECT_EQ(runUntil(journal, run, std::span(&flips, 1), 1u << 20).reason, StopReason::End);
+    std::string error;
+    EXPECT_FALSE(parseBreakpoint("ear-test:2", &error));
+    EXPECT_NE(error.find("1, 0 or -1"), std::string::npos) << error;
+    EXPECT_EQ(explain(bp("edit:0")), "the run's end, before the edits");
 }

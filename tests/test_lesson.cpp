@@ -139,7 +139,7 @@ TEST_P(EveryLesson, RunsToItsEndWithEveryAnswerComputed) {
                 << "stop " << k + 1;
         }
     }
-    EXPECT_LE(previous, plan.totalOps);
+    EXPECT_LE(previous, plan.totalOps + plan.editOps);
     // The text may not contradict the engine, give answers away, or hold undrawable characters.
     for (const LessonError& e : lessonProblems(lesson, plan)) ADD_FAILURE() << e.what();
 }
@@ -1714,4 +1714,160 @@ TEST(LessonHandout, TrackHandoutHasEverySlideFoldedHintsAndNoAnswers) {
         }
         fs::remove_all(dir / "lecture_files");  // the next one writes its own
     }
+}
+
+// ---- Lessons with edits: stops inside the removals and constraints after the run ----------------
+
+namespace {
+
+// The finished exact-mode run of the points, in input order, and its editor with `edits` added.
+struct EditedRun {
+    std::unique_ptr<Inserter> ins;
+    std::unique_ptr<Editor> editor;
+};
+EditedRun editedRun(const std::vector<Vec2>& pts, const std::vector<std::string>& edits) {
+    InsertOptions o;
+    o.order = OrderKind::Input;
+    EditedRun r;
+    r.ins = std::make_unique<Inserter>(pts, o);
+    r.ins->run();
+    r.editor = std::make_unique<Editor>(r.ins->mesh());
+    for (const std::string& e : edits) {
+        std::string message;
+        EXPECT_TRUE(r.editor->add(*parseEdit(e), message)) << e << ": " << message;
+    }
+    r.editor->seek(0);
+    return r;
+}
+
+const std::vector<Vec2> kEditPoints = {{0, 0}, {6, 0}, {5, 4}, {1, 3}, {3, 1}};
+
+// Edges of the finished mesh that the open segment p-q crosses at a point inside both.
+int properCrossings(const Mesh& m, Vec2 p, Vec2 q) {
+    int n = 0;
+    for (std::int32_t c = 0; c < m.numCorners(); ++c) {
+        const std::int32_t o = m.O[c];
+        if (o != kNone && o < c) continue;
+        const Vec2 a = m.G[m.V[next(c)]], b = m.G[m.V[prev(c)]];
+        if (orient2d(p, q, a) * orient2d(p, q, b) < 0 && orient2d(a, b, p) * orient2d(a, b, q) < 0)
+            ++n;
+    }
+    return n;
+}
+
+}  // namespace
+
+TEST(LessonEdits, StopsInsideARemovalReadTheEditorsRecords) {
+    const std::string text = kHead +
+                             "edits = [\"remove vertex 4\"]\n"
+                             "[[stop]]\nrun_to = \"edit:0\"\ntext = \"a\"\nquestion = \"q\"\n"
+                             "answer = \"removal_degree\"\n"
+                             "[[stop]]\nrun_to = \"ear-test\"\ntext = \"b\"\n"
+                             "[[stop]]\nrun_to = \"ear-flip\"\ntext = \"c\"\nquestion = \"q\"\n"
+                             "answer = \"degree_left\"\n"
+                             "[[stop]]\nrun_to = \"merge\"\ntext = \"d\"\n"
+                             "[[stop]]\nrun_to = \"edit:1\"\ntext = \"e\"\nquestion = \"q\"\n"
+                             "answer = \"ear_flips\"\n";
+    const fs::path p = scratchDir() / "lessons" / "removal.toml";
+    write(p, text);
+    const Lesson lesson = loadLesson(p.string());
+    ASSERT_EQ(lesson.edits.size(), 1u);
+    const LessonPlan plan = planLesson(lesson);
+    EditedRun r = editedRun(kEditPoints, {"remove vertex 4"});
+    const Editor& ed = *r.editor;
+    const auto& V = ed.mesh().V;
+    const auto degree = std::count(V.begin(), V.end(), 4);
+    const auto& ops = ed.edits()[0].removal.ops;
+    const auto flips = std::count_if(
+        ops.begin(), ops.end(), [](const RemoveOp& o) { return o.type == RemoveOpType::Flip; });
+    // The degree goes down by one per ear flip, and the last three triangles merge.
+    EXPECT_EQ(degree, flips + 3);
+    EXPECT_EQ(plan.stops[0].answer->a, degree);
+    EXPECT_EQ(plan.stops[0].position, plan.totalOps);
+    EXPECT_EQ(plan.stops[2].answer->a, degree - 1);
+    EXPECT_EQ(plan.stops[4].answer->a, flips);
+    EXPECT_EQ(plan.stops[4].position, plan.totalOps + ops.size());
+    EXPECT_EQ(plan.editOps, ops.size());
+    // Each stop sits right after an op of its kind.
+    const auto firstOf = [&](RemoveOpType t) {
+        return std::find_if(ops.begin(), ops.end(),
+                            [&](const RemoveOp& o) { return o.type == t; }) -
+               ops.begin() + 1;
+    };
+    EXPECT_EQ(plan.stops[1].position, plan.totalOps + firstOf(RemoveOpType::EarTest));
+    EXPECT_EQ(plan.stops[3].position, plan.totalOps + firstOf(RemoveOpType::Merge));
+    EXPECT_NE(plan.stops[1].caption.find("remove vertex 4"), std::string::npos);
+    // A wrong number planted as an expectation fails with the file, the line and the stop.
+    write(p, text + "expect = { ear_flips = " + std::to_string(flips + 1) + " }\n");
+    const LessonError e =
+        errorOf(text + "expect = { ear_flips = " + std::to_string(flips + 1) + " }\n");
+    EXPECT_EQ(e.stop(), 5);
+    EXPECT_NE(e.message().find("expects ear_flips = " + std::to_string(flips + 1) +
+                               ", but the engine says " + std::to_string(flips)),
+              std::string::npos)
+        << e.what();
+    const Result cli = dtlab("lesson check --no-slides " + p.string());
+    EXPECT_EQ(cli.status, 1) << cli.out;
+    EXPECT_NE(cli.out.find("stop 5: the lesson expects ear_flips"), std::string::npos) << cli.out;
+}
+
+TEST(LessonEdits, StopsInsideAConstraintCountItsCrossingsFlipsAndRepair) {
+    const std::string edit = "constrain 0-2";
+    EditedRun r = editedRun(kEditPoints, {edit});
+    const int crossings = properCrossings(r.ins->mesh(), kEditPoints[0], kEditPoints[2]);
+    ASSERT_GT(crossings, 0) << "the segment must cross an edge for this test";
+    const auto& ops = r.editor->edits()[0].constraint.ops;
+    const auto count = [&](ConstrainOpType t) {
+        return std::count_if(ops.begin(), ops.end(),
+                             [&](const ConstrainOp& o) { return o.type == t; });
+    };
+    const std::string text = kHead + "edits = [\"" + edit +
+                             "\"]\n"
+                             "[[stop]]\nrun_to = \"edit:0\"\ntext = \"a\"\nquestion = \"q\"\n"
+                             "answer = \"crossed_edges\"\n"
+                             "[[stop]]\nrun_to = \"segment-walk\"\ntext = \"b\"\n"
+                             "[[stop]]\nrun_to = \"constrain-mark\"\ntext = \"c\"\nquestion = "
+                             "\"q\"\nanswer = \"sloan_flips\"\n"
+                             "[[stop]]\nrun_to = \"edit:1\"\ntext = \"d\"\nquestion = \"q\"\n"
+                             "answer = \"repair_tests\"\nexpect = { repair_flips = " +
+                             std::to_string(count(ConstrainOpType::Flip)) + " }\n";
+    const fs::path p = scratchDir() / "lessons" / "constrain.toml";
+    write(p, text);
+    const LessonPlan plan = planLesson(loadLesson(p.string()));
+    EXPECT_EQ(plan.stops[0].answer->a, crossings);
+    EXPECT_EQ(plan.stops[1].position, plan.totalOps + 1);  // the walk is the first op
+    EXPECT_EQ(plan.stops[2].answer->a, count(ConstrainOpType::SloanFlip));
+    EXPECT_GE(plan.stops[2].answer->a, crossings);  // each crossing edge flips at least once
+    EXPECT_EQ(plan.stops[3].answer->a, count(ConstrainOpType::InCircleTest));
+    // The segment is an edge after the mark: the corner expressions read the edited mesh.
+    EXPECT_EQ(computeEditAnswer("triangles", *r.editor)->a,
+              static_cast<std::int64_t>(r.ins->mesh().numTriangles()));
+}
+
+TEST(LessonEdits, TargetsAndEditsThatDoNotFitNameFileLineAndStop) {
+    const ErrorCase cases[] = {
+        {kHead + "[[stop]]\nrun_to = \"ear-test\"\ntext = \"a\"\n", 3, 1,
+         "the lesson has no edits"},
+        {kHead + "edits = [\"remove vertex 4\"]\n[[stop]]\nrun_to = \"ear-flip\"\ntext = "
+                 "\"a\"\n[[stop]]\nrun_to = \"flip\"\ntext = \"b\"\n",
+         7, 2, "run_to is an edit target"},
+        {kHead + "edits = [\"remove vertex 4\"]\n[[stop]]\nrun_to = \"sloan-flip\"\ntext = \"a\"\n",
+         4, 1, "is not reached in the edits"},
+        {kHead + "edits = [\"remove vertex 4\"]\n[[stop]]\nrun_to = \"edit:2\"\ntext = \"a\"\n", 4,
+         1, "the lesson has 1 edits"},
+        {kHead + "edits = [\"remove vertex 4\"]\n[[stop]]\nrun_to = \"edit:1\"\ntext = "
+                 "\"a\"\nquestion = \"q\"\nanswer = \"crossed_edges\"\n",
+         8, 1, "this edit constrains no segment"},
+        {kHead + "[[stop]]\ntext = \"a\"\nquestion = \"q\"\nanswer = \"ear_flips\"\n", 6, 1,
+         "a stop inside the lesson's edits"},
+        {kHead + "edits = [\"remove vertex 9\"]\n[[stop]]\ntext = \"a\"\n", 3, 0,
+         "the lesson has points 0 to 4"},
+        {kHead + "edits = [\"delete 4\"]\n[[stop]]\ntext = \"a\"\n", 3, 0, "an edit is"},
+        {kHead + "edits = [\"constrain 0-2\", \"remove vertex 0\"]\n[[stop]]\ntext = \"a\"\n", 3, 0,
+         "edit \"remove vertex 0\" is refused"},
+        {kHead + "edits = [\"remove vertex 4\"]\n[options]\nboundary = \"super\"\n[[stop]]\ntext "
+                 "= \"a\"\n",
+         3, 0, "edits need the exact boundary"},
+    };
+    expectErrors(cases);
 }

@@ -65,11 +65,25 @@ void applyStopOverlays(AppState& st, std::size_t k) {
     }
 }
 
+// The lesson's edits after its run's end, in order (the plan checked that each is taken).
+bool applyLessonEdits(AppState& st, const Lesson& lesson) {
+    for (const Edit& e : lesson.edits) {
+        std::string message;
+        if (!st.engine.edit(e, message)) {
+            st.log(Message::Level::Error,
+                   lesson.title + ": edit \"" + describe(e) + "\": " + message);
+            return false;
+        }
+    }
+    return true;
+}
+
 // The lesson's run in the engine: its points inserted with its options, or Lawson's flip
-// algorithm from its start triangulation (`triangles`).
+// algorithm from its start triangulation (`triangles`); then its edits.
 bool loadLessonRun(AppState& st, const Lesson& lesson) {
     if (!st.setOptions(lesson.options)) return false;
-    if (!lesson.start) return st.loadPoints(lesson.points, lesson.title);
+    if (!lesson.start)
+        return st.loadPoints(lesson.points, lesson.title) && applyLessonEdits(st, lesson);
     std::string error;
     std::vector<Vec2> previous = st.engine.points();
     if (!st.engine.resetRepair(lesson.points, *lesson.start, true, error)) {
@@ -247,9 +261,11 @@ bool slideMode(const AppState& st) {
 bool lessonStateChanged(const AppState& st) {
     const LessonState& L = st.lessonPlayer;
     if (!L.lesson) return false;
+    std::vector<std::string> edits;
+    for (const Edit& e : L.lesson->edits) edits.push_back(describe(e));
     return !sameRun(st.engine.options(), L.lesson->options) ||
            st.engine.points() != L.lesson->points ||
-           st.engine.repairs() != L.lesson->start.has_value();
+           st.engine.repairs() != L.lesson->start.has_value() || editTexts(st.engine) != edits;
 }
 
 void goToStop(AppState& st, std::size_t k) {

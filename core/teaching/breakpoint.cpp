@@ -30,6 +30,23 @@ constexpr BreakKindInfo kKinds[] = {
     {BreakKind::Corner, "corner", BreakParam::Required, "corner C changed (V[C] or O[C])"},
     {BreakKind::Finalize, "finalize", BreakParam::None, "the virtual triangles were removed"},
     {BreakKind::End, "end", BreakParam::None, "the run is finished"},
+    {BreakKind::Edit, "edit", BreakParam::Optional,
+     "the end of an edit (N; edit:0 the run's end, before the edits)"},
+    {BreakKind::EarTest, "ear-test", BreakParam::Optional,
+     "a removal tested an ear (with result S: 1 an ear, -1 none)"},
+    {BreakKind::EarFlip, "ear-flip", BreakParam::None, "a removal flipped an ear off its vertex"},
+    {BreakKind::Merge, "merge", BreakParam::None,
+     "the removed vertex's last three triangles merged"},
+    {BreakKind::SegmentWalk, "segment-walk", BreakParam::None,
+     "the walk along a segment found the edges it crosses"},
+    {BreakKind::SloanFlip, "sloan-flip", BreakParam::None, "an edge crossing a segment flipped"},
+    {BreakKind::SloanWait, "sloan-wait", BreakParam::None,
+     "an edge crossing a segment waits (its quadrilateral is not convex)"},
+    {BreakKind::ConstrainMark, "constrain-mark", BreakParam::None,
+     "a segment is an edge now, marked constrained"},
+    {BreakKind::EditInCircle, "edit-incircle", BreakParam::Optional,
+     "an in-circle test of an edit's repair (with result S: 1, 0, -1)"},
+    {BreakKind::RepairFlip, "repair-flip", BreakParam::None, "an edit's repair flipped an edge"},
 };
 
 // Vertex whose insertion starts right after position p, which ends an insertion. kNone when
@@ -114,7 +131,8 @@ std::optional<Breakpoint> parseBreakpoint(std::string_view text, std::string* er
         return bad("\"" + trimmed(std::string_view(whole).substr(colon + 1)) +
                    "\" is not a whole number");
     }
-    if (bp.kind == BreakKind::InCircle) {
+    if (bp.kind == BreakKind::InCircle || bp.kind == BreakKind::EarTest ||
+        bp.kind == BreakKind::EditInCircle) {
         if (value < -1 || value > 1) return bad("an in-circle result is 1, 0 or -1");
     } else if (value < 0) {
         return bad(std::string("the number of \"") + kind->name + "\" cannot be negative");
@@ -141,11 +159,66 @@ std::string explain(const Breakpoint& bp) {
         case BreakKind::Insert: return "vertex " + k + " is about to be inserted";
         case BreakKind::Inserted: return bp.param ? "vertex " + k + " is in" : "a vertex is in";
         case BreakKind::Corner: return "corner " + k + " changes";
+        case BreakKind::Edit:
+            if (!bp.param) return "an edit ended";
+            return *bp.param == 0 ? "the run's end, before the edits" : "edit " + k + " ended";
+        case BreakKind::EarTest:
+            if (!bp.param) return "an ear test";
+            return *bp.param > 0 ? "an ear test that finds an ear" : "an ear test without an ear";
         default: return info(bp.kind).meaning;
     }
 }
 
+bool isEditBreak(BreakKind kind) { return kind >= BreakKind::Edit; }
+
+namespace {
+
+bool editEndHits(const Breakpoint& bp, const Editor& ed) {
+    const std::size_t p = ed.position();
+    if (bp.param) {
+        const auto n = static_cast<std::size_t>(*bp.param);
+        if (n == 0) return p == 0;
+        return n <= ed.edits().size() && p == ed.editEnd(n - 1);
+    }
+    for (std::size_t k = 0; k < ed.edits().size(); ++k) {
+        if (p == ed.editEnd(k)) return true;
+    }
+    return false;
+}
+
+bool signMatches(const Breakpoint& bp, int sign) { return !bp.param || sign == *bp.param; }
+
+}  // namespace
+
+bool hitsEditAt(const Breakpoint& bp, const Editor& ed) {
+    if (bp.kind == BreakKind::Edit) return editEndHits(bp, ed);
+    const EditStep s = ed.current();
+    if (s.removal) {
+        const RemoveOp& op = *s.removal;
+        switch (bp.kind) {
+            case BreakKind::EarTest:
+                return op.type == RemoveOpType::EarTest && signMatches(bp, op.sign);
+            case BreakKind::EarFlip: return op.type == RemoveOpType::Flip;
+            case BreakKind::Merge: return op.type == RemoveOpType::Merge;
+            default: return false;
+        }
+    }
+    if (!s.constraint) return false;
+    const ConstrainOp& op = *s.constraint;
+    switch (bp.kind) {
+        case BreakKind::SegmentWalk: return op.type == ConstrainOpType::Walk;
+        case BreakKind::SloanFlip: return op.type == ConstrainOpType::SloanFlip;
+        case BreakKind::SloanWait: return op.type == ConstrainOpType::SloanWait;
+        case BreakKind::ConstrainMark: return op.type == ConstrainOpType::Mark;
+        case BreakKind::EditInCircle:
+            return op.type == ConstrainOpType::InCircleTest && signMatches(bp, op.sign);
+        case BreakKind::RepairFlip: return op.type == ConstrainOpType::Flip;
+        default: return false;
+    }
+}
+
 bool hitsAt(const Breakpoint& bp, const Journal& journal, const Inserter& ins, std::size_t p) {
+    if (isEditBreak(bp.kind)) return false;  // hitsEditAt
     if (bp.kind == BreakKind::Op) return bp.param && static_cast<std::int64_t>(p) == *bp.param;
     if (p == 0 || p > journal.recorded()) return false;
     const Op& op = journal.ops()[p - 1];
@@ -188,6 +261,7 @@ bool hitsAt(const Breakpoint& bp, const Journal& journal, const Inserter& ins, s
         }
         case BreakKind::Finalize:
         case BreakKind::End: return op.type == OpType::Finalize;  // Finalize is always the last op
+        default: return false;                                    // the edits' (hitsEditAt)
     }
     return false;
 }

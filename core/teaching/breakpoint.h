@@ -23,7 +23,25 @@
 //   corner:C      the last operation changed V[C] or O[C]
 //   finalize      the virtual triangles were removed
 //   end           the run is finished
+//
+// Targets inside the lesson's edits after the run's end (core/engine/editor.h); they never hit
+// in the run itself (hitsEditAt reads the Editor's records):
+//
+//   edit:N        the end of edit N (1-based; a lesson's run_to goes there as to op:N); edit:0
+//                 the run's end, before the first edit;
+//                 edit alone: the end of any edit
+//   ear-test      a removal tested an ear; ear-test:1 an ear, ear-test:-1 no ear
+//   ear-flip      a removal flipped an ear off the vertex (its degree one less)
+//   merge         the vertex's last three triangles merged into one
+//   segment-walk  the walk along a segment collected the edges it crosses
+//   sloan-flip    a crossed edge flipped (Sloan)
+//   sloan-wait    a crossed edge whose quadrilateral is not convex waits
+//   constrain-mark  the segment is an edge now, marked constrained
+//   edit-incircle an in-circle test of the repair; edit-incircle:1 / :0 / :-1 with that result
+//   repair-flip   the repair flipped an edge (Lawson)
 #pragma once
+
+#include "core/engine/editor.h"
 
 #include "core/engine/inserter.h"
 
@@ -54,6 +72,16 @@ enum class BreakKind : std::uint8_t {
     Corner,
     Finalize,
     End,
+    Edit,
+    EarTest,
+    EarFlip,
+    Merge,
+    SegmentWalk,
+    SloanFlip,
+    SloanWait,
+    ConstrainMark,
+    EditInCircle,
+    RepairFlip,
 };
 
 // How a kind uses its parameter.
@@ -91,6 +119,11 @@ bool hitsAt(const Breakpoint& bp, const Journal& journal, const Inserter& ins,
 inline bool hits(const Breakpoint& bp, const Journal& journal, const Inserter& ins) {
     return hitsAt(bp, journal, ins, journal.position());
 }
+// Whether the kind is a target inside the edits (edit, ear-test, ... repair-flip).
+bool isEditBreak(BreakKind kind);
+// Whether the editor's position matches an edit target (false for the run's kinds).
+bool hitsEditAt(const Breakpoint& bp, const Editor& editor);
+
 // Whether an op of this type ends an insertion (Inserted, SkipDuplicate), the start triangle's
 // (Start) or the run (Finalize): the boundaries that whole-insertion steps stop at.
 bool endsInsertion(OpType type);

@@ -474,7 +474,36 @@ constexpr QuantityInfo kQuantities[] = {
      "from it) or empty (no triangle painted there: a walk from the last insertion)"},
     {"circumcenter", "the circumcenter of the selected corner's triangle (its Voronoi vertex)"},
     {"pixel", "the triangle id the ID buffer holds under the point about to be located"},
+    // Inside the lesson's edits only (core/teaching/lesson_edits.cpp): about the edit whose op
+    // was just done, or the first edit at the run's end.
+    {"removal_degree",
+     "triangles around the vertex being removed when its removal began (ghost "
+     "ones included): the size of its link"},
+    {"degree_left", "triangles around the vertex being removed now (ghost ones included)"},
+    {"ear_tests", "ear tests the whole removal makes"},
+    {"ear_flips", "ear flips the whole removal makes"},
+    {"ear_tip", "the link vertex at the tip of the ear just tested"},
+    {"is_ear", "whether the ear just tested is an ear (yes / no)"},
+    {"next_ear_tip", "the link vertex at the tip of the ear tested next"},
+    {"next_is_ear", "whether the ear tested next is an ear (yes / no)"},
+    {"crossed_edges", "edges the constrained segment crosses (the walk along it finds them)"},
+    {"sloan_flips", "flips of crossing edges the whole constraint makes (Sloan)"},
+    {"sloan_waits", "times a crossing edge waits (its quadrilateral is not convex)"},
+    {"next_crossing_edge", "the edge crossing the segment that is looked at next (flip or wait)"},
+    {"next_sloan_flips", "whether the next crossing edge looked at flips (yes) or waits (no)"},
+    {"repair_tests", "in-circle tests of the edit's repair (Lawson, constrained edges skipped)"},
+    {"repair_flips", "flips of the edit's repair"},
+    {"edit_ops", "operations of the edit"},
 };
+
+bool isEditQuantity(std::string_view name) {
+    bool after = false;
+    for (const QuantityInfo& q : kQuantities) {
+        if (std::string_view(q.name) == "removal_degree") after = true;
+        if (after && name == q.name) return true;
+    }
+    return false;
+}
 
 // The canvas label of a virtual vertex ("g" for the ghost, "s0".."s2" for the super-triangle's);
 // "" for an input point.
@@ -534,6 +563,10 @@ public:
         : m_ins(ins), m_j(j), m_sel(selected) {}
 
     Answer get(std::string_view name) {
+        if (isEditQuantity(name))
+            throw Unavailable{
+                "it is about an edit: ask it at a stop inside the lesson's edits "
+                "(run_to an edit target such as edit:1 or ear-test)"};
         const Mesh& m = m_ins.mesh();
         const InsertStats& st = m_ins.stats();
         if (name == "triangles") return integer(realTriangles());
@@ -991,6 +1024,16 @@ std::vector<std::string> quantityUnits(std::string_view name) {
         {"edges_around", {"edges", "edge", "neighbours", "neighbour", "neighbors", "neighbor"}},
         {"changed_corners", {"corners", "corner"}},
         {"min_angle", {"degrees", "degree", "deg", "\u00b0"}},
+        {"removal_degree", {"triangles", "triangle"}},
+        {"degree_left", {"triangles", "triangle"}},
+        {"ear_tests", {"ear tests", "ear test", "tests", "test"}},
+        {"ear_flips", {"flips", "flip", "ear flips", "ear flip"}},
+        {"crossed_edges", {"edges", "edge"}},
+        {"sloan_flips", {"flips", "flip"}},
+        {"sloan_waits", {"times", "time", "waits", "wait"}},
+        {"repair_tests", {"in-circle tests", "incircle tests", "tests", "test"}},
+        {"repair_flips", {"flips", "flip"}},
+        {"edit_ops", {"operations", "operation", "ops", "op"}},
     };
     for (const Units& u : kUnits) {
         if (name == u.name) return {u.words.begin(), u.words.end()};
@@ -1026,7 +1069,12 @@ std::vector<ExprBinding> selectionBinding(std::int32_t selected) {
 std::span<const QuantityInfo> lessonQuantities() { return kQuantities; }
 
 std::optional<Answer> computeAnswer(std::string_view specIn, Inserter& ins, Journal& journal,
-                                    std::int32_t selected, std::string* error) {
+                                    std::int32_t selected, std::string* error, Editor* edits) {
+    if (edits) {
+        std::optional<Answer> a = computeEditAnswer(specIn, *edits, error);
+        if (a && a->kind == Answer::Kind::Integer) a->units = quantityUnits(trimmed(specIn));
+        return a;
+    }
     const std::string spec = trimmed(specIn);
     auto fail = [&](const std::string& why) -> std::optional<Answer> {
         if (error) *error = why;
@@ -1575,7 +1623,7 @@ public:
                  "this is a track (kind = \"track\"): stops of other lessons, not a lesson");
         checkKeys(root,
                   {"title", "summary", "kind", "text", "objectives", "minutes", "points",
-                   "points_file", "triangles", "options", "stop"},
+                   "points_file", "triangles", "options", "edits", "stop"},
                   "at the top level");
         L.title = string(root, "title").value_or("");
         if (trimmed(L.title).empty()) fail(1, "the lesson needs a \"title\"");
@@ -1603,6 +1651,7 @@ public:
                      "[options] (boundary, locator, order) does not apply; leave it out");
             L.start = startMesh(*t, L.points);
         }
+        lessonEdits(root, L);
         if (const toml::node* st = root.get("stop")) {
             const toml::array* a = st->as_array();
             if (!a || !a->is_array_of_tables())
@@ -1623,6 +1672,34 @@ public:
     }
 
 private:
+    // edits = ["remove vertex 7", "constrain 2-9"]: after the run's end, exact boundary only.
+    void lessonEdits(const toml::table& root, Lesson& L) {
+        const toml::node* n = root.get("edits");
+        if (!n) return;
+        L.editsLine = lineOf(*n);
+        const toml::array* a = n->as_array();
+        if (!a || a->empty() || a->size() > 50)
+            fail(L.editsLine,
+                 "\"edits\" must be a list of 1 to 50 edits, e.g. "
+                 "[\"remove vertex 7\", \"constrain 2-9\"]");
+        if (L.start || L.options.boundary != Boundary::Exact)
+            fail(L.editsLine,
+                 "edits need the exact boundary and a run that inserts the points "
+                 "(no \"triangles\", no boundary = \"super\")");
+        for (const toml::node& e : *a) {
+            const auto parsed = e.is_string() ? parseEdit(e.as_string()->get()) : std::nullopt;
+            if (!parsed)
+                fail(lineOf(e),
+                     "an edit is \"remove vertex N\", \"constrain A-B\" or "
+                     "\"unconstrain A-B\"");
+            if (parsed->a >= static_cast<std::int32_t>(L.points.size()) ||
+                parsed->b >= static_cast<std::int32_t>(L.points.size()))
+                fail(lineOf(e), "edit \"" + describe(*parsed) + "\": the lesson has points 0 to " +
+                                    std::to_string(L.points.size() - 1));
+            L.edits.push_back(*parsed);
+        }
+    }
+
     // The line where a string's content starts: a """ string that opens with a line break
     // starts on the next line.
     int contentLine(const toml::table& t, const char* key) const {
@@ -1849,11 +1926,11 @@ namespace {
 
 // The stop's text, question and hint with the engine's values in place of {{...}}.
 void renderStopText(const Lesson& lesson, std::size_t k, Inserter& ins, Journal& journal,
-                    std::int32_t selected, StopState& state) {
+                    std::int32_t selected, StopState& state, Editor* edits) {
     const LessonStop& s = lesson.stops[k];
     const auto render = [&](const std::string& in, int line, std::string& out) {
         std::string why;
-        const auto r = renderEmbeddedValues(in, ins, journal, selected, &why);
+        const auto r = renderEmbeddedValues(in, ins, journal, selected, &why, edits);
         if (!r) throw LessonError(lesson.file, line, static_cast<int>(k) + 1, why);
         out = *r;
     };
@@ -1864,13 +1941,13 @@ void renderStopText(const Lesson& lesson, std::size_t k, Inserter& ins, Journal&
 
 // Every `expect` of the stop holds in the engine's state there.
 void checkExpectations(const Lesson& lesson, std::size_t k, Inserter& ins, Journal& journal,
-                       std::int32_t selected) {
+                       std::int32_t selected, Editor* edits) {
     for (const LessonExpect& e : lesson.stops[k].expect) {
         const auto fail = [&](const std::string& why) {
             throw LessonError(lesson.file, e.line, static_cast<int>(k) + 1, why);
         };
         std::string why;
-        const auto got = computeAnswer(e.spec, ins, journal, selected, &why);
+        const auto got = computeAnswer(e.spec, ins, journal, selected, &why, edits);
         if (!got) fail("expect " + e.spec + " = \"" + e.value + "\": " + why);
         if (!acceptsAnswer(*got, e.value)) {
             fail("the lesson expects " + e.spec + " = " + e.value + ", but the engine says " +
@@ -1986,62 +2063,166 @@ void addQuestionUnits(Answer& a, std::string_view question) {
         [](const std::string& x, const std::string& y) { return x.size() > y.size(); });
 }
 
-// What the player shows at stop k: position, caption, answer and the rendered text, after
-// checking the stop's figure and expectations.
-StopState stopStateAt(const Lesson& lesson, std::size_t k, Inserter& ins, Journal& journal,
-                      std::int32_t selected) {
-    const LessonStop& s = lesson.stops[k];
-    StopState state;
-    state.position = journal.position();
-    state.selected = selected;
+// The caption and banner of the op just done: the run's, or inside the edits the edit's.
+void captionAt(StopState& state, Inserter& ins, Journal& journal, const Editor* edits) {
+    if (edits) {
+        const EditStep e = edits->current();
+        if (!e.edit) return;
+        state.caption = describe(*e.edit) + ", " +
+                        (e.removal ? toString(e.removal->type) : toString(e.constraint->type));
+        state.banner = "[op " + std::to_string(state.position) + "] " + state.caption;
+        return;
+    }
     if (const Op* op = journal.current()) {
         state.caption = describe(*op, ins);
         // "[op N]": the N-th operation done, as the GUI's caption and timeline number it.
         state.banner = "[op " + std::to_string(journal.position()) + "] " + toString(op->type) +
                        ": " + state.caption;
     }
+}
+
+// What the player shows at stop k: position, caption, answer and the rendered text, after
+// checking the stop's figure and expectations. Inside the edits (`edits`), the position counts
+// the run's `runOps` and the edits' ops done, and the answers are the edits'.
+StopState stopStateAt(const Lesson& lesson, std::size_t k, Inserter& ins, Journal& journal,
+                      std::int32_t selected, Editor* edits, std::size_t runOps) {
+    const LessonStop& s = lesson.stops[k];
+    StopState state;
+    state.position = edits ? runOps + edits->position() : journal.position();
+    state.selected = selected;
+    captionAt(state, ins, journal, edits);
     if (!s.question.empty()) {
         std::string why;
-        state.answer = computeAnswer(s.answer, ins, journal, selected, &why);
+        state.answer = computeAnswer(s.answer, ins, journal, selected, &why, edits);
         if (!state.answer)
             stopError(lesson, k, s.answerLine, "the answer cannot be computed: " + why);
         if (state.answer->kind == Answer::Kind::Integer)
             addQuestionUnits(*state.answer, s.question);
     }
-    if (s.figure == "lifting-map" && !liftingMapAt(ins, journal.current())) {
+    if (s.figure == "lifting-map" && (edits || !liftingMapAt(ins, journal.current()))) {
         stopError(lesson, k, s.line,
                   "the lifting-map figure needs an in-circle test of a real triangle at "
                   "the stop (just done, or next on the flip stack)");
     }
-    renderStopText(lesson, k, ins, journal, selected, state);
-    checkExpectations(lesson, k, ins, journal, selected);
+    renderStopText(lesson, k, ins, journal, selected, state, edits);
+    checkExpectations(lesson, k, ins, journal, selected, edits);
     return state;
+}
+
+// The lesson's edits recorded after the run's end (the journal is run to it); the editor is
+// back at their start. A refused edit is the lesson's error.
+std::unique_ptr<Editor> startEdits(const Lesson& lesson, Journal& journal, Inserter& ins) {
+    runUntil(journal, ins, {}, std::numeric_limits<std::size_t>::max());
+    if (journal.budgetReached() || !ins.done())
+        throw LessonError(
+            lesson.file, lesson.editsLine, 0,
+            "the edits start at the run's end: " + historyFull(journal, 0, lesson.options.order));
+    if (ins.mesh().numTriangles() == 0)
+        throw LessonError(lesson.file, lesson.editsLine, 0,
+                          "the edits need triangles: the points are collinear or fewer than 3");
+    auto editor = std::make_unique<Editor>(ins.mesh());
+    for (const Edit& e : lesson.edits) {
+        std::string message;
+        if (!editor->add(e, message))
+            throw LessonError(lesson.file, lesson.editsLine, 0,
+                              "edit \"" + describe(e) + "\" is refused: " + message);
+    }
+    editor->seek(0);
+    return editor;
+}
+
+// run_to an edit target: the editor steps until it is hit `count` times (edit:0: the run's end).
+void runToEditTarget(const Lesson& lesson, std::size_t k, Editor& editor) {
+    const LessonStop& s = lesson.stops[k];
+    const Breakpoint& bp = *s.runTo;
+    if (bp.kind == BreakKind::Edit && bp.param && *bp.param == 0) {
+        if (editor.position() != 0)
+            stopError(lesson, k, s.line,
+                      "run_to edit:0 (the run's end) is before the previous stop");
+        return;
+    }
+    if (bp.kind == BreakKind::Edit && bp.param) {  // edit:N is a position, as op:N is
+        const auto n = static_cast<std::size_t>(*bp.param);
+        if (n > lesson.edits.size())
+            stopError(lesson, k, s.line,
+                      "run_to " + toString(bp) + ": the lesson has " +
+                          std::to_string(lesson.edits.size()) + " edits");
+        if (editor.editEnd(n - 1) < editor.position())
+            stopError(lesson, k, s.line, "run_to " + toString(bp) + " is before the previous stop");
+        editor.seek(editor.editEnd(n - 1));
+        return;
+    }
+    for (int i = 0; i < s.count; ++i) {
+        bool hit = false;
+        while (!hit && editor.forward()) hit = hitsEditAt(bp, editor);
+        if (!hit)
+            stopError(lesson, k, s.line,
+                      "run_to \"" + toString(bp) + "\" (" + explain(bp) +
+                          ") is not reached in the edits" +
+                          (s.count > 1 ? " " + std::to_string(s.count) + " times" : "") +
+                          ": they end after " + std::to_string(editor.total()) + " operations");
+    }
 }
 
 }  // namespace
 
-LessonPlan planLesson(const Lesson& lesson) {
-    auto ins = makeInserter(lesson);
-    Journal journal(*ins);
-    LessonPlan plan;
+namespace {
+
+// Where the planner is: in the run, or (once a stop runs to an edit target) in the edits.
+struct Planner {
+    const Lesson& lesson;
+    std::unique_ptr<Inserter> ins;
+    std::unique_ptr<Journal> journal;
+    std::unique_ptr<Editor> editor;
+    std::size_t runOps = 0;  // the run's operations: the edits' positions follow them
     std::int32_t selected = kNone;
-    for (std::size_t k = 0; k < lesson.stops.size(); ++k) {
+
+    StopState stop(std::size_t k) {
         const LessonStop& s = lesson.stops[k];
-        if (s.runTo && s.runTo->kind == BreakKind::Op) {
-            runToOp(lesson, k, journal, static_cast<std::size_t>(*s.runTo->param));
+        if (s.runTo && isEditBreak(s.runTo->kind)) {
+            if (lesson.edits.empty())
+                stopError(lesson, k, s.line,
+                          "run_to \"" + toString(*s.runTo) +
+                              "\" is a target inside the edits: the lesson has no edits = [...]");
+            if (!editor) {
+                editor = startEdits(lesson, *journal, *ins);
+                runOps = journal->position();
+            }
+            runToEditTarget(lesson, k, *editor);
+        } else if (editor && s.runTo) {
+            stopError(lesson, k, s.line,
+                      "after a stop inside the edits, run_to is an edit target (edit:N, "
+                      "ear-test, sloan-flip, ...): the run is over");
+        } else if (s.runTo && s.runTo->kind == BreakKind::Op) {
+            runToOp(lesson, k, *journal, static_cast<std::size_t>(*s.runTo->param));
         } else if (s.runTo) {
-            runToBreakpoint(lesson, k, journal, *ins);
+            runToBreakpoint(lesson, k, *journal, *ins);
         }
-        selected = selectAtStop(lesson, k, *ins, selected);
-        plan.stops.push_back(stopStateAt(lesson, k, *ins, journal, selected));
+        if (editor && !s.select.empty())
+            stopError(lesson, k, s.line, "select is not available inside the edits");
+        selected = editor ? kNone : selectAtStop(lesson, k, *ins, selected);
+        return stopStateAt(lesson, k, *ins, *journal, selected, editor.get(), runOps);
     }
+};
+
+}  // namespace
+
+LessonPlan planLesson(const Lesson& lesson) {
+    Planner p{lesson, makeInserter(lesson), nullptr, nullptr};
+    p.journal = std::make_unique<Journal>(*p.ins);
+    LessonPlan plan;
+    for (std::size_t k = 0; k < lesson.stops.size(); ++k) plan.stops.push_back(p.stop(k));
     // The objectives come first, above the first stop's text.
     if (!plan.stops.empty())
         plan.stops[0].text = objectivesText(lesson.objectives) + plan.stops[0].text;
-    runUntil(journal, *ins, {}, std::numeric_limits<std::size_t>::max());
+    Journal& journal = *p.journal;
+    runUntil(journal, *p.ins, {}, std::numeric_limits<std::size_t>::max());
     plan.totalOps = journal.position();
+    // The edits are checked even when no stop goes into them.
+    if (!p.editor && !lesson.edits.empty()) p.editor = startEdits(lesson, journal, *p.ins);
+    if (p.editor) plan.editOps = p.editor->total();
     // Past the history's budget the rest of the run is only counted.
-    for (; journal.budgetReached() && !ins->done(); ++plan.totalOps) ins->step(nullptr);
+    for (; journal.budgetReached() && !p.ins->done(); ++plan.totalOps) p.ins->step(nullptr);
     return plan;
 }
 

@@ -67,6 +67,7 @@
 // from kPanelNames).
 #pragma once
 
+#include "core/engine/editor.h"
 #include "core/engine/inserter.h"
 #include "core/teaching/breakpoint.h"
 #include "core/teaching/overlays.h"
@@ -164,6 +165,11 @@ struct Lesson {
     // checkMesh computes it) instead of the insertion of the points. nullopt: insertion.
     std::optional<Inserter::StartMesh> start;
     std::vector<LessonStop> stops;
+    // `edits = ["remove vertex 7", "constrain 2-9"]`: applied after the run's end, in order
+    // (exact boundary, insertion only). Stops inside them run_to the edit targets (edit:N,
+    // ear-test, sloan-flip, ...; breakpoint.h) and ask the edit quantities.
+    std::vector<Edit> edits;
+    int editsLine = 0;
 };
 
 // Hard limits for untrusted lesson files.
@@ -249,8 +255,15 @@ std::span<const QuantityInfo> lessonQuantities();
 // Computes `spec` (a quantity name or a corner expression with c = `selected`) for the state at
 // the journal's position. May step the journal to look ahead or back; it is back where it was on
 // return. On failure returns nullopt and says why in `error`.
+// With `edits` (a stop inside the lesson's edits), the answer is computeEditAnswer's.
 std::optional<Answer> computeAnswer(std::string_view spec, Inserter& ins, Journal& journal,
-                                    std::int32_t selected, std::string* error = nullptr);
+                                    std::int32_t selected, std::string* error = nullptr,
+                                    Editor* edits = nullptr);
+// At a stop inside the edits: an edit quantity (removal_degree, ear_flips, crossed_edges, ...;
+// about the edit whose op was just done, or the first edit at the run's end), "triangles", or a
+// corner expression on the edited mesh. May step the editor; it is back where it was on return.
+std::optional<Answer> computeEditAnswer(std::string_view spec, Editor& editor,
+                                        std::string* error = nullptr);
 
 // ---- Planning: what each stop shows, computed headlessly ---------------------------------------
 
@@ -267,6 +280,7 @@ struct StopState {
 struct LessonPlan {
     std::vector<StopState> stops;
     std::size_t totalOps = 0;  // operations of the whole run
+    std::size_t editOps = 0;  // operations of the lesson's edits (their positions follow the run's)
 };
 
 // A fresh engine with the lesson's points and options (the flip algorithm from its start
@@ -306,7 +320,8 @@ std::optional<std::vector<EmbeddedValue>> findEmbeddedValues(std::string_view te
 // `text` with every {{spec}} replaced by its value at the journal's position (as computeAnswer).
 std::optional<std::string> renderEmbeddedValues(std::string_view text, Inserter& ins,
                                                 Journal& journal, std::int32_t selected,
-                                                std::string* error = nullptr);
+                                                std::string* error = nullptr,
+                                                Editor* edits = nullptr);
 
 // The code points the GUI's fonts carry (ImGui glyph ranges: pairs, then 0). Anything else is
 // drawn as "?".

@@ -50,7 +50,7 @@ std::optional<std::vector<EmbeddedValue>> findEmbeddedValues(std::string_view te
 
 std::optional<std::string> renderEmbeddedValues(std::string_view text, Inserter& ins,
                                                 Journal& journal, std::int32_t selected,
-                                                std::string* error) {
+                                                std::string* error, Editor* edits) {
     const auto values = findEmbeddedValues(text, error);
     if (!values) return std::nullopt;
     std::string out;
@@ -58,7 +58,7 @@ std::optional<std::string> renderEmbeddedValues(std::string_view text, Inserter&
     for (const EmbeddedValue& v : *values) {
         out.append(text.substr(at, v.begin - at));
         std::string why;
-        const auto a = computeAnswer(v.spec, ins, journal, selected, &why);
+        const auto a = computeAnswer(v.spec, ins, journal, selected, &why, edits);
         if (!a) {
             if (error)
                 *error =

@@ -82,7 +82,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     require(plan.stops.size() == lesson.stops.size(), "the plan has one state per stop");
     std::size_t previous = 0;
     for (const StopState& s : plan.stops) {
-        require(s.position >= previous && s.position <= plan.totalOps,
+        require(s.position >= previous && s.position <= plan.totalOps + plan.editOps,
                 "stops are reached in order within the run");
         previous = s.position;
         if (s.answer) {

@@ -83,10 +83,6 @@ FlipEdges flipEdges(const std::vector<CellChange>& changes, std::uint32_t first,
     return f;
 }
 
-std::string edge(std::int32_t a, std::int32_t b) {
-    return std::to_string(a) + "-" + std::to_string(b);
-}
-
 // The ear of an ear test: its tip b, and the neighbours a and c of v on either side of it.
 struct Ear {
     std::int32_t a = kNone, b = kNone, c = kNone;
@@ -236,6 +232,9 @@ std::string editOpText(const Engine& e) {
     const EditStep s = e.currentEdit();
     if (!s.edit) return "";
     const Mesh& m = e.mesh();
+    // The ghost vertex reads "g", as the canvas labels it.
+    const auto id = [&](std::int32_t v) { return e.isVirtual(v) ? "g" : std::to_string(v); };
+    const auto edge = [&](std::int32_t a, std::int32_t b) { return id(a) + "-" + id(b); };
     std::string out = describe(*s.edit) + ", ";
     if (s.removal) {
         const RemoveOp& op = *s.removal;
@@ -243,8 +242,8 @@ std::string editOpText(const Engine& e) {
         switch (op.type) {
             case RemoveOpType::EarTest: {
                 const Ear ear = earOf(m, op);
-                out += "ear test at " + std::to_string(ear.b) + ": triangle " + edge(ear.a, ear.b) +
-                       "-" + std::to_string(ear.c) +
+                out += "ear test at " + id(ear.b) + ": triangle " + edge(ear.a, ear.b) + "-" +
+                       id(ear.c) +
                        (op.sign > 0 ? " has no other neighbour of " + v +
                                           " inside its circle: an ear, cut it next"
                         : op.sign == 0 ? " is flat: cut only when no other ear is left"
@@ -294,7 +293,7 @@ std::string editOpText(const Engine& e) {
             out += "the constrained edges are flagged again on their corners";
             break;
         case ConstrainOpType::InCircleTest:
-            out += "is " + std::to_string(m.V[op.b]) + " inside the circle across " +
+            out += "is " + id(m.V[op.b]) + " inside the circle across " +
                    edge(m.V[next(op.a)], m.V[prev(op.a)]) + "? " +
                    (op.sign > 0 ? "yes: flip" : "no: keep");
             break;

@@ -175,6 +175,8 @@ void SlideHeader(AppState& st) {
     if (const Op* op = e.current()) {
         ImGui::TextWrapped("%s %s: %s", opLabel(e.position()).c_str(), toString(op->type),
                            describe(*op, e.inserter()).c_str());
+    } else if (e.editing()) {
+        ImGui::TextWrapped("%s %s", opLabel(e.position()).c_str(), editOpText(e).c_str());
     } else {
         ImGui::TextWrapped("%zu points, before the first operation", e.points().size());
     }
