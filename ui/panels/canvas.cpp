@@ -1260,6 +1260,15 @@ std::vector<BusyPoint> busy(const Scene& s) {
     if (const std::int32_t v = s.e.currentVertex();
         v >= 0 && v < static_cast<std::int32_t>(pts.size()))
         out.push_back({toIm(s.view.toScreen(pts[v])), 10 * kBusyVertex});
+    const auto opEdge = [&](std::int32_t a, std::int32_t b) {
+        if (a >= 0 && b >= 0 && a < s.m.numVertices() && b < s.m.numVertices() &&
+            !s.ins.isVirtual(a) && !s.ins.isVirtual(b))
+            out.push_back({s.screen(a), kBusyOpEdge, s.screen(b), true});
+    };
+    if (const Op* op = s.e.current();
+        op && op->type == OpType::InCircleTest && op->a >= 0 && op->a < s.m.numCorners())
+        opEdge(s.m.V[next(op->a)], s.m.V[prev(op->a)]);
+    for (const Engine::QueuedTest& q : s.e.pendingTests()) opEdge(q.edge.a, q.edge.b);
     if (pts.size() > kFewPoints) return out;
     for (std::int32_t c = 0; c < s.m.numCorners(); ++c) {
         const std::int32_t t = c / 3, o = s.m.O[c];

@@ -94,6 +94,8 @@ struct BusyPoint {
 // The weights the canvas gives: a vertex and its label must stay visible; other labels and the
 // edges count for little.
 inline constexpr float kBusyVertex = 100, kBusyLabel = 3, kBusyEdge = 2;
+// The edges the step is about (under test, waiting on the flip stack): a question may name them.
+inline constexpr float kBusyOpEdge = 40;
 
 // Where a legend box of size `size` goes on the canvas [lo, hi]: the place that covers the least
 // weight of `busy` (a box or an edge it meets counts whole), 6 pixels in from the edge. The four

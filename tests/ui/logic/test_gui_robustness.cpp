@@ -85,13 +85,15 @@ std::string checkInvariants(const ui::AppState& st) {
         return "the inserter runs other points than the engine shows";
     dlab::ValidateOptions vo;
     vo.firstVirtual = ins.firstVirtual();
-    vo.delaunay = betweenInsertions(ins);
+    // Past the run, edits show the closed mesh: constrained edges need not be Delaunay, and an
+    // edit in progress is not yet (the editor's own tests check each edit's end).
+    vo.delaunay = betweenInsertions(ins) && !e.editing();
     const auto v = dlab::validate(m, vo);
     if (!v.empty()) {
         return std::string("validate(") + (vo.delaunay ? "with" : "without") + " Delaunay) at op " +
                std::to_string(e.position()) + ": " + v[0].message;
     }
-    if (ins.done() && e.options().boundary == dlab::Boundary::Exact) {
+    if (!e.showsVirtual() && e.options().boundary == dlab::Boundary::Exact) {
         if (allCollinearExact(e.points())) {
             if (m.numTriangles() != 0)
                 return "all points collinear, yet " + std::to_string(m.numTriangles()) +
@@ -776,6 +778,12 @@ private:
             fresh.seek(p);
         } else {
             made = fresh.resetAt(e.points(), e.options(), p, error);
+            for (const std::string& text : ui::editTexts(e)) {  // and the edits after the run
+                const auto edit = dlab::parseEdit(text);
+                if (made && (!edit || !fresh.edit(*edit, error)))
+                    return "a fresh replay refused " + text + ": " + error;
+            }
+            fresh.seek(p);
         }
         if (!made) return "a fresh replay was refused: " + error;
         if (!(copyOf(fresh.mesh()) == at))
