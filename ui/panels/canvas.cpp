@@ -952,20 +952,7 @@ Vec2 roundedClick(const AppState& st, Vec2 p) {
 }
 
 std::int32_t pendingPointAt(const AppState& st, ImVec2 mouse) {
-    const auto& states = st.engine.pointStates();
-    const auto& pts = st.engine.points();
-    std::int32_t best = kNone;
-    float bestD = 10.0f * 10.0f;
-    for (std::size_t i = 0; i < pts.size(); ++i) {
-        if (states[i] != Engine::PointState::Pending) continue;
-        const ImVec2 q = toIm(st.view.toScreen(pts[i]));
-        const float d = (q.x - mouse.x) * (q.x - mouse.x) + (q.y - mouse.y) * (q.y - mouse.y);
-        if (d < bestD) {
-            bestD = d;
-            best = static_cast<std::int32_t>(i);
-        }
-    }
-    return best;
+    return pointAt(st, mouse, Engine::PointState::Pending, 10.0f);
 }
 
 void handleInput(AppState& st, CanvasCache& cache, bool hovered) {

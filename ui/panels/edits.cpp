@@ -337,13 +337,13 @@ void RemoveSelectedVertex(AppState& st) {
     ApplyEdit(st, makeEdit(EditKind::RemoveVertex, m.V[c]));
 }
 
-std::int32_t vertexUnder(const AppState& st, ImVec2 mouse) {
+std::int32_t pointAt(const AppState& st, ImVec2 mouse, Engine::PointState state, float radius) {
     const auto& states = st.engine.pointStates();
     const auto& pts = st.engine.shownPoints();
     std::int32_t best = kNone;
-    float bestD = 12.0f * 12.0f;
+    float bestD = radius * radius;
     for (std::size_t i = 0; i < pts.size(); ++i) {
-        if (states[i] != Engine::PointState::Inserted) continue;
+        if (states[i] != state) continue;
         const ImVec2 q = toIm(st.view.toScreen(pts[i]));
         const float d = (q.x - mouse.x) * (q.x - mouse.x) + (q.y - mouse.y) * (q.y - mouse.y);
         if (d < bestD) {
@@ -362,7 +362,7 @@ bool EditClick(AppState& st, ImVec2 mouse, Vec2 world) {
         st.toolFirstVertex = kNone;
         return true;
     }
-    const std::int32_t v = vertexUnder(st, mouse);
+    const std::int32_t v = pointAt(st, mouse, Engine::PointState::Inserted, 12.0f);
     if (v == kNone) {
         st.log(Message::Level::Info, std::string(kCanvasToolNames[static_cast<int>(st.tool)]) +
                                          ": click on a vertex of the mesh");

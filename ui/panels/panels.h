@@ -198,6 +198,9 @@ struct SideTab {
 // the caption ("" when none); an edit made, logged and played; Delete on the selected corner's
 // vertex; a click with an edit tool (false: the tool adds points, the click is not one for it).
 extern const char* const kCanvasToolNames[5];
+// The point in this state nearest to the mouse, within `radius` pixels (kNone when none).
+std::int32_t pointAt(const AppState& state, ImVec2 mouse, Engine::PointState pointState,
+                     float radius);
 void DrawEditOverlay(AppState& state, ImDrawList* dl);
 std::string editOpText(const Engine& engine);
 void ApplyEdit(AppState& state, Edit edit);
