@@ -317,7 +317,8 @@ bool Engine::redoEdit(std::string& message) {
 }
 
 bool Engine::hits(const Breakpoint& bp) const {
-    return m_journal && !editing() && dlab::hits(bp, *m_journal, *m_ins);
+    if (editing()) return isEditBreak(bp.kind) && hitsEditAt(bp, *m_editor);
+    return m_journal && dlab::hits(bp, *m_journal, *m_ins);
 }
 
 void Engine::toStart() { seek(0); }

@@ -379,3 +379,25 @@ TEST(EditsInTheGui, TheMoveToolTakesAVertexThenItsNewPlaceAndTheCanvasDrawsItThe
     const std::string text = ui::sessionText(st);
     EXPECT_NE(text.find("\"move vertex " + std::to_string(v) + " to "), std::string::npos);
 }
+
+// A breakpoint on an edit's op stops the run there, as the run's breakpoints do.
+TEST(EditsInTheGui, ABreakpointOnAnEarFlipStopsARemovalThere) {
+    UiHarness h;
+    auto& st = h.state();
+    auto& e = st.engine;
+    toRunEnd(h);
+    const auto bp = dlab::parseBreakpoint("ear-flip");
+    ASSERT_TRUE(bp);
+    st.run.breakpoints.push_back({*bp, true});
+    const std::int32_t v = interiorVertex(e);
+    ui::ApplyEdit(st, dlab::makeEdit(dlab::EditKind::RemoveVertex, v));
+    st.run.opsPerSecond = ui::RunControl::kFullSpeed - 1;  // fast, but not End: breakpoints hold
+    for (int i = 0; i < 200 && st.run.running; ++i) h.frames(1);
+    EXPECT_FALSE(st.run.running);
+    ASSERT_TRUE(e.editing());
+    const dlab::EditStep s = e.currentEdit();
+    ASSERT_NE(s.removal, nullptr) << st.run.stopReason;
+    EXPECT_EQ(s.removal->type, dlab::RemoveOpType::Flip);
+    EXPECT_NE(st.run.stopReason.find("breakpoint"), std::string::npos) << st.run.stopReason;
+    EXPECT_LT(e.position(), e.recorded()) << "stopped inside the removal";
+}
