@@ -63,7 +63,8 @@ constexpr std::array<Look, kMarkCount> kLooks{{
     {Mark::CrossingEdge, Shape::Line, IM_COL32(230, 90, 20, 255),
      "edge crossing the segment: flipped out"},
     {Mark::EarTriangle, Shape::Fill, IM_COL32(205, 235, 200, 255), "ear tested (removal)"},
-    {Mark::RemovedPoint, Shape::Ring, IM_COL32(160, 160, 170, 255), "vertex removed by an edit"},
+    {Mark::RemovedPoint, Shape::Ring, IM_COL32(160, 160, 170, 255),
+     "vertex an edit removes, or removed"},
 }};
 
 constexpr bool inMarkOrder() {
