@@ -116,41 +116,31 @@ Editor::Editor(const Mesh& finished)
       m_remover(m_mesh, m_firstVirtual, Boundary::Exact),
       m_constrainer(m_mesh, m_firstVirtual) {}
 
-std::size_t Editor::total() const {
-    std::size_t n = 0;
-    for (const Edit& e : m_edits) n += e.numOps();
-    return n;
-}
+std::size_t Editor::total() const { return m_ends.empty() ? 0 : m_ends.back(); }
 
 std::size_t Editor::editStart(std::size_t k) const {
-    std::size_t n = 0;
-    for (std::size_t i = 0; i < k && i < m_edits.size(); ++i) n += m_edits[i].numOps();
-    return n;
+    return k == 0 ? 0 : k <= m_ends.size() ? m_ends[k - 1] : total();
 }
 
 std::size_t Editor::editsDone() const {
-    std::size_t k = 0, end = 0;
-    while (k < m_edits.size() && (end += m_edits[k].numOps()) <= m_pos) ++k;
-    return k;
+    return static_cast<std::size_t>(std::upper_bound(m_ends.begin(), m_ends.end(), m_pos) -
+                                    m_ends.begin());
 }
 
 EditStep Editor::stepAt(std::size_t position) const {
     EditStep s;
-    std::size_t start = 0;
-    for (std::size_t k = 0; k < m_edits.size(); ++k) {
-        const Edit& e = m_edits[k];
-        if (position < start + e.numOps()) {
-            const std::size_t i = position - start;
-            s.edit = &e;
-            s.index = k;
-            if (i < e.removal.ops.size())
-                s.removal = &e.removal.ops[i];
-            else
-                s.constraint = &e.constraint.ops[i - e.removal.ops.size()];
-            return s;
-        }
-        start += e.numOps();
-    }
+    // The edit that holds the op: the first whose end is past it.
+    const auto k = static_cast<std::size_t>(
+        std::upper_bound(m_ends.begin(), m_ends.end(), position) - m_ends.begin());
+    if (k >= m_edits.size()) return s;
+    const Edit& e = m_edits[k];
+    const std::size_t i = position - editStart(k);
+    s.edit = &e;
+    s.index = k;
+    if (i < e.removal.ops.size())
+        s.removal = &e.removal.ops[i];
+    else
+        s.constraint = &e.constraint.ops[i - e.removal.ops.size()];
     return s;
 }
 
@@ -317,6 +307,7 @@ bool Editor::add(Edit edit, std::string& message) {
     m_remover.meshChanged();  // stepping changed the mesh behind both editors' indexes
     m_constrainer.refresh();
     if (!record(edit, message)) return false;
+    m_ends.push_back(total() + edit.numOps());
     m_edits.push_back(std::move(edit));
     unrecord(m_edits.back());  // back to the start of the edit: its ops are stepped from there
     return true;
@@ -328,6 +319,7 @@ std::optional<Edit> Editor::takeLast() {
     if (m_pos > start) seek(start);
     Edit last = std::move(m_edits.back());
     m_edits.pop_back();
+    m_ends.pop_back();
     last.removal = {};
     last.constraint = {};
     return last;

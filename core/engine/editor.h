@@ -88,7 +88,7 @@ public:
     std::size_t total() const;  // ops of every recorded edit
     // The first op of edit k, and the position after its last.
     std::size_t editStart(std::size_t k) const;
-    std::size_t editEnd(std::size_t k) const { return editStart(k) + m_edits[k].numOps(); }
+    std::size_t editEnd(std::size_t k) const { return m_ends[k]; }
     // The edits whose every op is done (position() at or past their end).
     std::size_t editsDone() const;
 
@@ -118,6 +118,7 @@ private:
     Remover m_remover;
     Constrainer m_constrainer;
     std::vector<Edit> m_edits;
+    std::vector<std::size_t> m_ends;  // the position after each edit's last op, increasing
     std::size_t m_pos = 0;
 };
 
