@@ -399,7 +399,9 @@ TEST(Breakpoint, EditTargetsHitTheEditorsOpsAndNeverTheRun) {
         walks += hitsEditAt(bp("segment-walk"), ed);
         marks += hitsEditAt(bp("constrain-mark"), ed);
         sloan += hitsEditAt(bp("sloan-flip"), ed) + hitsEditAt(bp("sloan-wait"), ed);
-        if (ed.position() == ed.editEnd(0)) EXPECT_TRUE(hitsEditAt(bp("edit:1"), ed));
+        if (ed.position() == ed.editEnd(0)) {
+            EXPECT_TRUE(hitsEditAt(bp("edit:1"), ed));
+        }
         EXPECT_EQ(hitsEditAt(bp("edit:2"), ed), ed.position() == ed.total());
     }
     const auto count = [](const auto& ops, auto type) {

@@ -276,8 +276,10 @@ void Constrainer::mark(std::int32_t a, std::int32_t b) {
     endOp();
 }
 
-// Lawson's flips from the new edges: an unconstrained edge between two finite triangles whose
-// opposite vertex is strictly inside the circle is flipped, its quadrilateral's sides rechecked.
+// Lawson's flips from the new edges: an unconstrained edge whose opposite vertex is strictly inside
+// the circle is flipped, its quadrilateral's sides rechecked. A ghost triangle's circle is the
+// half-plane beyond its hull edge, so a vertex put in outside the hull takes in the hull vertices
+// it makes reflex.
 void Constrainer::restore(std::vector<Edge> stack) {
     const auto& G = m_mesh.G;
     while (!stack.empty()) {
@@ -288,8 +290,10 @@ void Constrainer::restore(std::vector<Edge> stack) {
         const std::int32_t d = m_mesh.O[c];
         const std::int32_t P = m_mesh.V[c], A = m_mesh.V[next(c)], B = m_mesh.V[prev(c)];
         const std::int32_t D = m_mesh.V[d];
-        if (isVirtual(P) || isVirtual(A) || isVirtual(B) || isVirtual(D)) continue;
-        const int inside = incircle(G[P], G[A], G[B], G[D]);
+        if (isVirtual(P) || isVirtual(D)) continue;  // a hull edge: the outside never flips in
+        // Between two ghost triangles (A or B the ghost vertex): D beyond P's hull edge, the
+        // hull turns the wrong way at the edge's other end and the flip takes it in.
+        const int inside = ghostInCircle(G, m_firstVirtual, P, A, B, D);
         beginOp(ConstrainOpType::InCircleTest, c, d, inside);
         endOp();
         if (inside <= 0) continue;
@@ -397,17 +401,25 @@ void Constrainer::beginRecording(ConstraintRecord* record, std::int32_t a, std::
 // [SECTION] A vertex put into the mesh
 // ============================================================================================
 
-// The finite triangle that holds p strictly inside (edge kNone) or on the open edge opposite
-// corner `edge` with a finite triangle across; false (and why) when p is on a vertex, on the
-// hull's boundary or outside it.
+// The triangle to split for p: a finite one that holds p strictly inside (edge kNone) or on the
+// open edge opposite corner `edge` (a hull edge has a ghost triangle across); outside the hull,
+// a ghost triangle whose hull edge has p strictly beyond it. False (and why) when p is on a
+// vertex or the mesh has no triangle.
 bool Constrainer::locate(Vec2 p, std::int32_t& tri, std::int32_t& edge,
                          PlaceResult& refused) const {
     const auto& G = m_mesh.G;
     const auto& V = m_mesh.V;
-    refused = PlaceResult::OutsideHull;
+    refused = PlaceResult::NoTriangle;
+    std::int32_t beyond = kNone;  // a ghost triangle that sees p
     for (std::int32_t t = 0; t < m_mesh.numTriangles(); ++t) {
         const std::int32_t a = V[3 * t], b = V[3 * t + 1], c = V[3 * t + 2];
-        if (isVirtual(a) || isVirtual(b) || isVirtual(c)) continue;
+        if (isVirtual(a) || isVirtual(b) || isVirtual(c)) {
+            // (g, y, x) in some rotation: the hull edge x->y, the mesh on its left.
+            const std::int32_t g = 3 * t + (isVirtual(a) ? 0 : isVirtual(b) ? 1 : 2);
+            const std::int32_t x = V[prev(g)], y = V[next(g)];
+            if (beyond == kNone && orient2d(G[x], G[y], p) < 0) beyond = t;
+            continue;
+        }
         const int s[3] = {orient2d(G[b], G[c], p), orient2d(G[c], G[a], p),
                           orient2d(G[a], G[b], p)};
         if (s[0] < 0 || s[1] < 0 || s[2] < 0) continue;
@@ -421,11 +433,12 @@ bool Constrainer::locate(Vec2 p, std::int32_t& tri, std::int32_t& edge,
         for (int k = 0; k < 3; ++k) {
             if (s[k] == 0) edge = 3 * t + k;
         }
-        if (edge == kNone) return true;
-        const std::int32_t o = m_mesh.O[edge];
-        return o != kNone && !isVirtual(V[o]);  // on a hull edge: the boundary
+        return true;
     }
-    return false;
+    if (beyond == kNone) return false;
+    tri = beyond;
+    edge = kNone;
+    return true;
 }
 
 std::int32_t Constrainer::appendTriangles(int count) {
@@ -550,6 +563,41 @@ PlaceResult Constrainer::insertVertex(std::int32_t v, ConstraintRecord* record) 
     return PlaceResult::Placed;
 }
 
+bool Constrainer::inKernel(std::int32_t v, Vec2 to) {
+    if (m_stale) rebuildIndex();
+    if (v < 0 || v >= static_cast<std::int32_t>(m_cornerOf.size()) || isVirtual(v) ||
+        m_cornerOf[v] == kNone)
+        return false;
+    const auto& G = m_mesh.G;
+    const std::int32_t start = m_cornerOf[v];
+    std::int32_t c = start;
+    do {
+        const std::int32_t a = m_mesh.V[next(c)], b = m_mesh.V[prev(c)];
+        if (isVirtual(a) || isVirtual(b) || orient2d(to, G[a], G[b]) <= 0) return false;
+        c = next(m_mesh.O[next(c)]);
+    } while (c != start);
+    return true;
+}
+
+void Constrainer::follow(std::int32_t v, ConstraintRecord* record) {
+    if (m_stale) rebuildIndex();
+    struct Recording {  // the record is this call's only, even when it throws
+        Constrainer& self;
+        ~Recording() { self.m_record = nullptr; }
+    } recording{*this};
+    beginRecording(record, v, kNone);
+    std::vector<Edge> star;  // the spokes and the link
+    const std::int32_t start = m_cornerOf[v];
+    std::int32_t c = start;
+    do {
+        const std::int32_t a = m_mesh.V[next(c)], b = m_mesh.V[prev(c)];
+        star.push_back({a, b});
+        star.push_back({v, a});
+        c = next(m_mesh.O[next(c)]);
+    } while (c != start);
+    restore(std::move(star));
+}
+
 VertexRemoval Constrainer::removeVertex(Remover& remover, std::int32_t v, RemovalRecord* removal,
                                         ConstraintRecord* record) {
     VertexRemoval out;
@@ -608,8 +656,8 @@ VertexRemoval Constrainer::removeVertex(Remover& remover, std::int32_t v, Remova
             if (isVirtual(u)) continue;
             const std::int32_t start = m_cornerOf[u];
             std::int32_t c = start;
-            do {
-                around.push_back({u, m_mesh.V[next(c)]});
+            do {  // not the edges to the ghost vertex: the Remover left the hull convex
+                if (!isVirtual(m_mesh.V[next(c)])) around.push_back({u, m_mesh.V[next(c)]});
                 c = next(m_mesh.O[next(c)]);
             } while (c != start);
         }

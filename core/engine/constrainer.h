@@ -84,9 +84,9 @@ struct VertexRemoval {
 
 // Where insertVertex put the vertex, or why not.
 enum class PlaceResult : std::uint8_t {
-    Placed,      // inside a triangle, or on an edge inside the hull
-    OnVertex,    // another vertex is there (nothing changed)
-    OutsideHull  // not strictly inside the hull of the others (nothing changed)
+    Placed,     // inside a triangle, on an edge, or outside the hull (which grows to take it in)
+    OnVertex,   // another vertex is there (nothing changed)
+    NoTriangle  // the mesh has no triangle: the points are collinear (nothing changed)
 };
 
 struct ConstrainOutcome {
@@ -115,9 +115,17 @@ public:
     // Puts vertex v (no triangle uses it; its point is G[v]) into the mesh: the triangle that
     // holds it split in three, or the edge it lies on in four (a constrained edge's halves keep
     // its constraints), then Lawson's flips that skip constrained edges; recorded (Locate,
-    // Split or SplitEdge, the tests and flips). Only strictly inside the hull: on its boundary
-    // or outside, or on another vertex, nothing changes.
+    // Split or SplitEdge, the tests and flips). Outside the hull, the ghost triangle of a hull
+    // edge that sees it is split, and the flips take in the hull vertices it makes reflex. On
+    // another vertex nothing changes.
     PlaceResult insertVertex(std::int32_t v, ConstraintRecord* record = nullptr);
+    // Would vertex v at `to` keep every triangle of its star counter-clockwise (strictly)? False
+    // for a hull vertex (its star is open to the outside) and for a vertex in no triangle.
+    bool inKernel(std::int32_t v, Vec2 to);
+    // Vertex v was moved (G[v] changed by the caller) inside its star's kernel: the triangles are
+    // all still valid, and Lawson's flips from every edge of its star (the spokes and the link)
+    // make the mesh constrained Delaunay again; recorded (the tests and flips).
+    void follow(std::int32_t v, ConstraintRecord* record = nullptr);
     // The mesh was changed by another editor (the Remover's undo): the index is rebuilt.
     void refresh() { rebuildIndex(); }
     // Reverts the record's ops from the last back to op `from` (V, O and the flags exactly as

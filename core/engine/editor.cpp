@@ -225,38 +225,66 @@ void Editor::unrecord(const Edit& e) {
     for (std::size_t i = e.removal.ops.size(); i-- > 0;) m_remover.replay(e.removal, i, false);
 }
 
-// A move: the removal, the vertex's new place (a MoveVertex op), then its insertion there.
+// The op that puts the moved vertex at its new place (the editor changes G; sign 1: inside its
+// star's kernel, the triangles around it follow).
+void Editor::pushMoveOp(Edit& edit, bool inKernel) {
+    ConstrainOp op;
+    op.type = ConstrainOpType::MoveVertex;
+    op.a = edit.a;
+    op.sign = inKernel ? 1 : 0;
+    op.trianglesBefore = op.trianglesAfter = m_mesh.numTriangles();
+    op.firstChange = static_cast<std::uint32_t>(edit.constraint.changes.size());
+    op.firstFlag = static_cast<std::uint32_t>(edit.constraint.flagChanges.size());
+    edit.constraint.ops.push_back(op);
+    m_mesh.G[edit.a] = edit.to;
+}
+
+// A move. Inside the kernel of its star, the vertex takes its new place (a MoveVertex op) and
+// Lawson's flips from its star's edges follow; beyond it, the removal, the new place, then the
+// insertion there (the hull grows when it is outside).
 bool Editor::recordMove(Edit& edit, std::string& message) {
     const std::int32_t v = edit.a;
     if (!std::isfinite(edit.to.x) || !std::isfinite(edit.to.y)) {
         message = "a vertex moves to a point with finite coordinates";
         return false;
     }
+    edit.from = m_mesh.G[v];
+    if (edit.to == edit.from) {
+        message = vertexName(v) + " is already there";
+        return false;
+    }
+    for (const auto& e : constrainedEdges()) {  // a constraint ends at it: its segment would bend
+        if (e.first == v || e.second == v) {
+            message = vertexName(v) + " is an end of the constrained edge " + edgeName(e) +
+                      ": take that constraint away first";
+            return false;
+        }
+    }
+    if (m_constrainer.inKernel(v, edit.to)) {
+        pushMoveOp(edit, true);
+        m_constrainer.follow(v, &edit.constraint);
+        m_remover.meshChanged();
+        message = "moved " + vertexName(v) + " inside its star's kernel: " +
+                  std::to_string(edit.numOps()) + " operations";
+        return true;
+    }
     const VertexRemoval r = removeRecorded(edit, message);
     if (r.refused || r.removed == RemoveResult::NotInMesh) return false;
-    edit.from = m_mesh.G[v];
-    ConstrainOp op;
-    op.type = ConstrainOpType::MoveVertex;
-    op.a = v;
-    op.trianglesBefore = op.trianglesAfter = m_mesh.numTriangles();
-    op.firstChange = static_cast<std::uint32_t>(edit.constraint.changes.size());
-    op.firstFlag = static_cast<std::uint32_t>(edit.constraint.flagChanges.size());
-    edit.constraint.ops.push_back(op);
-    m_mesh.G[v] = edit.to;
+    pushMoveOp(edit, false);
     const PlaceResult placed = r.removed == RemoveResult::Removed
                                    ? m_constrainer.insertVertex(v, &edit.constraint)
-                                   : PlaceResult::OutsideHull;
+                                   : PlaceResult::NoTriangle;
     if (placed == PlaceResult::Placed) {
-        message = "moved " + vertexName(v) + ": " + std::to_string(edit.numOps()) + " operations";
+        message = "moved " + vertexName(v) + " (taken out and put in again): " +
+                  std::to_string(edit.numOps()) + " operations";
         return true;
     }
     unrecord(edit);
     m_remover.meshChanged();
     m_constrainer.refresh();
-    message =
-        placed == PlaceResult::OnVertex
-            ? vertexName(v) + " cannot move onto another vertex"
-            : vertexName(v) + " moves only to a point strictly inside the hull of the other points";
+    message = placed == PlaceResult::OnVertex
+                  ? vertexName(v) + " cannot move onto another vertex"
+                  : vertexName(v) + " cannot move: the other points are collinear (no triangle)";
     return false;
 }
 

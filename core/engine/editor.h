@@ -24,7 +24,8 @@ enum class EditKind : std::uint8_t {
     RemoveVertex,  // a: the vertex
     Constrain,     // a-b: the segment made a constrained edge (or a chain of them)
     Unconstrain,   // a-b: a constrained segment taken away
-    MoveVertex,    // a to `to`: taken out, then put in at its new place (inside the hull)
+    MoveVertex,    // a to `to`: inside its star's kernel the mesh follows by flips; beyond it,
+                   // taken out and put in again at its new place (the hull grows to take it in)
 };
 const char* toString(EditKind k);
 
@@ -111,6 +112,7 @@ private:
     bool record(Edit& edit, std::string& message);
     VertexRemoval removeRecorded(Edit& edit, std::string& message);
     bool recordMove(Edit& edit, std::string& message);
+    void pushMoveOp(Edit& edit, bool inKernel);
     void unrecord(const Edit& edit);
 
     Mesh m_mesh;

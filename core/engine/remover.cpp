@@ -41,6 +41,20 @@ bool onOpenSegment(Vec2 a, Vec2 b, Vec2 p) {
 
 }  // namespace
 
+int ghostInCircle(const std::vector<Vec2>& G, std::int32_t ghost, std::int32_t a, std::int32_t b,
+                  std::int32_t c, std::int32_t w) {
+    const auto isGhost = [ghost](std::int32_t u) { return u >= ghost; };
+    if (isGhost(w)) return -1;
+    if (!isGhost(a) && !isGhost(b) && !isGhost(c)) return incircle(G[a], G[b], G[c], G[w]);
+    // The ghost triangle's hull edge x->y, the mesh on its right: its "circle" is the open
+    // half-plane left of x->y (beyond the hull), plus the open edge.
+    const std::int32_t x = isGhost(a) ? b : isGhost(b) ? c : a;
+    const std::int32_t y = isGhost(a) ? c : isGhost(b) ? a : b;
+    const int s = orient2d(G[x], G[y], G[w]);
+    if (s != 0) return s;
+    return onOpenSegment(G[x], G[y], G[w]) ? 1 : -1;
+}
+
 // ============================================================================================
 // [SECTION] Construction and the vertex index
 // ============================================================================================
@@ -199,14 +213,11 @@ bool Remover::leavesNoTriangle(std::int32_t) const {
 // vertex, the ghost triangle (x, y, g)'s circle is the open half-plane left of x->y plus the open
 // segment x-y; the ghost vertex itself is inside no circle.
 int Remover::inCircleOf(std::int32_t a, std::int32_t b, std::int32_t c, std::int32_t w) const {
-    const auto& G = m_mesh.G;
-    if (isGhost(w)) return -1;
-    if (!isGhost(a) && !isGhost(b) && !isGhost(c)) return incircle(G[a], G[b], G[c], G[w]);
-    const std::int32_t x = isGhost(a) ? b : isGhost(b) ? c : a;
-    const std::int32_t y = isGhost(a) ? c : isGhost(b) ? a : b;
-    const int s = orient2d(G[x], G[y], G[w]);
-    if (s != 0) return s;
-    return onOpenSegment(G[x], G[y], G[w]) ? 1 : -1;
+    if (m_boundary != Boundary::Exact) {
+        const auto& G = m_mesh.G;
+        return incircle(G[a], G[b], G[c], G[w]);
+    }
+    return ghostInCircle(m_mesh.G, m_firstVirtual, a, b, c, w);
 }
 
 // The ear with tip link[i]: +1 it can be cut, 0 only leaving a flat triangle (v, a, c) at v,
