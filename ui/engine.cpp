@@ -289,6 +289,22 @@ bool Engine::edit(Edit edit, std::string& message) {
     return ok;
 }
 
+bool Engine::dragVertex(std::int32_t v, Vec2 to, bool continuing, std::string& message) {
+    std::optional<Edit> before;
+    if (continuing && m_editor && !m_editor->edits().empty()) {
+        const Edit& last = m_editor->edits().back();
+        if (last.kind == EditKind::MoveVertex && last.a == v) before = m_editor->takeLast();
+    }
+    const bool ok = edit(makeMove(v, to), message);
+    if (!ok && before) {  // the drag's last place stays
+        std::string again;
+        edit(std::move(*before), again);
+    }
+    if (m_editor) m_editor->seek(m_editor->total());
+    bump();
+    return ok;
+}
+
 bool Engine::undoEdit(std::string& message) {
     std::optional<Edit> last = m_editor ? m_editor->takeLast() : std::nullopt;
     if (!last) {

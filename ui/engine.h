@@ -128,6 +128,10 @@ public:
     // `message` says what happened either way.
     bool edit(Edit edit, std::string& message);
     const Editor* editor() const { return m_editor.get(); }
+    // A drag of vertex v to `to`: one move edit from where the drag started, remade as the drag
+    // goes on (`continuing`: this drag made the last edit, which is taken out and made again),
+    // its ops done so the mesh follows. Refused (onto another vertex...), the last place stays.
+    bool dragVertex(std::int32_t v, Vec2 to, bool continuing, std::string& message);
     // Ctrl+Z / Ctrl+Y of edits: the last edit taken out of the timeline (the position goes back
     // to its start when past it), or the last one taken out made again; false when there is
     // none. A new edit forgets the ones taken out. `message` says what was done.

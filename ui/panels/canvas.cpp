@@ -48,8 +48,10 @@ struct CanvasCache {
     glm::dvec2 fitCenter{0, 0};
     double fitScale = 0;
     // Interaction in progress (press on the canvas until release).
-    enum class Drag : std::uint8_t { None, Pan, Point, Pending } drag = Drag::None;
+    enum class Drag : std::uint8_t { None, Pan, Point, Pending, Vertex } drag = Drag::None;
     std::int32_t dragPoint = kNone;
+    bool dragMoved = false;  // Drag::Vertex: the drag's move edit is made (the last edit)
+    Vec2 dragTo{0, 0};       // where it last went
     ImVec2 pressPos{0, 0};
     bool moved = false;
     bool pressedOnCorner = false;
@@ -951,6 +953,21 @@ Vec2 roundedClick(const AppState& st, Vec2 p) {
     return {std::round(p.x / step) * step, std::round(p.y / step) * step};
 }
 
+// The move tool's drag: the vertex follows the mouse (one move edit, remade while it goes on).
+void dragVertex(AppState& st, CanvasCache& cache, ImVec2 mouse) {
+    const Vec2 to = roundedClick(st, st.view.toWorld({mouse.x, mouse.y}));
+    if (cache.dragMoved && to == cache.dragTo) return;
+    std::string message;
+    if (st.engine.dragVertex(cache.dragPoint, to, cache.dragMoved, message)) {
+        cache.dragMoved = true;
+        cache.dragTo = to;
+    } else {
+        std::string line = "move vertex " + std::to_string(cache.dragPoint) + " refused: " + message;
+        if (st.messages.empty() || st.messages.back().text != line)  // once while it stays so
+            st.log(Message::Level::Warning, std::move(line));
+    }
+}
+
 std::int32_t pendingPointAt(const AppState& st, ImVec2 mouse) {
     return pointAt(st, mouse, Engine::PointState::Pending, 10.0f);
 }
@@ -972,6 +989,15 @@ void handleInput(AppState& st, CanvasCache& cache, bool hovered) {
         cache.pressedOnCorner = st.selection.hoveredCorner != kNone;
         cache.dragPoint = pendingPointAt(st, mouse);
         cache.drag = cache.dragPoint != kNone ? CanvasCache::Drag::Pending : CanvasCache::Drag::Pan;
+        if (st.tool == AppState::CanvasTool::MoveVertex && cache.dragPoint == kNone) {
+            // The move tool drags the vertex pressed on (a click picks it, as before).
+            const std::int32_t v = pointAt(st, mouse, Engine::PointState::Inserted, 12.0f);
+            if (v != kNone) {
+                cache.drag = CanvasCache::Drag::Vertex;
+                cache.dragPoint = v;
+                cache.dragMoved = false;
+            }
+        }
         // An edit tool takes the click for a vertex, not the corner beside it.
         if (cache.pressedOnCorner && cache.dragPoint == kNone &&
             st.tool == AppState::CanvasTool::AddPoints) {
@@ -987,11 +1013,21 @@ void handleInput(AppState& st, CanvasCache& cache, bool hovered) {
             view.center.x -= io.MouseDelta.x / view.scale;
             view.center.y += io.MouseDelta.y / view.scale;
         }
+        if (cache.moved && cache.drag == CanvasCache::Drag::Vertex) dragVertex(st, cache, mouse);
     }
     if (cache.drag != CanvasCache::Drag::None && ImGui::IsMouseReleased(ImGuiMouseButton_Left)) {
         const Vec2 world = roundedClick(st, view.toWorld({mouse.x, mouse.y}));
         std::vector<Vec2> pts = st.engine.points();
-        if (cache.drag == CanvasCache::Drag::Pending && cache.moved) {
+        if (cache.drag == CanvasCache::Drag::Vertex && cache.moved) {
+            dragVertex(st, cache, mouse);
+            if (cache.dragMoved) {
+                st.select(kNone);  // the corners name other triangles now
+                st.toolFirstVertex = kNone;
+                st.log(Message::Level::Info,
+                       describe(st.engine.editor()->edits().back()) +
+                           ": Left steps back through its operations, Ctrl+Z undoes it");
+            }
+        } else if (cache.drag == CanvasCache::Drag::Pending && cache.moved) {
             pts[cache.dragPoint] = world;  // a queued point moved
             st.editPoints(std::move(pts));
         } else if (!cache.moved) {

@@ -142,6 +142,12 @@ void DrawConstraintOp(AppState& st, ImDrawList* dl, const Edit& edit, const Cons
         case ConstrainOpType::InCircleTest:
             if (!corner) break;
             EdgeLine(st, dl, m.V[next(op.a)], m.V[prev(op.a)], Mark::TestEdge, 3.0f);
+            if (st.engine.isVirtual(m.V[next(op.a)]) || st.engine.isVirtual(m.V[prev(op.a)])) {
+                // Between two ghost triangles: the hull edge whose half-plane is the "circle".
+                const std::int32_t x =
+                    st.engine.isVirtual(m.V[next(op.a)]) ? m.V[prev(op.a)] : m.V[next(op.a)];
+                EdgeLine(st, dl, m.V[op.a], x, Mark::TestEdge, 3.0f);
+            }
             CircleThrough(st, dl, m.V[op.a], m.V[next(op.a)], m.V[prev(op.a)],
                           op.sign > 0 ? Mark::CircleFlip : Mark::CircleKeep);
             break;
@@ -201,22 +207,48 @@ void DrawEditOverlay(AppState& st, ImDrawList* dl) {
 
 namespace {
 
+// The ghost triangle t's hull edge, the mesh on its left, or false for a finite triangle.
+bool hullEdgeOf(const Engine& e, std::int32_t t, std::int32_t& x, std::int32_t& y) {
+    const Mesh& m = e.mesh();
+    if (t < 0 || t >= m.numTriangles()) return false;
+    for (std::int32_t g = 3 * t; g < 3 * t + 3; ++g) {
+        if (!e.isVirtual(m.V[g])) continue;
+        x = m.V[prev(g)];
+        y = m.V[next(g)];
+        return true;
+    }
+    return false;
+}
+
 // The ops that put a moved vertex in at its new place, in words.
-std::string placeText(const Edit& edit, const ConstrainOp& op) {
+std::string placeText(const Engine& e, const Edit& edit, const ConstrainOp& op) {
     const std::string v = std::to_string(op.a);
     switch (op.type) {
         case ConstrainOpType::MoveVertex: {
-            std::string s = v + " is out of the mesh: it takes its new place (";
-            appendShortest(s, edit.to.x);
-            s += ", ";
-            appendShortest(s, edit.to.y);
-            return s + ")";
+            std::string at = "(";
+            appendShortest(at, edit.to.x);
+            at += ", ";
+            appendShortest(at, edit.to.y);
+            at += ")";
+            if (op.sign > 0)
+                return v + " moves to " + at +
+                       ", inside its star's kernel: every triangle at it still turns "
+                       "counter-clockwise, so flips alone follow; its star's edges wait for their "
+                       "in-circle tests";
+            return v + " is out of the mesh (its new place is beyond its star's kernel): it "
+                       "takes its new place " + at;
         }
-        case ConstrainOpType::Locate:
+        case ConstrainOpType::Locate: {
+            std::int32_t x = kNone, y = kNone;
+            if (hullEdgeOf(e, op.b, x, y))
+                return v + " lies beyond the hull edge " + std::to_string(x) + "-" +
+                       std::to_string(y) + " (ghost triangle " + std::to_string(op.b) +
+                       "): the hull grows to take it in";
             return v +
                    (op.count == kNone ? " lies inside triangle "
                                       : " lies on an edge of triangle ") +
                    std::to_string(op.b);
+        }
         case ConstrainOpType::Split:
             return "triangle " + std::to_string(op.b) + " split in three around " + v +
                    "; its edges wait for their in-circle tests";
@@ -292,18 +324,27 @@ std::string editOpText(const Engine& e) {
         case ConstrainOpType::Reflag:
             out += "the constrained edges are flagged again on their corners";
             break;
-        case ConstrainOpType::InCircleTest:
-            out += "is " + id(m.V[op.b]) + " inside the circle across " +
-                   edge(m.V[next(op.a)], m.V[prev(op.a)]) + "? " +
+        case ConstrainOpType::InCircleTest: {
+            const std::int32_t A = m.V[next(op.a)], B = m.V[prev(op.a)];
+            if (e.isVirtual(A) || e.isVirtual(B)) {  // between two ghost triangles
+                const std::int32_t x = e.isVirtual(A) ? B : A;  // on the hull, or leaving it
+                out += "is " + id(m.V[op.b]) + " beyond the hull edge " + edge(m.V[op.a], x) +
+                       "? " +
+                       (op.sign > 0 ? "yes: flip, " + id(x) + " leaves the hull"
+                                    : "no: keep, " + id(x) + " stays on the hull");
+                break;
+            }
+            out += "is " + id(m.V[op.b]) + " inside the circle across " + edge(A, B) + "? " +
                    (op.sign > 0 ? "yes: flip" : "no: keep");
             break;
+        }
         case ConstrainOpType::Flip: {
             const FlipEdges f =
                 flipEdges(s.edit->constraint.changes, op.firstChange, op.numChanges);
             out += "flip " + edge(f.oldA, f.oldB) + " to " + edge(f.newA, f.newB);
             break;
         }
-        default: out += placeText(*s.edit, op); break;
+        default: out += placeText(e, *s.edit, op); break;
     }
     return out;
 }

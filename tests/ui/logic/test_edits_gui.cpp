@@ -380,6 +380,65 @@ TEST(EditsInTheGui, TheMoveToolTakesAVertexThenItsNewPlaceAndTheCanvasDrawsItThe
     EXPECT_NE(text.find("\"move vertex " + std::to_string(v) + " to "), std::string::npos);
 }
 
+// The move tool drags a vertex: one move edit, remade while the mouse moves, so the mesh follows
+// the vertex; a second drag is a second edit, and Ctrl+Z undoes a whole drag.
+TEST(EditsInTheGui, DraggingAVertexMakesOneMoveThatTheMeshFollowsWhileTheMouseMoves) {
+    UiHarness h;
+    auto& st = h.state();
+    auto& e = st.engine;
+    toRunEnd(h);
+    const std::int32_t v = interiorVertex(e);
+    ASSERT_NE(v, kNone);
+    st.tool = ui::AppState::CanvasTool::MoveVertex;
+    h.frames(1);
+    float x, y;
+    screenOf(h, v, x, y);
+    ImGuiIO& io = ImGui::GetIO();
+    io.MousePos = ImVec2(x, y);
+    h.frames(1);
+    io.MouseDown[0] = true;
+    h.frames(1);
+    dlab::Vec2 last = e.mesh().G[v];
+    for (int i = 1; i <= 6; ++i) {  // a few pixels at a time: the mesh follows each one
+        io.MousePos = ImVec2(x + 2.0f * i, y + 1.0f * i);
+        h.frames(1);
+        if (i < 3) continue;  // within the click's slop
+        ASSERT_NE(e.editor(), nullptr) << st.messages.back().text;
+        ASSERT_EQ(e.editor()->edits().size(), 1u) << "one edit, remade as the drag goes on";
+        EXPECT_EQ(e.editor()->position(), e.editor()->total()) << "its ops are done";
+        EXPECT_NE(e.mesh().G[v], last) << "the vertex follows the mouse";
+        last = e.mesh().G[v];
+    }
+    io.MouseDown[0] = false;
+    h.frames(2);
+    ASSERT_EQ(e.editor()->edits().size(), 1u);
+    const dlab::Edit& first = e.editor()->edits()[0];
+    EXPECT_EQ(first.a, v);
+    EXPECT_EQ(first.from, e.points()[v]) << "from where the drag started";
+    EXPECT_EQ(first.to, e.mesh().G[v]);
+    EXPECT_TRUE(logged(st, "move vertex " + std::to_string(v)));
+    dlab::ValidateOptions o;
+    o.firstVirtual = e.inserter().firstVirtual();
+    EXPECT_TRUE(dlab::validate(e.mesh(), o).empty());
+    // Far out to the left of every point: beyond the hull, which grows to take it in.
+    double left = e.points()[0].x;
+    for (const auto& p : e.points()) left = std::min(left, p.x);
+    const auto far = st.view.toScreen({left, e.mesh().G[v].y});
+    const auto at = st.view.toScreen(e.mesh().G[v]);
+    h.drag(static_cast<float>(at.x), static_cast<float>(at.y), static_cast<float>(far.x) - 60,
+           static_cast<float>(far.y));
+    ASSERT_EQ(e.editor()->edits().size(), 2u) << st.messages.back().text;
+    EXPECT_LT(e.mesh().G[v].x, left) << "outside the hull of the others";
+    EXPECT_TRUE(dlab::validate(e.mesh(), o).empty());
+    bool onHull = false;  // a ghost triangle at v
+    const dlab::Mesh& m = e.mesh();
+    for (std::int32_t c = 0; c < m.numCorners(); ++c)
+        onHull |= m.V[c] == v && (e.isVirtual(m.V[dlab::next(c)]) || e.isVirtual(m.V[dlab::prev(c)]));
+    EXPECT_TRUE(onHull);
+    h.press(key::letter('Z'), false, true);
+    EXPECT_EQ(e.editor()->edits().size(), 1u) << "Ctrl+Z undoes the whole second drag";
+}
+
 // A breakpoint on an edit's op stops the run there, as the run's breakpoints do.
 TEST(EditsInTheGui, ABreakpointOnAnEarFlipStopsARemovalThere) {
     UiHarness h;
