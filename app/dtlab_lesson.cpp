@@ -33,20 +33,20 @@ struct LessonArgs {
     bool noSlides = false;
 };
 
-// The corner table at a stop, one triangle per line: "t 3: V 4 2 5 | O 7 -1 12".
-void printTables(const Inserter& ins) {
-    const Mesh& m = ins.mesh();
+// The corner table at a stop, one triangle per line: "t 3: V 4 2 5 | O 7 -1 12". Inside the
+// lesson's edits (`edits`), the edited mesh: its ghost vertex reads "g".
+void printTables(const Inserter& ins, const Editor* edits) {
+    const Mesh& m = edits ? edits->mesh() : ins.mesh();
+    const auto name = [&](std::int32_t v) {
+        if (edits) return v >= edits->firstVirtual() ? std::string("g") : std::to_string(v);
+        if (!ins.isVirtual(v) || ins.done()) return std::to_string(v);
+        return ins.options().boundary == Boundary::Exact
+                   ? std::string("g")
+                   : "s" + std::to_string(v - ins.numInput());
+    };
     for (std::int32_t t = 0; t < m.numTriangles(); ++t) {
         std::cout << "  t " << t << " (corners " << 3 * t << ".." << 3 * t + 2 << "): V";
-        for (int k = 0; k < 3; ++k) {
-            const std::int32_t v = m.V[3 * t + k];
-            std::cout << ' '
-                      << (ins.isVirtual(v) && !ins.done()
-                              ? (ins.options().boundary == Boundary::Exact
-                                     ? "g"
-                                     : "s" + std::to_string(v - ins.numInput()))
-                              : std::to_string(v));
-        }
+        for (int k = 0; k < 3; ++k) std::cout << ' ' << name(m.V[3 * t + k]);
         std::cout << " | O";
         for (int k = 0; k < 3; ++k) std::cout << ' ' << m.O[3 * t + k];
         std::cout << "\n";
@@ -156,6 +156,7 @@ void showLesson(const std::string& path, bool tables, const std::vector<std::siz
         const LessonPlan plan = planLesson(lesson);
         auto ins = makeInserter(lesson);
         Journal journal(*ins);
+        std::unique_ptr<Editor> editor;  // the lesson's edits, made at the first stop inside them
         // Lesson files are untrusted: no control character reaches the terminal.
         const auto text = [](std::string_view s) { return escapeControlsKeepLines(s); };
         std::cout << "# " << escapeControls(lesson.title) << "\n"
@@ -183,9 +184,13 @@ void showLesson(const std::string& path, bool tables, const std::vector<std::siz
                                   : std::string("stay"))
                       << " -> op " << st.position << "\n";
             if (!st.caption.empty()) std::cout << "caption: " << text(st.caption) << "\n";
-            if (tables) {
+            if (tables && st.position > plan.totalOps) {  // inside the edits
+                if (!editor) editor = startEdits(lesson, journal, *ins);
+                editor->seek(st.position - plan.totalOps);
+                printTables(*ins, editor.get());
+            } else if (tables) {
                 journal.seek(st.position);
-                printTables(*ins);
+                printTables(*ins, nullptr);
             }
             if (st.selected != kNone) std::cout << "selected corner: " << st.selected << "\n";
             if (!st.text.empty())

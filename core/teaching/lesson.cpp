@@ -10,6 +10,7 @@
 #include "core/engine/voronoi.h"
 #include "core/teaching/corner_expr.h"
 #include "core/teaching/describe.h"
+#include "core/teaching/describe_edit.h"
 
 #include <toml++/toml.h>
 
@@ -2068,8 +2069,7 @@ void captionAt(StopState& state, Inserter& ins, Journal& journal, const Editor* 
     if (edits) {
         const EditStep e = edits->current();
         if (!e.edit) return;
-        state.caption = describe(*e.edit) + ", " +
-                        (e.removal ? toString(e.removal->type) : toString(e.constraint->type));
+        state.caption = describeEditStep(*edits);
         state.banner = "[op " + std::to_string(state.position) + "] " + state.caption;
         return;
     }
@@ -2107,28 +2107,6 @@ StopState stopStateAt(const Lesson& lesson, std::size_t k, Inserter& ins, Journa
     renderStopText(lesson, k, ins, journal, selected, state, edits);
     checkExpectations(lesson, k, ins, journal, selected, edits);
     return state;
-}
-
-// The lesson's edits recorded after the run's end (the journal is run to it); the editor is
-// back at their start. A refused edit is the lesson's error.
-std::unique_ptr<Editor> startEdits(const Lesson& lesson, Journal& journal, Inserter& ins) {
-    runUntil(journal, ins, {}, std::numeric_limits<std::size_t>::max());
-    if (journal.budgetReached() || !ins.done())
-        throw LessonError(
-            lesson.file, lesson.editsLine, 0,
-            "the edits start at the run's end: " + historyFull(journal, 0, lesson.options.order));
-    if (ins.mesh().numTriangles() == 0)
-        throw LessonError(lesson.file, lesson.editsLine, 0,
-                          "the edits need triangles: the points are collinear or fewer than 3");
-    auto editor = std::make_unique<Editor>(ins.mesh());
-    for (const Edit& e : lesson.edits) {
-        std::string message;
-        if (!editor->add(e, message))
-            throw LessonError(lesson.file, lesson.editsLine, 0,
-                              "edit \"" + describe(e) + "\" is refused: " + message);
-    }
-    editor->seek(0);
-    return editor;
 }
 
 // run_to an edit target: the editor steps until it is hit `count` times (edit:0: the run's end).
@@ -2206,6 +2184,28 @@ struct Planner {
 };
 
 }  // namespace
+
+// The lesson's edits recorded after the run's end (the journal is run to it); the editor is
+// back at their start. A refused edit is the lesson's error.
+std::unique_ptr<Editor> startEdits(const Lesson& lesson, Journal& journal, Inserter& ins) {
+    runUntil(journal, ins, {}, std::numeric_limits<std::size_t>::max());
+    if (journal.budgetReached() || !ins.done())
+        throw LessonError(
+            lesson.file, lesson.editsLine, 0,
+            "the edits start at the run's end: " + historyFull(journal, 0, lesson.options.order));
+    if (ins.mesh().numTriangles() == 0)
+        throw LessonError(lesson.file, lesson.editsLine, 0,
+                          "the edits need triangles: the points are collinear or fewer than 3");
+    auto editor = std::make_unique<Editor>(ins.mesh());
+    for (const Edit& e : lesson.edits) {
+        std::string message;
+        if (!editor->add(e, message))
+            throw LessonError(lesson.file, lesson.editsLine, 0,
+                              "edit \"" + describe(e) + "\" is refused: " + message);
+    }
+    editor->seek(0);
+    return editor;
+}
 
 LessonPlan planLesson(const Lesson& lesson) {
     Planner p{lesson, makeInserter(lesson), nullptr, nullptr};

@@ -289,6 +289,9 @@ std::unique_ptr<Inserter> makeInserter(const Lesson& lesson);
 // Runs the lesson to its end: every stop must be reached in order and every question must have
 // a computable answer. Throws LessonError naming the stop.
 LessonPlan planLesson(const Lesson& lesson);
+// The lesson's edits recorded after the run's end (the journal is run to it); the editor is back
+// at their start. A refused edit is a LessonError at the `edits` line.
+std::unique_ptr<Editor> startEdits(const Lesson& lesson, Journal& journal, Inserter& ins);
 
 // ---- The lifting-map figure ------------------------------------------------------------------
 

@@ -16,6 +16,9 @@
 // Finalize) in an order drawn from the seed and the probe, each removal checked exactly; in the
 // exact mode segments between the vertices left are then constrained (recorded), each checked
 // valid and constrained Delaunay; then the constraints and the removals are undone bit for bit.
+// The GUI's editor mixes removals, constraints and moves (halfway to another vertex, or beyond it
+// and often out of the hull), each checked valid, constrained Delaunay with a convex hull, made
+// again the same on a fresh editor and stepped back bit for bit.
 #include "tests/fuzz/fuzz_common.h"
 
 #include "core/engine/constrainer.h"
@@ -399,9 +402,15 @@ void checkEditor(const Case& c, const Mesh& finished) {
         ed.seek(draw(ed.total() + 1));
         if (draw(5) == 0) ed.takeLast();
         const auto a = static_cast<std::int32_t>(draw(n)), b = static_cast<std::int32_t>(draw(n));
-        const EditKind kind = draw(2) ? EditKind::RemoveVertex : EditKind::Constrain;
+        const std::uint64_t which = draw(4);
+        Edit edit = makeEdit(which < 2 ? EditKind::RemoveVertex : EditKind::Constrain, a, b);
+        if (which == 3) {  // a move: halfway to another point, or beyond it (out of the hull)
+            const Vec2 p = ed.mesh().G[a], q = ed.mesh().G[b];
+            const double t = draw(2) ? 0.5 : 2.0;
+            edit = makeMove(a, {p.x + (q.x - p.x) * t, p.y + (q.y - p.y) * t});
+        }
         std::string message;
-        ed.add(makeEdit(kind, a, b), message);
+        ed.add(edit, message);
         ed.seek(ed.total());
         const Mesh& m = ed.mesh();
         const auto bad = validate(m, vo);
@@ -410,15 +419,18 @@ void checkEditor(const Case& c, const Mesh& finished) {
             const std::int32_t o = m.O[e];
             if (o == kNone || ed.isConstrained(e)) continue;
             const std::int32_t P = m.V[e], A = m.V[next(e)], B = m.V[prev(e)], D = m.V[o];
-            if (P >= n || A >= n || B >= n || D >= n) continue;
-            require(incircle(m.G[P], m.G[A], m.G[B], m.G[D]) <= 0,
-                    "after an edit every unconstrained edge is locally Delaunay", what);
+            if (P >= n || D >= n) continue;  // a hull edge
+            // Between finite triangles the in-circle test; between two ghost triangles, the hull
+            // turns the right way at the edge's finite end.
+            require(ghostInCircle(m.G, n, P, A, B, D) <= 0,
+                    "after an edit every unconstrained edge is locally Delaunay, the hull convex",
+                    what);
         }
     }
     Editor fresh(finished);
     for (const Edit& e : ed.edits()) {
         std::string message;
-        require(fresh.add(makeEdit(e.kind, e.a, e.b), message),
+        require(fresh.add(e, message),
                 "an edit kept is made again on a fresh editor", what);
         fresh.seek(fresh.total());
     }

@@ -342,6 +342,25 @@ TEST(EditsInTheGui, TheReadmePicturesOfEditsShowWhatTheEngineDid) {
         made08 |= (u == 0 && w == 8) || (u == 8 && w == 0);
     }
     EXPECT_TRUE(made03 && made08) << "Sloan's flips made 0-3 and 0-8";
+    ASSERT_TRUE(h.state().undoEdit());
+    ASSERT_TRUE(e.edit(dlab::makeMove(5, {760, 560}), message)) << message;
+    e.seek(runEnd + 13);
+    const std::string move = ui::captionText(h.state());
+    EXPECT_NE(move.find("move vertex 5 to 760, 560, is 3 beyond the hull edge 5-6? yes: flip, 6 "
+                        "leaves the hull"),
+              std::string::npos)
+        << move;
+    EXPECT_GT(dlab::orient2d(e.mesh().G[5], e.mesh().G[3], e.mesh().G[6]), 0)
+        << "6 is inside the hull 5-3";
+    e.seek(e.recorded());
+    const auto onHull = [&](std::int32_t v) {
+        const dlab::Mesh& mm = e.mesh();
+        for (std::int32_t c = 0; c < mm.numCorners(); ++c)
+            if (mm.V[c] == v && e.isVirtual(mm.V[dlab::next(c)])) return true;
+        return false;
+    };
+    EXPECT_FALSE(onHull(6));
+    EXPECT_TRUE(onHull(5) && onHull(3));
 }
 
 TEST(EditsInTheGui, TheMoveToolTakesAVertexThenItsNewPlaceAndTheCanvasDrawsItThere) {
