@@ -412,6 +412,59 @@ TEST(Editor, AMoveInsideTheStarsKernelIsFollowedByFlipsAndStepsBackBitForBit) {
     EXPECT_GT(removals, 0) << "some steps leave the kernel";
 }
 
+// The paper's super-triangle: edits on the mesh before Finalize, the super-triangle's vertices
+// real points in every test; removals, constraints and moves mixed, each checked valid and
+// constrained Delaunay (GMP, the super-triangle's vertices included), then stepped back.
+TEST(Editor, InTheSuperTrianglesModeEditsKeepTheClosedMeshConstrainedDelaunay) {
+    int made = 0;
+    for (unsigned seed = 1; seed <= 4; ++seed) {
+        InsertOptions o;
+        o.boundary = Boundary::Super;
+        const std::vector<Vec2> pts = randomPoints(80, seed + 90);
+        Inserter ins(pts, o);
+        Journal journal(ins);
+        while (journal.forward()) {
+        }
+        std::unique_ptr<Editor> ed = editorAtRunEnd(journal, ins);
+        ASSERT_TRUE(ins.done());
+        ASSERT_EQ(ed->boundary(), Boundary::Super);
+        const Snapshot start = snap(*ed);
+        const std::vector<Vec2> startG = ed->mesh().G;
+        std::mt19937 rng(seed);
+        for (int k = 0; k < 30; ++k) {
+            const auto a = static_cast<std::int32_t>(rng() % 80), b = static_cast<std::int32_t>(rng() % 80);
+            Edit edit = makeEdit(k % 3 == 0 ? EditKind::Constrain : EditKind::RemoveVertex, a, b);
+            if (k % 3 == 2) edit = makeMove(a, {double(rng() % 70) - 5, double(rng() % 70) - 5});
+            std::string message;
+            if (!ed->add(edit, message)) continue;
+            ++made;
+            ed->seek(ed->total());
+            const Mesh& m = ed->mesh();
+            for (std::int32_t c = 0; c < m.numCorners(); ++c) {
+                const std::int32_t oc = m.O[c];
+                const std::int32_t t = tri(c);
+                ASSERT_GT(orientGmp(m.G[m.V[3 * t]], m.G[m.V[3 * t + 1]], m.G[m.V[3 * t + 2]]), 0)
+                    << describe(edit);
+                if (oc == kNone) {
+                    ASSERT_TRUE(m.V[next(c)] >= 80 && m.V[prev(c)] >= 80)
+                        << "only the super-triangle's sides are open";
+                    continue;
+                }
+                ASSERT_EQ(m.O[oc], c);
+                if (ed->isConstrained(c)) continue;
+                ASSERT_LE(incircleGmp(m.G[m.V[c]], m.G[m.V[next(c)]], m.G[m.V[prev(c)]],
+                                      m.G[m.V[oc]]),
+                          0)
+                    << "seed " << seed << " after " << describe(edit);
+            }
+        }
+        ed->seek(0);
+        EXPECT_EQ(snap(*ed), start);
+        EXPECT_EQ(ed->mesh().G, startG);
+    }
+    EXPECT_GT(made, 60);
+}
+
 // A hull vertex moved out along the hull edge's line, onto a hull edge, and far out.
 TEST(Editor, MovesOntoAndBeyondTheHullKeepItConvex) {
     std::vector<Vec2> pts;

@@ -264,10 +264,8 @@ bool Engine::edit(Edit edit, std::string& message) {
             "this run has no history (" + m_batchReason + "): edits are stepped, they need one";
         return false;
     }
-    if (m_options.boundary != Boundary::Exact || m_ins->repairs()) {
-        message = m_ins->repairs() ? "an opened mesh cannot be edited: triangulate its points"
-                                   : "edits need the exact boundary (the super-triangle's "
-                                     "triangles are gone at the end): choose boundary exact";
+    if (m_ins->repairs()) {
+        message = "an opened mesh cannot be edited: triangulate its points";
         return false;
     }
     if (!m_editor) {
@@ -280,7 +278,7 @@ bool Engine::edit(Edit edit, std::string& message) {
             message = "no triangle to edit: the points are collinear or fewer than three";
             return false;
         }
-        m_editor = std::make_unique<Editor>(m_ins->mesh());
+        m_editor = editorAtRunEnd(*m_journal, *m_ins);
     }
     seekRun(runLength());
     const bool ok = m_editor->add(std::move(edit), message);

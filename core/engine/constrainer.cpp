@@ -4,6 +4,7 @@
 #include "core/engine/predicates.h"
 
 #include <deque>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -37,8 +38,10 @@ const char* toString(ConstrainOpType t) {
     return "?";
 }
 
-Constrainer::Constrainer(Mesh& mesh, std::int32_t firstVirtual)
-    : m_mesh(mesh), m_firstVirtual(firstVirtual) {
+Constrainer::Constrainer(Mesh& mesh, std::int32_t firstVirtual, Boundary boundary)
+    : m_mesh(mesh),
+      m_firstVirtual(firstVirtual),
+      m_ghost(boundary == Boundary::Exact ? firstVirtual : std::numeric_limits<std::int32_t>::max()) {
     rebuildIndex();
     m_flag.assign(mesh.V.size(), 0);
 }
@@ -140,10 +143,19 @@ std::int32_t Constrainer::edgeCorner(std::int32_t u, std::int32_t w) const {
     do {
         if (m_mesh.V[next(c)] == w) return prev(c);
         const std::int32_t l = m_mesh.O[next(c)];
-        if (l == kNone) return kNone;
+        if (l == kNone) {  // an open star (a super-triangle vertex): the other way round
+            c = kNone;
+            break;
+        }
         c = next(l);
     } while (c != start);
-    return kNone;
+    if (c != kNone) return kNone;  // the whole ring
+    for (c = start;;) {
+        if (m_mesh.V[prev(c)] == w) return next(c);
+        const std::int32_t l = m_mesh.O[prev(c)];
+        if (l == kNone) return kNone;
+        c = prev(l);
+    }
 }
 
 // Around a: the edge a-b itself, a vertex on the open segment (stop), or the triangle whose far
@@ -159,11 +171,11 @@ bool Constrainer::firstCrossing(std::int32_t a, std::int32_t b, std::int32_t& co
             stop = b;
             return true;
         }
-        if (!isVirtual(p) && orient2d(G[a], G[b], G[p]) == 0 && between(G[a], G[b], G[p])) {
+        if (!isGhost(p) && orient2d(G[a], G[b], G[p]) == 0 && between(G[a], G[b], G[p])) {
             stop = p;
             return true;
         }
-        if (!isVirtual(p) && !isVirtual(q) && orient2d(G[a], G[p], G[b]) > 0 &&
+        if (!isGhost(p) && !isGhost(q) && orient2d(G[a], G[p], G[b]) > 0 &&
             orient2d(G[a], G[q], G[b]) < 0) {
             corner = c;
             return true;
@@ -288,12 +300,13 @@ void Constrainer::restore(std::vector<Edge> stack) {
         const std::int32_t c = edgeCorner(u, w);
         if (c == kNone || m_flag[c]) continue;
         const std::int32_t d = m_mesh.O[c];
+        if (d == kNone) continue;  // the super-triangle's side
         const std::int32_t P = m_mesh.V[c], A = m_mesh.V[next(c)], B = m_mesh.V[prev(c)];
         const std::int32_t D = m_mesh.V[d];
-        if (isVirtual(P) || isVirtual(D)) continue;  // a hull edge: the outside never flips in
+        if (isGhost(P) || isGhost(D)) continue;  // a hull edge: the outside never flips in
         // Between two ghost triangles (A or B the ghost vertex): D beyond P's hull edge, the
         // hull turns the wrong way at the edge's other end and the flip takes it in.
-        const int inside = ghostInCircle(G, m_firstVirtual, P, A, B, D);
+        const int inside = ghostInCircle(G, m_ghost, P, A, B, D);
         beginOp(ConstrainOpType::InCircleTest, c, d, inside);
         endOp();
         if (inside <= 0) continue;
@@ -413,9 +426,9 @@ bool Constrainer::locate(Vec2 p, std::int32_t& tri, std::int32_t& edge,
     std::int32_t beyond = kNone;  // a ghost triangle that sees p
     for (std::int32_t t = 0; t < m_mesh.numTriangles(); ++t) {
         const std::int32_t a = V[3 * t], b = V[3 * t + 1], c = V[3 * t + 2];
-        if (isVirtual(a) || isVirtual(b) || isVirtual(c)) {
+        if (isGhost(a) || isGhost(b) || isGhost(c)) {
             // (g, y, x) in some rotation: the hull edge x->y, the mesh on its left.
-            const std::int32_t g = 3 * t + (isVirtual(a) ? 0 : isVirtual(b) ? 1 : 2);
+            const std::int32_t g = 3 * t + (isGhost(a) ? 0 : isGhost(b) ? 1 : 2);
             const std::int32_t x = V[prev(g)], y = V[next(g)];
             if (beyond == kNone && orient2d(G[x], G[y], p) < 0) beyond = t;
             continue;
@@ -433,7 +446,7 @@ bool Constrainer::locate(Vec2 p, std::int32_t& tri, std::int32_t& edge,
         for (int k = 0; k < 3; ++k) {
             if (s[k] == 0) edge = 3 * t + k;
         }
-        return true;
+        return edge == kNone || m_mesh.O[edge] != kNone;  // not on the super-triangle's side
     }
     if (beyond == kNone) return false;
     tri = beyond;
@@ -573,7 +586,7 @@ bool Constrainer::inKernel(std::int32_t v, Vec2 to) {
     std::int32_t c = start;
     do {
         const std::int32_t a = m_mesh.V[next(c)], b = m_mesh.V[prev(c)];
-        if (isVirtual(a) || isVirtual(b) || orient2d(to, G[a], G[b]) <= 0) return false;
+        if (isGhost(a) || isGhost(b) || orient2d(to, G[a], G[b]) <= 0) return false;
         c = next(m_mesh.O[next(c)]);
     } while (c != start);
     return true;
@@ -653,11 +666,11 @@ VertexRemoval Constrainer::removeVertex(Remover& remover, std::int32_t v, Remova
     // The hole's new edges and its rim: every edge at a vertex of the rim.
     if (out.removed == RemoveResult::Removed) {
         for (const std::int32_t u : rim) {
-            if (isVirtual(u)) continue;
+            if (isVirtual(u)) continue;  // a super-triangle vertex's edges: from the others
             const std::int32_t start = m_cornerOf[u];
             std::int32_t c = start;
             do {  // not the edges to the ghost vertex: the Remover left the hull convex
-                if (!isVirtual(m_mesh.V[next(c)])) around.push_back({u, m_mesh.V[next(c)]});
+                if (!isGhost(m_mesh.V[next(c)])) around.push_back({u, m_mesh.V[next(c)]});
                 c = next(m_mesh.O[next(c)]);
             } while (c != start);
         }

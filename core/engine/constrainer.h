@@ -96,8 +96,10 @@ struct ConstrainOutcome {
 
 class Constrainer {
 public:
-    // The mesh: the exact mode's closed form (ghost vertex and those past it at firstVirtual).
-    Constrainer(Mesh& mesh, std::int32_t firstVirtual);
+    // The mesh: closed. The exact mode's: its ghost vertex at firstVirtual, a ghost triangle at
+    // every hull edge. The super-triangle's: the inserter's before Finalize, its three vertices
+    // from firstVirtual on real points (in every test, never an end of a segment).
+    Constrainer(Mesh& mesh, std::int32_t firstVirtual, Boundary boundary = Boundary::Exact);
 
     // Constrains the segment a-b; with a record, every operation is appended to it.
     ConstrainOutcome insert(std::int32_t a, std::int32_t b, ConstraintRecord* record = nullptr);
@@ -140,7 +142,8 @@ public:
 
 private:
     using Edge = std::pair<std::int32_t, std::int32_t>;
-    bool isVirtual(std::int32_t v) const { return v >= m_firstVirtual; }
+    bool isVirtual(std::int32_t v) const { return v >= m_firstVirtual; }  // not the input's
+    bool isGhost(std::int32_t v) const { return v >= m_ghost; }  // the exact mode's ghost vertex
     std::int32_t edgeCorner(std::int32_t u, std::int32_t w) const;  // corner facing u-w
     bool crossedEdges(std::int32_t a, std::int32_t b, std::vector<Edge>& crossed,
                       std::int32_t& stop, ConstrainOutcome& out) const;
@@ -166,6 +169,7 @@ private:
 
     Mesh& m_mesh;
     std::int32_t m_firstVirtual;
+    std::int32_t m_ghost;  // the ghost vertex (exact), past every vertex (super)
     std::vector<std::int32_t> m_cornerOf;
     std::vector<std::uint8_t> m_flag;  // per corner: how many constraints hold the edge opposite
     bool m_stale = false;              // m_cornerOf must be rebuilt (after replay)

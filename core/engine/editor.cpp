@@ -113,8 +113,25 @@ std::optional<Edit> parseEdit(std::string_view typed) {
 Editor::Editor(const Mesh& finished)
     : m_mesh(closedForm(finished)),
       m_firstVirtual(finished.numVertices()),
+      m_boundary(Boundary::Exact),
       m_remover(m_mesh, m_firstVirtual, Boundary::Exact),
-      m_constrainer(m_mesh, m_firstVirtual) {}
+      m_constrainer(m_mesh, m_firstVirtual, Boundary::Exact) {}
+
+Editor::Editor(const Mesh& closed, std::int32_t firstVirtual)
+    : m_mesh(closed),
+      m_firstVirtual(firstVirtual),
+      m_boundary(Boundary::Super),
+      m_remover(m_mesh, m_firstVirtual, Boundary::Super),
+      m_constrainer(m_mesh, m_firstVirtual, Boundary::Super) {}
+
+std::unique_ptr<Editor> editorAtRunEnd(Journal& journal, const Inserter& ins) {
+    if (ins.options().boundary == Boundary::Exact) return std::make_unique<Editor>(ins.mesh());
+    const std::size_t end = journal.position();
+    journal.seek(end - 1);  // before Finalize: the super-triangle still in
+    auto editor = std::make_unique<Editor>(ins.mesh(), ins.numInput());
+    journal.seek(end);
+    return editor;
+}
 
 std::size_t Editor::total() const { return m_ends.empty() ? 0 : m_ends.back(); }
 
@@ -282,8 +299,9 @@ bool Editor::recordMove(Edit& edit, std::string& message) {
     unrecord(edit);
     m_remover.meshChanged();
     m_constrainer.refresh();
-    message = placed == PlaceResult::OnVertex
-                  ? vertexName(v) + " cannot move onto another vertex"
+    message = placed == PlaceResult::OnVertex ? vertexName(v) + " cannot move onto another vertex"
+              : m_boundary == Boundary::Super
+                  ? vertexName(v) + " cannot move outside the super-triangle"
                   : vertexName(v) + " cannot move: the other points are collinear (no triangle)";
     return false;
 }

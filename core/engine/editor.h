@@ -12,6 +12,8 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <limits>
+#include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -70,6 +72,10 @@ public:
     // the input's indices, no ghost). Edits work on its closed form: the ghost vertex is index
     // |G| (firstVirtual()), joined to every hull edge.
     explicit Editor(const Mesh& finished);
+    // The super-triangle's mode: `closed` is the inserter's mesh before Finalize, the
+    // super-triangle's three vertices from `firstVirtual` on (real points every test uses, never
+    // removed, moved or an end of a segment).
+    Editor(const Mesh& closed, std::int32_t firstVirtual);
 
     // Records an edit after every edit (the edits before it are done first, one in progress is
     // finished). The mesh is then put back as it was before the new edit and position() is its
@@ -95,6 +101,13 @@ public:
 
     const Mesh& mesh() const { return m_mesh; }
     std::int32_t firstVirtual() const { return m_firstVirtual; }
+    Boundary boundary() const { return m_boundary; }
+    // The exact mode's ghost vertex (firstVirtual()); in the super-triangle's mode past every
+    // vertex, as it has none.
+    std::int32_t ghost() const {
+        return m_boundary == Boundary::Exact ? m_firstVirtual
+                                             : std::numeric_limits<std::int32_t>::max();
+    }
     const std::vector<Edit>& edits() const { return m_edits; }
     // The op just done (position() - 1), or none at position 0.
     EditStep current() const;
@@ -117,11 +130,17 @@ private:
 
     Mesh m_mesh;
     std::int32_t m_firstVirtual;
+    Boundary m_boundary;
     Remover m_remover;
     Constrainer m_constrainer;
     std::vector<Edit> m_edits;
     std::vector<std::size_t> m_ends;  // the position after each edit's last op, increasing
     std::size_t m_pos = 0;
 };
+
+// An editor of a finished run: its finished mesh (exact), or in the super-triangle's mode the
+// mesh before Finalize dropped the super-triangle (the journal steps back over Finalize for it,
+// then forward again).
+std::unique_ptr<Editor> editorAtRunEnd(Journal& journal, const Inserter& ins);
 
 }  // namespace dlab

@@ -30,11 +30,11 @@ Ear earOf(const Mesh& m, const RemoveOp& op) {
     return ear;
 }
 
-bool ghostHullEdge(const Mesh& m, std::int32_t firstVirtual, std::int32_t t, std::int32_t& x,
+bool ghostHullEdge(const Mesh& m, std::int32_t ghost, std::int32_t t, std::int32_t& x,
                    std::int32_t& y) {
     if (t < 0 || t >= m.numTriangles()) return false;
     for (std::int32_t g = 3 * t; g < 3 * t + 3; ++g) {
-        if (m.V[g] < firstVirtual) continue;
+        if (m.V[g] < ghost) continue;
         x = m.V[prev(g)];
         y = m.V[next(g)];
         return true;
@@ -62,7 +62,7 @@ std::string placeText(const Editor& ed, const Edit& edit, const ConstrainOp& op)
         }
         case ConstrainOpType::Locate: {
             std::int32_t x = kNone, y = kNone;
-            if (ghostHullEdge(ed.mesh(), ed.firstVirtual(), op.b, x, y))
+            if (ghostHullEdge(ed.mesh(), ed.ghost(), op.b, x, y))
                 return v + " lies beyond the hull edge " + std::to_string(x) + "-" +
                        std::to_string(y) + " (ghost triangle " + std::to_string(op.b) +
                        "): the hull grows to take it in";
@@ -86,9 +86,13 @@ std::string describeEditStep(const Editor& ed) {
     const EditStep s = ed.current();
     if (!s.edit) return "";
     const Mesh& m = ed.mesh();
-    const auto isVirtual = [&](std::int32_t v) { return v >= ed.firstVirtual(); };
+    const auto isGhost = [&](std::int32_t v) { return v >= ed.ghost(); };
     // The ghost vertex reads "g", as the canvas labels it.
-    const auto id = [&](std::int32_t v) { return isVirtual(v) ? "g" : std::to_string(v); };
+    const auto id = [&](std::int32_t v) {
+        return isGhost(v)                ? std::string("g")
+               : v >= ed.firstVirtual() ? "s" + std::to_string(v - ed.firstVirtual())
+                                        : std::to_string(v);
+    };
     const auto edge = [&](std::int32_t a, std::int32_t b) { return id(a) + "-" + id(b); };
     std::string out = describe(*s.edit) + ", ";
     if (s.removal) {
@@ -149,8 +153,8 @@ std::string describeEditStep(const Editor& ed) {
             break;
         case ConstrainOpType::InCircleTest: {
             const std::int32_t A = m.V[next(op.a)], B = m.V[prev(op.a)];
-            if (isVirtual(A) || isVirtual(B)) {  // between two ghost triangles
-                const std::int32_t x = isVirtual(A) ? B : A;  // on the hull, or leaving it
+            if (isGhost(A) || isGhost(B)) {  // between two ghost triangles
+                const std::int32_t x = isGhost(A) ? B : A;  // on the hull, or leaving it
                 out += "is " + id(m.V[op.b]) + " beyond the hull edge " + edge(m.V[op.a], x) +
                        "? " +
                        (op.sign > 0 ? "yes: flip, " + id(x) + " leaves the hull"

@@ -11,7 +11,8 @@
 namespace dlab {
 
 // The edit op just done (editor.current()) in words: "remove vertex 8, ear test at 5: triangle
-// 10-5-3 is no ear: ..."; "" at the edits' start. The ghost vertex reads "g".
+// 10-5-3 is no ear: ..."; "" at the edits' start. The ghost vertex reads "g", the
+// super-triangle's "s0" to "s2".
 std::string describeEditStep(const Editor& editor);
 
 // A flip writes two V cells: the new edge's ends after it, the old edge's before it.
@@ -27,9 +28,9 @@ struct Ear {
 };
 Ear earOf(const Mesh& m, const RemoveOp& op);
 
-// Triangle t's hull edge x->y (the mesh on its left) when it is a ghost triangle (a vertex at or
-// past firstVirtual); false for a finite triangle or no triangle.
-bool ghostHullEdge(const Mesh& m, std::int32_t firstVirtual, std::int32_t t, std::int32_t& x,
+// Triangle t's hull edge x->y (the mesh on its left) when it is a ghost triangle (`ghost` is one
+// of its vertices: Editor::ghost()); false for a finite triangle or no triangle.
+bool ghostHullEdge(const Mesh& m, std::int32_t ghost, std::int32_t t, std::int32_t& x,
                    std::int32_t& y);
 
 }  // namespace dlab

@@ -1673,7 +1673,7 @@ public:
     }
 
 private:
-    // edits = ["remove vertex 7", "constrain 2-9"]: after the run's end, exact boundary only.
+    // edits = ["remove vertex 7", "constrain 2-9"]: after the run's end.
     void lessonEdits(const toml::table& root, Lesson& L) {
         const toml::node* n = root.get("edits");
         if (!n) return;
@@ -1683,16 +1683,14 @@ private:
             fail(L.editsLine,
                  "\"edits\" must be a list of 1 to 50 edits, e.g. "
                  "[\"remove vertex 7\", \"constrain 2-9\"]");
-        if (L.start || L.options.boundary != Boundary::Exact)
-            fail(L.editsLine,
-                 "edits need the exact boundary and a run that inserts the points "
-                 "(no \"triangles\", no boundary = \"super\")");
+        if (L.start)
+            fail(L.editsLine, "edits need a run that inserts the points (no \"triangles\")");
         for (const toml::node& e : *a) {
             const auto parsed = e.is_string() ? parseEdit(e.as_string()->get()) : std::nullopt;
             if (!parsed)
                 fail(lineOf(e),
-                     "an edit is \"remove vertex N\", \"constrain A-B\" or "
-                     "\"unconstrain A-B\"");
+                     "an edit is \"remove vertex N\", \"constrain A-B\", "
+                     "\"unconstrain A-B\" or \"move vertex N to X, Y\"");
             if (parsed->a >= static_cast<std::int32_t>(L.points.size()) ||
                 parsed->b >= static_cast<std::int32_t>(L.points.size()))
                 fail(lineOf(e), "edit \"" + describe(*parsed) + "\": the lesson has points 0 to " +
@@ -2196,7 +2194,7 @@ std::unique_ptr<Editor> startEdits(const Lesson& lesson, Journal& journal, Inser
     if (ins.mesh().numTriangles() == 0)
         throw LessonError(lesson.file, lesson.editsLine, 0,
                           "the edits need triangles: the points are collinear or fewer than 3");
-    auto editor = std::make_unique<Editor>(ins.mesh());
+    auto editor = editorAtRunEnd(journal, ins);
     for (const Edit& e : lesson.edits) {
         std::string message;
         if (!editor->add(e, message))

@@ -219,17 +219,36 @@ TEST(EditsInTheGui, ASessionKeepsTheEditsAndTheStepInsideThem) {
     EXPECT_NE(error.find("edits"), std::string::npos) << error;
 }
 
-TEST(EditsInTheGui, TheSuperTriangleRunRefusesEditsAndSaysWhy) {
+// The paper's super-triangle: the edits work on the mesh before Finalize dropped it, its three
+// vertices real points; stepping back to the run's end shows the finished mesh again.
+TEST(EditsInTheGui, TheSuperTriangleRunIsEditedWithTheSuperTriangleIn) {
     UiHarness h;
     auto& st = h.state();
-    dlab::InsertOptions o = st.engine.options();
+    auto& e = st.engine;
+    dlab::InsertOptions o = e.options();
     o.boundary = dlab::Boundary::Super;
     ASSERT_TRUE(st.setOptions(o));
     toRunEnd(h);
+    const std::size_t runEnd = e.position();
+    const Cells finished = cells(e);
+    const std::int32_t v = interiorVertex(e);
+    ASSERT_NE(v, kNone);
     std::string message;
-    EXPECT_FALSE(st.engine.edit(dlab::makeEdit(dlab::EditKind::RemoveVertex, 0), message));
-    EXPECT_NE(message.find("exact"), std::string::npos) << message;
-    EXPECT_EQ(st.engine.editor(), nullptr);
+    ASSERT_TRUE(e.edit(dlab::makeEdit(dlab::EditKind::RemoveVertex, v), message)) << message;
+    ASSERT_NE(e.editor(), nullptr);
+    EXPECT_EQ(e.editor()->boundary(), dlab::Boundary::Super);
+    e.seek(e.recorded());
+    EXPECT_FALSE(usesVertex(e.mesh(), v));
+    const auto n = static_cast<std::int32_t>(e.points().size());
+    for (std::int32_t s = n; s < n + 3; ++s)
+        EXPECT_TRUE(usesVertex(e.mesh(), s)) << "the super-triangle's vertex " << s;
+    EXPECT_TRUE(e.showsVirtual()) << "its triangles are drawn as during the run";
+    dlab::ValidateOptions vo;
+    vo.firstVirtual = -1;  // the super-triangle's vertices are real points
+    vo.delaunay = true;
+    EXPECT_TRUE(dlab::validate(e.mesh(), vo).empty());
+    e.seek(runEnd);
+    EXPECT_EQ(cells(e), finished) << "back at the run's end, the finished mesh";
 }
 
 TEST(EditsInTheGui, CtrlZTakesTheLastEditOutAndCtrlYMakesItAgain) {
