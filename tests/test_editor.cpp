@@ -21,6 +21,15 @@ Mesh finishedDelaunay(const std::vector<Vec2>& pts) {
     return ins.takeMesh();
 }
 
+// The points (x, y) for x and y from 0 to n - 1, row by row.
+std::vector<Vec2> lattice(int n) {
+    std::vector<Vec2> pts;
+    for (int y = 0; y < n; ++y) {
+        for (int x = 0; x < n; ++x) pts.push_back({double(x), double(y)});
+    }
+    return pts;
+}
+
 std::vector<Vec2> randomPoints(int n, unsigned seed) {
     std::mt19937 rng(seed);
     std::uniform_int_distribution<int> d(0, 60);  // small integers: cocircular and collinear runs
@@ -168,11 +177,7 @@ TEST(Editor, RemovingDownToTwoPointsLeavesNoTriangleAndStepsBack) {
 
 TEST(Editor, RefusedEditsChangeNothingAndSayWhy) {
     // A 3x3 lattice: the segments 1-3 and 0-4 cross at (0.5, 0.5).
-    std::vector<Vec2> pts;
-    for (int y = 0; y < 3; ++y) {
-        for (int x = 0; x < 3; ++x) pts.push_back({double(x), double(y)});
-    }
-    Editor ed(finishedDelaunay(pts));
+    Editor ed(finishedDelaunay(lattice(3)));
     std::string message;
     ASSERT_TRUE(ed.add(makeEdit(EditKind::Constrain, 1, 3), message)) << message;
     ed.seek(ed.total());
@@ -467,11 +472,7 @@ TEST(Editor, InTheSuperTrianglesModeEditsKeepTheClosedMeshConstrainedDelaunay) {
 
 // A hull vertex moved out along the hull edge's line, onto a hull edge, and far out.
 TEST(Editor, MovesOntoAndBeyondTheHullKeepItConvex) {
-    std::vector<Vec2> pts;
-    for (int y = 0; y < 5; ++y) {
-        for (int x = 0; x < 5; ++x) pts.push_back({double(x), double(y)});
-    }
-    Editor ed(finishedDelaunay(pts));
+    Editor ed(finishedDelaunay(lattice(5)));
     std::string message;
     for (const auto& [v, to] : std::vector<std::pair<std::int32_t, Vec2>>{
              {12, {2, 4.5}},   // an interior vertex out beyond the top edge
@@ -496,11 +497,7 @@ TEST(Editor, MovesOntoAndBeyondTheHullKeepItConvex) {
 }
 
 TEST(Editor, AVertexMovedOntoAConstrainedEdgeSplitsItAndBothHalvesStayConstrained) {
-    std::vector<Vec2> pts;
-    for (int y = 0; y < 5; ++y) {
-        for (int x = 0; x < 5; ++x) pts.push_back({double(x), double(y)});
-    }
-    Editor ed(finishedDelaunay(pts));
+    Editor ed(finishedDelaunay(lattice(5)));
     std::string message;
     ASSERT_TRUE(ed.add(makeEdit(EditKind::Constrain, 5, 9), message)) << message;
     ASSERT_TRUE(ed.add(makeMove(12, {2.5, 1}), message)) << message;

@@ -382,17 +382,27 @@ TEST(EditsInTheGui, TheReadmePicturesOfEditsShowWhatTheEngineDid) {
     EXPECT_TRUE(onHull(5) && onHull(3));
 }
 
+namespace {
+
+// At the run's end with the move tool: an interior vertex and where it is on the screen.
+std::int32_t withTheMoveTool(UiHarness& h, float& x, float& y) {
+    toRunEnd(h);
+    const std::int32_t v = interiorVertex(h.state().engine);
+    h.state().tool = ui::AppState::CanvasTool::MoveVertex;
+    h.frames(1);
+    if (v != kNone) screenOf(h, v, x, y);
+    return v;
+}
+
+}  // namespace
+
 TEST(EditsInTheGui, TheMoveToolTakesAVertexThenItsNewPlaceAndTheCanvasDrawsItThere) {
     UiHarness h;
     auto& st = h.state();
     auto& e = st.engine;
-    toRunEnd(h);
-    const std::int32_t v = interiorVertex(e);
+    float x = 0, y = 0;
+    const std::int32_t v = withTheMoveTool(h, x, y);
     ASSERT_NE(v, kNone);
-    st.tool = ui::AppState::CanvasTool::MoveVertex;
-    h.frames(1);
-    float x, y;
-    screenOf(h, v, x, y);
     h.click(x, y);
     EXPECT_EQ(st.toolFirstVertex, v);
     // Halfway to another interior-ish point: the centroid of the points.
@@ -424,13 +434,9 @@ TEST(EditsInTheGui, DraggingAVertexMakesOneMoveThatTheMeshFollowsWhileTheMouseMo
     UiHarness h;
     auto& st = h.state();
     auto& e = st.engine;
-    toRunEnd(h);
-    const std::int32_t v = interiorVertex(e);
+    float x = 0, y = 0;
+    const std::int32_t v = withTheMoveTool(h, x, y);
     ASSERT_NE(v, kNone);
-    st.tool = ui::AppState::CanvasTool::MoveVertex;
-    h.frames(1);
-    float x, y;
-    screenOf(h, v, x, y);
     ImGuiIO& io = ImGui::GetIO();
     io.MousePos = ImVec2(x, y);
     h.frames(1);
