@@ -40,9 +40,8 @@ void printTables(const Inserter& ins, const Editor* edits) {
     const auto name = [&](std::int32_t v) {
         if (edits) return v >= edits->firstVirtual() ? std::string("g") : std::to_string(v);
         if (!ins.isVirtual(v) || ins.done()) return std::to_string(v);
-        return ins.options().boundary == Boundary::Exact
-                   ? std::string("g")
-                   : "s" + std::to_string(v - ins.numInput());
+        return ins.options().boundary == Boundary::Exact ? std::string("g")
+                                                         : "s" + std::to_string(v - ins.numInput());
     };
     for (std::int32_t t = 0; t < m.numTriangles(); ++t) {
         std::cout << "  t " << t << " (corners " << 3 * t << ".." << 3 * t + 2 << "): V";

@@ -368,11 +368,12 @@ void addRender(CLI::App& app) {
                           "N >= 0"));
     cmd->add_flag("--to-end", args->toEnd, "Run to the end before the screenshot")->excludes(steps);
     cmd->add_option("--size", args->size, "Window size WIDTHxHEIGHT")->capture_default_str();
-    auto* edits = cmd->add_option("--edit", args->edits,
-                                  "An edit after the run's end (repeatable, in order): \"remove "
-                                  "vertex V\", \"constrain A-B\", \"unconstrain A-B\", \"move vertex V to X, "
-                                  "Y\"")
-                      ->excludes(steps);
+    auto* edits =
+        cmd->add_option("--edit", args->edits,
+                        "An edit after the run's end (repeatable, in order): \"remove "
+                        "vertex V\", \"constrain A-B\", \"unconstrain A-B\", \"move vertex V to X, "
+                        "Y\"")
+            ->excludes(steps);
     cmd->add_option("--edit-steps", args->editSteps,
                     "Operations of the last --edit done before the screenshot (all without)")
         ->needs(edits)

@@ -428,8 +428,7 @@ TEST(Editor, InTheSuperTrianglesModeEditsKeepTheClosedMeshConstrainedDelaunay) {
         const std::vector<Vec2> pts = randomPoints(80, seed + 90);
         Inserter ins(pts, o);
         Journal journal(ins);
-        while (journal.forward()) {
-        }
+        while (journal.forward()) {}
         std::unique_ptr<Editor> ed = editorAtRunEnd(journal, ins);
         ASSERT_TRUE(ins.done());
         ASSERT_EQ(ed->boundary(), Boundary::Super);
@@ -437,7 +436,8 @@ TEST(Editor, InTheSuperTrianglesModeEditsKeepTheClosedMeshConstrainedDelaunay) {
         const std::vector<Vec2> startG = ed->mesh().G;
         std::mt19937 rng(seed);
         for (int k = 0; k < 30; ++k) {
-            const auto a = static_cast<std::int32_t>(rng() % 80), b = static_cast<std::int32_t>(rng() % 80);
+            const auto a = static_cast<std::int32_t>(rng() % 80),
+                       b = static_cast<std::int32_t>(rng() % 80);
             Edit edit = makeEdit(k % 3 == 0 ? EditKind::Constrain : EditKind::RemoveVertex, a, b);
             if (k % 3 == 2) edit = makeMove(a, {double(rng() % 70) - 5, double(rng() % 70) - 5});
             std::string message;
@@ -457,9 +457,8 @@ TEST(Editor, InTheSuperTrianglesModeEditsKeepTheClosedMeshConstrainedDelaunay) {
                 }
                 ASSERT_EQ(m.O[oc], c);
                 if (ed->isConstrained(c)) continue;
-                ASSERT_LE(incircleGmp(m.G[m.V[c]], m.G[m.V[next(c)]], m.G[m.V[prev(c)]],
-                                      m.G[m.V[oc]]),
-                          0)
+                ASSERT_LE(
+                    incircleGmp(m.G[m.V[c]], m.G[m.V[next(c)]], m.G[m.V[prev(c)]], m.G[m.V[oc]]), 0)
                     << "seed " << seed << " after " << describe(edit);
             }
         }

@@ -41,7 +41,8 @@ const char* toString(ConstrainOpType t) {
 Constrainer::Constrainer(Mesh& mesh, std::int32_t firstVirtual, Boundary boundary)
     : m_mesh(mesh),
       m_firstVirtual(firstVirtual),
-      m_ghost(boundary == Boundary::Exact ? firstVirtual : std::numeric_limits<std::int32_t>::max()) {
+      m_ghost(boundary == Boundary::Exact ? firstVirtual
+                                          : std::numeric_limits<std::int32_t>::max()) {
     rebuildIndex();
     m_flag.assign(mesh.V.size(), 0);
 }

@@ -143,7 +143,7 @@ public:
 private:
     using Edge = std::pair<std::int32_t, std::int32_t>;
     bool isVirtual(std::int32_t v) const { return v >= m_firstVirtual; }  // not the input's
-    bool isGhost(std::int32_t v) const { return v >= m_ghost; }  // the exact mode's ghost vertex
+    bool isGhost(std::int32_t v) const { return v >= m_ghost; }     // the exact mode's ghost vertex
     std::int32_t edgeCorner(std::int32_t u, std::int32_t w) const;  // corner facing u-w
     bool crossedEdges(std::int32_t a, std::int32_t b, std::vector<Edge>& crossed,
                       std::int32_t& stop, ConstrainOutcome& out) const;

@@ -281,8 +281,8 @@ bool Editor::recordMove(Edit& edit, std::string& message) {
         pushMoveOp(edit, true);
         m_constrainer.follow(v, &edit.constraint);
         m_remover.meshChanged();
-        message = "moved " + vertexName(v) + " inside its star's kernel: " +
-                  std::to_string(edit.numOps()) + " operations";
+        message = "moved " + vertexName(v) +
+                  " inside its star's kernel: " + std::to_string(edit.numOps()) + " operations";
         return true;
     }
     const VertexRemoval r = removeRecorded(edit, message);
@@ -292,8 +292,8 @@ bool Editor::recordMove(Edit& edit, std::string& message) {
                                    ? m_constrainer.insertVertex(v, &edit.constraint)
                                    : PlaceResult::NoTriangle;
     if (placed == PlaceResult::Placed) {
-        message = "moved " + vertexName(v) + " (taken out and put in again): " +
-                  std::to_string(edit.numOps()) + " operations";
+        message = "moved " + vertexName(v) +
+                  " (taken out and put in again): " + std::to_string(edit.numOps()) + " operations";
         return true;
     }
     unrecord(edit);

@@ -57,8 +57,10 @@ std::string placeText(const Editor& ed, const Edit& edit, const ConstrainOp& op)
             if (op.sign > 0)
                 return v + " stays inside its star's kernel: every triangle at " + v +
                        " still turns counter-clockwise, so flips alone follow";
-            return v + " is out of the mesh (its new place is beyond its star's kernel): it "
-                       "takes its new place " + at;
+            return v +
+                   " is out of the mesh (its new place is beyond its star's kernel): it "
+                   "takes its new place " +
+                   at;
         }
         case ConstrainOpType::Locate: {
             std::int32_t x = kNone, y = kNone;
@@ -82,50 +84,54 @@ std::string placeText(const Editor& ed, const Edit& edit, const ConstrainOp& op)
 
 }  // namespace
 
-std::string describeEditStep(const Editor& ed) {
-    const EditStep s = ed.current();
-    if (!s.edit) return "";
-    const Mesh& m = ed.mesh();
-    const auto isGhost = [&](std::int32_t v) { return v >= ed.ghost(); };
-    // The ghost vertex reads "g", as the canvas labels it.
-    const auto id = [&](std::int32_t v) {
-        return isGhost(v)                ? std::string("g")
+namespace {
+
+// Vertices as the captions name them: the ghost vertex "g" (as the canvas labels it), the
+// super-triangle's "s0" to "s2".
+struct Names {
+    const Editor& ed;
+    bool isGhost(std::int32_t v) const { return v >= ed.ghost(); }
+    std::string id(std::int32_t v) const {
+        return isGhost(v)               ? std::string("g")
                : v >= ed.firstVirtual() ? "s" + std::to_string(v - ed.firstVirtual())
                                         : std::to_string(v);
-    };
-    const auto edge = [&](std::int32_t a, std::int32_t b) { return id(a) + "-" + id(b); };
-    std::string out = describe(*s.edit) + ", ";
-    if (s.removal) {
-        const RemoveOp& op = *s.removal;
-        const std::string v = std::to_string(op.vertex);
-        switch (op.type) {
-            case RemoveOpType::EarTest: {
-                const Ear ear = earOf(m, op);
-                out += "ear test at " + id(ear.b) + ": triangle " + edge(ear.a, ear.b) + "-" +
-                       id(ear.c) +
-                       (op.sign > 0 ? " has no other neighbour of " + v +
-                                          " inside its circle: an ear, cut it next"
-                        : op.sign == 0 ? " is flat: cut only when no other ear is left"
-                                       : " is no ear: a neighbour of " + v +
-                                             " is inside its circle, or it turns the wrong way");
-                break;
-            }
-            case RemoveOpType::Flip: {
-                const FlipEdges f =
-                    flipEdges(s.edit->removal.changes, op.firstChange, op.numChanges);
-                out += "flip " + edge(f.oldA, f.oldB) + " to " + edge(f.newA, f.newB) +
-                       ": the ear is a triangle of the result, " + v + " has one neighbour less";
-                break;
-            }
-            case RemoveOpType::Merge:
-                out += v + " has three neighbours left: its triangles merge into triangle " +
-                       std::to_string(op.a);
-                break;
-            case RemoveOpType::Collapse: out += "the points left make no triangle"; break;
-        }
-        return out;
     }
-    const ConstrainOp& op = *s.constraint;
+    std::string edge(std::int32_t a, std::int32_t b) const { return id(a) + "-" + id(b); }
+};
+
+std::string removalText(const Names& n, const Edit& edit, const RemoveOp& op) {
+    std::string out;
+    const std::string v = std::to_string(op.vertex);
+    switch (op.type) {
+        case RemoveOpType::EarTest: {
+            const Ear ear = earOf(n.ed.mesh(), op);
+            out += "ear test at " + n.id(ear.b) + ": triangle " + n.edge(ear.a, ear.b) + "-" +
+                   n.id(ear.c) +
+                   (op.sign > 0 ? " has no other neighbour of " + v +
+                                      " inside its circle: an ear, cut it next"
+                    : op.sign == 0 ? " is flat: cut only when no other ear is left"
+                                   : " is no ear: a neighbour of " + v +
+                                         " is inside its circle, or it turns the wrong way");
+            break;
+        }
+        case RemoveOpType::Flip: {
+            const FlipEdges f = flipEdges(edit.removal.changes, op.firstChange, op.numChanges);
+            out += "flip " + n.edge(f.oldA, f.oldB) + " to " + n.edge(f.newA, f.newB) +
+                   ": the ear is a triangle of the result, " + v + " has one neighbour less";
+            break;
+        }
+        case RemoveOpType::Merge:
+            out += v + " has three neighbours left: its triangles merge into triangle " +
+                   std::to_string(op.a);
+            break;
+        case RemoveOpType::Collapse: out += "the points left make no triangle"; break;
+    }
+    return out;
+}
+
+std::string constraintText(const Names& n, const Edit& edit, const ConstrainOp& op) {
+    const Mesh& m = n.ed.mesh();
+    std::string out;
     switch (op.type) {
         case ConstrainOpType::Walk:
             out += "walk from " + std::to_string(op.a) + " to " + std::to_string(op.b) + ": " +
@@ -133,47 +139,57 @@ std::string describeEditStep(const Editor& ed) {
                    " the segment" + (op.b != op.segmentB ? " (a vertex lies on it)" : "");
             break;
         case ConstrainOpType::SloanFlip: {
-            const FlipEdges f =
-                flipEdges(s.edit->constraint.changes, op.firstChange, op.numChanges);
+            const FlipEdges f = flipEdges(edit.constraint.changes, op.firstChange, op.numChanges);
             out +=
-                "flip the crossing edge " + edge(f.oldA, f.oldB) + " to " + edge(f.newA, f.newB) +
+                "flip the crossing edge " + n.edge(f.oldA, f.oldB) + " to " +
+                n.edge(f.newA, f.newB) +
                 (op.sign > 0 ? ": it still crosses, back in the queue" : ": it no longer crosses");
             break;
         }
         case ConstrainOpType::SloanWait:
-            out += "the crossing edge " + edge(m.V[next(op.a)], m.V[prev(op.a)]) +
+            out += "the crossing edge " + n.edge(m.V[next(op.a)], m.V[prev(op.a)]) +
                    " has a quadrilateral that is not convex: it waits";
             break;
-        case ConstrainOpType::Mark: out += edge(op.a, op.b) + " is now a constrained edge"; break;
+        case ConstrainOpType::Mark: out += n.edge(op.a, op.b) + " is now a constrained edge"; break;
         case ConstrainOpType::Unmark:
-            out += edge(op.a, op.b) + " is held by one constraint less";
+            out += n.edge(op.a, op.b) + " is held by one constraint less";
             break;
         case ConstrainOpType::Reflag:
             out += "the constrained edges are flagged again on their corners";
             break;
         case ConstrainOpType::InCircleTest: {
             const std::int32_t A = m.V[next(op.a)], B = m.V[prev(op.a)];
-            if (isGhost(A) || isGhost(B)) {  // between two ghost triangles
-                const std::int32_t x = isGhost(A) ? B : A;  // on the hull, or leaving it
-                out += "is " + id(m.V[op.b]) + " beyond the hull edge " + edge(m.V[op.a], x) +
+            if (n.isGhost(A) || n.isGhost(B)) {               // between two ghost triangles
+                const std::int32_t x = n.isGhost(A) ? B : A;  // on the hull, or leaving it
+                out += "is " + n.id(m.V[op.b]) + " beyond the hull edge " + n.edge(m.V[op.a], x) +
                        "? " +
-                       (op.sign > 0 ? "yes: flip, " + id(x) + " leaves the hull"
-                                    : "no: keep, " + id(x) + " stays on the hull");
+                       (op.sign > 0 ? "yes: flip, " + n.id(x) + " leaves the hull"
+                                    : "no: keep, " + n.id(x) + " stays on the hull");
                 break;
             }
-            out += "is " + id(m.V[op.b]) + " inside the circle across " + edge(A, B) + "? " +
+            out += "is " + n.id(m.V[op.b]) + " inside the circle across " + n.edge(A, B) + "? " +
                    (op.sign > 0 ? "yes: flip" : "no: keep");
             break;
         }
         case ConstrainOpType::Flip: {
-            const FlipEdges f =
-                flipEdges(s.edit->constraint.changes, op.firstChange, op.numChanges);
-            out += "flip " + edge(f.oldA, f.oldB) + " to " + edge(f.newA, f.newB);
+            const FlipEdges f = flipEdges(edit.constraint.changes, op.firstChange, op.numChanges);
+            out += "flip " + n.edge(f.oldA, f.oldB) + " to " + n.edge(f.newA, f.newB);
             break;
         }
-        default: out += placeText(ed, *s.edit, op); break;
+        default: out += placeText(n.ed, edit, op); break;
     }
     return out;
+}
+
+}  // namespace
+
+std::string describeEditStep(const Editor& ed) {
+    const EditStep s = ed.current();
+    if (!s.edit) return "";
+    const Names names{ed};
+    return describe(*s.edit) + ", " +
+           (s.removal ? removalText(names, *s.edit, *s.removal)
+                      : constraintText(names, *s.edit, *s.constraint));
 }
 
 }  // namespace dlab

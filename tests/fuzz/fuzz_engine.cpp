@@ -430,8 +430,7 @@ void checkEditor(const Case& c, const Mesh& finished) {
     Editor fresh(finished);
     for (const Edit& e : ed.edits()) {
         std::string message;
-        require(fresh.add(e, message),
-                "an edit kept is made again on a fresh editor", what);
+        require(fresh.add(e, message), "an edit kept is made again on a fresh editor", what);
         fresh.seek(fresh.total());
     }
     require(snap(fresh.mesh()) == snap(ed.mesh()), "a fresh editor makes the same mesh", what);

@@ -962,7 +962,8 @@ void dragVertex(AppState& st, CanvasCache& cache, ImVec2 mouse) {
         cache.dragMoved = true;
         cache.dragTo = to;
     } else {
-        std::string line = "move vertex " + std::to_string(cache.dragPoint) + " refused: " + message;
+        std::string line =
+            "move vertex " + std::to_string(cache.dragPoint) + " refused: " + message;
         if (st.messages.empty() || st.messages.back().text != line)  // once while it stays so
             st.log(Message::Level::Warning, std::move(line));
     }
@@ -970,6 +971,32 @@ void dragVertex(AppState& st, CanvasCache& cache, ImVec2 mouse) {
 
 std::int32_t pendingPointAt(const AppState& st, ImVec2 mouse) {
     return pointAt(st, mouse, Engine::PointState::Pending, 10.0f);
+}
+
+// A left press on the canvas: what a drag from it will do (move a queued point, drag a vertex
+// with the move tool, pan), or a corner selected.
+void pressOnCanvas(AppState& st, CanvasCache& cache, ImVec2 mouse) {
+    cache.pressPos = mouse;
+    cache.moved = false;
+    cache.pressedOnCorner = st.selection.hoveredCorner != kNone;
+    cache.dragPoint = pendingPointAt(st, mouse);
+    cache.drag = cache.dragPoint != kNone ? CanvasCache::Drag::Pending : CanvasCache::Drag::Pan;
+    if (st.tool == AppState::CanvasTool::MoveVertex && cache.dragPoint == kNone) {
+        // The move tool drags the vertex pressed on (a click without a drag picks it instead).
+        const std::int32_t v = pointAt(st, mouse, Engine::PointState::Inserted, 12.0f);
+        if (v != kNone) {
+            cache.drag = CanvasCache::Drag::Vertex;
+            cache.dragPoint = v;
+            cache.dragMoved = false;
+        }
+    }
+    // An edit tool takes the click for a vertex, not the corner beside it.
+    if (cache.pressedOnCorner && cache.dragPoint == kNone &&
+        st.tool == AppState::CanvasTool::AddPoints) {
+        st.select(st.selection.hoveredCorner);
+        st.selection.jumpToCorner = st.selection.corner;
+        cache.drag = CanvasCache::Drag::None;
+    }
 }
 
 void handleInput(AppState& st, CanvasCache& cache, bool hovered) {
@@ -983,29 +1010,7 @@ void handleInput(AppState& st, CanvasCache& cache, bool hovered) {
         view.center.x -= io.MouseDelta.x / view.scale;
         view.center.y += io.MouseDelta.y / view.scale;
     }
-    if (hovered && ImGui::IsMouseClicked(ImGuiMouseButton_Left)) {
-        cache.pressPos = mouse;
-        cache.moved = false;
-        cache.pressedOnCorner = st.selection.hoveredCorner != kNone;
-        cache.dragPoint = pendingPointAt(st, mouse);
-        cache.drag = cache.dragPoint != kNone ? CanvasCache::Drag::Pending : CanvasCache::Drag::Pan;
-        if (st.tool == AppState::CanvasTool::MoveVertex && cache.dragPoint == kNone) {
-            // The move tool drags the vertex pressed on (a click picks it, as before).
-            const std::int32_t v = pointAt(st, mouse, Engine::PointState::Inserted, 12.0f);
-            if (v != kNone) {
-                cache.drag = CanvasCache::Drag::Vertex;
-                cache.dragPoint = v;
-                cache.dragMoved = false;
-            }
-        }
-        // An edit tool takes the click for a vertex, not the corner beside it.
-        if (cache.pressedOnCorner && cache.dragPoint == kNone &&
-            st.tool == AppState::CanvasTool::AddPoints) {
-            st.select(st.selection.hoveredCorner);
-            st.selection.jumpToCorner = st.selection.corner;
-            cache.drag = CanvasCache::Drag::None;
-        }
-    }
+    if (hovered && ImGui::IsMouseClicked(ImGuiMouseButton_Left)) pressOnCanvas(st, cache, mouse);
     if (cache.drag != CanvasCache::Drag::None && ImGui::IsMouseDown(ImGuiMouseButton_Left)) {
         const float dx = mouse.x - cache.pressPos.x, dy = mouse.y - cache.pressPos.y;
         if (dx * dx + dy * dy > 16) cache.moved = true;

@@ -477,7 +477,8 @@ TEST(EditsInTheGui, DraggingAVertexMakesOneMoveThatTheMeshFollowsWhileTheMouseMo
     bool onHull = false;  // a ghost triangle at v
     const dlab::Mesh& m = e.mesh();
     for (std::int32_t c = 0; c < m.numCorners(); ++c)
-        onHull |= m.V[c] == v && (e.isVirtual(m.V[dlab::next(c)]) || e.isVirtual(m.V[dlab::prev(c)]));
+        onHull |=
+            m.V[c] == v && (e.isVirtual(m.V[dlab::next(c)]) || e.isVirtual(m.V[dlab::prev(c)]));
     EXPECT_TRUE(onHull);
     h.press(key::letter('Z'), false, true);
     EXPECT_EQ(e.editor()->edits().size(), 1u) << "Ctrl+Z undoes the whole second drag";
