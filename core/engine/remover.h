@@ -111,10 +111,10 @@ private:
     std::vector<std::int8_t> m_ear;  // earSign of the ear with tip link[i], or kUntested
 };
 
-// Is w inside the circle of the counter-clockwise triangle (a, b, c) on the exact mode's closed mesh,
-// where vertices at or past `ghost` are the ghost vertex: +1 inside, 0 on it, -1 outside. A ghost
-// triangle's "circle" is the open half-plane beyond its hull edge plus the open edge; the ghost
-// vertex is inside no circle.
+// Is w inside the circle of the counter-clockwise triangle (a, b, c) on the exact mode's closed
+// mesh, where vertices at or past `ghost` are the ghost vertex: +1 inside, 0 on it, -1 outside.
+// A ghost triangle's "circle" is the open half-plane beyond its hull edge plus the open edge;
+// the ghost vertex is inside no circle.
 int ghostInCircle(const std::vector<Vec2>& G, std::int32_t ghost, std::int32_t a, std::int32_t b,
                   std::int32_t c, std::int32_t w);
 
