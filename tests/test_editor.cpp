@@ -3,6 +3,7 @@
 // nothing, and a new edit in the middle of the history dropping the ones after it.
 #include "core/engine/editor.h"
 #include "core/engine/inserter.h"
+#include "core/teaching/describe_edit.h"
 #include "tests/exact_check.h"
 
 #include <gtest/gtest.h>
@@ -517,4 +518,54 @@ TEST(Editor, AVertexMovedOntoAConstrainedEdgeSplitsItAndBothHalvesStayConstraine
     ASSERT_TRUE(e);
     EXPECT_EQ(describe(*e), "move vertex 12 to 2.5, 1");
     EXPECT_EQ(e->to.x, 2.5);
+}
+
+// A hull vertex whose removal leaves the other points collinear (a triangle's corner, the apex
+// over a row of points) still moves to any place off their line: the points there make
+// triangles, so the move is made, not refused as "no triangle".
+TEST(Editor, AVertexWhoseOtherPointsAreCollinearMovesOffTheirLine) {
+    struct Case {
+        std::vector<Vec2> pts;
+        std::int32_t v;
+        Vec2 to;
+    };
+    const std::vector<Case> cases{
+        {{{2, 2}, {0, 3}, {2, 0}}, 0, {2, 3}},                   // a triangle's corner, a step
+        {{{2, 2}, {0, 3}, {2, 0}}, 0, {5, 5}},                   // ... and far out
+        {{{0, 0}, {1, 0}, {2, 0}, {3, 0}, {1, 1}}, 4, {2, 3}}};  // the apex over a row
+    for (const Case& k : cases) {
+        Editor ed(finishedDelaunay(k.pts));
+        const Snapshot start = snap(ed);
+        std::string message;
+        const Edit move = makeMove(k.v, k.to);
+        if (!ed.add(move, message)) {
+            ADD_FAILURE() << describe(move) << ": " << message;
+            continue;
+        }
+        ed.seek(ed.total());
+        EXPECT_EQ(checkEdited(ed), "") << describe(move);
+        EXPECT_EQ(ed.mesh().G[k.v], k.to);
+        EXPECT_TRUE(usesVertex(ed.mesh(), k.v));
+        EXPECT_EQ(ed.mesh().numTriangles(), static_cast<std::int32_t>(start.V.size() / 3));
+        const auto& ops = ed.edits()[0].constraint.ops;
+        const auto fan = std::find_if(ops.begin(), ops.end(), [](const ConstrainOp& op) {
+            return op.type == ConstrainOpType::Fan;
+        });
+        ASSERT_NE(fan, ops.end()) << describe(move) << ": the others collinear, a fan";
+        ed.seek(ed.edits()[0].removal.ops.size() + (fan - ops.begin()) + 1);
+        EXPECT_NE(describeEditStep(ed).find(", off their line, makes a fan of triangles"),
+                  std::string::npos)
+            << describeEditStep(ed);
+        ed.seek(0);
+        EXPECT_EQ(snap(ed), start);
+        // Onto their line, beyond the last two of them: no triangle would be left.
+        Editor again(finishedDelaunay(k.pts));
+        const auto n = static_cast<std::int32_t>(k.pts.size());
+        const std::int32_t last = k.v == n - 1 ? n - 2 : n - 1;
+        const std::int32_t before = k.v == last - 1 ? last - 2 : last - 1;
+        const Vec2 a = k.pts[before], b = k.pts[last];
+        EXPECT_FALSE(again.add(makeMove(k.v, {2 * b.x - a.x, 2 * b.y - a.y}), message));
+        EXPECT_NE(message.find("onto the line of the other points"), std::string::npos) << message;
+        EXPECT_EQ(snap(again), start);
+    }
 }

@@ -34,6 +34,7 @@ const char* toString(ConstrainOpType t) {
         case ConstrainOpType::Locate: return "Locate";
         case ConstrainOpType::Split: return "Split";
         case ConstrainOpType::SplitEdge: return "SplitEdge";
+        case ConstrainOpType::Fan: return "Fan";
     }
     return "?";
 }
@@ -574,6 +575,45 @@ PlaceResult Constrainer::insertVertex(std::int32_t v, ConstraintRecord* record) 
     }
     endOp();
     restore(std::move(link));
+    return PlaceResult::Placed;
+}
+
+PlaceResult Constrainer::fanOut(std::int32_t v, const std::vector<std::int32_t>& left,
+                                ConstraintRecord* record) {
+    if (m_stale) rebuildIndex();
+    const auto& G = m_mesh.G;
+    if (m_mesh.numTriangles() != 0 || left.size() < 2)
+        throw std::logic_error("fanOut: the mesh must be empty, two vertices or more left");
+    std::vector<Vec2> pts;  // the points left, then v: the fan is their Delaunay triangulation
+    for (const std::int32_t u : left) {
+        if (G[u] == G[v]) return PlaceResult::OnVertex;
+        pts.push_back(G[u]);
+    }
+    pts.push_back(G[v]);
+    Inserter fan(pts);
+    fan.run();
+    Mesh made = fan.takeMesh();
+    if (made.numTriangles() == 0) return PlaceResult::NoTriangle;  // v on their line
+    addGhosts(made);
+    const auto local = static_cast<std::int32_t>(left.size());  // v; the ghost is local + 1
+    const auto id = [&](std::int32_t i) {
+        return i < local ? left[i] : i == local ? v : m_firstVirtual;
+    };
+    if (m_cornerOf.size() < G.size()) m_cornerOf.resize(G.size(), kNone);
+    struct Recording {  // the record is this call's only, even when it throws
+        Constrainer& self;
+        ~Recording() { self.m_record = nullptr; }
+    } recording{*this};
+    beginRecording(record, v, kNone);
+    if (ConstrainOp* op = beginOp(ConstrainOpType::Fan, v, kNone)) op->count = made.numTriangles();
+    appendTriangles(made.numTriangles());
+    for (std::int32_t c = 0; c < made.numCorners(); ++c) {
+        setV(c, id(made.V[c]));
+        setO(c, made.O[c]);
+        setFlag(c, 0);
+        m_cornerOf[id(made.V[c])] = c;
+    }
+    endOp();
     return PlaceResult::Placed;
 }
 

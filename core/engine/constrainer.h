@@ -45,6 +45,8 @@ enum class ConstrainOpType : std::uint8_t {
     Split,         // triangle b split in three around vertex a
     SplitEdge,     // the edge opposite corner b split at vertex a (its constraints kept on both
                    // halves)
+    Fan,           // the points left were collinear (no triangle): vertex a, off their line, and
+                   // they make count triangles (a fan, with its ghost triangles)
 };
 const char* toString(ConstrainOpType t);
 
@@ -121,6 +123,12 @@ public:
     // edge that sees it is split, and the flips take in the hull vertices it makes reflex. On
     // another vertex nothing changes.
     PlaceResult insertVertex(std::int32_t v, ConstraintRecord* record = nullptr);
+    // The mesh has no triangle and `left` are the vertices left, collinear (a removal
+    // collapsed): vertex v (its point G[v]) off their line makes the fan of triangles with them,
+    // and its ghost triangles, recorded as one Fan op. On their line or on one of them, nothing
+    // changes (NoTriangle, OnVertex).
+    PlaceResult fanOut(std::int32_t v, const std::vector<std::int32_t>& left,
+                       ConstraintRecord* record = nullptr);
     // Would vertex v at `to` keep every triangle of its star counter-clockwise (strictly)? False
     // for a hull vertex (its star is open to the outside) and for a vertex in no triangle.
     bool inKernel(std::int32_t v, Vec2 to);

@@ -288,9 +288,11 @@ bool Editor::recordMove(Edit& edit, std::string& message) {
     const VertexRemoval r = removeRecorded(edit, message);
     if (r.refused || r.removed == RemoveResult::NotInMesh) return false;
     pushMoveOp(edit, false);
-    const PlaceResult placed = r.removed == RemoveResult::Removed
-                                   ? m_constrainer.insertVertex(v, &edit.constraint)
-                                   : PlaceResult::NoTriangle;
+    PlaceResult placed = PlaceResult::NoTriangle;
+    if (r.removed == RemoveResult::Removed)
+        placed = m_constrainer.insertVertex(v, &edit.constraint);
+    else if (r.droppedConstraints == 0)  // the others are collinear: a fan with them
+        placed = m_constrainer.fanOut(v, leftAfterCollapse(edit), &edit.constraint);
     if (placed == PlaceResult::Placed) {
         message = "moved " + vertexName(v) +
                   " (taken out and put in again): " + std::to_string(edit.numOps()) + " operations";
@@ -299,11 +301,34 @@ bool Editor::recordMove(Edit& edit, std::string& message) {
     unrecord(edit);
     m_remover.meshChanged();
     m_constrainer.refresh();
-    message = placed == PlaceResult::OnVertex ? vertexName(v) + " cannot move onto another vertex"
-              : m_boundary == Boundary::Super
-                  ? vertexName(v) + " cannot move outside the super-triangle"
-                  : vertexName(v) + " cannot move: the other points are collinear (no triangle)";
+    if (placed == PlaceResult::OnVertex)
+        message = vertexName(v) + " cannot move onto another vertex";
+    else if (m_boundary == Boundary::Super)
+        message = vertexName(v) + " cannot move outside the super-triangle";
+    else if (r.droppedConstraints)
+        message = vertexName(v) + " cannot move: the other points are collinear, and the " +
+                  "constraints between them would be lost";
+    else
+        message = vertexName(v) + " cannot move onto the line of the other points: they would " +
+                  "make no triangle";
     return false;
+}
+
+// The vertices a collapsed removal left (every other vertex its Collapse op took out of the
+// table), in order.
+std::vector<std::int32_t> Editor::leftAfterCollapse(const Edit& edit) const {
+    std::vector<std::int32_t> left;
+    for (const RemoveOp& op : edit.removal.ops) {
+        if (op.type != RemoveOpType::Collapse) continue;
+        for (std::uint32_t i = 0; i < op.numChanges; ++i) {
+            const CellChange& ch = edit.removal.changes[op.firstChange + i];
+            if (!ch.isO() && ch.before >= 0 && ch.before < m_firstVirtual && ch.before != edit.a)
+                left.push_back(ch.before);
+        }
+    }
+    std::sort(left.begin(), left.end());
+    left.erase(std::unique(left.begin(), left.end()), left.end());
+    return left;
 }
 
 // Runs the edit on the mesh with its records; false (with nothing changed) when refused.

@@ -126,6 +126,7 @@ private:
     VertexRemoval removeRecorded(Edit& edit, std::string& message);
     bool recordMove(Edit& edit, std::string& message);
     void pushMoveOp(Edit& edit, bool inKernel);
+    std::vector<std::int32_t> leftAfterCollapse(const Edit& edit) const;
     void unrecord(const Edit& edit);
 
     Mesh m_mesh;

@@ -78,6 +78,10 @@ std::string placeText(const Editor& ed, const Edit& edit, const ConstrainOp& op)
                    "; its edges wait for their in-circle tests";
         case ConstrainOpType::SplitEdge:
             return "the edge " + v + " lies on split in two (a constraint on it holds both halves)";
+        case ConstrainOpType::Fan:
+            return "the other points are collinear: " + v + ", off their line, makes a fan of " +
+                   "triangles with them (" + std::to_string(op.count) +
+                   " with the ghost triangles)";
         default: return toString(op.type);
     }
 }

@@ -134,6 +134,7 @@ void DrawConstraintOp(AppState& st, ImDrawList* dl, const Edit& edit, const Cons
             break;
         case ConstrainOpType::Split:
         case ConstrainOpType::SplitEdge:
+        case ConstrainOpType::Fan:
             for (std::int32_t c = 0; c < m.numCorners(); ++c) {
                 if (m.V[c] == op.a)
                     FillTriangle(st, dl, m.V[3 * tri(c)], m.V[3 * tri(c) + 1], m.V[3 * tri(c) + 2],
