@@ -520,6 +520,24 @@ TEST(Editor, AVertexMovedOntoAConstrainedEdgeSplitsItAndBothHalvesStayConstraine
     EXPECT_EQ(e->to.x, 2.5);
 }
 
+// A removal that leaves the other points collinear drops the constraints between them (no
+// triangle holds them) and says how many; stepping back restores them.
+TEST(Editor, ARemovalThatLeavesNoTriangleSaysWhichConstraintsItDrops) {
+    Editor ed(finishedDelaunay({{0, 0}, {1, 0}, {2, 0}, {1, 1}}));
+    std::string message;
+    ASSERT_TRUE(ed.add(makeEdit(EditKind::Constrain, 0, 2), message)) << message;
+    ed.seek(ed.total());
+    ASSERT_EQ(ed.constrainedEdges().size(), 2u) << "0-2 through 1: two constrained edges";
+    ASSERT_TRUE(ed.add(makeEdit(EditKind::RemoveVertex, 3), message)) << message;
+    EXPECT_NE(message.find("no triangle, and the 2 constraints between them are dropped"),
+              std::string::npos)
+        << message;
+    ed.seek(ed.total());
+    EXPECT_TRUE(ed.constrainedEdges().empty());
+    ed.seek(ed.editEnd(0));
+    EXPECT_EQ(ed.constrainedEdges().size(), 2u);
+}
+
 // A hull vertex whose removal leaves the other points collinear (a triangle's corner, the apex
 // over a row of points) still moves to any place off their line: the points there make
 // triangles, so the move is made, not refused as "no triangle".

@@ -347,6 +347,10 @@ bool Editor::record(Edit& edit, std::string& message) {
         message = "removed " + vertexName(edit.a) + ": " + std::to_string(edit.removal.ops.size()) +
                   " operations";
         if (r.removed == RemoveResult::Collapsed) message += "; the points left make no triangle";
+        if (r.droppedConstraints > 0)  // no triangle holds them: stepping back restores them
+            message += ", and the " + std::to_string(r.droppedConstraints) +
+                       (r.droppedConstraints == 1 ? " constraint" : " constraints") +
+                       " between them are dropped";
         return true;
     }
     const ConstrainOutcome out = edit.kind == EditKind::Constrain
